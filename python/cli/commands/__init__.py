@@ -1,0 +1,1 @@
+"""Sub-commands of `anchoring`, one module each (see cli.anchoring_cli)."""

@@ -1,0 +1,67 @@
+"""JSON Lines percept streams: one frame per line, ``{"frame": k, "time": t, "percepts": [...]}``.
+
+A recorded stream (or another robot's pipeline) can feed the anchoring system through this
+format without the simulator. Optional ``"truth"`` per frame carries simulator ground truth for
+evaluation; anchoring never reads it.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from percepts.record import Percept, PerceptError
+
+
+@dataclass
+class PerceptFrame:
+    frame: int
+    time: float
+    percepts: list[Percept]
+    truth: dict[str, Any] = field(default_factory=dict)
+    rejected: list[str] = field(default_factory=list)  # why percepts of this frame were dropped
+
+
+def write_percepts(path: str | Path, frames: Iterable[PerceptFrame]) -> None:
+    with open(path, "w", encoding="utf-8") as out:
+        for fr in frames:
+            line: dict[str, Any] = {
+                "frame": fr.frame,
+                "time": fr.time,
+                "percepts": [p.to_json() for p in fr.percepts],
+            }
+            if fr.truth:
+                line["truth"] = fr.truth
+            out.write(json.dumps(line) + "\n")
+
+
+def read_percepts(path: str | Path) -> Iterator[PerceptFrame]:
+    """Yield frames; a bad percept is dropped with its reason in ``frame.rejected``.
+
+    A line that is not JSON, or not a frame, raises :class:`PerceptError` naming file and line.
+    """
+    with open(path, encoding="utf-8") as src:
+        for lineno, text in enumerate(src, start=1):
+            if not text.strip():
+                continue
+            try:
+                record = json.loads(text)
+                frame = int(record["frame"])
+                time = float(record["time"])
+                raw = record["percepts"]
+            except (json.JSONDecodeError, KeyError, TypeError, ValueError) as exc:
+                raise PerceptError(f"{path}:{lineno}: not a percept frame: {exc}") from exc
+            kept: list[Percept] = []
+            rejected: list[str] = []
+            for i, item in enumerate(raw):
+                try:
+                    percept = Percept.from_json(item)
+                    percept.validate()
+                except PerceptError as exc:
+                    rejected.append(f"{path}:{lineno}: percept {i}: {exc}")
+                    continue
+                kept.append(percept)
+            yield PerceptFrame(frame, time, kept, record.get("truth", {}), rejected)
