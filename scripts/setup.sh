@@ -107,6 +107,15 @@ if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
     "$venv/bin/pip" install -q -e ".[dev]" 2>&1 | { grep -v "is ignored: it is neither" || true; }
   echo "$want" > "$stamp"
 fi
+# Packages whose metadata asks for opencv-python, which would overwrite the cv2 module of our
+# opencv-python-headless: installed without dependencies (pyproject.toml lists those instead).
+nodeps="python/evaluation/requirements-nodeps.txt"
+nodeps_stamp="$venv/.anchoring-nodeps"
+if [ -f "$nodeps" ] && [ "$(sha1sum < "$nodeps")" != "$(cat "$nodeps_stamp" 2>/dev/null)" ]; then
+  log "installing $nodeps without dependencies"
+  "$venv/bin/pip" install -q --no-deps -r "$nodeps" 2>&1 | { grep -v "is ignored: it is neither" || true; }
+  sha1sum < "$nodeps" > "$nodeps_stamp"
+fi
 # janus must find the SWI-Prolog it was built against, even with another swipl on PATH: set
 # SWI_HOME_DIR (and PATH) at interpreter start-up through a .pth file, so that
 # .venv/bin/python and every console command work without the user exporting anything.
