@@ -1,0 +1,2 @@
+from bridge import terms  # noqa: E402,F401  (Python value -> Prolog term text)
+from bridge.filter import Filter, FilterError, StepResult, ZeroWeightWarning  # noqa: E402,F401

@@ -1,0 +1,584 @@
+"""The DDC particle filter seen from Python (issue 4).
+
+Prolog (``prolog/ddc.pl``) owns the semantics: the particles live there between steps and one
+call per step samples the transition and weights every particle. Python owns the bookkeeping:
+normalised log weights (numpy), the effective sample size, resampling indices drawn from a numpy
+``Generator`` seeded from ``seed``, the running log-likelihood, and timing.
+
+Example::
+
+    from bridge import Filter, terms
+    f = Filter("prolog/examples/filter/wumpus.pl", particles=2000, seed=7)
+    f.step(["observation(up) ~= wall", terms.observation("right", "free")],
+           actions=[terms.action("null")])
+    f.probability("maze(0,1):t ~= wall")          # ~0.857
+    f.distribution("maze(0,1):t")                 # [(0.857, 'wall'), (0.143, 'free')]
+
+Inputs go to Prolog as text (see :mod:`bridge.terms` for the Python -> Prolog mapping); each
+text is parsed on the Prolog side with ``term_string/3`` in the operator context of module
+``ddc`` and must be ground. Values read back from particles (``values``, ``distribution``,
+``samples``, ``mean``) map Prolog -> Python as: numbers -> ``int``/``float``; atoms and strings
+-> ``str``; comma terms ``(A,B,C)`` -> ``tuple``; lists -> ``list``; any other compound -> its
+text (``"pos(ball_1)"``); a particle in which the goal has no solution -> ``None``.
+
+Zero-weight frames: if every particle's weight becomes 0 (log weight -inf or NaN) the filter does
+not die. It warns (:class:`ZeroWeightWarning` and ``logging``), counts the event in
+``zero_weight_events``, undoes the step in Prolog (``filter_undo``) and keeps the pre-step
+particles with uniform weights. The frame is consumed (``frames`` counts it, the next ``step``
+takes the next frame) but the filter's ``time`` does not advance, because the particles kept are
+those of time t; ``log_likelihood`` does not include the frame (it would be -inf).
+
+Bad input (a term that does not parse, a non-ground observation, an observation no clause
+applies to, any other Prolog error in a step) raises :class:`FilterError` naming the step, the
+item and the cause; if the engine had already advanced, the step is undone, so the filter stays
+usable with everything it held.
+"""
+
+from __future__ import annotations
+
+import itertools
+import logging
+import math
+import os
+import threading
+import time as _time
+import warnings
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Literal
+
+import janus_swi as janus
+import numpy as np
+
+from bridge import prolog
+from bridge.terms import Compound, Text, item_text, to_term
+
+logger = logging.getLogger(__name__)
+
+Resampling = Literal["systematic", "multinomial", "residual"]
+_TEMPLATE_VAR = "DdcBridgeValue__"
+
+
+class FilterError(RuntimeError):
+    """A step or query the filter could not carry out; the filter itself is unchanged."""
+
+
+class ZeroWeightWarning(RuntimeWarning):
+    """Every particle got weight 0 in a step; the pre-step particles were kept."""
+
+
+# --------------------------------------------------------------------------------------------
+# Resampling (pure numpy; unit-tested on their own)
+
+
+def systematic_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """One uniform offset, stride 1/N: particle i is copied floor(N w_i) or ceil(N w_i) times."""
+    n = len(weights)
+    positions = (rng.random() + np.arange(n)) / n
+    cumulative = np.cumsum(weights)
+    cumulative[-1] = 1.0
+    return np.minimum(np.searchsorted(cumulative, positions, side="right"), n - 1)
+
+
+def multinomial_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """N independent draws from the weights (sorted, so copies sit together)."""
+    n = len(weights)
+    cumulative = np.cumsum(weights)
+    cumulative[-1] = 1.0
+    draws = np.sort(rng.random(n))
+    return np.minimum(np.searchsorted(cumulative, draws, side="right"), n - 1)
+
+
+def residual_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
+    """floor(N w_i) copies of each particle, the remaining R drawn multinomially from the rest."""
+    n = len(weights)
+    scaled = n * np.asarray(weights, dtype=float)
+    copies = np.floor(scaled).astype(np.int64)
+    deterministic = np.repeat(np.arange(n), copies)
+    remaining = n - len(deterministic)
+    if remaining == 0:
+        return deterministic
+    residual = scaled - copies
+    cumulative = np.cumsum(residual / residual.sum())
+    cumulative[-1] = 1.0
+    draws = np.sort(rng.random(remaining))
+    extra = np.minimum(np.searchsorted(cumulative, draws, side="right"), n - 1)
+    return np.sort(np.concatenate([deterministic, extra]))
+
+
+RESAMPLERS = {
+    "systematic": systematic_indices,
+    "multinomial": multinomial_indices,
+    "residual": residual_indices,
+}
+
+
+def resample_indices(
+    weights: np.ndarray, scheme: Resampling, rng: np.random.Generator
+) -> np.ndarray:
+    """N ancestor indices (0-based) for normalised ``weights`` under ``scheme``."""
+    try:
+        resampler = RESAMPLERS[scheme]
+    except KeyError:
+        raise ValueError(
+            f"unknown resampling scheme {scheme!r}; use one of {sorted(RESAMPLERS)}"
+        ) from None
+    return resampler(np.asarray(weights, dtype=float), rng).astype(np.int64)
+
+
+def effective_sample_size(log_weights: np.ndarray) -> float:
+    """1 / sum(w_i^2) for normalised log weights."""
+    w = np.exp(log_weights)
+    return float(1.0 / np.dot(w, w))
+
+
+def _logsumexp(values: np.ndarray) -> float:
+    top = float(np.max(values))
+    if not math.isfinite(top):
+        return top
+    return top + math.log(float(np.sum(np.exp(values - top))))
+
+
+# --------------------------------------------------------------------------------------------
+# The Prolog side of the bridge: a small helper module, loaded once, that parses the texts,
+# turns errors into messages and particle values into janus-friendly data.
+
+#: The engine file loaded before the first filter is made (tests may point it elsewhere).
+ENGINE: Path = prolog.PROLOG_DIR / "ddc.pl"
+_HELPER_MODULE = "ddc_filter_bridge"
+_HELPER_SOURCE = r"""
+:- module(ddc_filter_bridge, []).
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+
+filter_of(Key, F) :-
+    (   nb_current(Key, F) -> true
+    ;   throw(bridge(none, 0, Key, "no such filter (it was freed)"))
+    ).
+
+error_text(bridge(_, _, _, Msg), Msg) :- !.
+error_text(E, S) :-
+    catch(( '$messages':translate_message(E, Lines, []),
+            with_output_to(string(S0), print_message_lines(current_output, '', Lines)),
+            split_string(S0, "", "\n ", [S])
+          ), _, fail), !.
+error_text(E, S) :- format(string(S), "~q", [E]).
+
+guarded(Goal, Err) :-
+    catch((Goal, Err = ""), E, (error_text(E, Msg), bridge_error(E, Msg, Err))).
+
+bridge_error(bridge(goal, _, Text, Msg), _, Err) :- !,
+    format(string(Err), "goal ~w: ~w", [Text, Msg]).
+bridge_error(bridge(Kind, I, Text, Msg), _, Err) :- !,
+    format(string(Err), "~w ~w (~w): ~w", [Kind, I, Text, Msg]).
+bridge_error(_, Msg, Msg).
+
+parse_terms(Kind, Texts, Terms) :-
+    foldl(parse_term(Kind), Texts, Terms, 1, _).
+
+parse_term(Kind, Text, Term, I, I1) :-
+    I1 is I + 1,
+    catch(term_string(Term, Text, [module(ddc)]), E,
+          ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(Kind, I, Text, Msg)) )),
+    (   ground(Term) -> true
+    ;   throw(bridge(Kind, I, Text, "not ground (observations and actions must be)"))
+    ).
+
+clean(Msg0, Msg) :- split_string(Msg0, "\n", " ", [Msg|_]), !.
+clean(Msg, Msg).
+
+parse_goal(Text, Goal) :-
+    catch(term_string(Goal, Text, [module(ddc)]), E,
+          ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(goal, "", Text, Msg)) )).
+
+new(Program, N, Seed, Key, Err) :-
+    guarded(( ddc:filter_new(Program, N, Seed, F), nb_setval(Key, F) ), Err).
+
+step(Key, ObsTexts, ActTexts, LW, Err) :-
+    guarded(( filter_of(Key, F),
+              parse_terms(observation, ObsTexts, Obs),
+              parse_terms(action, ActTexts, Acts),
+              ddc:filter_step(F, Obs, Acts, LW0),
+              maplist(to_float, LW0, LW)
+            ), Err),
+    ( var(LW) -> LW = [] ; true ).
+
+to_float(X, F) :- ( float(X) -> F = X ; F is float(X) ).
+
+undo(Key) :- filter_of(Key, F), ddc:filter_undo(F).
+resample(Key, Indices) :- filter_of(Key, F), ddc:filter_resample(F, Indices).
+time(Key, T) :- filter_of(Key, F), ddc:filter_time(F, T).
+free(Key) :- ( nb_current(Key, F) -> ddc:filter_free(F), nb_delete(Key) ; true ).
+
+holds(Key, GoalText, Flags, Err) :-
+    guarded(( filter_of(Key, F), parse_goal(GoalText, Goal), ddc:filter_holds(F, Goal, Flags) ),
+            Err),
+    ( var(Flags) -> Flags = [] ; true ).
+
+values(Key, PairText, Values, Err) :-
+    guarded(( filter_of(Key, F), parse_goal(PairText, ddc_bridge_pair(Template, Goal)),
+              ddc:filter_values(F, Template, Goal, Values0),
+              maplist(py_value, Values0, Values) ), Err),
+    ( var(Values) -> Values = [] ; true ).
+
+py_value(V, "_") :- var(V), !.
+py_value(none, @(none)) :- !.
+py_value(V, V) :- number(V), !.
+py_value(V, V) :- atom(V), !.
+py_value(V, V) :- string(V), !.
+py_value(V, P) :- is_list(V), !, maplist(py_value, V, P).
+py_value((A, B), P) :- !, comma_items((A, B), Items), maplist(py_value, Items, Ps), P =.. [-|Ps].
+py_value(V, S) :- format(string(S), "~q", [V]).
+
+comma_items((A, B), [A|Rest]) :- !, comma_items(B, Rest).
+comma_items(A, [A]).
+"""
+
+_helper_lock = threading.Lock()
+_helper_loaded = False
+_keys = itertools.count(1)
+
+
+def _ensure_engine() -> None:
+    global _helper_loaded
+    with _helper_lock:
+        if _helper_loaded:
+            return
+        engine = ENGINE
+        if not engine.exists():
+            raise FilterError(f"{engine}: the DDC engine is missing")
+        prolog.ensure_loaded(engine)
+        janus.query_once(
+            "open_string(Text, _S), "
+            "call_cleanup(load_files(ddc_filter_bridge_src, [stream(_S), module(M)]), close(_S))",
+            {"Text": _HELPER_SOURCE, "M": _HELPER_MODULE},
+        )
+        _helper_loaded = True
+
+
+def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
+    result = janus.query_once(f"{_HELPER_MODULE}:{goal}", bindings)
+    if not result.get("truth", False):
+        raise FilterError(f"Prolog goal failed: {goal}")
+    return result
+
+
+# --------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class StepResult:
+    """What one :meth:`Filter.step` did."""
+
+    time: int  #: the filter's time after the step
+    frame: int  #: 1-based number of the frame consumed
+    ess: float  #: effective sample size after weighting, before any resampling
+    resampled: bool
+    log_likelihood: float  #: log of the weighted mean likelihood of this frame (-inf if zero)
+    zero_weight: bool  #: every particle got weight 0; the pre-step particles were kept
+    seconds: float  #: wall time of the whole step
+    prolog_seconds: float  #: of which in the Prolog call (sampling and weighting)
+
+
+def _as_term_text(value: Any) -> str:
+    return item_text(value) if isinstance(value, str) else to_term(value)
+
+
+class Filter:
+    """A DDC particle filter: particles in Prolog, weights and resampling in numpy."""
+
+    def __init__(
+        self,
+        program_path: str | os.PathLike[str],
+        particles: int = 1000,
+        seed: int | None = None,
+        resample_threshold: float = 0.9,
+        resampling: Resampling = "systematic",
+    ) -> None:
+        if int(particles) < 1:
+            raise ValueError(f"particles must be >= 1, got {particles}")
+        if not 0.0 <= float(resample_threshold) <= 1.0:
+            raise ValueError(f"resample_threshold must be in [0, 1], got {resample_threshold}")
+        if resampling not in RESAMPLERS:
+            raise ValueError(
+                f"unknown resampling scheme {resampling!r}; use one of {sorted(RESAMPLERS)}"
+            )
+        path = Path(program_path)
+        if not path.is_file():
+            raise FileNotFoundError(f"{path}: no such DDC program")
+        self.program_path = path.resolve()
+        self.particles = int(particles)
+        self.seed = int(seed) if seed is not None else int(np.random.SeedSequence().entropy % 2**31)
+        self.resample_threshold = float(resample_threshold)
+        self.resampling: Resampling = resampling
+        self._rng = np.random.default_rng(self.seed)
+        self._log_weights = np.full(self.particles, -math.log(self.particles))
+        self.log_likelihood = 0.0
+        self.zero_weight_events = 0
+        self.frames = 0
+        self.resample_count = 0
+        self.step_seconds: list[float] = []
+        self.last_step: StepResult | None = None
+        self._key: str | None = None
+        _ensure_engine()
+        key = f"ddc_filter_{os.getpid()}_{next(_keys)}"
+        result = _call(
+            "new(P, N, S, K, Err)",
+            {"P": str(self.program_path), "N": self.particles, "S": self.seed, "K": key},
+        )
+        if result["Err"]:
+            raise FilterError(f"{self.program_path}: {result['Err']}")
+        self._key = key
+
+    # -- life cycle ---------------------------------------------------------------------------
+    def close(self) -> None:
+        """Free the particles held in Prolog (also done when the object is collected)."""
+        if self._key is not None:
+            key, self._key = self._key, None
+            janus.query_once(f"{_HELPER_MODULE}:free(K)", {"K": key})
+
+    def __enter__(self) -> Filter:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def __del__(self) -> None:  # pragma: no cover - best effort at garbage collection
+        try:
+            self.close()
+        except Exception:
+            pass
+
+    def _handle(self) -> str:
+        if self._key is None:
+            raise FilterError("this filter was closed")
+        return self._key
+
+    # -- state --------------------------------------------------------------------------------
+    @property
+    def time(self) -> int:
+        """The time step of the particles (0 after construction, +1 per non-zero-weight step)."""
+        return int(_call("time(K, T)", {"K": self._handle()})["T"])
+
+    @property
+    def log_weights(self) -> np.ndarray:
+        """Normalised log weights (a copy)."""
+        return self._log_weights.copy()
+
+    @property
+    def weights(self) -> np.ndarray:
+        """Normalised weights (a copy; they sum to 1)."""
+        return np.exp(self._log_weights)
+
+    @property
+    def ess(self) -> float:
+        """Effective sample size of the current weights (N right after resampling)."""
+        return effective_sample_size(self._log_weights)
+
+    # -- stepping -----------------------------------------------------------------------------
+    def step(
+        self, observations: Iterable[Any] = (), actions: Iterable[Any] = ()
+    ) -> StepResult:
+        """Advance t -> t+1 with the frame's observations and actions; weight; maybe resample."""
+        started = _time.perf_counter()
+        key = self._handle()
+        obs_texts = self._texts("observation", observations)
+        act_texts = self._texts("action", actions)
+        time_before = self.time
+        call_started = _time.perf_counter()
+        try:
+            result = _call(
+                "step(K, O, A, LW, Err)", {"K": key, "O": obs_texts, "A": act_texts}
+            )
+        except Exception as exc:  # janus-level failure: treat like an engine error
+            result = {"Err": str(exc), "LW": []}
+        prolog_seconds = _time.perf_counter() - call_started
+        frame = self.frames + 1
+        if result["Err"]:
+            self._restore(time_before)
+            raise FilterError(f"{self.program_path.name}: step {frame}: {result['Err']}")
+        step_log_weights = np.asarray(result["LW"], dtype=float)
+        if step_log_weights.shape != (self.particles,):
+            self._restore(time_before)
+            raise FilterError(
+                f"{self.program_path.name}: step {frame}: the engine returned "
+                f"{step_log_weights.size} log weights for {self.particles} particles"
+            )
+        self.frames = frame
+        combined = self._log_weights + np.where(np.isnan(step_log_weights), -np.inf,
+                                                step_log_weights)
+        if np.isposinf(combined).any():
+            logger.warning("step %d: infinite likelihoods; keeping only those particles", frame)
+            combined = np.where(np.isposinf(combined), 0.0, -np.inf)
+        increment = _logsumexp(combined)
+        if not math.isfinite(increment):
+            return self._zero_weight(frame, started, prolog_seconds)
+        self.log_likelihood += increment
+        self._log_weights = combined - increment
+        ess = self.ess
+        resampled = ess < self.resample_threshold * self.particles
+        if resampled:
+            indices = resample_indices(self.weights, self.resampling, self._rng)
+            _call("resample(K, I)", {"K": key, "I": indices.tolist()})
+            self._log_weights = np.full(self.particles, -math.log(self.particles))
+            self.resample_count += 1
+        return self._finish(
+            StepResult(self.time, frame, ess, resampled, increment, False, 0.0, prolog_seconds),
+            started,
+        )
+
+    def _texts(self, kind: str, items: Iterable[Any]) -> list[str]:
+        if isinstance(items, str | Compound | Text):
+            items = [items]
+        texts = []
+        for i, item in enumerate(items, start=1):
+            try:
+                texts.append(_as_term_text(item))
+            except (TypeError, ValueError) as exc:
+                raise FilterError(f"{kind} {i} ({item!r}): {exc}") from None
+        return texts
+
+    def _restore(self, time_before: int) -> None:
+        try:
+            if self.time != time_before:
+                janus.query_once(f"{_HELPER_MODULE}:undo(K)", {"K": self._handle()})
+        except Exception as exc:  # pragma: no cover - the engine refused to undo
+            logger.error("could not undo a failed step: %s", exc)
+
+    def _zero_weight(self, frame: int, started: float, prolog_seconds: float) -> StepResult:
+        self.zero_weight_events += 1
+        message = (
+            f"{self.program_path.name}: step {frame}: every particle got weight 0; "
+            f"kept the {self.particles} pre-step particles with uniform weights "
+            f"(event {self.zero_weight_events})"
+        )
+        logger.warning(message)
+        warnings.warn(message, ZeroWeightWarning, stacklevel=3)
+        _call("undo(K)", {"K": self._handle()})
+        self._log_weights = np.full(self.particles, -math.log(self.particles))
+        return self._finish(
+            StepResult(self.time, frame, 0.0, False, -math.inf, True, 0.0, prolog_seconds),
+            started,
+        )
+
+    def _finish(self, result: StepResult, started: float) -> StepResult:
+        seconds = _time.perf_counter() - started
+        result = StepResult(**{**result.__dict__, "seconds": seconds})
+        self.step_seconds.append(seconds)
+        self.last_step = result
+        return result
+
+    # -- queries ------------------------------------------------------------------------------
+    def holds(self, goal: Any) -> np.ndarray:
+        """Per particle, 1 if ``goal`` holds in it, else 0 (int8 array of N)."""
+        result = _call(
+            "holds(K, G, F, Err)", {"K": self._handle(), "G": _as_term_text(goal)}
+        )
+        if result["Err"]:
+            raise FilterError(f"query: {result['Err']}")
+        return np.asarray(result["F"], dtype=np.int8)
+
+    def probability(self, goal: Any) -> float:
+        """Weighted fraction of particles in which ``goal`` holds."""
+        return float(np.dot(self.weights, self.holds(goal)))
+
+    def values(self, template: Any, goal: Any) -> list[Any]:
+        """Per particle, ``template`` at the first solution of ``goal`` (None: no solution)."""
+        template_text = _as_term_text(template)
+        goal_text = _as_term_text(goal)
+        result = _call(
+            "values(K, P, V, Err)",
+            {"K": self._handle(), "P": f"ddc_bridge_pair(({template_text}),({goal_text}))"},
+        )
+        if result["Err"]:
+            raise FilterError(f"query {template_text!r} for {goal_text!r}: {result['Err']}")
+        return list(result["V"])
+
+    def _term_values(self, term: Any, goal: Any | None) -> list[Any]:
+        if goal is None:
+            return self.values(_TEMPLATE_VAR, f"({_as_term_text(term)}) ~= {_TEMPLATE_VAR}")
+        return self.values(term, goal)
+
+    def distribution(self, term: Any, goal: Any | None = None) -> list[tuple[float, Any]]:
+        """``[(p, value), ...]`` most probable first.
+
+        With ``goal`` None, ``term`` is a random variable (``"maze(0,1):t"``) and the values are
+        those of ``term ~= V``; otherwise ``term`` is a template over the first solution of
+        ``goal``. Particles in which the variable is undefined (the goal has no solution) count
+        for no value, so the probabilities then sum to less than 1.
+        """
+        values = self._term_values(term, goal)
+        weights = self.weights
+        index: dict[Any, int] = {}
+        keys: list[Any] = []
+        codes = np.empty(self.particles, dtype=np.int64)
+        for i, value in enumerate(values):
+            key = _hashable(value)
+            if key not in index:
+                index[key] = len(keys)
+                keys.append(value)
+            codes[i] = index[key]
+        mass = np.bincount(codes, weights=weights, minlength=len(keys))
+        pairs = [(float(mass[j]), keys[j]) for j in range(len(keys)) if keys[j] is not None]
+        return sorted(pairs, key=lambda pv: (-pv[0], repr(pv[1])))
+
+    def samples(self, term: Any, goal: Any | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """(values, weights): N rows of values (float, NaN where undefined, when numeric)."""
+        return _as_array(self._term_values(term, goal)), self.weights
+
+    def mean(self, term: Any, goal: Any | None = None) -> tuple[Any, Any]:
+        """Weighted (mean, covariance) of a numeric or tuple variable over the particles where
+        it is defined: floats for a number, a (k,) and a (k, k) array for a k-tuple."""
+        values, weights = self.samples(term, goal)
+        if values.dtype == object:
+            raise FilterError(f"mean of {_as_term_text(term)!r}: the values are not numeric")
+        matrix = values.reshape(self.particles, -1)
+        defined = ~np.isnan(matrix).any(axis=1)
+        total = float(weights[defined].sum())
+        if not defined.any() or total <= 0.0:
+            raise FilterError(f"mean of {_as_term_text(term)!r}: undefined in every particle")
+        w = weights[defined] / total
+        x = matrix[defined]
+        mean = w @ x
+        centred = x - mean
+        cov = (centred * w[:, None]).T @ centred
+        if values.ndim == 1:
+            return float(mean[0]), float(cov[0, 0])
+        return mean, cov
+
+    def __repr__(self) -> str:
+        state = "closed" if self._key is None else f"t={self.time}"
+        return (
+            f"Filter({self.program_path.name!r}, particles={self.particles}, seed={self.seed}, "
+            f"{state}, ess={self.ess:.1f})"
+        )
+
+
+def _hashable(value: Any) -> Any:
+    if isinstance(value, list):
+        return ("__list__", tuple(_hashable(v) for v in value))
+    if isinstance(value, tuple):
+        return tuple(_hashable(v) for v in value)
+    return value
+
+
+def _is_number(value: Any) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def _as_array(values: Sequence[Any]) -> np.ndarray:
+    present = [v for v in values if v is not None]
+    if present and all(_is_number(v) for v in present):
+        return np.array([np.nan if v is None else float(v) for v in values], dtype=float)
+    if present and all(isinstance(v, tuple) for v in present):
+        width = len(present[0])
+        if all(len(v) == width and all(_is_number(x) for x in v) for v in present):
+            out = np.full((len(values), width), np.nan)
+            for i, v in enumerate(values):
+                if v is not None:
+                    out[i] = v
+            return out
+    out = np.empty(len(values), dtype=object)
+    out[:] = list(values)
+    return out
