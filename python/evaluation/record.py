@@ -1,0 +1,255 @@
+"""The per-frame tracking record that a runner (ours or a baseline tracker) fills for evaluation.
+
+One :class:`TrackingRecord` per frame holds what was true (ground truth from the simulator),
+what the system believed (one hypothesis per anchor symbol) and which symbol the system gave
+to the percept of each ground-truth object. Every metric in this package is computed from a
+list of such records, so the anchoring system and the baseline trackers are measured alike.
+
+Records can be saved as JSON Lines (one record per line) and read back.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+
+class RecordError(ValueError):
+    """A tracking record (or ground truth) that cannot be used."""
+
+
+def _vec3(value: Any, what: str) -> np.ndarray:
+    try:
+        arr = np.asarray(value, dtype=float).reshape(-1)
+    except (TypeError, ValueError) as exc:
+        raise RecordError(f"{what}: not a 3-D position: {value!r}") from exc
+    if arr.shape != (3,):
+        raise RecordError(f"{what}: position has {arr.size} values, expected 3")
+    return arr
+
+
+@dataclass
+class TruthObject:
+    """A ground-truth object in one frame: true position (metres, world frame), visibility and
+    what hides it (``None`` when visible or unknown)."""
+
+    position: np.ndarray
+    visible: bool
+    hidden_by: str | None = None
+
+    def __post_init__(self) -> None:
+        self.position = _vec3(self.position, "truth object")
+
+
+@dataclass
+class Hypothesis:
+    """What the system believes about one anchor (or track) in one frame.
+
+    ``position`` is a point estimate in metres: the perceived position when ``perceived``, else
+    e.g. :func:`point_estimate` of the anchor's particles. A position with NaN means "no
+    estimate" and the hypothesis is ignored by the metrics.
+    """
+
+    position: np.ndarray
+    perceived: bool
+
+    def __post_init__(self) -> None:
+        self.position = _vec3(self.position, "hypothesis")
+
+
+@dataclass
+class FrameTimings:
+    """Wall-clock milliseconds spent on one frame. ``total`` defaults to the sum of the parts."""
+
+    perception: float = 0.0
+    anchoring: float = 0.0
+    filter: float = 0.0
+    total: float | None = None
+
+    def total_ms(self) -> float:
+        if self.total is not None:
+            return self.total
+        return self.perception + self.anchoring + self.filter
+
+
+@dataclass
+class TrackingRecord:
+    """One frame of a run, as the metrics see it.
+
+    - ``frame``, ``time``: frame index and scenario time in seconds.
+    - ``truth``: ground-truth id -> :class:`TruthObject`, for *every* object on the table, hidden
+      ones included (at their true positions), so that keeping a hidden object is credited.
+    - ``hypotheses``: anchor symbol -> :class:`Hypothesis`, for every anchor the system holds.
+    - ``assignments``: ground-truth id of a percept (``Percept.truth_id``) -> the symbol the
+      system gave that percept in this frame. Only perceived objects appear here. (Should the
+      perception split one object into several percepts, record the symbol of one of them.)
+    - ``timings``: where the time of this frame went.
+    - ``rejected_percepts``: percepts of this frame dropped as bad input (NaN, empty histogram).
+    """
+
+    frame: int
+    time: float
+    truth: dict[str, TruthObject] = field(default_factory=dict)
+    hypotheses: dict[str, Hypothesis] = field(default_factory=dict)
+    assignments: dict[str, str] = field(default_factory=dict)
+    timings: FrameTimings = field(default_factory=FrameTimings)
+    rejected_percepts: int = 0
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "frame": self.frame,
+            "time": self.time,
+            "truth": {
+                k: {"position": v.position.tolist(), "visible": v.visible, "hidden_by": v.hidden_by}
+                for k, v in self.truth.items()
+            },
+            "hypotheses": {
+                k: {"position": [None if math.isnan(x) else x for x in v.position.tolist()],
+                    "perceived": v.perceived}
+                for k, v in self.hypotheses.items()
+            },
+            "assignments": dict(self.assignments),
+            "timings": {
+                "perception": self.timings.perception,
+                "anchoring": self.timings.anchoring,
+                "filter": self.timings.filter,
+                "total": self.timings.total,
+            },
+            "rejected_percepts": self.rejected_percepts,
+        }
+
+    @classmethod
+    def from_json(cls, data: Mapping[str, Any]) -> TrackingRecord:
+        try:
+            hyps = {}
+            for k, v in data.get("hypotheses", {}).items():
+                pos = [math.nan if x is None else x for x in v["position"]]
+                hyps[str(k)] = Hypothesis(pos, bool(v["perceived"]))
+            t = data.get("timings", {})
+            return cls(
+                frame=int(data["frame"]),
+                time=float(data["time"]),
+                truth=truth_from_dict({"objects": data.get("truth", {})}),
+                hypotheses=hyps,
+                assignments={str(k): str(v) for k, v in data.get("assignments", {}).items()},
+                timings=FrameTimings(
+                    float(t.get("perception", 0.0)),
+                    float(t.get("anchoring", 0.0)),
+                    float(t.get("filter", 0.0)),
+                    None if t.get("total") is None else float(t["total"]),
+                ),
+                rejected_percepts=int(data.get("rejected_percepts", 0)),
+            )
+        except KeyError as exc:
+            raise RecordError(f"missing field {exc.args[0]!r}") from exc
+        except (TypeError, ValueError, AttributeError) as exc:
+            raise RecordError(str(exc)) from exc
+
+
+def truth_from_dict(
+    truth: Mapping[str, Any], ignore: Iterable[str] = ()
+) -> dict[str, TruthObject]:
+    """Ground truth of one frame from the simulator's per-frame ``truth`` dictionary.
+
+    The format is the one ``PerceptFrame.truth`` carries: ``{"objects": {id: {"position":
+    [x, y, z], "visible": bool, "hidden_by": id or null}}}``. Objects in ``ignore`` (e.g. a hand
+    or the camera cover) and objects whose position is null (off the table) are left out.
+    """
+    skip = set(ignore)
+    objects = truth.get("objects", {}) if isinstance(truth, Mapping) else None
+    if not isinstance(objects, Mapping):
+        raise RecordError(f"truth 'objects' is not a mapping: {type(objects).__name__}")
+    result: dict[str, TruthObject] = {}
+    for oid, item in objects.items():
+        if oid in skip:
+            continue
+        if not isinstance(item, Mapping) or "position" not in item:
+            raise RecordError(f"truth object {oid!r}: no position")
+        if item["position"] is None:
+            continue
+        position = _vec3(item["position"], f"truth object {oid!r}")
+        if not np.all(np.isfinite(position)):
+            raise RecordError(f"truth object {oid!r}: position is not finite: {position.tolist()}")
+        hidden_by = item.get("hidden_by")
+        result[str(oid)] = TruthObject(
+            position, bool(item.get("visible", True)), None if hidden_by is None else str(hidden_by)
+        )
+    return result
+
+
+def point_estimate(
+    particles: np.ndarray,
+    weights: np.ndarray | None = None,
+    method: str = "mode",
+    cell: float = 0.05,
+) -> np.ndarray:
+    """A point estimate (3,) of a weighted particle set (N, 3).
+
+    ``method="mean"`` is the weighted mean; ``method="mode"`` (the default) bins the particles
+    into cubes of side ``cell`` metres, takes the heaviest cube and returns the weighted mean of
+    its particles: for a multi-modal belief (a ball under one of three mugs) this lands on one
+    of the mugs instead of between them. Vectorised; no per-particle loop.
+    """
+    pts = np.asarray(particles, dtype=float).reshape(-1, 3)
+    if len(pts) == 0:
+        return np.full(3, np.nan)
+    w = np.ones(len(pts)) if weights is None else np.asarray(weights, dtype=float).reshape(-1)
+    if w.shape != (len(pts),):
+        raise RecordError(f"{len(w)} weights for {len(pts)} particles")
+    if not np.all(np.isfinite(w)) or np.any(w < 0) or w.sum() <= 0:
+        raise RecordError("particle weights must be finite, non-negative and not all zero")
+    if method == "mean":
+        return (pts * w[:, None]).sum(axis=0) / w.sum()
+    if method != "mode":
+        raise RecordError(f"unknown point estimate {method!r} (use 'mode' or 'mean')")
+    # Mass of each occupied cube together with its 26 neighbours (so that a mode lying on a cube
+    # boundary is not split), found by binary search over the cubes' integer codes.
+    keys = np.floor(pts / cell).astype(np.int64)
+    keys -= keys.min(axis=0) - 1
+    dims = keys.max(axis=0) + 2
+    cubes, inverse = np.unique(keys, axis=0, return_inverse=True)
+    inverse = inverse.reshape(-1)
+    mass = np.bincount(inverse, weights=w)
+
+    def code(k: np.ndarray) -> np.ndarray:
+        return (k[..., 0] * dims[1] + k[..., 1]) * dims[2] + k[..., 2]
+
+    codes = code(cubes)  # sorted, since np.unique sorts rows lexicographically
+    offsets = np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 3)
+    neighbours = code(cubes[None, :, :] + offsets[:, None, :])  # (27, M)
+    at = np.clip(np.searchsorted(codes, neighbours), 0, len(codes) - 1)
+    smoothed = np.where(codes[at] == neighbours, mass[at], 0.0).sum(axis=0)
+    best = cubes[int(np.argmax(smoothed))]
+    members = np.all(np.abs(keys - best) <= 1, axis=1)
+    centre = (pts[members] * w[members, None]).sum(axis=0) / w[members].sum()
+    # One mean-shift step: the particles within one cube side of that centre.
+    near = np.linalg.norm(pts - centre, axis=1) <= cell
+    if w[near].sum() <= 0:
+        return centre
+    return (pts[near] * w[near, None]).sum(axis=0) / w[near].sum()
+
+
+def write_records(path: str | Path, records: Iterable[TrackingRecord]) -> None:
+    """Write records as JSON Lines, one frame per line."""
+    with open(path, "w", encoding="utf-8") as out:
+        for rec in records:
+            out.write(json.dumps(rec.to_json()) + "\n")
+
+
+def read_records(path: str | Path) -> Iterator[TrackingRecord]:
+    """Read records written by :func:`write_records`; a bad line raises :class:`RecordError`
+    naming the file and line."""
+    with open(path, encoding="utf-8") as src:
+        for lineno, text in enumerate(src, start=1):
+            if not text.strip():
+                continue
+            try:
+                yield TrackingRecord.from_json(json.loads(text))
+            except (json.JSONDecodeError, RecordError) as exc:
+                raise RecordError(f"{path}:{lineno}: not a tracking record: {exc}") from exc

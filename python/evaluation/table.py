@@ -1,0 +1,125 @@
+"""The results table: runs grouped by (scenario, method), as Markdown.
+
+Each input row is ``(scenario, method, run)`` where ``run`` is one run's list of
+:class:`~evaluation.record.TrackingRecord`, its :class:`~evaluation.metrics.Evaluation`, its
+summary dictionary (:func:`~evaluation.summary.make_summary`) or the path of its
+``summary.json``. Runs with the same scenario and method (e.g. 20 seeds, or 50 generated
+games under one scenario name) make one line of the table:
+
+- identity kept, objects: objects that kept their identity / objects, over all the runs;
+- identity kept, runs: runs in which every object kept its identity / runs;
+- ID switches: mean per run (motmetrics);
+- IDF1: mean over the runs that define it.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, TextIO
+
+from evaluation.metrics import DEFAULT_THRESHOLD_M, Evaluation
+from evaluation.record import TrackingRecord
+from evaluation.summary import make_summary, read_summary
+
+Run = Sequence[TrackingRecord] | Evaluation | dict[str, Any] | str | Path
+
+
+@dataclass
+class TableRow:
+    scenario: str
+    method: str
+    runs: int
+    runs_kept: int
+    objects: int
+    objects_kept: int
+    id_switches_mean: float
+    idf1_mean: float | None
+
+
+def _as_summary(run: Run, threshold: float) -> dict[str, Any]:
+    if isinstance(run, (str, Path)):
+        return read_summary(run)
+    if isinstance(run, dict):
+        return run
+    if isinstance(run, Evaluation):
+        assert run.mot is not None
+        return {
+            "objects": [{"id": o.id, "identity_kept": o.identity_kept} for o in run.objects],
+            "id_switches": run.mot.id_switches,
+            "idf1": run.mot.idf1,
+        }
+    return make_summary(list(run), threshold=threshold)
+
+
+def aggregate(
+    rows: Sequence[tuple[str, str, Run]], threshold: float = DEFAULT_THRESHOLD_M
+) -> list[TableRow]:
+    """Group runs by (scenario, method), in order of first appearance, and count."""
+    groups: dict[tuple[str, str], list[dict[str, Any]]] = {}
+    for scenario, method, run in rows:
+        groups.setdefault((scenario, method), []).append(_as_summary(run, threshold))
+    table = []
+    for (scenario, method), summaries in groups.items():
+        objects = sum(len(s["objects"]) for s in summaries)
+        kept = sum(bool(o["identity_kept"]) for s in summaries for o in s["objects"])
+        runs_kept = sum(
+            bool(s["objects"]) and all(o["identity_kept"] for o in s["objects"])
+            for s in summaries
+        )
+        idf1s = [
+            float(s["idf1"])
+            for s in summaries
+            if s.get("idf1") is not None and math.isfinite(float(s["idf1"]))
+        ]
+        table.append(
+            TableRow(
+                scenario=scenario,
+                method=method,
+                runs=len(summaries),
+                runs_kept=runs_kept,
+                objects=objects,
+                objects_kept=kept,
+                id_switches_mean=sum(int(s["id_switches"]) for s in summaries) / len(summaries),
+                idf1_mean=sum(idf1s) / len(idf1s) if idf1s else None,
+            )
+        )
+    return table
+
+
+def _fraction(k: int, n: int) -> str:
+    return f"{k}/{n} ({100.0 * k / n:.0f} %)" if n else "-"
+
+
+def format_table(table: Sequence[TableRow]) -> str:
+    """Markdown for rows made by :func:`aggregate`."""
+    lines = [
+        "| scenario | method | runs | identity kept (objects) | identity kept (runs) "
+        "| ID switches per run | IDF1 |",
+        "|---|---|---:|---:|---:|---:|---:|",
+    ]
+    for r in table:
+        idf1 = "-" if r.idf1_mean is None else f"{r.idf1_mean:.3f}"
+        lines.append(
+            f"| {r.scenario} | {r.method} | {r.runs} | {_fraction(r.objects_kept, r.objects)} "
+            f"| {_fraction(r.runs_kept, r.runs)} | {r.id_switches_mean:.2f} | {idf1} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def results_table(
+    rows: Sequence[tuple[str, str, Run]], threshold: float = DEFAULT_THRESHOLD_M
+) -> str:
+    """The Markdown results table of ``(scenario, method, run)`` rows."""
+    return format_table(aggregate(rows, threshold))
+
+
+def print_table(
+    rows: Sequence[tuple[str, str, Run]],
+    threshold: float = DEFAULT_THRESHOLD_M,
+    file: TextIO | None = None,
+) -> None:
+    print(results_table(rows, threshold), end="", file=file or sys.stdout)
