@@ -1,0 +1,152 @@
+"""The anchor: a symbol and the attributes of one physical object, maintained over time.
+
+Update rules on re-acquire (documented in the README):
+
+- position: *replaced* by the percept's position (deterministic again, particles dropped): the
+  newest measurement is the best estimate of where a moving object is;
+- size and colour histogram: the *mean over the bounded percept history* (the last
+  ``history_size`` percepts), which smooths segmentation noise and follows slow changes;
+- colour names: those named by at least half of the percepts in the history;
+- category: probabilities *accumulated* (running sums and a count, as the original): the
+  estimate is the average over every percept of the anchor;
+- last seen: the percept's time.
+
+Track (not perceived): the position becomes the particles the reasoning supplies
+(:meth:`Anchor.set_position_particles`), otherwise it keeps its last value.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from anchoring.attribute import Attribute
+from percepts import Percept
+
+
+@dataclass
+class Anchor:
+    """One anchored object. ``symbol`` is stable for the anchor's whole life (``ball-1``)."""
+
+    symbol: str
+    symbol_category: str
+    created: float
+    last_seen: float
+    position: Attribute
+    size: Attribute
+    colour: Attribute
+    colour_names: list[str]
+    category_sums: dict[str, float]
+    category_count: int
+    history: deque[Percept]
+    confirmed: bool = False
+    observations: int = 1
+    history_size: int = field(default=10, repr=False)
+
+    # --- creation and update -------------------------------------------------------------
+    @classmethod
+    def acquire(cls, symbol: str, percept: Percept, history_size: int = 10) -> Anchor:
+        t = percept.time
+        return cls(
+            symbol=symbol,
+            symbol_category=symbol.rsplit("-", 1)[0],
+            created=t,
+            last_seen=t,
+            position=Attribute.deterministic(percept.position, t),
+            size=Attribute.deterministic(percept.size, t),
+            colour=Attribute.deterministic(_normalised(percept.colour_histogram), t),
+            colour_names=list(percept.colour_names),
+            category_sums=dict(percept.category),
+            category_count=1,
+            history=deque([percept], maxlen=history_size),
+            history_size=history_size,
+        )
+
+    def reacquire(self, percept: Percept) -> None:
+        t = percept.time
+        self.history.append(percept)
+        self.position = Attribute.deterministic(percept.position, t)
+        self.size = Attribute.deterministic(np.mean([p.size for p in self.history], axis=0), t)
+        hists = np.array([_normalised(p.colour_histogram) for p in self.history])
+        self.colour = Attribute.deterministic(hists.mean(axis=0), t)
+        counts: dict[str, int] = {}
+        for p in self.history:
+            for name in set(p.colour_names):
+                counts[name] = counts.get(name, 0) + 1
+        self.colour_names = sorted(n for n, c in counts.items() if 2 * c >= len(self.history))
+        for name, prob in percept.category.items():
+            self.category_sums[name] = self.category_sums.get(name, 0.0) + prob
+        self.category_count += 1
+        self.last_seen = t
+        self.observations += 1
+
+    def set_position_particles(
+        self, positions: np.ndarray, weights: np.ndarray | None = None, time: float | None = None
+    ) -> None:
+        """Track: the position becomes the reasoning's weighted particles (N, 3)."""
+        positions = np.asarray(positions, dtype=float)
+        if positions.ndim != 2 or positions.shape[1] != 3:
+            raise ValueError(f"{self.symbol}: positions must be (N, 3), got {positions.shape}")
+        t = self.position.time if time is None else time
+        self.position = Attribute.probabilistic(positions, weights, t)
+
+    # --- views ---------------------------------------------------------------------------
+    @property
+    def category(self) -> dict[str, float]:
+        """The current category estimate (average over all percepts), best first."""
+        avg = {k: v / self.category_count for k, v in self.category_sums.items()}
+        return dict(sorted(avg.items(), key=lambda kv: (-kv[1], kv[0])))
+
+    @property
+    def best_category(self) -> str:
+        return next(iter(self.category))
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "symbol": self.symbol,
+            "symbol_category": self.symbol_category,
+            "created": self.created,
+            "last_seen": self.last_seen,
+            "confirmed": self.confirmed,
+            "observations": self.observations,
+            "category": self.category,
+            "category_sums": self.category_sums,
+            "category_count": self.category_count,
+            "colour_names": self.colour_names,
+            "position": self.position.to_json(),
+            "size": self.size.to_json(),
+            "colour_histogram": self.colour.to_json(),
+            "history_size": self.history_size,
+            "history": [p.to_json() for p in self.history],
+        }
+
+    @classmethod
+    def from_json(cls, record: dict[str, Any]) -> Anchor:
+        history_size = int(record.get("history_size", 10))
+        return cls(
+            symbol=str(record["symbol"]),
+            symbol_category=str(record["symbol_category"]),
+            created=float(record["created"]),
+            last_seen=float(record["last_seen"]),
+            position=Attribute.from_json(record["position"]),
+            size=Attribute.from_json(record["size"]),
+            colour=Attribute.from_json(record["colour_histogram"]),
+            colour_names=[str(c) for c in record.get("colour_names", [])],
+            category_sums={str(k): float(v) for k, v in record["category_sums"].items()},
+            category_count=int(record["category_count"]),
+            history=deque(
+                (Percept.from_json(p) for p in record.get("history", [])), maxlen=history_size
+            ),
+            confirmed=bool(record.get("confirmed", False)),
+            observations=int(record.get("observations", 1)),
+            history_size=history_size,
+        )
+
+
+def _normalised(hist: np.ndarray) -> np.ndarray:
+    hist = np.asarray(hist, dtype=float)
+    total = hist.sum()
+    return hist / total if total > 0 else hist

@@ -1,0 +1,109 @@
+"""One interface for deterministic and probabilistic attribute values (section 3.2 of the paper).
+
+An attribute value at a time step is either *deterministic* (one value) or *probabilistic*
+(N weighted samples, e.g. the particles of an anchor's position that the reasoning sends back).
+Both are an :class:`Attribute`: a deterministic value is simply one sample of weight 1.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+
+class AttributeValueError(ValueError):
+    """Samples or weights that cannot form an attribute value (wrong shape, NaN, zero mass)."""
+
+
+@dataclass
+class Attribute:
+    """A volatile attribute value at ``time``: ``samples`` (N, D), ``weights`` (N,) summing to 1.
+
+    ``N == 1`` is the deterministic case. Weights are normalised on construction.
+    """
+
+    samples: np.ndarray
+    weights: np.ndarray
+    time: float = 0.0
+
+    def __post_init__(self) -> None:
+        samples = np.asarray(self.samples, dtype=float)
+        if samples.ndim == 1:
+            samples = samples.reshape(1, -1)
+        weights = np.asarray(self.weights, dtype=float).reshape(-1)
+        if samples.ndim != 2 or samples.shape[0] == 0:
+            raise AttributeValueError(f"samples must be (N, D) with N >= 1, got {samples.shape}")
+        if weights.shape != (samples.shape[0],):
+            raise AttributeValueError(
+                f"weights have shape {weights.shape}, expected ({samples.shape[0]},)"
+            )
+        if not np.all(np.isfinite(samples)):
+            raise AttributeValueError("samples contain NaN or infinity")
+        if not np.all(np.isfinite(weights)) or np.any(weights < 0):
+            raise AttributeValueError("weights must be finite and non-negative")
+        total = weights.sum()
+        if total <= 0:
+            raise AttributeValueError("weights sum to zero")
+        self.samples = samples
+        self.weights = weights / total
+
+    @classmethod
+    def deterministic(cls, value: Any, time: float = 0.0) -> Attribute:
+        value = np.asarray(value, dtype=float).reshape(1, -1)
+        return cls(value, np.ones(1), time)
+
+    @classmethod
+    def probabilistic(
+        cls, samples: Any, weights: Any | None = None, time: float = 0.0
+    ) -> Attribute:
+        samples = np.asarray(samples, dtype=float)
+        if weights is None:
+            weights = np.ones(samples.shape[0])
+        return cls(samples, weights, time)
+
+    @property
+    def is_probabilistic(self) -> bool:
+        return self.samples.shape[0] > 1
+
+    @property
+    def n(self) -> int:
+        return int(self.samples.shape[0])
+
+    @property
+    def dim(self) -> int:
+        return int(self.samples.shape[1])
+
+    def mean(self) -> np.ndarray:
+        """The expected value (for a deterministic attribute: the value itself)."""
+        return self.weights @ self.samples
+
+    @property
+    def value(self) -> np.ndarray:
+        """The deterministic value, or the mean of a probabilistic one."""
+        return self.samples[0].copy() if self.n == 1 else self.mean()
+
+    def cov(self) -> np.ndarray:
+        d = self.samples - self.mean()
+        return (self.weights[:, None] * d).T @ d
+
+    def support(self) -> np.ndarray:
+        """Samples with positive weight: the candidates for the max-over-particles estimate."""
+        return self.samples[self.weights > 0]
+
+    def to_json(self) -> dict[str, Any]:
+        if not self.is_probabilistic:
+            return {"time": self.time, "value": self.samples[0].tolist()}
+        return {
+            "time": self.time,
+            "samples": np.round(self.samples, 6).tolist(),
+            "weights": self.weights.tolist(),
+        }
+
+    @classmethod
+    def from_json(cls, record: dict[str, Any]) -> Attribute:
+        time = float(record.get("time", 0.0))
+        if "value" in record:
+            return cls.deterministic(record["value"], time)
+        return cls.probabilistic(record["samples"], record["weights"], time)

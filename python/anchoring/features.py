@@ -1,0 +1,52 @@
+"""The similarity vectors of every (anchor, percept) pair of a frame (Algorithm 1 of the paper)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from anchoring.anchor import Anchor
+from anchoring.similarity import (
+    FEATURES,
+    category_similarity,
+    colour_similarity,
+    position_similarity,
+    size_similarity,
+    time_similarity,
+)
+from percepts import Percept
+
+
+def pair_features(anchors: Sequence[Anchor], percepts: Sequence[Percept]) -> np.ndarray:
+    """(A, P, 5) similarities in the order of :data:`FEATURES`.
+
+    A probabilistic position contributes the maximum similarity over its particles (those of
+    positive weight); every other attribute is compared with its deterministic value.
+    """
+    a, p = len(anchors), len(percepts)
+    out = np.zeros((a, p, len(FEATURES)))
+    if a == 0 or p == 0:
+        return out
+    out[..., 0] = category_similarity(
+        [an.category for an in anchors], [pc.category for pc in percepts]
+    )
+    out[..., 1] = colour_similarity(
+        np.array([an.colour.value for an in anchors]),
+        np.array([_normalised(pc.colour_histogram) for pc in percepts]),
+    )
+    out[..., 2] = position_similarity(
+        [an.position.support() for an in anchors], np.array([pc.position for pc in percepts])
+    )
+    out[..., 3] = size_similarity(
+        np.array([an.size.value for an in anchors]), np.array([pc.size for pc in percepts])
+    )
+    out[..., 4] = time_similarity(
+        np.array([an.last_seen for an in anchors]), np.array([pc.time for pc in percepts])
+    )
+    return out
+
+
+def _normalised(hist: np.ndarray) -> np.ndarray:
+    total = hist.sum()
+    return hist / total if total > 0 else hist

@@ -1,0 +1,275 @@
+"""Bottom-up anchor management: acquire, re-acquire and track, one frame at a time.
+
+Per frame (:meth:`AnchorManager.process`):
+
+1. invalid percepts are rejected with their reason (``Percept.validate``; a colour histogram
+   whose bin count differs from the anchors'), logged as warnings, never raised;
+2. anchors acquired more than ``glitch_seconds`` ago and never re-acquired are dropped as
+   glitches (the original's fading rule);
+3. every (anchor, percept) pair gets its similarity vector and the learned matcher's score;
+4. percepts and anchors are assigned jointly, one to one, by the Hungarian method
+   (``scipy.optimize.linear_sum_assignment``) maximising the total score over the pairs the
+   matcher accepts (score > 0);
+5. matched percepts re-acquire their anchor, unmatched percepts acquire a new anchor, and the
+   anchors that were not perceived are *tracked* (their position is whatever the reasoning
+   later supplies through :meth:`AnchorManager.set_position_particles`, else the last value).
+
+Symbols are ``<category>-<k>``: the k-th anchor acquired with that best category. A symbol never
+changes during the anchor's life, even when its category estimate changes later (the anchor's
+``category`` / ``best_category`` give the current estimate); so the reasoner's atoms stay
+stable. When a glitch is dropped and it holds the newest number of its category, the number is
+given back, so a one-frame false detection leaves no gap.
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+from scipy.optimize import linear_sum_assignment
+
+from anchoring.anchor import Anchor
+from anchoring.features import pair_features
+from anchoring.matcher import Matcher, load_default_matcher
+from percepts import Percept, PerceptError
+
+log = logging.getLogger("anchoring")
+
+FORMAT = "anchoring-world/1"
+
+
+@dataclass
+class Assignment:
+    """Percept ``percept_index`` (in the frame's input list) went to anchor ``symbol``."""
+
+    percept_index: int
+    symbol: str
+    action: Literal["acquire", "reacquire"]
+    score: float | None = None  # the matcher's decision value for a re-acquire
+
+
+@dataclass
+class Rejection:
+    percept_index: int
+    reason: str
+
+
+@dataclass
+class FrameResult:
+    time: float
+    assignments: list[Assignment] = field(default_factory=list)
+    tracked: list[str] = field(default_factory=list)  # anchors not perceived this frame
+    dropped: list[str] = field(default_factory=list)  # glitches removed this frame
+    rejected: list[Rejection] = field(default_factory=list)
+    features: np.ndarray | None = field(default=None, repr=False)  # (A, P, 5) of this frame
+
+    @property
+    def symbols(self) -> dict[int, str]:
+        """percept index -> anchor symbol."""
+        return {a.percept_index: a.symbol for a in self.assignments}
+
+    @property
+    def acquired(self) -> list[str]:
+        return [a.symbol for a in self.assignments if a.action == "acquire"]
+
+    @property
+    def reacquired(self) -> list[str]:
+        return [a.symbol for a in self.assignments if a.action == "reacquire"]
+
+
+class AnchorManagerError(ValueError):
+    """A world-model file that cannot be loaded (names the file and the cause)."""
+
+
+class SymbolTable:
+    """Per-category counters: ``issue('ball')`` -> ``ball-1``, ``ball-2``..."""
+
+    def __init__(self, counters: dict[str, int] | None = None) -> None:
+        self.counters: dict[str, int] = dict(counters or {})
+
+    def issue(self, category: str) -> str:
+        k = self.counters.get(category, 0) + 1
+        self.counters[category] = k
+        return f"{category}-{k}"
+
+    def release(self, symbol: str) -> None:
+        """Give a dropped glitch's number back if it is still the newest of its category."""
+        category, _, number = symbol.rpartition("-")
+        if number.isdigit() and self.counters.get(category) == int(number):
+            self.counters[category] = int(number) - 1
+
+
+class AnchorManager:
+    """Keeps the anchors; ``process(time, percepts)`` once per frame."""
+
+    def __init__(
+        self,
+        matcher: Matcher | None = None,
+        glitch_seconds: float = 1.0,
+        history_size: int = 10,
+    ) -> None:
+        self.matcher: Matcher = matcher if matcher is not None else load_default_matcher()
+        self.glitch_seconds = float(glitch_seconds)
+        self.history_size = int(history_size)
+        self.symbols = SymbolTable()
+        self.time: float | None = None
+        self._anchors: dict[str, Anchor] = {}
+
+    # --- queries ------------------------------------------------------------------------
+    @property
+    def anchors(self) -> list[Anchor]:
+        """Live anchors (confirmed and not yet confirmed), in order of acquisition."""
+        return list(self._anchors.values())
+
+    def get(self, symbol: str) -> Anchor:
+        try:
+            return self._anchors[symbol]
+        except KeyError:
+            raise KeyError(f"no anchor {symbol!r}") from None
+
+    def __contains__(self, symbol: object) -> bool:
+        return symbol in self._anchors
+
+    def __len__(self) -> int:
+        return len(self._anchors)
+
+    # --- track: feedback from the reasoning ----------------------------------------------
+    def set_position_particles(
+        self, symbol: str, positions: np.ndarray, weights: np.ndarray | None = None
+    ) -> None:
+        """The anchor's position becomes the reasoning's weighted particles ((N, 3), (N,)).
+
+        Matching then uses the maximum position similarity over the particles of positive
+        weight; the next re-acquire replaces them by the percept's position.
+        """
+        self.get(symbol).set_position_particles(positions, weights, self.time)
+
+    # --- one frame ----------------------------------------------------------------------
+    def process(self, time: float, percepts: Sequence[Percept]) -> FrameResult:
+        time = float(time)
+        result = FrameResult(time)
+        self.time = time
+
+        valid: list[int] = []
+        bins = self._histogram_bins(percepts)
+        for i, percept in enumerate(percepts):
+            reason = _invalid(percept, bins)
+            if reason is not None:
+                log.warning("percept %d at t=%.3f rejected: %s", i, time, reason)
+                result.rejected.append(Rejection(i, reason))
+            else:
+                valid.append(i)
+
+        for anchor in list(self._anchors.values()):
+            if not anchor.confirmed and time - anchor.created > self.glitch_seconds:
+                del self._anchors[anchor.symbol]
+                self.symbols.release(anchor.symbol)
+                result.dropped.append(anchor.symbol)
+
+        anchors = list(self._anchors.values())
+        frame = [percepts[i] for i in valid]
+        features = pair_features(anchors, frame)
+        result.features = features
+        matched_anchor: dict[int, int] = {}  # index in frame -> index in anchors
+        scores = np.zeros((len(anchors), len(frame)))
+        if anchors and frame:
+            scores = np.asarray(self.matcher.decision(features), dtype=float)
+            accept = scores > 0
+            if accept.any():
+                cost = np.where(accept, -scores, 1e9)
+                rows, cols = linear_sum_assignment(cost)
+                for r, c in zip(rows, cols, strict=True):
+                    if accept[r, c]:
+                        matched_anchor[int(c)] = int(r)
+
+        perceived: set[str] = set()
+        for j, i in enumerate(valid):
+            percept = percepts[i]
+            if j in matched_anchor:
+                anchor = anchors[matched_anchor[j]]
+                anchor.reacquire(percept)
+                anchor.confirmed = True
+                perceived.add(anchor.symbol)
+                score = float(scores[matched_anchor[j], j])
+                result.assignments.append(Assignment(i, anchor.symbol, "reacquire", score))
+            else:
+                symbol = self.symbols.issue(percept.best_category)
+                self._anchors[symbol] = Anchor.acquire(symbol, percept, self.history_size)
+                perceived.add(symbol)
+                result.assignments.append(Assignment(i, symbol, "acquire"))
+        result.tracked = [a.symbol for a in anchors if a.symbol not in perceived]
+        return result
+
+    def _histogram_bins(self, percepts: Sequence[Percept]) -> int | None:
+        for anchor in self._anchors.values():
+            return anchor.colour.dim
+        for percept in percepts:
+            if _invalid(percept, None) is None:
+                return int(percept.colour_histogram.size)
+        return None
+
+    # --- persistence ----------------------------------------------------------------------
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "format": FORMAT,
+            "time": self.time,
+            "glitch_seconds": self.glitch_seconds,
+            "history_size": self.history_size,
+            "symbol_counters": self.symbols.counters,
+            "anchors": [a.to_json() for a in self._anchors.values()],
+        }
+
+    def save(self, path: str | Path) -> None:
+        """Write the world model as indented JSON (a person can read it)."""
+        Path(path).write_text(json.dumps(self.to_json(), indent=1) + "\n", encoding="utf-8")
+
+    @classmethod
+    def load(cls, path: str | Path, matcher: Matcher | None = None) -> AnchorManager:
+        try:
+            record = json.loads(Path(path).read_text(encoding="utf-8"))
+        except OSError as exc:
+            raise AnchorManagerError(f"{path}: cannot read: {exc}") from exc
+        except json.JSONDecodeError as exc:
+            raise AnchorManagerError(
+                f"{path}:{exc.lineno}: not JSON: {exc.msg}"
+            ) from exc
+        if not isinstance(record, dict) or record.get("format") != FORMAT:
+            raise AnchorManagerError(f"{path}: not an anchoring world file (format {FORMAT})")
+        try:
+            manager = cls(
+                matcher,
+                glitch_seconds=float(record["glitch_seconds"]),
+                history_size=int(record["history_size"]),
+            )
+            manager.time = None if record.get("time") is None else float(record["time"])
+            manager.symbols = SymbolTable(
+                {str(k): int(v) for k, v in record["symbol_counters"].items()}
+            )
+            for i, item in enumerate(record["anchors"]):
+                try:
+                    anchor = Anchor.from_json(item)
+                except (KeyError, TypeError, ValueError, PerceptError) as exc:
+                    raise AnchorManagerError(f"{path}: anchor {i}: {exc!r}") from exc
+                manager._anchors[anchor.symbol] = anchor
+        except (KeyError, TypeError, ValueError) as exc:
+            if isinstance(exc, AnchorManagerError):
+                raise
+            raise AnchorManagerError(f"{path}: bad world file: {exc!r}") from exc
+        return manager
+
+
+def _invalid(percept: Percept, bins: int | None) -> str | None:
+    if not isinstance(percept, Percept):
+        return f"not a Percept: {type(percept).__name__}"
+    try:
+        percept.validate()
+    except PerceptError as exc:
+        return str(exc)
+    if bins is not None and percept.colour_histogram.size != bins:
+        return f"colour histogram has {percept.colour_histogram.size} bins, anchors have {bins}"
+    return None
