@@ -318,7 +318,8 @@ class Filter:
         self.zero_weight_events = 0
         self.frames = 0
         self.resample_count = 0
-        self.step_seconds: list[float] = []
+        self.step_seconds: list[float] = []  #: wall time of every step
+        self.step_prolog_seconds: list[float] = []  #: of which in the Prolog step call
         self.last_step: StepResult | None = None
         self._key: str | None = None
         _ensure_engine()
@@ -466,6 +467,7 @@ class Filter:
         seconds = _time.perf_counter() - started
         result = StepResult(**{**result.__dict__, "seconds": seconds})
         self.step_seconds.append(seconds)
+        self.step_prolog_seconds.append(result.prolog_seconds)
         self.last_step = result
         return result
 

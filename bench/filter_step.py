@@ -1,0 +1,106 @@
+"""Milliseconds per DDC filter step on a theory-of-occlusion model, against numpy.
+
+    .venv/bin/python bench/filter_step.py     # the grid N in {100,1000,5000} x M in {3,10,20}
+    .venv/bin/python bench/filter_step.py --particles 1000 --objects 10 --json
+
+For each configuration it generates the DDC program of the occlusion model for M objects
+(bench/filter_numpy_reference.py: each hidden object picks an occluder uniformly among the
+nearby seen objects above it, hidden positions follow their occluder, observed positions weight
+the particles with a Gaussian likelihood) and a reproducible scenario, runs ``--steps`` steps
+of ``bridge.Filter`` and, in the same run, of the vectorised numpy implementation of the same
+model, and prints ms per step for both and their ratio. With ``--json`` (one configuration)
+the last line is ``{"ms_per_step": x, "numpy_ms_per_step": y}``.
+
+Target (issue 4): N = 1000, M = 10 in at most 33 ms per step (30 Hz).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent / "python"))
+
+import filter_numpy_reference as model  # noqa: E402
+from bridge import Filter  # noqa: E402
+
+TARGET_MS = 33.0
+
+
+def time_ddc(particles: int, objects: int, steps: int, seed: int) -> dict[str, float]:
+    frames = model.scenario(objects, steps, seed=seed)
+    names = model.object_names(objects)
+    with tempfile.TemporaryDirectory() as tmp:
+        program = Path(tmp) / f"occlusion_{objects}.pl"
+        program.write_text(model.ddc_program(objects))
+        started = time.perf_counter()
+        f = Filter(program, particles=particles, seed=seed)
+        new_ms = 1000 * (time.perf_counter() - started)
+        with f:
+            for frame in frames:
+                f.step(frame.terms(names))
+            step_ms = [1000 * s for s in f.step_seconds]
+            prolog_ms = [1000 * s for s in f.step_prolog_seconds]
+            return {
+                "ms_per_step": statistics.fmean(step_ms),
+                "new_ms": new_ms,
+                "median_ms": statistics.median(step_ms),
+                "resamplings": f.resample_count,
+                "zero_weight_events": f.zero_weight_events,
+                "prolog_share": sum(prolog_ms) / sum(step_ms),
+            }
+
+
+def time_numpy(particles: int, objects: int, steps: int, seed: int) -> float:
+    frames = model.scenario(objects, steps, seed=seed)
+    f = model.NumpyOcclusionFilter(objects, particles, seed=seed)
+    started = time.perf_counter()
+    for frame in frames:
+        f.step(frame)
+    return 1000 * (time.perf_counter() - started) / steps
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--particles", type=int, help="one configuration: N particles")
+    parser.add_argument("--objects", type=int, help="one configuration: M objects")
+    parser.add_argument("--steps", type=int, default=10, help="filter steps timed (default 10)")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--json", action="store_true", help="end with a JSON line")
+    args = parser.parse_args(argv)
+    if (args.particles is None) != (args.objects is None):
+        parser.error("give both --particles and --objects, or neither (the full grid)")
+    if args.particles is not None:
+        configs = [(args.particles, args.objects)]
+    else:
+        configs = [(n, m) for m in (3, 10, 20) for n in (100, 1000, 5000)]
+    print(f"{'N':>6} {'M':>4} {'ddc ms/step':>12} {'numpy ms/step':>14} {'ratio':>8} "
+          f"{'us/particle':>12} {'in Prolog':>9} {'new ms':>9} {'resampled':>9}", flush=True)
+    last = None
+    for n, m in configs:
+        ddc = time_ddc(n, m, args.steps, args.seed)
+        numpy_ms = time_numpy(n, m, args.steps, args.seed)
+        ratio = ddc["ms_per_step"] / numpy_ms
+        print(f"{n:>6} {m:>4} {ddc['ms_per_step']:>12.1f} {numpy_ms:>14.2f} {ratio:>8.0f} "
+              f"{1000 * ddc['ms_per_step'] / n:>12.1f} {ddc['prolog_share']:>9.0%} "
+              f"{ddc['new_ms']:>9.0f} "
+              f"{ddc['resamplings']:>6}/{args.steps}", flush=True)
+        if (n, m) == (1000, 10):
+            verdict = "meets" if ddc["ms_per_step"] <= TARGET_MS else "misses"
+            print(f"  N=1000 M=10: {ddc['ms_per_step']:.1f} ms/step {verdict} the "
+                  f"{TARGET_MS:.0f} ms target", flush=True)
+        last = {"ms_per_step": ddc["ms_per_step"], "numpy_ms_per_step": numpy_ms}
+    if args.json and last is not None:
+        print(json.dumps(last))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
