@@ -222,6 +222,7 @@ def test_truth_from_dict():
         "mug_1": {"position": [0.1, 0, 0.05], "visible": True},
         "hand": {"position": [0.2, 0, 0.3], "visible": True},
         "gone": {"position": None, "visible": False},
+        "removed": {"position": [0.5, 0, 0.05], "visible": False, "present": False},
     }}
     objs = truth_from_dict(truth, ignore=["hand"])
     assert set(objs) == {"ball_1", "mug_1"}

@@ -159,7 +159,8 @@ def truth_from_dict(
 
     The format is the one ``PerceptFrame.truth`` carries: ``{"objects": {id: {"position":
     [x, y, z], "visible": bool, "hidden_by": id or null}}}``. Objects in ``ignore`` (e.g. a hand
-    or the camera cover) and objects whose position is null (off the table) are left out.
+    or the camera cover) and objects whose position is null or that are marked
+    ``"present": false`` (taken off the table) are left out.
     """
     skip = set(ignore)
     objects = truth.get("objects", {}) if isinstance(truth, Mapping) else None
@@ -171,7 +172,7 @@ def truth_from_dict(
             continue
         if not isinstance(item, Mapping) or "position" not in item:
             raise RecordError(f"truth object {oid!r}: no position")
-        if item["position"] is None:
+        if item["position"] is None or item.get("present", True) is False:
             continue
         position = _vec3(item["position"], f"truth object {oid!r}")
         if not np.all(np.isfinite(position)):

@@ -151,8 +151,8 @@ def draw_anchors(
                     cv2.drawMarker(out, (u, v), colour, cv2.MARKER_CROSS, 6, 1)
                 else:
                     cv2.circle(out, (u, v), 4, colour, 1, cv2.LINE_AA)
-                if anchor_at is None:
-                    anchor_at = (u + 5, v - 5)
+                if anchor_at is None:  # hidden anchors labelled below: their occluder is above
+                    anchor_at = (u + 5, v - 5) if anchor.perceived else (u + 6, v + int(30 * scale))
         if anchor_at is not None:
             _label(out, anchor.symbol, anchor_at, colour, scale)
     return out

@@ -2,7 +2,8 @@
 
 For a person who wants to see a multi-modal belief: each hidden anchor's particles as dots in
 its colour (opacity by weight), each anchor's symbol at its point estimate, and, when given,
-the ground truth (``+`` where an object is visible, ``x`` where it is hidden).
+the ground truth (black ``+`` where an object is visible, ``x`` where it is hidden). Filled
+circles are perceived anchors, hollow circles the point estimates of hidden ones.
 """
 
 from __future__ import annotations
@@ -59,15 +60,19 @@ def render_topdown(
             p = np.asarray(anchor.position, float)
             face = colour if anchor.perceived else "none"
             ax.scatter([p[0]], [p[1]], s=40, facecolors=[face] if anchor.perceived else face,
-                       edgecolors=[colour], linewidths=1.5)
-            ax.annotate(anchor.symbol, (p[0], p[1]), xytext=(5, 5), textcoords="offset points",
-                        color=colour, fontsize=8, weight="bold")
+                       edgecolors=[colour], linewidths=1.5, zorder=3)
+            # Perceived anchors labelled above right, hidden ones below right (a hidden anchor
+            # often sits where its occluder's anchor is).
+            ax.annotate(anchor.symbol, (p[0], p[1]), xytext=(6, 6 if anchor.perceived else -14),
+                        textcoords="offset points", color=colour, fontsize=8, weight="bold",
+                        zorder=4)
             xs.append(p[None, :2])
     for oid, pos, visible in _truth_items(truth):
         ax.scatter([pos[0]], [pos[1]], marker="+" if visible else "x", s=50, c="black",
-                   linewidths=1)
-        ax.annotate(oid, (pos[0], pos[1]), xytext=(5, -10), textcoords="offset points",
-                    color="0.3", fontsize=7)
+                   linewidths=1, zorder=5)
+        ax.annotate(oid, (pos[0], pos[1]), xytext=(-6, 6 if visible else -14),
+                    textcoords="offset points",
+                    color="0.3", fontsize=7, ha="right", zorder=5)
         xs.append(pos[None, :2])
     if extent is not None:
         ax.set_xlim(extent[0], extent[1])
@@ -78,7 +83,7 @@ def render_topdown(
         pad = max(0.05, 0.1 * float(np.max(hi - lo)))
         ax.set_xlim(lo[0] - pad, hi[0] + pad)
         ax.set_ylim(lo[1] - pad, hi[1] + pad)
-    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.grid(True, alpha=0.3)
