@@ -669,7 +669,11 @@ forward([Row|Rows], [D|Ds], Rev, Ys) :-
 %   to Lebesgue measure; for dirichlet, on the first k-1 coordinates) or
 %   of the mass (discrete Dist) of Value.  LogP is the float -inf when
 %   Value is outside the support, including a value of the wrong type or
-%   dimension.  Assumes dist_check(Dist) holds.  Multivariate gaussians
+%   dimension.  LogP is the float +inf where the density itself is
+%   infinite: at 0 (or 1) for beta, gamma and dirichlet with a shape
+%   parameter below 1.  Neither infinity may enter SWI-Prolog arithmetic
+%   (it raises float_overflow): test for them first.
+%   Assumes dist_check(Dist) holds.  Multivariate gaussians
 %   and indepGaussians accept the value as a comma tuple or a list (and a
 %   plain number when the dimension is 1).  The densities are the exact
 %   ones; see the module documentation for where they differ from the
