@@ -14,8 +14,9 @@ frame's time stamp, so the buffer is in seconds of scenario time.
 
 Positions: a track matched to a percept this frame is at that percept's 3-D position
 (``perceived``). A track not matched this frame is, when ``hold_lost`` is on (the default), kept
-at the 3-D position of its last percept for as long as the tracker's buffer would keep it (the
-best a tracker without reasoning can do; the same as our ``--no-reasoning``), otherwise dropped.
+at the 3-D position of its last percept for as long as the tracker still holds the track (and
+at most ``lost_seconds``): the best a tracker without reasoning can do, the same as our
+``--no-reasoning``. Otherwise it has no hypothesis until it is matched again.
 
 Installation: ``trackers`` declares a dependency on ``opencv-python``, whose ``cv2`` would
 overwrite the one of ``opencv-python-headless`` that the rest of the project uses. It runs fine
@@ -136,10 +137,11 @@ def run_baseline(
             if percept.truth_id is not None and percept.truth_id not in ignore:
                 assignments[percept.truth_id] = symbol
         if hold_lost:
+            alive = _alive_symbols(tracker, method)
             for symbol, (t, pos) in list(last_seen.items()):
                 if symbol in hyps:
                     continue
-                if fr.time - t <= lost_seconds:
+                if fr.time - t <= lost_seconds and (alive is None or symbol in alive):
                     hyps[symbol] = Hypothesis(pos, False)
                 else:
                     del last_seen[symbol]
@@ -155,6 +157,15 @@ def run_baseline(
             )
         )
     return records
+
+
+def _alive_symbols(tracker: Any, method: str) -> set[str] | None:
+    """Symbols of the tracks the tracker still holds (``None`` if it does not say)."""
+    tracks = getattr(tracker, "tracks", None)
+    if tracks is None:
+        return None
+    ids = (getattr(t, "tracker_id", -1) for t in tracks)
+    return {f"{method}-{int(i)}" for i in ids if i is not None and int(i) >= 0}
 
 
 def _truth(fr: PerceptFrame, ignore: tuple[str, ...]):
