@@ -2,8 +2,8 @@
 
     ddc query FILE QUERY [--evidence E]... [--samples N] [--seed S] [--json]
     ddc filter PROGRAM OBSERVATIONS.jsonl [--particles N] [--seed S] [--query GOAL]...
-               [--distribution TERM]... [--resampling systematic|multinomial|residual]
-               [--threshold F] [--json]
+               [--distribution TERM]... [--mean TERM]...
+               [--resampling systematic|multinomial|residual] [--threshold F] [--json]
 
 ``ddc filter`` runs one filtering step per line of OBSERVATIONS.jsonl. A line is a JSON object
 with the optional keys ``observations`` and ``actions`` (lists; missing means empty) and
@@ -168,10 +168,11 @@ def read_frames(path: Path) -> Iterator[Frame]:
 # ddc filter: running and printing
 
 
-def _belief(f: Any, queries: list[str], distributions: list[str]) -> dict[str, Any]:
+def _belief(f: Any, queries: list[str], distributions: list[str],
+            means: list[str]) -> dict[str, Any]:
     from bridge import FilterError
 
-    out: dict[str, Any] = {"probabilities": {}, "distributions": {}}
+    out: dict[str, Any] = {"probabilities": {}, "distributions": {}, "means": {}}
     for goal in queries:
         try:
             out["probabilities"][goal] = f.probability(goal)
@@ -182,7 +183,17 @@ def _belief(f: Any, queries: list[str], distributions: list[str]) -> dict[str, A
             out["distributions"][term] = [[p, _jsonable(v)] for p, v in f.distribution(term)]
         except FilterError as exc:
             raise CliError(f"--distribution {term!r}: {exc}") from None
+    for term in means:
+        try:
+            mean, cov = f.mean(term)
+        except FilterError as exc:
+            raise CliError(f"--mean {term!r}: {exc}") from None
+        out["means"][term] = {"mean": _plain(mean), "covariance": _plain(cov)}
     return out
+
+
+def _plain(value: Any) -> Any:
+    return value.tolist() if hasattr(value, "tolist") else float(value)
 
 
 def _jsonable(value: Any) -> Any:
@@ -208,11 +219,13 @@ def run_filter(args: argparse.Namespace) -> int:
                    resample_threshold=args.threshold, resampling=args.resampling)
     except FilterError as exc:
         raise CliError(str(exc)) from None
-    printer = _JsonPrinter() if args.json else _TablePrinter(args.query, args.distribution)
+    printer: _JsonPrinter | _TablePrinter = (
+        _JsonPrinter() if args.json else _TablePrinter(args.query, args.distribution, args.mean)
+    )
     with f:
         row = {"step": 0, "line": None, "time": f.time, "ess": f.ess, "resampled": False,
                "zero_weight": False, "log_likelihood": 0.0, "ms": 0.0}
-        printer.row({**row, **_belief(f, args.query, args.distribution)})
+        printer.row({**row, **_belief(f, args.query, args.distribution, args.mean)})
         for step, frame in enumerate(frames, start=1):
             try:
                 result = f.step(frame.observations, frame.actions)
@@ -221,7 +234,7 @@ def run_filter(args: argparse.Namespace) -> int:
             row = {"step": step, "line": frame.line, "time": result.time, "ess": result.ess,
                    "resampled": result.resampled, "zero_weight": result.zero_weight,
                    "log_likelihood": f.log_likelihood, "ms": 1000 * result.seconds}
-            printer.row({**row, **_belief(f, args.query, args.distribution)})
+            printer.row({**row, **_belief(f, args.query, args.distribution, args.mean)})
         steps = len(frames)
         mean_ms = 1000 * sum(f.step_seconds) / steps if steps else 0.0
         print(
@@ -236,18 +249,26 @@ def run_filter(args: argparse.Namespace) -> int:
 class _JsonPrinter:
     def row(self, row: dict[str, Any]) -> None:
         row = {k: (_json_float(v) if isinstance(v, float) else v) for k, v in row.items()}
-        if not row["distributions"]:
-            del row["distributions"]
+        for key in ("distributions", "means"):
+            if not row[key]:
+                del row[key]
         print(json.dumps(row), flush=True)
+
+
+def _short(value: Any) -> str:
+    if isinstance(value, list):
+        return "[" + ", ".join(_short(v) for v in value) + "]"
+    return f"{value:.4g}"
 
 
 _SHOWN = 8  # values of a --distribution shown per row in the table (all of them in JSON)
 
 
 class _TablePrinter:
-    def __init__(self, queries: list[str], distributions: list[str]) -> None:
+    def __init__(self, queries: list[str], distributions: list[str], means: list[str]) -> None:
         self.queries = queries
         self.distributions = distributions
+        self.means = means
         self.header_done = False
 
     def row(self, row: dict[str, Any]) -> None:
@@ -268,6 +289,10 @@ class _TablePrinter:
             if len(dist) > _SHOWN:
                 pairs += f", ... ({len(dist) - _SHOWN} more values)"
             print(f"{'':>9}  {term} = [{pairs}]", flush=True)
+        for term in self.means:
+            stats = row["means"][term]
+            print(f"{'':>9}  mean {term} = {_short(stats['mean'])}, "
+                  f"covariance {_short(stats['covariance'])}", flush=True)
 
 
 # --------------------------------------------------------------------------------------------
@@ -297,6 +322,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="a goal whose probability is printed after each step (repeatable)")
     f.add_argument("--distribution", action="append", default=[], metavar="TERM",
                    help="a random variable whose distribution is printed (repeatable)")
+    f.add_argument("--mean", action="append", default=[], metavar="TERM",
+                   help="a numeric or tuple variable whose weighted mean and covariance are "
+                        "printed (repeatable)")
     f.add_argument("--resampling", choices=["systematic", "multinomial", "residual"],
                    default="systematic")
     f.add_argument("--threshold", type=float, default=0.9,
