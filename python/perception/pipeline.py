@@ -67,6 +67,7 @@ class Pipeline:
         self.backprojector = Backprojector()
         self.plane: Plane | None = None
         self.last_segments: list[Segment] = []
+        self.last_shape_features: dict[int, np.ndarray] = {}  # percept index -> features
 
     # ------------------------------------------------------------------------------ segments
     def segment(self, frame: Any) -> list[Segment]:
@@ -164,6 +165,7 @@ class Pipeline:
                 area = len(seg.rows) * pixel * pixel
                 shape_rows.append((len(out), shape_features(seg.points, seg.heights, area)))
             out.append(percept)
+        self.last_shape_features = {j: f for j, f in shape_rows}
         if shape_rows:
             feats = np.stack([f for _, f in shape_rows])
             if self.model is not None:
