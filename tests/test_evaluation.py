@@ -247,3 +247,48 @@ def test_records_round_trip_and_bad_line(tmp_path):
         out.write('{"frame": 9}\n')
     with pytest.raises(RecordError, match=r"records.jsonl:7: .*'time'"):
         list(read_records(path))
+
+
+def summary_of(kept: list[bool], switches: int, idf1: float | None) -> dict:
+    return {
+        "frames": 10,
+        "objects": [{"id": f"o{i}", "symbols": ["s"], "identity_kept": k}
+                    for i, k in enumerate(kept)],
+        "id_switches": switches,
+        "idf1": idf1,
+        "ms_per_frame": {"perception": 0, "anchoring": 0, "filter": 0, "total": 0},
+        "rejected_percepts": 0,
+    }
+
+
+def test_results_table_groups_runs_by_scenario_and_method(tmp_path):
+    from evaluation import aggregate, results_table, rows_from_summaries
+
+    rows = [
+        ("shell_game", "reasoning", summary_of([True, True, True], 0, 1.0)),
+        ("shell_game", "reasoning", summary_of([True, False, True], 2, 0.8)),
+        ("shell_game", "SORT", switch_run()),  # records are evaluated on the spot
+        ("transitive", "reasoning", summary_of([], 0, None)),
+    ]
+    table = aggregate(rows)
+    assert [(r.scenario, r.method, r.runs) for r in table] == [
+        ("shell_game", "reasoning", 2), ("shell_game", "SORT", 1), ("transitive", "reasoning", 1)
+    ]
+    first = table[0]
+    assert (first.objects_kept, first.objects, first.runs_kept) == (5, 6, 1)
+    assert first.id_switches_mean == 1.0 and first.idf1_mean == pytest.approx(0.9)
+    assert (table[1].objects_kept, table[1].id_switches_mean, table[1].idf1_mean) == (0, 2.0, 0.5)
+    assert table[2].runs_kept == 0 and table[2].idf1_mean is None  # no objects: not "kept"
+    text = results_table(rows)
+    lines = text.splitlines()
+    assert lines[0].startswith("| scenario | method | runs | identity kept (objects)")
+    assert lines[2] == "| shell_game | reasoning | 2 | 5/6 (83 %) | 1/2 (50 %) | 1.00 | 0.900 |"
+    assert lines[4] == "| transitive | reasoning | 1 | - | 0/1 (0 %) | 0.00 | - |"
+
+    # From saved summaries: names from the summary's own fields, else from the folders.
+    a = tmp_path / "shell_game" / "SORT" / "summary.json"
+    write_summary(a, switch_run())
+    b = tmp_path / "elsewhere" / "summary.json"
+    write_summary(b, occlusion_run(), extra={"scenario": "can_under_box", "method": "reasoning"})
+    got = [(s, m, d["idf1"]) for s, m, d in rows_from_summaries([a, b])]
+    assert got == [("shell_game", "SORT", 0.5), ("can_under_box", "reasoning", 1.0)]

@@ -26,7 +26,14 @@ from evaluation.record import (
     write_records,
 )
 from evaluation.summary import SUMMARY_FIELDS, make_summary, read_summary, write_summary
-from evaluation.table import TableRow, aggregate, format_table, print_table, results_table
+from evaluation.table import (
+    TableRow,
+    aggregate,
+    format_table,
+    print_table,
+    results_table,
+    rows_from_summaries,
+)
 
 __all__ = [
     "DEFAULT_THRESHOLD_M",
@@ -51,6 +58,7 @@ __all__ = [
     "read_records",
     "read_summary",
     "results_table",
+    "rows_from_summaries",
     "truth_from_dict",
     "write_records",
     "write_summary",

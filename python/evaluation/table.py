@@ -123,3 +123,33 @@ def print_table(
     file: TextIO | None = None,
 ) -> None:
     print(results_table(rows, threshold), end="", file=file or sys.stdout)
+
+
+def rows_from_summaries(paths: Sequence[str | Path]) -> list[tuple[str, str, dict[str, Any]]]:
+    """``(scenario, method, summary)`` rows from ``summary.json`` files. Scenario and method
+    come from the summary's own ``scenario`` and ``method`` fields when it has them (a runner
+    can add them through ``make_summary(..., extra=...)``), else from the folders, as laid out
+    by ``anchoring baselines --out DIR``: ``DIR/<scenario>/<method>/summary.json``."""
+    rows = []
+    for p in paths:
+        path = Path(p)
+        summary = read_summary(path)
+        scenario = str(summary.get("scenario") or path.parent.parent.name or "-")
+        method = str(summary.get("method") or path.parent.name or "-")
+        rows.append((scenario, method, summary))
+    return rows
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m evaluation SUMMARY.json...``: print the results table of saved runs."""
+    import argparse
+
+    parser = argparse.ArgumentParser(prog="python -m evaluation", description=main.__doc__)
+    parser.add_argument("summaries", nargs="+", type=Path, metavar="SUMMARY.json")
+    args = parser.parse_args(argv)
+    try:
+        print_table(rows_from_summaries(args.summaries))
+    except (OSError, ValueError) as exc:
+        print(f"python -m evaluation: error: {exc}", file=sys.stderr)
+        return 1
+    return 0

@@ -97,11 +97,18 @@ def draw_particles(
     py = (vi[:, None] + dy[None, :]).reshape(-1)
     pa = np.repeat(alpha, len(dx))
     inside = (px >= 0) & (px < w) & (py >= 0) & (py < h)
-    layer = np.zeros((h, w), dtype=float)
-    np.maximum.at(layer, (py[inside], px[inside]), pa[inside])
+    px, py, pa = px[inside], py[inside], pa[inside]
+    if len(px) == 0:
+        return out
+    # Blend only the rectangle the dots cover; where dots overlap the most opaque one wins.
+    x0, x1, y0, y1 = px.min(), px.max() + 1, py.min(), py.max() + 1
+    layer = np.zeros((y1 - y0, x1 - x0), dtype=np.float32)
+    np.maximum.at(layer, (py - y0, px - x0), pa.astype(np.float32))
     a = layer[:, :, None]
-    blended = out.astype(float) * (1.0 - a) + np.asarray(colour, dtype=float) * a
-    return np.clip(np.rint(blended), 0, 255).astype(np.uint8)
+    region = out[y0:y1, x0:x1].astype(np.float32)
+    blended = region * (1.0 - a) + np.asarray(colour, dtype=np.float32) * a
+    out[y0:y1, x0:x1] = np.clip(np.rint(blended), 0, 255).astype(np.uint8)
+    return out
 
 
 def _label(image: np.ndarray, text: str, at: tuple[int, int], colour: tuple[int, int, int],

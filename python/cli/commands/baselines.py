@@ -58,7 +58,8 @@ def run(args: argparse.Namespace) -> int:
             if args.out:
                 folder = args.out / path.stem / method
                 folder.mkdir(parents=True, exist_ok=True)
-                write_summary(folder / "summary.json", records, ev, threshold=args.threshold)
+                write_summary(folder / "summary.json", records, ev, threshold=args.threshold,
+                              extra={"scenario": path.stem, "method": display_name(method)})
                 write_records(folder / "records.jsonl", records)
             rows.append((path.stem, display_name(method), make_summary(records, ev)))
     print(results_table(rows, args.threshold), end="")
