@@ -292,3 +292,27 @@ def test_results_table_groups_runs_by_scenario_and_method(tmp_path):
     write_summary(b, occlusion_run(), extra={"scenario": "can_under_box", "method": "reasoning"})
     got = [(s, m, d["idf1"]) for s, m, d in rows_from_summaries([a, b])]
     assert got == [("shell_game", "SORT", 0.5), ("can_under_box", "reasoning", 1.0)]
+
+
+def test_record_for_frame_from_a_percept_frame():
+    from evaluation import record_for_frame
+    from percepts import Percept, PerceptFrame
+
+    def p(truth_id):
+        return Percept(0.5, [0, 0, 0.03], [0.06] * 3, [1.0], {"ball": 1.0}, truth_id=truth_id)
+
+    frame = PerceptFrame(
+        7, 0.5, [p("ball_1"), p(None), p("hand_1")],
+        truth={"objects": {"ball_1": {"position": [0, 0, 0.03], "visible": True}}},
+        rejected=["x.jsonl:8: percept 3: position contains NaN"],
+    )
+    hyps = {"ball-1": Hypothesis(np.array([0, 0, 0.03]), True)}
+    matches = [(frame.percepts[0], "ball-1"), (frame.percepts[1], "glitch-1"),
+               (frame.percepts[2], "skin-1")]
+    r = record_for_frame(frame, hyps, matches, FrameTimings(1, 2, 3), ignore=["hand_1"])
+    assert (r.frame, r.time, r.rejected_percepts) == (7, 0.5, 1)
+    assert r.assignments == {"ball_1": "ball-1"}
+    assert list(r.truth) == ["ball_1"] and r.timings.total_ms() == 6
+    frame.truth = {"objects": {"ball_1": {"visible": True}}}
+    with pytest.raises(RecordError, match="frame 7: truth object 'ball_1': no position"):
+        record_for_frame(frame, hyps, matches)

@@ -22,6 +22,7 @@ from evaluation.record import (
     TruthObject,
     point_estimate,
     read_records,
+    record_for_frame,
     truth_from_dict,
     write_records,
 )
@@ -57,6 +58,7 @@ __all__ = [
     "print_table",
     "read_records",
     "read_summary",
+    "record_for_frame",
     "results_table",
     "rows_from_summaries",
     "truth_from_dict",

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from evaluation.record import FrameTimings, Hypothesis, TrackingRecord, truth_from_dict
+from evaluation.record import FrameTimings, Hypothesis, TrackingRecord, record_for_frame
 from percepts import Percept, PerceptFrame
 
 BASELINES = ("sort", "bytetrack", "ocsort")
@@ -124,7 +124,7 @@ def run_baseline(
         out = tracker.update(dets, timestamp=fr.time)
         elapsed = (_time.perf_counter() - start) * 1000.0
         hyps: dict[str, Hypothesis] = {}
-        assignments: dict[str, str] = {}
+        matches: list[tuple[Percept, str]] = []
         ids = out.tracker_id if out.tracker_id is not None else np.empty(0, dtype=int)
         indices = out.data.get("index", np.empty(0, dtype=int)) if len(out) else []
         for tid, idx in zip(ids, indices, strict=True):
@@ -134,8 +134,7 @@ def run_baseline(
             symbol = f"{method}-{int(tid)}"
             hyps[symbol] = Hypothesis(percept.position.copy(), True)
             last_seen[symbol] = (fr.time, percept.position.copy())
-            if percept.truth_id is not None and percept.truth_id not in ignore:
-                assignments[percept.truth_id] = symbol
+            matches.append((percept, symbol))
         if hold_lost:
             alive = _alive_symbols(tracker, method)
             for symbol, (t, pos) in list(last_seen.items()):
@@ -145,17 +144,7 @@ def run_baseline(
                     hyps[symbol] = Hypothesis(pos, False)
                 else:
                     del last_seen[symbol]
-        records.append(
-            TrackingRecord(
-                frame=fr.frame,
-                time=fr.time,
-                truth=_truth(fr, ignore),
-                hypotheses=hyps,
-                assignments=assignments,
-                timings=FrameTimings(anchoring=elapsed),
-                rejected_percepts=len(fr.rejected),
-            )
-        )
+        records.append(record_for_frame(fr, hyps, matches, FrameTimings(anchoring=elapsed), ignore))
     return records
 
 
@@ -166,10 +155,3 @@ def _alive_symbols(tracker: Any, method: str) -> set[str] | None:
         return None
     ids = (getattr(t, "tracker_id", -1) for t in tracks)
     return {f"{method}-{int(i)}" for i in ids if i is not None and int(i) >= 0}
-
-
-def _truth(fr: PerceptFrame, ignore: tuple[str, ...]):
-    try:
-        return truth_from_dict(fr.truth or {}, ignore)
-    except ValueError as exc:
-        raise BaselineError(f"frame {fr.frame}: {exc}") from exc

@@ -184,6 +184,42 @@ def truth_from_dict(
     return result
 
 
+def record_for_frame(
+    frame: Any,
+    hypotheses: Mapping[str, Hypothesis],
+    matches: Iterable[tuple[Any, str]],
+    timings: FrameTimings | None = None,
+    ignore: Iterable[str] = (),
+    rejected_percepts: int | None = None,
+) -> TrackingRecord:
+    """The record of one ``percepts.PerceptFrame`` as a runner has processed it.
+
+    ``matches`` are the ``(percept, symbol)`` pairs the runner decided this frame (acquired,
+    re-acquired or tracked); percepts without ``truth_id`` are left out of the assignments.
+    Ground truth comes from ``frame.truth`` (see :func:`truth_from_dict`); ``rejected_percepts``
+    defaults to ``len(frame.rejected)``.
+    """
+    skip = set(ignore)
+    assignments = {
+        str(p.truth_id): str(sym)
+        for p, sym in matches
+        if getattr(p, "truth_id", None) is not None and p.truth_id not in skip
+    }
+    try:
+        truth = truth_from_dict(frame.truth or {}, skip)
+    except RecordError as exc:
+        raise RecordError(f"frame {frame.frame}: {exc}") from exc
+    return TrackingRecord(
+        frame=int(frame.frame),
+        time=float(frame.time),
+        truth=truth,
+        hypotheses=dict(hypotheses),
+        assignments=assignments,
+        timings=timings if timings is not None else FrameTimings(),
+        rejected_percepts=len(frame.rejected) if rejected_percepts is None else rejected_percepts,
+    )
+
+
 def point_estimate(
     particles: np.ndarray,
     weights: np.ndarray | None = None,
