@@ -46,6 +46,13 @@ class Anchor:
     observations: int = 1
     history_size: int = field(default=10, repr=False)
 
+    def __post_init__(self) -> None:
+        # window sums over the history, for the mean size and colour (re-acquire hot path)
+        self._size_sum = np.sum([p.size for p in self.history], axis=0) if self.history \
+            else np.zeros(3)
+        self._hist_sum = np.sum([_normalised(p.colour_histogram) for p in self.history], axis=0) \
+            if self.history else np.zeros(self.colour.dim)
+
     # --- creation and update -------------------------------------------------------------
     @classmethod
     def acquire(cls, symbol: str, percept: Percept, history_size: int = 10) -> Anchor:
@@ -66,17 +73,24 @@ class Anchor:
         )
 
     def reacquire(self, percept: Percept) -> None:
+        """Update with a (validated) percept of this anchor's object."""
         t = percept.time
+        if len(self.history) == self.history.maxlen:
+            old = self.history[0]
+            self._size_sum -= old.size
+            self._hist_sum -= _normalised(old.colour_histogram)
         self.history.append(percept)
-        self.position = Attribute.deterministic(percept.position, t)
-        self.size = Attribute.deterministic(np.mean([p.size for p in self.history], axis=0), t)
-        hists = np.array([_normalised(p.colour_histogram) for p in self.history])
-        self.colour = Attribute.deterministic(hists.mean(axis=0), t)
+        self._size_sum += percept.size
+        self._hist_sum += _normalised(percept.colour_histogram)
+        n = len(self.history)
+        self.position = Attribute.deterministic(percept.position, t, checked=False)
+        self.size = Attribute.deterministic(self._size_sum / n, t, checked=False)
+        self.colour = Attribute.deterministic(self._hist_sum / n, t, checked=False)
         counts: dict[str, int] = {}
         for p in self.history:
             for name in set(p.colour_names):
                 counts[name] = counts.get(name, 0) + 1
-        self.colour_names = sorted(n for n, c in counts.items() if 2 * c >= len(self.history))
+        self.colour_names = sorted(c for c, k in counts.items() if 2 * k >= n)
         for name, prob in percept.category.items():
             self.category_sums[name] = self.category_sums.get(name, 0.0) + prob
         self.category_count += 1

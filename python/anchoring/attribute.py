@@ -12,6 +12,9 @@ from typing import Any
 
 import numpy as np
 
+_ONE = np.ones(1)
+_ONE.flags.writeable = False
+
 
 class AttributeValueError(ValueError):
     """Samples or weights that cannot form an attribute value (wrong shape, NaN, zero mass)."""
@@ -50,9 +53,15 @@ class Attribute:
         self.weights = weights / total
 
     @classmethod
-    def deterministic(cls, value: Any, time: float = 0.0) -> Attribute:
+    def deterministic(cls, value: Any, time: float = 0.0, *, checked: bool = True) -> Attribute:
+        """One value. ``checked=False`` skips validation for values already validated (the
+        fields of a validated percept): the hot path of re-acquire."""
         value = np.asarray(value, dtype=float).reshape(1, -1)
-        return cls(value, np.ones(1), time)
+        if checked:
+            return cls(value, np.ones(1), time)
+        attr = object.__new__(cls)
+        attr.samples, attr.weights, attr.time = value, _ONE, time
+        return attr
 
     @classmethod
     def probabilistic(
@@ -90,7 +99,12 @@ class Attribute:
 
     def support(self) -> np.ndarray:
         """Samples with positive weight: the candidates for the max-over-particles estimate."""
-        return self.samples[self.weights > 0]
+        cached = self.__dict__.get("_support")
+        if cached is None:
+            positive = self.weights > 0
+            cached = self.samples if positive.all() else self.samples[positive]
+            self.__dict__["_support"] = cached
+        return cached
 
     def to_json(self) -> dict[str, Any]:
         if not self.is_probabilistic:

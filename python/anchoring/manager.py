@@ -34,6 +34,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from anchoring.anchor import Anchor
+from anchoring.blas import single_threaded_blas
 from anchoring.features import pair_features
 from anchoring.matcher import Matcher, load_default_matcher
 from percepts import Percept, PerceptError
@@ -151,7 +152,11 @@ class AnchorManager:
 
     # --- one frame ----------------------------------------------------------------------
     def process(self, time: float, percepts: Sequence[Percept]) -> FrameResult:
-        time = float(time)
+        """Match one frame's percepts against the anchors (see the module docstring)."""
+        with single_threaded_blas():
+            return self._process(float(time), percepts)
+
+    def _process(self, time: float, percepts: Sequence[Percept]) -> FrameResult:
         result = FrameResult(time)
         self.time = time
 

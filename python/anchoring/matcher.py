@@ -54,16 +54,20 @@ class RbfSvm:
             )
         if self.coefficients.shape[0] != self.support_vectors.shape[0]:
             raise MatcherError("one coefficient per support vector expected")
+        self._sv_t_m2 = np.ascontiguousarray(-2.0 * self.support_vectors.T)
         self._sv_sq = (self.support_vectors**2).sum(1)
 
     def decision(self, x: np.ndarray) -> np.ndarray:
         x = np.asarray(x, dtype=float)
         shape = x.shape[:-1]
         flat = x.reshape(-1, x.shape[-1])
-        d2 = (flat * flat).sum(1)[:, None] + self._sv_sq[None, :]
-        d2 -= 2.0 * flat @ self.support_vectors.T
-        k = np.exp(-self.gamma * np.maximum(d2, 0.0))
-        return (k @ self.coefficients + self.intercept).reshape(shape)
+        d2 = flat @ self._sv_t_m2  # -2 x.sv
+        d2 += self._sv_sq
+        d2 += np.einsum("ij,ij->i", flat, flat)[:, None]
+        np.maximum(d2, 0.0, out=d2)
+        d2 *= -self.gamma
+        np.exp(d2, out=d2)
+        return (d2 @ self.coefficients + self.intercept).reshape(shape)
 
     def predict(self, x: np.ndarray) -> np.ndarray:
         """1 for "same object", 0 otherwise."""
@@ -82,7 +86,15 @@ class RbfSvm:
         }
 
     def save(self, path: str | Path) -> None:
-        Path(path).write_text(json.dumps(self.to_json(), indent=1) + "\n", encoding="utf-8")
+        """Indented JSON with one support vector (and its coefficient) per line."""
+        record = self.to_json()
+        rows = record.pop("support_vectors")
+        coefs = record.pop("coefficients")
+        head = json.dumps(record, indent=1)[:-2]
+        body = ",\n".join(f"  {json.dumps([round(v, 10) for v in r])}" for r in rows)
+        text = (f'{head},\n "support_vectors": [\n{body}\n ],\n'
+                f' "coefficients": {json.dumps([round(c, 10) for c in coefs])}\n}}\n')
+        Path(path).write_text(text, encoding="utf-8")
 
     @classmethod
     def load(cls, path: str | Path) -> RbfSvm:

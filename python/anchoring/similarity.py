@@ -14,24 +14,46 @@ import numpy as np
 FEATURES: tuple[str, ...] = ("category", "colour", "position", "size", "time")
 
 
+class _Workspace:
+    """Grow-only scratch buffers reused across calls: on a busy machine, first-touching fresh
+    multi-megabyte temporaries every frame costs more than the arithmetic itself."""
+
+    def __init__(self) -> None:
+        self._buffers: dict[str, np.ndarray] = {}
+
+    def get(self, name: str, shape: tuple[int, int]) -> np.ndarray:
+        size = shape[0] * shape[1]
+        buf = self._buffers.get(name)
+        if buf is None or buf.size < size:
+            buf = np.empty(max(size, 1))
+            self._buffers[name] = buf
+        return buf[:size].reshape(shape)
+
+
+_WORKSPACE = _Workspace()
+
+
 def position_similarity(
     anchor_samples: Sequence[np.ndarray], percept_positions: np.ndarray
 ) -> np.ndarray:
     """``exp(-min_i ||s_i - x||)``: the maximum over each anchor's position samples (particles).
 
     ``anchor_samples[a]`` is (N_a, 3) (N_a = 1 for a deterministic position); the maximum of the
-    similarity over the samples is the paper's point estimate at the modes (section 3.2). One
-    matrix product over all samples of all anchors, then a segmented minimum: no Python loop
-    over particles.
+    similarity over the samples is the paper's point estimate at the modes (section 3.2). All
+    samples of all anchors are compared with all percepts in one matrix product (no Python loop
+    over particles), ``||x - s||^2 = ||x||^2 + ||s||^2 - 2 x.s``, then a segmented minimum per
+    anchor. Three passes over the (percepts x samples) matrix, in a reused buffer.
     """
     x = np.asarray(percept_positions, dtype=float).reshape(-1, 3)
     if len(anchor_samples) == 0 or x.shape[0] == 0:
         return np.zeros((len(anchor_samples), x.shape[0]))
     counts = np.fromiter((s.shape[0] for s in anchor_samples), dtype=np.intp)
-    s = np.concatenate(anchor_samples, axis=0)
-    d2 = (s * s).sum(1)[:, None] + (x * x).sum(1)[None, :] - 2.0 * (s @ x.T)
+    s_t = np.concatenate([np.asarray(s, dtype=float).T for s in anchor_samples], axis=1)  # (3, M)
+    d2 = _WORKSPACE.get("d2", (x.shape[0], s_t.shape[1]))  # (P, M): reduce along rows
+    np.matmul(-2.0 * x, s_t, out=d2)
+    d2 += np.einsum("ij,ij->j", s_t, s_t)
     starts = np.concatenate(([0], np.cumsum(counts)[:-1]))
-    nearest = np.minimum.reduceat(d2, starts, axis=0)
+    nearest = np.minimum.reduceat(d2, starts, axis=1).T + np.einsum("ij,ij->i", x, x)
     return np.exp(-np.sqrt(np.maximum(nearest, 0.0)))
 
 
