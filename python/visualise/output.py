@@ -20,7 +20,7 @@ def save_png(path: str | Path, image: np.ndarray) -> Path:
 def write_gif(
     path: str | Path, frames: Sequence[np.ndarray | str | Path], fps: float = 10.0
 ) -> int:
-    """Write frames (images, or paths of PNGs) as a looping GIF; returns the frame count.
+    """Write frames (images, or paths of PNGs) as a looping GIF; returns the number given.
 
     All frames must have the same size. The GIF encoder (Pillow) merges consecutive frames that
     are exactly identical into one longer frame, so a still scene may give fewer frames.
