@@ -1,0 +1,1377 @@
+/*  ddc.pl -- Dynamic Distributional Clauses for SWI-Prolog.
+
+    The engine of the project: the DC language of section 2.2 of the paper
+    (distributional clauses, derived atoms, time-indexed terms), compiled
+    into Prolog, with likelihood-weighted backward sampling for static
+    queries and (in ddc_filter.pl, re-exported here) the particle filter
+    over time.
+*/
+
+:- module(ddc,
+          [ ddc_load/1,                 % +File
+            ddc_load/2,                 % +File, ?Module
+            ddc_program/1,              % -Module (the program loaded last)
+            query/2,                    % :Query, -P
+            query/3,                    % :Query, -P, +Options
+            query/4,                    % +Evidence, :Query, -P, +Options
+            query/5,                    % +PosEv, +NegEv, +Query, +N, -P
+            query/8,                    % +PosEv, +NegEv, +Query, ?X, +N, -Avg, -SuccSum, -Sum
+            expectation/5,              % +Evidence, +Query, ?X, -E, +Options
+            distribution/5,             % +Evidence, +Query, ?X, -Dist, +Options
+            ddc_query/6,                % +Module, +Evidence, +Query, +Options, -P, -Stats
+            ddc_query_text/5,           % +Module, +QueryText, +EvidenceText, +Options, -Result
+            ddc_sample_world/4,         % +Module, +Query, +Options, -Facts
+            logistic/3,                 % +Inputs, +Weights, -P
+            linear/3,                   % +Inputs, +Weights, -Y
+            filter_new/4,               % +ProgramFile, +N, +Seed, -Filter
+            filter_step/4,              % +Filter, +Observations, +Actions, -LogWeights
+            filter_undo/1,              % +Filter
+            filter_resample/2,          % +Filter, +Indices
+            filter_holds/3,             % +Filter, +Goal, -Flags
+            filter_values/4,            % +Filter, +Template, +Goal, -Values
+            filter_time/2,              % +Filter, -T
+            filter_size/2,              % +Filter, -N
+            filter_free/1,              % +Filter
+            op(700, xfx, ~),
+            op(700, xfx, ~=),
+            op(1105, xfx, :=),
+            op(1105, xfx, <-),
+            op(1150, xfx, pr)
+          ]).
+
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+:- use_module(library(aggregate)).
+:- use_module(library(option)).
+:- use_module(library(error)).
+:- use_module(library(pairs)).
+:- use_module(ddc_dist).
+:- use_module(ddc_store).
+
+:- op(700, xfx, ~).
+:- op(700, xfx, ~=).
+:- op(1105, xfx, :=).
+:- op(1105, xfx, <-).
+:- op(1150, xfx, pr).
+
+/** <module> Dynamic Distributional Clauses
+
+## Loading
+
+    ?- ddc_load('prolog/examples/tutorial.pl'), query(coin ~= true, P).
+
+ddc_load/1 reads a program file and compiles it into a module of its own
+(named after the absolute file name; ddc_load/2 names it).  Several
+programs live side by side; loading a file again replaces its program
+atomically: if the new text has an error, the exception names file:line and
+the previously loaded program stays as it was.  A Prolog file may also load
+a program as a directive: `:- use_module(library(ddc)). :- ddc_load(model).`
+
+## Language
+
+  - `H ~ D := Body.`, `H ~ D.`, `H := Body.` (`H := true.` is a fact); the
+    paper's `<-` is a synonym of `:=`; a trailing `pr N` is accepted and
+    ignored (priorities only matter to forward samplers).
+  - Time: `h:t`, `h:t+1`, `h:0` (also `h:N`) in heads and bodies; the
+    original's `current(h)`, `next(h)`, `prior(h)` mean the same.
+  - Body literals: `H ~= V`, derived atoms, `\+ G`, `(A;B)`, `(A->B;C)`,
+    Prolog builtins and library(lists) predicates, findall/3 (its goal may
+    use DC literals), findall_forward/3 (same), true(P) (a fresh flip at
+    each call), sample(D, X) (inline draw), belief(A) (A is ground),
+    timestep(T), logistic/3, linear/3, predicates declared with
+    `builtin(Pattern).` or defined by plain Prolog clauses in the program
+    file.  A predicate with no clauses at all is looked up among the facts
+    asserted into the world (actions and plain observations of the filter).
+  - Comparisons accept a time-indexed random variable as an operand:
+    `pos(1):t > 0` reads pos(1) at t first (the paper's shorthand).
+  - Distribution sugar: `finite(P:V, ...)` (no list), `uniform(A, B)`
+    (= contUniform(A, B), the paper's notation).  Parameters may be
+    arithmetic expressions (`gaussian(X+3, 0.5)`).
+
+## Semantics
+
+Each world samples lazily only what the proofs need; every random variable
+is drawn at most once per world (the store survives backtracking).  The
+first clause (in file order) whose body holds defines a variable; if a
+later clause for the same variable also holds in the same world, that is
+an error naming both clauses (the original silently took the first), unless
+the program declares `:- first_applicable(Name/Arity).` (or
+`first_applicable(all)`) for decision lists such as learned rules.
+Time-indexed variables: `h:0` and `h:t+1` clauses define h at time 0 /
+t+1; `h:t` clauses are a fallback used only when no `h:0`/`h:t+1` clause
+applies (the lazily-drawn "prior belief" of the original).  Nothing is
+copied from t to t+1 implicitly: write `h:t+1 ~ val(V) := h:t ~= V` or
+declare `:- persistent(Name/Arity).`, which adds exactly that clause
+(`h:t+1 := h:t` for a derived atom) after the program's own ones.
+
+Ground derived atoms whose proof uses true/1 or sample/2 are memoised per
+world (success and failure), so such an atom has one truth value per world.
+
+## Inference
+
+Likelihood weighting with backward reasoning.  Evidence literals `h ~= v`
+with ground h and v are not sampled but weighted by the density or mass of
+h's applicable clause; evidence on a `val(V)` variable whose body computes
+V by invertible arithmetic from another variable (`V is A*4.0`) is
+propagated to that variable with the Jacobian (the original omitted it).
+Other evidence (non-ground values, tests, atoms) is by rejection.  Ground
+query literals `h ~= v` are weighted the same way (so `query(g ~= 0.0, P)`
+on a continuous g returns a density).  As in the original, only samples
+whose evidence weight has the fewest density factors count (a point mass
+beats a density).
+
+## Errors
+
+Every error is `error(ddc(Cause, Where), _)` with Where = File:Line (or
+`query`); print_message/2 renders it as `File:Line: cause`.  Causes:
+syntax_error(Msg), distribution(Dist, Why), non_ground_head(H),
+overlapping_clauses(Key, OtherFile:OtherLine), zero_evidence(Evidence),
+no_observation_clause(Obs), unknown_program(M), bad_directive(D).
+*/
+
+:- dynamic
+    current_program_/1,
+    program_file_/2.
+
+:- multifile prolog:message//1.
+
+                 /*******************************
+                 *            LOADING           *
+                 *******************************/
+
+%!  ddc_load(+File) is det.
+%!  ddc_load(+File, ?Module) is det.
+%
+%   Compile the DC program in File into Module (default: the absolute file
+%   name) and make it the current program for query/2,3,4.  Replaces a
+%   previous program of that module only if File compiles without error.
+ddc_load(File) :-
+    ddc_load(File, _).
+
+ddc_load(Spec, M) :-
+    resolve_file(Spec, File),
+    (   var(M) -> M = File ; true ),
+    read_program(File, Items),
+    compile_program(File, M, Items, Clauses, Info),
+    install_program(M, File, Clauses, Info),
+    retractall(current_program_(_)),
+    assertz(current_program_(M)).
+
+resolve_file(Spec, File) :-
+    (   absolute_file_name(Spec, File0, [file_type(prolog), access(read), file_errors(fail)])
+    ->  File = File0
+    ;   absolute_file_name(Spec, File0, [access(read), file_errors(fail)])
+    ->  File = File0
+    ;   term_to_atom(Spec, A),
+        throw(error(ddc(no_such_file(A), A:0), _))
+    ).
+
+%!  ddc_program(-Module) is semidet.
+%
+%   The program loaded last.
+ddc_program(M) :-
+    current_program_(M), !.
+
+%   read_program(+File, -Items): Items is a list of t(Term, Line).
+read_program(File, Items) :-
+    setup_call_cleanup(
+        open(File, read, S),
+        read_terms(S, File, Items),
+        close(S)).
+
+read_terms(S, File, Items) :-
+    catch(read_term(S, T, [ module(ddc), term_position(P), syntax_errors(error) ]),
+          E, syntax_error(E, File)),
+    (   T == end_of_file
+    ->  Items = []
+    ;   stream_position_data(line_count, P, Line),
+        Items = [t(T, Line)|Rest],
+        read_terms(S, File, Rest)
+    ).
+
+syntax_error(error(syntax_error(Msg), Ctx), File) :- !,
+    (   Ctx = stream(_, Line, _, _) -> true
+    ;   Ctx = file(_, Line, _, _) -> true
+    ;   Line = 0
+    ),
+    throw(error(ddc(syntax_error(Msg), File:Line), _)).
+syntax_error(E, _) :-
+    throw(E).
+
+install_program(M, File, Clauses, Info) :-
+    (   current_module(M), M \== user, M \== ddc, M \== system
+    ->  forall(( current_predicate(M:N/A), functor(H, N, A),
+                 \+ predicate_property(M:H, imported_from(_)) ),
+               abolish(M:N/A))
+    ;   true
+    ),
+    set_module(M:base(user)),
+    set_module(M:class(user)),
+    declare_program_preds(M, Info),
+    forall(member(C, Clauses), assertz(M:C)),
+    assertz(M:'$ddc_info'(Info)),
+    retractall(program_file_(M, _)),
+    assertz(program_file_(M, File)).
+
+declare_program_preds(M, Info) :-
+    Info = info(DerU, DerT, _, _, _, _, _),
+    dynamic(M:'$rv'/9),
+    dynamic(M:'$rv_pos'/3),
+    dynamic(M:'$ddc_info'/1),
+    dynamic(M:'$ddc_tmp'/4),
+    dynamic(M:'$sweep'/4),
+    forall(member(N/A, DerU),
+           ( A1 is A+1, derived_name(N, d, DN), dynamic(M:DN/A1),
+             derived_name(N, d0, DN0), dynamic(M:DN0/A1) )),
+    forall(member(N/A, DerT),
+           ( A2 is A+2,
+             forall(member(K, [dt, dt0, dt1, dt2]),
+                    ( derived_name(N, K, DN), dynamic(M:DN/A2) )) )).
+
+derived_name(N, Kind, Name) :-
+    atomic_list_concat(['$', Kind, ':', N], Name).
+
+                 /*******************************
+                 *          COMPILATION         *
+                 *******************************/
+
+%   An item is one of
+%     rv(Id, X, Kind, Dist, Body, Line)
+%     der(Id, X, Kind, Body, Line)
+%     plain(Clause, Line)
+%     dir(Directive, Line)
+%   Kind is u, state, trans or fixed(N).
+
+compile_program(File, M, Items0, Clauses, Info) :-
+    classify_items(Items0, File, 1, Items1, Dirs),
+    directives_options(Dirs, File, M, Opts, DirClauses),
+    add_persistence(Opts, Items1, Items),
+    program_info(Items, Opts, Info),
+    %   '$rv' clauses: tier 1 (untimed, h:0, h:t+1) before tier 2 (h:t)
+    findall(C, ( member(I, Items), \+ state_rv(I), compile_item(I, File, Info, Items, C) ), Cs1),
+    findall(C, ( member(I, Items), state_rv(I), compile_item(I, File, Info, Items, C) ), Cs2),
+    append(Cs1, Cs2, Cs0),
+    derived_dispatchers(Info, Ds),
+    clause_positions(Items, File, Ps),
+    findall('$sweep'(rv, K, X, Id),
+            ( member(rv(Id, X, K, _, _, _), Items), K \== u, K \== state ), Sw1),
+    findall('$sweep'(der, K, N/A, 0),
+            ( member(der(_, X, K, _, _), Items), K \== u, K \== state, functor(X, N, A) ), Sw2a),
+    sort(Sw2a, Sw2),
+    append([DirClauses, Cs0, Ds, Ps, Sw1, Sw2], Clauses).
+
+state_rv(rv(_, _, state, _, _, _)).
+
+classify_items([], _, _, [], []).
+classify_items([t(T, L)|Ts], File, Id, Items, Dirs) :-
+    (   T = (:- D)
+    ->  Items = Items1, Dirs = [D-L|Dirs1], Id1 = Id
+    ;   classify(T, Id, L, File, Item)
+    ->  Items = [Item|Items1], Dirs = Dirs1, Id1 is Id+1
+    ;   Items = [plain(T, L)|Items1], Dirs = Dirs1, Id1 = Id
+    ),
+    classify_items(Ts, File, Id1, Items1, Dirs1).
+
+classify(T pr _, Id, L, File, Item) :- !,
+    classify(T, Id, L, File, Item).
+classify((H ~ D := B), Id, L, File, rv(Id, X, K, D1, B, L)) :- !,
+    head_time(H, X, K, File, L), dist_sugar(D, D1).
+classify((H ~ D <- B), Id, L, File, rv(Id, X, K, D1, B, L)) :- !,
+    head_time(H, X, K, File, L), dist_sugar(D, D1).
+classify((H ~ D), Id, L, File, rv(Id, X, K, D1, true, L)) :- !,
+    head_time(H, X, K, File, L), dist_sugar(D, D1).
+classify((H := B), Id, L, File, der(Id, X, K, B, L)) :- !,
+    head_time(H, X, K, File, L).
+classify((H <- B), Id, L, File, der(Id, X, K, B, L)) :- !,
+    head_time(H, X, K, File, L).
+
+head_time(H, _, _, File, L) :-
+    var(H), !,
+    throw(error(ddc(unbound_head, File:L), _)).
+head_time(X:(T+K), X, trans, _, _) :- T == t, K == 1, !.
+head_time((X:T)+1, X, trans, _, _) :- T == t, !.
+head_time(X:T, X, state, _, _) :- T == t, !.
+head_time(X:N, X, fixed(N), _, _) :- integer(N), !.
+head_time(current(X), X, state, _, _) :- nonvar(X), !.
+head_time(next(X), X, trans, _, _) :- nonvar(X), !.
+head_time(prior(X), X, fixed(0), _, _) :- nonvar(X), !.
+head_time(H, _, _, File, L) :-
+    \+ callable(H), !,
+    throw(error(ddc(bad_head(H), File:L), _)).
+head_time(H, H, u, _, _).
+
+%   Distribution sugar (done at compile time).
+dist_sugar(D, D) :- var(D), !.
+dist_sugar(finite(L), finite(L)) :- is_list(L), !.
+dist_sugar(finite(L), finite(L)) :- var(L), !.
+dist_sugar(D, finite(L)) :-
+    compound(D), compound_name_arguments(D, finite, Args), Args \= [], \+ (Args = [A], is_list(A)),
+    forall(member(A, Args), nonvar(A)), forall(member(A, Args), A = _:_), !,
+    L = Args.
+dist_sugar(uniform(A, B), contUniform(A, B)) :- !.
+dist_sugar(D, D).
+
+%   Directives.
+directives_options([], _, _, [], []).
+directives_options([D-L|Ds], File, M, Opts, Cls) :-
+    directive(D, File, L, M, Opts, Opts1, Cls, Cls1),
+    directives_options(Ds, File, M, Opts1, Cls1).
+
+directive(first_applicable(S), _, _, _, [first(S)|O], O, C, C) :- !.
+directive(persistent(S), _, _, _, [persistent(S)|O], O, C, C) :- !.
+directive(use_module(library(_)), _, _, _, O, O, C, C) :- !.   % libraries are visible anyway
+directive(use_module(library(_), _), _, _, _, O, O, C, C) :- !.
+directive(use_module(_), _, _, _, O, O, C, C) :- !.           % the original's own files
+directive(use_module(_, _), _, _, _, O, O, C, C) :- !.
+directive(ensure_loaded(_), _, _, _, O, O, C, C) :- !.
+directive(initialization(_), _, _, _, O, O, C, C) :- !.        % the originals' test runners
+directive(initialization(_, _), _, _, _, O, O, C, C) :- !.
+directive(D, _, _, _, O, O, C, C) :-
+    compound(D), functor(D, N, 1),
+    memberchk(N, [set_options, set_inference, set_query_propagation, set_debug,
+                  set_lifted, set_raoblackwellisation, set_current2nextcopy]), !.
+directive(dynamic(_), _, _, _, O, O, C, C) :- !.
+directive(discontiguous(_), _, _, _, O, O, C, C) :- !.
+directive(op(P, T, N), _, _, _, O, O, C, C) :- !, op(P, T, ddc:N).
+directive(D, File, L, _, _, _, _, _) :-
+    throw(error(ddc(bad_directive(D), File:L), _)).
+
+%   persistent(Name/Arity): for each declared h, add after the program's
+%   clauses  h:t+1 ~ val(V) := h:t ~= V  (random variable) or
+%   h:t+1 := h:t (derived atom).
+add_persistence(Opts, Items0, Items) :-
+    findall(S, ( member(persistent(Spec), Opts), spec_list(Spec, Ss), member(S, Ss) ), Specs),
+    (   Specs == []
+    ->  Items = Items0
+    ;   last_id(Items0, Id0),
+        persistence_items(Specs, Items0, Id0, New),
+        append(Items0, New, Items)
+    ).
+
+spec_list(Spec, L) :- is_list(Spec), !, L = Spec.
+spec_list((A,B), L) :- !, spec_list(A, LA), spec_list(B, LB), append(LA, LB, L).
+spec_list(S, [S]).
+
+last_id(Items, Id) :-
+    aggregate_all(max(I), ( member(It, Items), item_id(It, I) ), Max), !,
+    ( Max == -inf -> Id = 0 ; Id = Max ).
+last_id(_, 0).
+
+item_id(rv(Id, _, _, _, _, _), Id).
+item_id(der(Id, _, _, _, _), Id).
+
+persistence_items([], _, _, []).
+persistence_items([N/A|Ss], Items, Id0, New) :-
+    functor(X, N, A),
+    Id is Id0+1,
+    (   member(rv(_, X0, _, _, _, L), Items), \+ X0 \= X
+    ->  New = [rv(Id, X, persist, val(V), (X:t ~= V), L)|New1]
+    ;   member(der(_, X0, _, _, L), Items), \+ X0 \= X
+    ->  New = [der(Id, X, persist, X:t, L)|New1]
+    ;   New = [rv(Id, X, persist, val(V), (X:t ~= V), 0)|New1]
+    ),
+    persistence_items(Ss, Items, Id, New1).
+
+%   program_info(+Items, +Opts, -Info)
+%   info(DerU, DerT, RvU, RvT, Plain, Impure, First)
+program_info(Items, Opts, info(DerU, DerT, RvU, RvT, Plain, Impure, First)) :-
+    findall(N/A, ( member(der(_, X, u, _, _), Items), functor(X, N, A) ), DU), sort(DU, DerU),
+    findall(N/A, ( member(der(_, X, K, _, _), Items), K \== u, functor(X, N, A) ), DT), sort(DT, DerT),
+    findall(N/A, ( member(rv(_, X, u, _, _, _), Items), functor(X, N, A) ), RU), sort(RU, RvU),
+    findall(N/A, ( member(rv(_, X, K, _, _, _), Items), K \== u, functor(X, N, A) ), RT), sort(RT, RvT),
+    findall(N/A, ( member(plain(C, _), Items), clause_head(C, H), functor(H, N, A) ), P0),
+    findall(N/A, ( member(plain(builtin(P), _), Items), callable(P), functor(P, N, A) ), P1),
+    append(P0, P1, P2), sort(P2, Plain),
+    findall(S, ( member(first(Spec), Opts), spec_list(Spec, Ss), member(S, Ss) ), First),
+    impure_preds(Items, Impure).
+
+clause_head((H :- _), H) :- !.
+clause_head(H, H).
+
+%   Derived predicates whose proof draws fresh randomness (true/1,
+%   sample/2), directly or through other derived predicates: memoised.
+impure_preds(Items, Impure) :-
+    findall(K-Calls,
+            ( member(der(_, X, Kind, B, _), Items),
+              functor(X, N, A), tkind(Kind, TK), K = TK/N/A,
+              body_calls(B, Calls) ),
+            Edges),
+    findall(K, ( member(K-Cs, Edges), memberchk(random, Cs) ), Seed0),
+    sort(Seed0, Seed),
+    impure_fix(Seed, Edges, Impure).
+
+tkind(u, u) :- !.
+tkind(_, t).
+
+impure_fix(S0, Edges, S) :-
+    findall(K, ( member(K-Cs, Edges), \+ memberchk(K, S0),
+                 member(C, Cs), memberchk(C, S0) ), New0),
+    sort(New0, New),
+    (   New == [] -> S = S0 ; append(S0, New, S1), sort(S1, S2), impure_fix(S2, Edges, S) ).
+
+body_calls(B, Calls) :-
+    findall(C, body_call(B, C), Calls).
+
+body_call(V, _) :- var(V), !, fail.
+body_call((A,B), C) :- !, ( body_call(A, C) ; body_call(B, C) ).
+body_call((A;B), C) :- !, ( body_call(A, C) ; body_call(B, C) ).
+body_call((A->B), C) :- !, ( body_call(A, C) ; body_call(B, C) ).
+body_call((A*->B), C) :- !, ( body_call(A, C) ; body_call(B, C) ).
+body_call(\+ A, C) :- !, body_call(A, C).
+body_call(findall(_, G, _), C) :- !, body_call(G, C).
+body_call(findall_forward(_, G, _), C) :- !, body_call(G, C).
+body_call(forall(A, B), C) :- !, ( body_call(A, C) ; body_call(B, C) ).
+body_call(once(A), C) :- !, body_call(A, C).
+body_call(true(_), random) :- !.
+body_call(sample(_, _), random) :- !.
+body_call(_ ~= _, _) :- !, fail.
+body_call(X:_, t/N/A) :- callable(X), !, functor(X, N, A).
+body_call((X:_)+_, t/N/A) :- callable(X), !, functor(X, N, A).
+body_call(G, u/N/A) :- callable(G), functor(G, N, A).
+
+clause_positions(Items, File, Ps) :-
+    findall('$rv_pos'(Id, File, L),
+            ( member(I, Items), item_id(I, Id), item_line(I, L) ), Ps).
+
+item_line(rv(_, _, _, _, _, L), L).
+item_line(der(_, _, _, _, L), L).
+
+%   compile_item(+Item, +File, +Info, +Items, -Clause) is nondet.
+compile_item(plain(builtin(_), _), _, _, _, _) :- !, fail.
+compile_item(plain(C, _), _, _, _, C).
+compile_item(rv(Id, X, K, D, B, L), File, Info, Items, Clause) :-
+    compile_rv(Id, X, K, D, B, L, File, Info, Items, Clause).
+compile_item(der(Id, X, K, B, _), _, Info, _, Clause) :-
+    compile_der(Id, X, K, B, Info, Clause).
+
+%   '$rv'(X, T, W, Skip, Ev, Out, Tier, Id, Rivals)
+compile_rv(Id, X, K, D, B, L, File, Info, Items, Clause) :-
+    Head = '$rv'(X, TArg, W, Skip, Ev, Out, Tier, Id, Rivals),
+    tier(K, Tier),
+    rivals(Id, X, K, Tier, Info, Items, Rivals),
+    time_guard(K, TArg, W, Tc, Guard),
+    Ctx = ctx(W, Tc, Info, clause),
+    catch(cb(B, Ctx, BodyCode), E, clause_compile_error(E, File, L)),
+    (   ground(X) -> GroundCheck = true
+    ;   GroundCheck = ( ground(X) -> true ; ddc:'$clause_error'(W, Id, non_ground_head(X)) )
+    ),
+    dist_code(D, Id, File, L, Out0, DistCode),
+    (   D = val(V), var(V),
+        invert_val_body(B, V, Ctx, EvVal, LJ, InvCode)
+    ->  Body = ( Id > Skip, Guard,
+                 (   Ev == none
+                 ->  BodyCode, GroundCheck, DistCode, Out = Out0
+                 ;   Ev = ev(EvVal), InvCode, GroundCheck, Out = '$prop'(LJ)
+                 ) )
+    ;   Body = ( Id > Skip, Guard, BodyCode, GroundCheck, DistCode, Out = Out0 )
+    ),
+    Clause = (Head :- Body).
+
+clause_compile_error(error(ddc(C, _), _), File, L) :- !,
+    throw(error(ddc(C, File:L), _)).
+clause_compile_error(E, _, _) :- throw(E).
+
+tier(state, 2) :- !.
+tier(_, 1).
+
+time_guard(u, u, W, Tc, arg(3, W, Tc)).
+time_guard(state, Tc, _, Tc, integer(Tc)).
+time_guard(trans, T, W, Tc, (integer(T), T >= 1, ddc:'$live'(W, T), Tc is T-1)).
+time_guard(persist, T, W, Tc, (integer(T), T >= 1, ddc:'$live'(W, T), Tc is T-1)).
+time_guard(fixed(N), N, W, N, ddc:'$live'(W, N)).
+
+%   Does a later clause of the same tier define a variable this clause
+%   can also define?
+rivals(Id, X, K, Tier, info(_, _, _, _, _, _, First), Items, R) :-
+    functor(X, N, A),
+    (   ( K == persist ; memberchk(all, First) ; memberchk(N/A, First) )
+    ->  R = false
+    ;   member(rv(Id2, X2, K2, _, _, _), Items), Id2 > Id,
+        K2 \== persist, tier(K2, Tier), \+ X2 \= X, kinds_overlap(K, K2)
+    ->  R = true
+    ;   R = false
+    ).
+
+kinds_overlap(K, K) :- !.
+kinds_overlap(trans, fixed(N)) :- N >= 1.
+kinds_overlap(fixed(N), trans) :- N >= 1.
+
+%   Distribution code: evaluate arithmetic in the parameters; check at
+%   load time when the parameters are ground, at run time otherwise.
+dist_code(D, Id, File, L, Out, Code) :-
+    (   var(D)
+    ->  Out = '$chk'(D, Id), Code = true
+    ;   ground(D)
+    ->  catch(eval_dist(D, D1), E, dist_eval_error(E, D, File, L)),
+        catch(dist_check(D1), error(ddc_distribution(DE, Why), _),
+              throw(error(ddc(distribution(DE, Why), File:L), _))),
+        Out = D1, Code = true
+    ;   needs_eval(D)
+    ->  Code = ddc:eval_dist(D, D1), Out = '$chk'(D1, Id)
+    ;   Out = '$chk'(D, Id), Code = true
+    ).
+
+dist_eval_error(E, D, File, L) :-
+    message_to_codes_safe(E, Why),
+    throw(error(ddc(distribution(D, Why), File:L), _)).
+
+message_to_codes_safe(E, S) :-
+    catch(message_to_codes(E, S0), _, fail), !, S = S0.
+message_to_codes_safe(E, E).
+
+message_to_codes(E, S) :-
+    '$messages':translate_message(E, Lines, []),
+    with_output_to(string(S), print_message_lines(current_output, '', Lines)).
+
+needs_eval(D) :-
+    compound(D),
+    compound_name_arguments(D, N, Args),
+    (   memberchk(N, [finite, propfinite, logfinite])
+    ->  Args = [L], nonvar(L), is_list(L),
+        member(P:_, L), compound(P)
+    ;   memberchk(N, [val, uniform])
+    ->  N == uniform, Args = [A:C], ( compound(A) ; compound(C) )
+    ;   member(A, Args), param_needs_eval(A)
+    ), !.
+
+param_needs_eval(A) :- var(A), !, fail.
+param_needs_eval([H|T]) :- !, ( param_needs_eval(H) ; param_needs_eval(T) ).
+param_needs_eval((A,B)) :- !, ( param_needs_eval(A) ; param_needs_eval(B) ).
+param_needs_eval(A) :- compound(A).
+
+%!  eval_dist(+D0, -D) is det.
+%
+%   Evaluates arithmetic expressions in the numeric parameters of D0.
+eval_dist(D0, D) :-
+    compound(D0), !,
+    compound_name_arguments(D0, N, Args0),
+    (   memberchk(N, [finite, propfinite, logfinite]), Args0 = [L0], is_list(L0)
+    ->  maplist(eval_pair, L0, L), Args = [L]
+    ;   N == val
+    ->  Args = Args0
+    ;   N == uniform, Args0 = [S0]
+    ->  (   nonvar(S0), S0 = A0:C0 -> eval_param(A0, A), eval_param(C0, C), Args = [A:C]
+        ;   Args = Args0 )
+    ;   maplist(eval_param, Args0, Args)
+    ),
+    compound_name_arguments(D, N, Args).
+eval_dist(D, D).
+
+eval_pair(P0:V, P:V) :- !, eval_num(P0, P).
+eval_pair(X, X).
+
+eval_param(X, X) :- var(X), !.
+eval_param(X, X) :- number(X), !.
+eval_param([], []) :- !.
+eval_param([H0|T0], [H|T]) :- !, eval_param(H0, H), eval_param(T0, T).
+eval_param((A0,B0), (A,B)) :- !, eval_param(A0, A), eval_param(B0, B).
+eval_param(X, X) :- atom(X), \+ catch(_ is X, _, fail), !.
+eval_param(X, Y) :- eval_num(X, Y).
+
+eval_num(X, X) :- number(X), !.
+eval_num(X, Y) :- Y is X.
+
+%   Evidence on h ~ val(V) := ..., r ~= A, V is f(A).  The inverted body
+%   reads r with the evidence value f^-1(v) and binds LJ to log |d f^-1/dv|.
+invert_val_body(B, V, Ctx, EvVal, LJ, InvCode) :-
+    conj_list(B, Ls),
+    (   append(Pre, [Is], Ls), nonvar(Is), Is = (V1 is E), V1 == V,
+        term_variables(E, [A]),
+        select_read(Pre, A, Before, R, After),
+        \+ occurs_in(V, Before-After),
+        inv(E, A, EvVal, InvGoal, Scale)
+    ->  LJGoal = (LJ is -log(abs(Scale)))
+    ;   select_read(Ls, V, Before, R, After),
+        A = V, InvGoal = (A = EvVal), LJGoal = (LJ = 0.0)
+    ),
+    Ctx = ctx(W, _, _, _),
+    conj_from_list(Before, BB), conj_from_list(After, BA),
+    cb(BB, Ctx, CB), cb(BA, Ctx, CA),
+    read_key_code(R, Ctx, X, T, TG),
+    InvCode = ( CB, InvGoal, TG, ddc:'$read_ev'(X, T, A, W), CA, LJGoal ).
+
+occurs_in(V, T) :- term_variables(T, Vs), member(X, Vs), X == V, !.
+
+select_read(Ls, A, Before, R, After) :-
+    append(Before, [(R ~= A1)|After], Ls), A1 == A, !.
+
+%   invert_expr(E, A, V, Goal, LJGoal, LJ): A is the unique variable of E;
+%   Goal computes A from V with V = E; LJ = log |dA/dV|.
+invert_expr(E, A, V, Goal, LJGoal, LJ) :-
+    inv(E, A, V, Goal0, Scale),
+    Goal = Goal0,
+    LJGoal = (LJ is -log(abs(Scale))).
+
+inv(E, A, V, (A = V), 1) :- E == A, !.
+inv(E1*C, A, V, G, S) :- \+ occurs_in(A, C), !, inv(E1, A, V1, G1, S1), G = (V1 is V/C, G1), S = S1*C.
+inv(C*E1, A, V, G, S) :- \+ occurs_in(A, C), !, inv(E1, A, V1, G1, S1), G = (V1 is V/C, G1), S = S1*C.
+inv(E1/C, A, V, G, S) :- \+ occurs_in(A, C), !, inv(E1, A, V1, G1, S1), G = (V1 is V*C, G1), S = S1/C.
+inv(E1+C, A, V, G, S) :- \+ occurs_in(A, C), !, inv(E1, A, V1, G1, S), G = (V1 is V-C, G1).
+inv(C+E1, A, V, G, S) :- \+ occurs_in(A, C), !, inv(E1, A, V1, G1, S), G = (V1 is V-C, G1).
+inv(E1-C, A, V, G, S) :- \+ occurs_in(A, C), !, inv(E1, A, V1, G1, S), G = (V1 is V+C, G1).
+inv(C-E1, A, V, G, S) :- \+ occurs_in(A, C), !, inv(E1, A, V1, G1, S), G = (V1 is C-V, G1).
+inv(-E1, A, V, G, S) :- !, inv(E1, A, V1, G1, S), G = (V1 is -V, G1).
+
+conj_list(V, [V]) :- var(V), !.
+conj_list((A,B), L) :- !, conj_list(A, LA), conj_list(B, LB), append(LA, LB, L).
+conj_list(true, []) :- !.
+conj_list(G, [G]).
+
+conj_from_list([], true).
+conj_from_list([G], G) :- !.
+conj_from_list([G|Gs], (G, C)) :- conj_from_list(Gs, C).
+
+%   Derived atoms.
+compile_der(_Id, X, K, B, Info, Clause) :-
+    Info = info(_, _, _, _, _, Impure, _),
+    X =.. [N|Args],
+    Ctx = ctx(W, Tc, Info, clause),
+    cb(B, Ctx, BodyCode),
+    length(Args, Ar),
+    (   K == u
+    ->  ( memberchk(u/N/Ar, Impure) -> Kind = d0 ; Kind = d ),
+        derived_name(N, Kind, DN),
+        append(Args, [W], HArgs),
+        Head =.. [DN|HArgs],
+        Clause = (Head :- arg(3, W, Tc), BodyCode)
+    ;   tier(K, Tier),
+        ( Tier == 2 -> Kind = dt2 ; Kind = dt1 ),
+        derived_name(N, Kind, DN),
+        time_guard(K, TArg, W, Tc, Guard),
+        append(Args, [TArg, W], HArgs),
+        Head =.. [DN|HArgs],
+        Clause = (Head :- Guard, BodyCode)
+    ).
+
+%   One dispatcher per derived predicate: world facts first, then the
+%   program's clauses (memoised when impure); timed ones read materialised
+%   facts at frozen times.
+derived_dispatchers(Info, Cs) :-
+    Info = info(DerU, DerT, _, _, _, Impure, _),
+    findall(C, ( member(N/A, DerU), der_dispatch_u(N, A, Impure, C) ), Cu),
+    findall(C, ( member(N/A, DerT), der_dispatch_t(N, A, Impure, C) ), Ct),
+    append(Cu, Ct, Cs).
+
+der_dispatch_u(N, A, Impure, C) :-
+    length(Args, A),
+    G =.. [N|Args],
+    derived_name(N, d, DN),
+    append(Args, [W], HArgs),
+    Head =.. [DN|HArgs],
+    (   C = (Head :- ddc:'$fact'(W, G))
+    ;   memberchk(u/N/A, Impure),
+        derived_name(N, d0, DN0),
+        Call =.. [DN0|HArgs],
+        C = (Head :- ( ground(G) -> ddc:'$memo'(W, G, Call) ; Call ))
+    ).
+
+der_dispatch_t(N, A, Impure, C) :-
+    length(Args, A),
+    G =.. [N|Args],
+    append(Args, [T, W], HArgs),
+    derived_name(N, dt, DN), Head =.. [DN|HArgs],
+    derived_name(N, dt0, DN0), H0 =.. [DN0|HArgs],
+    derived_name(N, dt1, DN1), H1 =.. [DN1|HArgs],
+    derived_name(N, dt2, DN2), H2 =.. [DN2|HArgs],
+    (   memberchk(t/N/A, Impure)
+    ->  (   C = (Head :- ( ground(G) -> ddc:'$memo'(W, G:T, H0) ; H0 ))
+        ;   C = (H0 :- ( ddc:'$frozen_at'(W, T) -> ddc:'$mat'(W, G, T) ; H1 ))
+        ;   C = (H0 :- H2)
+        ;   C = (H0 :- ddc:'$fact'(W, G:T))
+        )
+    ;   (   C = (Head :- ( ddc:'$frozen_at'(W, T) -> ddc:'$mat'(W, G, T) ; H1 ))
+        ;   C = (Head :- H2)
+        ;   C = (Head :- ddc:'$fact'(W, G:T))
+        )
+    ).
+
+                 /*******************************
+                 *        BODY COMPILATION      *
+                 *******************************/
+
+%   cb(+Goal, +Ctx, -Code): Ctx = ctx(W, Tc, Info, Kind), Kind clause or
+%   query (in a query, an untimed read of a variable only defined with a
+%   time index means its value at the current time).
+
+cb(G, _, call(G)) :- var(G), !.
+cb(true, _, true) :- !.
+cb((A,B), C, (CA,CB)) :- !, cb(A, C, CA), cb(B, C, CB).
+cb((A;B), C, (CA;CB)) :- !, cb(A, C, CA), cb(B, C, CB).
+cb((A->B), C, (CA->CB)) :- !, cb(A, C, CA), cb(B, C, CB).
+cb((A*->B), C, (CA*->CB)) :- !, cb(A, C, CA), cb(B, C, CB).
+cb(\+ A, C, \+ CA) :- !, cb(A, C, CA).
+cb(once(A), C, once(CA)) :- !, cb(A, C, CA).
+cb(ignore(A), C, ignore(CA)) :- !, cb(A, C, CA).
+cb(forall(A,B), C, forall(CA,CB)) :- !, cb(A, C, CA), cb(B, C, CB).
+cb(findall(T,G,L), C, findall(T,CG,L)) :- !, cb(G, C, CG).
+cb(findall(T,G,L,R), C, findall(T,CG,L,R)) :- !, cb(G, C, CG).
+cb(findall_forward(T,G,L), C, findall(T,CG,L)) :- !, cb(G, C, CG).
+cb(aggregate_all(S,G,R), C, aggregate_all(S,CG,R)) :- !, cb(G, C, CG).
+cb(H ~= V, C, Code) :- !,
+    read_key_code(H, C, X, T, TG),
+    Ctx = C, Ctx = ctx(W, _, _, _),
+    Code = (TG, ddc:'$read'(X, T, V, W)).
+cb(true(P), _, ddc:'$flip'(P)) :- !.
+cb(sample(D, X), _, ddc:'$sample_inline'(D, X)) :- !.
+cb(belief(A), _, ground(A)) :- !.
+cb(timestep(T), ctx(_, Tc, _, _), (T = Tc)) :- !.
+cb(logistic(I, Ws, P), _, ddc:logistic(I, Ws, P)) :- !.
+cb(linear(I, Ws, P), _, ddc:linear(I, Ws, P)) :- !.
+cb(G, C, Code) :-
+    compound(G), functor(G, Op, 2), memberchk(Op, [<, >, =<, >=, =:=, =\=]),
+    G =.. [Op, A, B],
+    ( rv_operand(A) ; rv_operand(B) ), !,
+    operand_code(A, C, A1, CA),
+    operand_code(B, C, B1, CB),
+    G1 =.. [Op, A1, B1],
+    Code = (CA, CB, G1).
+cb(G, C, Code) :-
+    timed_atom(G, X, TE), !,
+    C = ctx(W, Tc, Info, _),
+    time_code(TE, Tc, T, TG),
+    timed_call(X, T, W, Info, Call),
+    Code = (TG, Call).
+cb(G, C, Code) :-
+    callable(G), !,
+    C = ctx(W, Tc, Info, Kind),
+    functor(G, N, A),
+    Info = info(DerU, DerT, _, _, Plain, _, _),
+    (   memberchk(N/A, DerU)
+    ->  G =.. [N|Args], derived_name(N, d, DN), append(Args, [W], CArgs), Code =.. [DN|CArgs]
+    ;   Kind == query, memberchk(N/A, DerT)
+    ->  timed_call(G, Tc, W, Info, Code)
+    ;   memberchk(N/A, Plain)
+    ->  Code = G
+    ;   prolog_callable(G)
+    ->  Code = G
+    ;   Code = ddc:'$fact'(W, G)
+    ).
+cb(G, _, _) :-
+    type_error(callable, G).
+
+rv_operand(X) :- nonvar(X), X = _:_, \+ number(X).
+rv_operand(X) :- nonvar(X), X = (Y:_)+_, nonvar(Y).
+
+operand_code(A, C, V, Code) :-
+    rv_operand(A), !,
+    cb(A ~= V, C, Code).
+operand_code(A, _, A, true).
+
+timed_atom(G, X, TE) :- compound(G), G = (X0:T0)+K, T0 == t, integer(K), callable(X0), !, X = X0, TE = t+K.
+timed_atom(G, X, TE) :- compound(G), G = (X0:T0)-K, T0 == t, integer(K), callable(X0), !, X = X0, TE = t-K.
+timed_atom(G, X, TE) :- compound(G), G = X:TE, callable(X), \+ X = _:_,
+    ( TE == t ; integer(TE) ; nonvar(TE), ( TE = T0+K ; TE = T0-K ), T0 == t, integer(K) ), !.
+
+timed_call(X, T, W, info(_, DerT, _, _, _, _, _), Call) :-
+    functor(X, N, A),
+    (   memberchk(N/A, DerT)
+    ->  X =.. [N|Args], derived_name(N, dt, DN),
+        append(Args, [T, W], CArgs), Call =.. [DN|CArgs]
+    ;   Call = ddc:'$fact'(W, X:T)
+    ).
+
+prolog_callable(G) :-
+    (   predicate_property(system:G, defined)
+    ;   member(Lib, [lists, apply, aggregate, pairs, ordsets, error]),
+        predicate_property(Lib:G, exported)
+    ;   G = ddc_dist:_
+    ), !.
+
+%   read_key_code(+H, +Ctx, -X, -T, -TimeGoal)
+read_key_code(H, _, _, _, _) :-
+    var(H), !,
+    throw(error(ddc(unbound_random_variable, query), _)).
+read_key_code((X0:T0)+K, ctx(_, Tc, _, _), X, T, G) :- T0 == t, integer(K), !,
+    X = X0, time_code(t+K, Tc, T, G).
+read_key_code((X0:T0)-K, ctx(_, Tc, _, _), X, T, G) :- T0 == t, integer(K), !,
+    X = X0, time_code(t-K, Tc, T, G).
+read_key_code(X0:TE, ctx(_, Tc, _, _), X, T, G) :- !,
+    X = X0, time_code(TE, Tc, T, G).
+read_key_code(current(X0), ctx(_, Tc, _, _), X0, Tc, true) :- nonvar(X0), !.
+read_key_code(next(X0), ctx(_, Tc, _, _), X0, T, (T is Tc+1)) :- nonvar(X0), !.
+read_key_code(prior(X0), _, X0, 0, true) :- nonvar(X0), !.
+read_key_code(X, ctx(_, Tc, Info, query), X, Tc, true) :-
+    Info = info(_, _, RvU, RvT, _, _, _),
+    callable(X), functor(X, N, A),
+    memberchk(N/A, RvT), \+ memberchk(N/A, RvU), !.
+read_key_code(X, _, X, u, true).
+
+time_code(T, Tc, Tc, true) :- T == t, !.
+time_code(N, _, N, true) :- integer(N), !.
+time_code(E, Tc, T, (T is Tc+K)) :- nonvar(E), E = T0+K, T0 == t, integer(K), !.
+time_code(E, Tc, T, (T is Tc-K)) :- nonvar(E), E = T0-K, T0 == t, integer(K), !.
+time_code(V, _, V, true) :- var(V), !.
+time_code(E, _, _, _) :-
+    throw(error(ddc(bad_time(E), query), _)).
+
+                 /*******************************
+                 *            RUN TIME          *
+                 *******************************/
+
+%   A world:
+%   w(Store, Module, Time, Frozen, Evidence, LogW, DX, QLogW, QDX, Acc,
+%     Mode, Facts, StepKeys)
+%     Frozen: times =< Frozen are no longer derivable from earlier ones
+%     (the filter's past); -1 for static queries.
+%     Acc: argument index (6 or 8) of the log weight that likelihood
+%     weighting currently adds to.
+%     Mode: normal or sweep (non-ground reads enumerate recorded values only).
+
+new_world(M, Time, Frozen, Ev, W) :-
+    store_new(S),
+    W = w(S, M, Time, Frozen, Ev, 0.0, 0, 0.0, 0, 6, normal, [], []).
+
+'$live'(W, T) :-
+    arg(4, W, Fz),
+    T > Fz.
+
+'$frozen_at'(W, T) :-
+    arg(4, W, Fz),
+    T =< Fz.
+
+%!  '$read'(+X, +T, ?V, +W) is nondet.
+%
+%   V is the value of random variable X at time T (u: untimed) in W.
+'$read'(X, T, V, W) :-
+    (   ground(X)
+    ->  read_key(X, T, V, W)
+    ;   read_enum(X, T, V, W)
+    ).
+
+read_key(X, T, V, W) :-
+    arg(1, W, S),
+    (   store_get(S, X-T, Val)
+    ->  Val \== '$undef',
+        match(Val, V)
+    ;   new_value(X, T, W, Val),
+        match(Val, V)
+    ).
+
+match(Val, V) :-
+    (   Val = V -> true
+    ;   number(Val), number(V), Val =:= V
+    ).
+
+new_value(X, T, W, Val) :-
+    arg(5, W, Ev),
+    (   Ev \== [], memberchk((X-T)-EV, Ev)
+    ->  weigh_key(X, T, EV, W, 6),
+        Val = EV
+    ;   sample_key(X, T, W, Val)
+    ).
+
+sample_key(X, T, W, Val) :-
+    arg(2, W, M),
+    arg(1, W, S),
+    (   M:'$rv'(X, T, W, 0, none, Out, Tier, Id, R)
+    ->  check_rivals(R, M, X, T, W, Tier, Id),
+        draw(Out, W, Val),
+        store_put(S, X-T, Val)
+    ;   store_put(S, X-T, '$undef'),
+        fail
+    ).
+
+check_rivals(false, _, _, _, _, _, _) :- !.
+check_rivals(true, M, X, T, W, Tier, Id) :-
+    (   M:'$rv'(X, T, W, Id, none, _, Tier, Id2, _)
+    ->  clause_where(M, Id2, Where2),
+        key_term(X, T, K),
+        '$clause_error'(W, Id, overlapping_clauses(K, Where2))
+    ;   true
+    ).
+
+key_term(X, u, X) :- !.
+key_term(X, T, X:T).
+
+draw('$chk'(D, Id), W, V) :- !,
+    checked(D, Id, W),
+    dist_sample(D, V).
+draw(D, _, V) :-
+    dist_sample(D, V).
+
+checked(D, Id, W) :-
+    catch(dist_check(D), error(ddc_distribution(D1, Why), _),
+          '$clause_error'(W, Id, distribution(D1, Why))).
+
+%   weigh_key(X, T, Value, W, Acc): likelihood weighting of X-T = Value
+%   into the log weight at argument Acc of W (6 evidence, 8 query).
+weigh_key(X, T, V, W, Acc) :-
+    arg(2, W, M),
+    arg(1, W, S),
+    arg(10, W, Acc0),
+    nb_setarg(10, W, Acc),
+    (   M:'$rv'(X, T, W, 0, ev(V), Out, Tier, Id, R)
+    ->  nb_setarg(10, W, Acc0),
+        check_rivals(R, M, X, T, W, Tier, Id),
+        store_put(S, X-T, V),
+        (   Out = '$prop'(LJ)
+        ->  add_logw(W, Acc, LJ)
+        ;   Out = '$chk'(D, Id1)
+        ->  checked(D, Id1, W), weigh(D, V, W, Acc)
+        ;   weigh(Out, V, W, Acc)
+        )
+    ;   nb_setarg(10, W, Acc0),
+        store_put(S, X-T, '$undef'),
+        fail
+    ).
+
+weigh(D, V, W, Acc) :-
+    dist_log_density(D, V, LP),
+    add_logw(W, Acc, LP),
+    (   dist_discrete(D) -> true
+    ;   value_dim(V, K), DXi is Acc+1, arg(DXi, W, DX0), DX is DX0+K, nb_setarg(DXi, W, DX)
+    ).
+
+%   A zero weight (log -inf) does not fail the proof: it marks the world
+%   dead, so that "no clause applies" and "weight 0" stay distinct.
+add_logw(W, Acc, LP) :-
+    arg(Acc, W, L0),
+    (   LP =:= -inf -> L = LP
+    ;   L0 =:= -inf -> L = L0
+    ;   L is L0 + LP
+    ),
+    nb_setarg(Acc, W, L).
+
+value_dim(V, 1) :- number(V), !.
+value_dim((_,B), K) :- !, value_dim(B, K0), K is K0+1.
+value_dim(L, K) :- is_list(L), !, length(L, K).
+value_dim(_, 1).
+
+%   '$read_ev'(X, T, A, W): the evidence value A of X at T, propagated
+%   from a val/1 clause.
+'$read_ev'(X, T, A, W) :-
+    ground(X),
+    arg(1, W, S),
+    arg(10, W, Acc),
+    (   store_get(S, X-T, Val)
+    ->  Val \== '$undef',
+        (   match(Val, A) -> true ; NInf is -inf, add_logw(W, Acc, NInf) )
+    ;   weigh_key(X, T, A, W, Acc)
+    ).
+
+%   '$read_q'(X, T, V, W): a top-level query literal: ground and not yet
+%   sampled, it is weighted instead of sampled.
+'$read_q'(X, T, V, W) :-
+    (   ground(X), ground(V),
+        arg(1, W, S), \+ store_get(S, X-T, _),
+        arg(5, W, Ev), \+ memberchk((X-T)-_, Ev)
+    ->  weigh_key(X, T, V, W, 8)
+    ;   '$read'(X, T, V, W)
+    ).
+
+%   Non-ground random variable: the recorded groundings, and (unless
+%   sweeping) those the clause bodies define.
+read_enum(X, T, V, W) :-
+    arg(1, W, S),
+    findall(X-T, ( store_match(S, X-T, Val), Val \== '$undef' ), Rec),
+    (   arg(11, W, sweep)
+    ->  Keys0 = Rec
+    ;   arg(2, W, M),
+        findall(X-T, M:'$rv'(X, T, W, 0, none, _, _, _, _), Def),
+        append(Rec, Def, Keys0)
+    ),
+    sort(Keys0, Keys),
+    member(X-T, Keys),
+    read_key(X, T, V, W).
+
+'$clause_error'(W, Id, Cause) :-
+    arg(2, W, M),
+    clause_where(M, Id, Where),
+    throw(error(ddc(Cause, Where), _)).
+
+clause_where(M, Id, File:Line) :-
+    M:'$rv_pos'(Id, File, Line), !.
+clause_where(M, _, M:0).
+
+'$fact'(W, G) :-
+    arg(12, W, Fs),
+    Fs \== [],
+    member(G, Fs).
+
+'$memo'(W, G, Call) :-
+    arg(1, W, S),
+    arg(3, W, Tc),
+    K = '$memo'(G, Tc),
+    (   store_get(S, K, V)
+    ->  V == true
+    ;   arg(2, W, M),
+        (   call(M:Call) -> V = true ; V = false ),
+        (   store_get(S, K, _) -> true ; store_put(S, K, V) ),
+        V == true
+    ).
+
+'$mat'(W, G, T) :-
+    arg(1, W, S),
+    functor(G, N, A),
+    store_get(S, '$mat'(N/A, T), L),
+    member(G, L).
+
+'$flip'(P) :-
+    random_float < P.
+
+'$sample_inline'(D0, X) :-
+    (   needs_eval(D0) -> eval_dist(D0, D) ; D = D0 ),
+    dist_sample(D, X).
+
+%!  logistic(+Inputs, +Weights, -P) is det.
+%
+%   Logistic regression, the statistical model of learned clauses:
+%   P = 1/(1+exp(-(w1*x1 + ... + wn*xn + b))) with Weights = [w1,...,wn,b]
+%   (one more weight than inputs: the last is the bias).  So the paper's
+%   logistic([Distance],[-16.9,0.8],P1) is P1 = sigma(0.8 - 16.9*Distance),
+%   which falls with the distance.  Inputs and weights may be numbers or
+%   arithmetic expressions.
+logistic(Inputs, Weights, P) :-
+    linear(Inputs, Weights, Z),
+    (   Z >= 0 -> P is 1/(1+exp(-Z)) ; E is exp(Z), P is E/(1+E) ).
+
+%!  linear(+Inputs, +Weights, -Y) is det.
+%
+%   Linear model for Gaussian means: Y = w1*x1 + ... + wn*xn + b with
+%   Weights = [w1,...,wn,b].  E.g. `x ~ gaussian(M, 0.1) := y ~= Y,
+%   linear([Y], [2.0, 0.5], M).`
+linear(Inputs, Weights, Y) :-
+    must_be(list, Inputs),
+    must_be(list, Weights),
+    length(Inputs, N),
+    N1 is N+1,
+    (   length(Weights, N1) -> true
+    ;   domain_error(weights_one_more_than_inputs(N), Weights)
+    ),
+    dot(Inputs, Weights, 0.0, Y).
+
+dot([], [B], S, Y) :- Y is S + B.
+dot([X|Xs], [W|Ws], S0, Y) :- S is S0 + W*X, dot(Xs, Ws, S, Y).
+
+                 /*******************************
+                 *            QUERIES           *
+                 *******************************/
+
+%!  query(+Query, -P) is det.
+%!  query(+Query, -P, +Options) is det.
+%
+%   P is the probability of Query (a goal, possibly a conjunction, possibly
+%   time-indexed: `pos(1):3 > 0`) in the program loaded last, estimated
+%   from 10,000 samples (option samples(N)).  See query/4.
+query(Q, P) :-
+    query(true, Q, P, []).
+query(Q, P, Options) :-
+    query(true, Q, P, Options).
+
+%!  query(+Evidence, +Query, -P, +Options) is det.
+%
+%   P = P(Query | Evidence), by likelihood weighting.  Evidence is a goal,
+%   a list of goals or `true`.  Options:
+%     - samples(N): number of sampled worlds (default 10000)
+%     - seed(S): set_random(seed(S)) first (same seed, same answer)
+%     - stderr(-SE): the standard error of the estimate (delta method for
+%       the self-normalised estimator)
+%     - ess(-ESS): the effective sample size (sum w)^2 / sum w^2 of the
+%       samples that count; ESS < N shows how much the evidence cost
+%     - program(M): the program (default: the one loaded last)
+%     - time(T): the time `t` means in the query (default 0); e.g.
+%       query(left(1,2):t ~= true, P, [time(3)]) unrolls to time 3.
+%   Throws error(ddc(zero_evidence(E), query), _) if the evidence has
+%   weight 0 in every sample.
+query(Ev, Q, P, Options) :-
+    query_program(Options, M),
+    ddc_query(M, Ev, Q, Options, P, Stats),
+    Stats = stats(SE, ESS, _, _),
+    option(stderr(SE), Options, _),
+    option(ess(ESS), Options, _).
+
+%!  query(+PosEv, +NegEv, +Query, +N, -P) is det.
+%
+%   The original system's form: PosEv a list of goals that hold, NegEv a
+%   list of goals that do not (proven, unlike the original which only
+%   looked them up among recorded facts), N samples.
+query(PosEv, NegEv, Q, N, P) :-
+    neg_evidence(PosEv, NegEv, Ev),
+    query(Ev, Q, P, [samples(N)]).
+
+%!  query(+PosEv, +NegEv, +Query, ?X, +N, -Avg, -SuccSum, -Sum) is det.
+%
+%   The original's expectation form: Avg = E[X * 1(Query) | evidence]
+%   (SuccSum = sum of w*X over samples where Query holds, Sum = sum of
+%   evidence weights).  With a Query that always holds it is E[X | e].
+query(PosEv, NegEv, Q, X, N, Avg, SuccSum, Sum) :-
+    neg_evidence(PosEv, NegEv, Ev),
+    query_program([], M),
+    ddc_run(M, Ev, Q, X, [samples(N)], value, R),
+    R = r(Sum, _, SuccSum, _, _, _, _, _, _, _),
+    Avg is SuccSum / Sum.
+
+neg_evidence(PosEv, NegEv, Ev) :-
+    must_be(list, PosEv), must_be(list, NegEv),
+    findall(\+ G, member(G, NegEv), Negs),
+    append(PosEv, Negs, Ev).
+
+%!  expectation(+Evidence, +Query, ?X, -E, +Options) is det.
+%
+%   E = E[X | Evidence, Query]: the weighted mean of X (numeric, bound by
+%   the first proof of Query) over the worlds where Query holds.  For
+%   E[X | e] use a Query that binds X and always holds (`g ~= X`).  (The
+%   original's query/8 divides by the evidence weight instead; query/8
+%   keeps that.)  Options as query/4 (stderr(SE) is the standard error).
+expectation(Ev, Q, X, E, Options) :-
+    query_program(Options, M),
+    ddc_run(M, Ev, Q, X, Options, value, R),
+    R = r(_, _, SWY, _, SW2Y2, SWQ, _, _, SW2QY, SW2Q2),
+    (   SWQ > 0 -> true ; throw(error(ddc(query_never_holds(Q), query), _)) ),
+    E is SWY / SWQ,
+    (   option(stderr(SE), Options)
+    ->  SE is sqrt(max(0.0, SW2Y2 - 2*E*SW2QY + E*E*SW2Q2)) / SWQ
+    ;   true
+    ).
+
+%!  distribution(+Evidence, +Query, ?X, -Dist, +Options) is det.
+%
+%   Dist = [P:Value, ...], the posterior distribution of X (bound by the
+%   first proof of Query in each world), sorted by value; worlds where
+%   Query fails are left out (Dist is conditioned on Query holding).
+distribution(Ev, Q, X, Dist, Options) :-
+    query_program(Options, M),
+    ddc_run(M, Ev, Q, X, Options, dist, R),
+    R = r(_, _, _, _, _, SWQ, Pairs, _, _, _),
+    (   SWQ > 0 -> true ; throw(error(ddc(query_never_holds(Q), query), _)) ),
+    findall(P:V, ( member(V-Wv, Pairs), P is Wv / SWQ ), Dist).
+
+query_program(Options, M) :-
+    (   option(program(M0), Options)
+    ->  M = M0
+    ;   current_program_(M0)
+    ->  M = M0
+    ;   throw(error(ddc(no_program_loaded, query), _))
+    ).
+
+%!  ddc_query(+Module, +Evidence, +Query, +Options, -P, -Stats) is det.
+%
+%   Stats = stats(StdErr, ESS, SamplesThatCount, Samples).
+ddc_query(M, Ev, Q, Options, P, stats(SE, ESS, NPos, N)) :-
+    option(samples(N), Options, 10000),
+    ddc_run(M, Ev, Q, _, Options, prob, R),
+    R = r(SW, SW2, SWY, SW2Y, SW2Y2, _, _, NPos, _, _),
+    P is SWY / SW,
+    SE is sqrt(max(0.0, SW2Y2 - 2*P*SW2Y + P*P*SW2)) / SW,
+    ESS is SW*SW / SW2.
+
+%!  ddc_query_text(+Module, +QueryText, +EvidenceText, +Options, -Result) is det.
+%
+%   For the Python bridge: texts are parsed with the DC operators;
+%   EvidenceText '' means none.  Result = result(P, SE, ESS, N), or
+%   error(Message) with the printed message of the exception.
+ddc_query_text(M, QT, ET, Options, Result) :-
+    catch(( text_goal(QT, Q),
+            ( ET == '' -> Ev = true ; ET == "" -> Ev = true ; text_goal(ET, Ev) ),
+            ddc_query(M, Ev, Q, Options, P, stats(SE, ESS, _, N)),
+            Result = result(P, SE, ESS, N) ),
+          E,
+          ( message_to_codes_safe(E, Msg0), msg_string(Msg0, Msg), Result = error(Msg) )).
+
+msg_string(S, S) :- string(S), !.
+msg_string(T, S) :- format(string(S), "~q", [T]).
+
+text_goal(Text, G) :-
+    catch(term_string(G, Text, [module(ddc)]), error(syntax_error(E), _),
+          ( format(atom(A), "~w", [Text]),
+            throw(error(ddc(syntax_error(E), text(A)), _)) )).
+
+%   ddc_run(+M, +Ev, +Q, ?X, +Options, +Mode, -R)
+%   R = r(SW, SW2, SWY, SW2Y, SW2Y2, SWQ, Pairs, NPos) over the samples of
+%   the smallest evidence dimension.
+ddc_run(M, Ev0, Q, X, Options, Mode, R) :-
+    (   program_file_(M, _) -> true
+    ;   throw(error(ddc(unknown_program(M), query), _))
+    ),
+    option(samples(N), Options, 10000),
+    must_be(positive_integer, N),
+    option(time(Time), Options, 0),
+    (   option(seed(Seed), Options) -> set_random(seed(Seed)) ; true ),
+    evidence_goal(Ev0, EvG),
+    M:'$ddc_info'(Info),
+    prepare_query(M, Info, Time, EvG, Q, X, Ev, Id),
+    Acc = acc(1000000, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, [], 0, 0.0, 0.0),
+    call_cleanup(
+        forall(between(1, N, _), one_sample(M, Id, Time, Ev, Mode, Acc)),
+        retractall(M:'$ddc_tmp'(Id, _, _, _))),
+    Acc = acc(_, SW, SW2, SWY, SW2Y, SW2Y2, SWQ, Pairs, NPos, SW2QY, SW2Q2),
+    (   SW > 0 -> true
+    ;   throw(error(ddc(zero_evidence(Ev0), query), _))
+    ),
+    R = r(SW, SW2, SWY, SW2Y, SW2Y2, SWQ, Pairs, NPos, SW2QY, SW2Q2).
+
+evidence_goal(V, _) :- var(V), !, instantiation_error(V).
+evidence_goal([], true) :- !.
+evidence_goal(L, G) :- is_list(L), !, conj_from_list(L, G).
+evidence_goal(G, G).
+
+%   Compile evidence and query into two temporary clauses of M; `t` is
+%   the query time.
+prepare_query(M, Info, Time, EvG, Q, X, Ev, Id) :-
+    flag(ddc_query_id, Id, Id+1),
+    copy_term(EvG, EvG1),
+    Ctx = ctx(W, Time, Info, query),
+    conj_list(EvG1, EvLs),
+    evidence_map(EvLs, Ctx, Ev),
+    cb(EvG1, Ctx, EvCode),
+    assertz(M:('$ddc_tmp'(Id, ev, W, _) :- EvCode)),
+    Ctx2 = ctx(W2, Time, Info, query),
+    copy_term(Q-X, Q2-X2),
+    conj_list(Q2, QLs),
+    maplist(query_literal(Ctx2), QLs, QCodes),
+    conj_from_list(QCodes, QCode),
+    assertz(M:('$ddc_tmp'(Id, q, W2, X2) :- QCode)).
+
+%   Ground top-level evidence literals h ~= v are weighted, not sampled.
+evidence_map(Ls, Ctx, Ev) :-
+    findall((X-T)-V,
+            ( member(L, Ls), nonvar(L), L = (H ~= V), ground(H), ground(V),
+              read_key_code(H, Ctx, X, T, TG), call(TG), ground(X-T) ),
+            Ev).
+
+query_literal(Ctx, G, Code) :-
+    nonvar(G), G = (H ~= V), !,
+    read_key_code(H, Ctx, X, T, TG),
+    Ctx = ctx(W, _, _, _),
+    Code = (TG, ddc:'$read_q'(X, T, V, W)).
+query_literal(Ctx, G, Code) :-
+    cb(G, Ctx, Code).
+
+one_sample(M, Id, Time, Ev, Mode, Acc) :-
+    new_world(M, Time, -1, Ev, W),
+    (   M:'$ddc_tmp'(Id, ev, W, _),
+        arg(6, W, LW),
+        LW > -inf
+    ->  arg(7, W, DX),
+        (   M:'$ddc_tmp'(Id, q, W, X)
+        ->  arg(8, W, QLW), Succ = true
+        ;   QLW = 0.0, Succ = false
+        ),
+        accumulate(Acc, Mode, LW, DX, Succ, QLW, X)
+    ;   true
+    ).
+
+accumulate(Acc, Mode, LW, DX, Succ, QLW, X) :-
+    W is exp(LW),
+    (   W =:= 0 -> true
+    ;   arg(1, Acc, MinDX),
+        (   DX < MinDX
+        ->  nb_setarg(1, Acc, DX), reset_acc(Acc), add_sample(Acc, Mode, W, Succ, QLW, X)
+        ;   DX =:= MinDX
+        ->  add_sample(Acc, Mode, W, Succ, QLW, X)
+        ;   true
+        )
+    ).
+
+reset_acc(Acc) :-
+    forall(between(2, 7, I), nb_setarg(I, Acc, 0.0)),
+    nb_setarg(8, Acc, []),
+    nb_setarg(9, Acc, 0),
+    nb_setarg(10, Acc, 0.0),
+    nb_setarg(11, Acc, 0.0).
+
+add_sample(Acc, prob, W, Succ, QLW, _) :-
+    (   Succ == true -> Y is exp(QLW) ; Y = 0.0 ),
+    acc_add(Acc, W, Y, Y),
+    bump(Acc, 9, 1).
+add_sample(Acc, value, W, Succ, QLW, X) :-
+    (   Succ == true
+    ->  (   number(X) -> true ; throw(error(ddc(not_a_number(X), query), _)) ),
+        QW is exp(QLW), Y is QW*X
+    ;   QW = 0.0, Y = 0.0
+    ),
+    acc_add(Acc, W, Y, QW),
+    bump(Acc, 9, 1).
+add_sample(Acc, dist, W, Succ, QLW, X) :-
+    (   Succ == true
+    ->  QW is exp(QLW), WQ is W*QW,
+        bump(Acc, 7, WQ),
+        arg(8, Acc, Pairs0),
+        (   select(X0-V0, Pairs0, Rest), X0 =@= X
+        ->  V1 is V0+WQ, Pairs1 = [X0-V1|Rest]
+        ;   copy_term(X, XC), Pairs1 = [XC-WQ|Pairs0]
+        ),
+        sort(Pairs1, Pairs2),
+        nb_setarg(8, Acc, Pairs2)
+    ;   true
+    ),
+    bump(Acc, 2, W),
+    bump(Acc, 9, 1).
+
+acc_add(Acc, W, Y, Q) :-
+    W2 is W*W,
+    bump(Acc, 2, W),
+    bump(Acc, 3, W2),
+    WY is W*Y, bump(Acc, 4, WY),
+    W2Y is W2*Y, bump(Acc, 5, W2Y),
+    W2Y2 is W2*Y*Y, bump(Acc, 6, W2Y2),
+    WQ is W*Q, bump(Acc, 7, WQ),
+    W2QY is W2*Q*Y, bump(Acc, 10, W2QY),
+    W2Q2 is W2*Q*Q, bump(Acc, 11, W2Q2).
+
+bump(Acc, I, D) :-
+    arg(I, Acc, V0),
+    V is V0 + D,
+    nb_setarg(I, Acc, V).
+
+%!  ddc_sample_world(+Module, +Query, +Options, -Facts) is semidet.
+%
+%   Proves Query in one sampled world (option time(T), seed(S)) and
+%   returns what the world holds as Key-Value pairs (the original's
+%   generate_backward).
+ddc_sample_world(M, Q, Options, Facts) :-
+    option(time(Time), Options, 0),
+    (   option(seed(Seed), Options) -> set_random(seed(Seed)) ; true ),
+    M:'$ddc_info'(Info),
+    new_world(M, Time, -1, [], W),
+    Ctx = ctx(W, Time, Info, query),
+    cb(Q, Ctx, Code),
+    once(M:Code),
+    arg(1, W, S),
+    store_entries(S, Facts).
+
+                 /*******************************
+                 *            MESSAGES          *
+                 *******************************/
+
+prolog:message(error(ddc(Cause, Where), _)) -->
+    where(Where),
+    cause(Cause).
+
+where(File:Line) --> { integer(Line) }, !, [ '~w:~w: '-[File, Line] ].
+where(text(T)) --> !, [ 'in "~w": '-[T] ].
+where(query) --> !, [ 'query: ' ].
+where(W) --> [ '~w: '-[W] ].
+
+cause(syntax_error(M)) --> !, [ 'syntax error: ~w'-[M] ].
+cause(distribution(D, Why)) --> !,
+    (   { string(Why) } -> [ '~w'-[Why] ]
+    ;   prolog:message(ddc_distribution(D, Why))
+    ->  []
+    ;   [ 'invalid distribution ~p: ~p'-[D, Why] ]
+    ).
+cause(non_ground_head(H)) --> !,
+    [ 'the head ~p is not ground after its body was proven'-[H] ].
+cause(overlapping_clauses(K, Other)) --> !,
+    [ 'two clauses define ~p in the same world: this one and the one at ~w (make the bodies exclusive, or declare :- first_applicable(Name/Arity) to take the first)'-[K, Other] ].
+cause(zero_evidence(E)) --> !,
+    [ 'the evidence ~p has weight 0 in every sample (impossible evidence, or too few samples)'-[E] ].
+cause(no_observation_clause(O)) --> !,
+    [ 'no clause applies to the observation ~p'-[O] ].
+cause(no_such_file(F)) --> !, [ 'no such file ~w'-[F] ].
+cause(bad_directive(D)) --> !, [ 'unknown directive ~p'-[D] ].
+cause(bad_head(H)) --> !, [ 'not a clause head: ~p'-[H] ].
+cause(unbound_head) --> !, [ 'the clause head is a variable' ].
+cause(unknown_program(M)) --> !, [ 'no DC program ~p is loaded'-[M] ].
+cause(no_program_loaded) --> !, [ 'no DC program is loaded (use ddc_load/1)' ].
+cause(query_never_holds(Q)) --> !, [ 'the query ~p never holds in a sample that counts'-[Q] ].
+cause(not_a_number(X)) --> !, [ 'the expectation needs a number, got ~p'-[X] ].
+cause(unknown_filter(F)) --> !, [ 'no filter ~p (freed, or never created)'-[F] ].
+cause(bad_indices(Why)) --> !, [ 'bad resampling indices: ~w'-[Why] ].
+cause(nothing_to_undo) --> !, [ 'no step to undo' ].
+cause(not_ground(X)) --> !, [ 'not ground: ~p'-[X] ].
+cause(bad_time(E)) --> !, [ 'bad time expression ~p (use t, t+K, t-K or an integer)'-[E] ].
+cause(unbound_random_variable) --> !, [ 'a random variable term is unbound' ].
+cause(C) --> [ '~p'-[C] ].
+
+:- include(ddc_filter).

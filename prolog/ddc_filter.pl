@@ -1,0 +1,273 @@
+/*  ddc_filter.pl -- the particle filter of the DDC engine (issue 4).
+
+    Included by ddc.pl (this file is part of module ddc).  Python owns the
+    weights and the resampling choices; Prolog owns the particles: N
+    worlds, each holding the values of time t (and the untimed ones), kept
+    in a global variable of the calling thread named by the filter handle.
+
+    Final API (as agreed with the Python side):
+
+      filter_new(+ProgramFile, +N, +Seed, -Filter)
+      filter_step(+Filter, +Observations, +Actions, -LogWeights)
+      filter_undo(+Filter)
+      filter_resample(+Filter, +Indices)
+      filter_holds(+Filter, +Goal, -Flags)
+      filter_values(+Filter, +Template, +Goal, -Values)
+      filter_time(+Filter, -T)
+      filter_size(+Filter, -N)
+      filter_free(+Filter)
+
+    A step t -> t+1 for each particle:
+      1. the facts of t+1 (actions, plain observations such as
+         observed(b1)) replace those of t;
+      2. each observation h ~= v is weighted by the density of h's first
+         applicable clause at t+1 (h:t+1 clauses, else h:t clauses, else
+         untimed ones); the proofs sample lazily whatever transitions they
+         need; v is then recorded both as h:t+1 and as the untimed h (the
+         original's bodies read observation(x) ~= V untimed);
+      3. the transition clauses (h:t+1 heads) are swept: every ground head
+         their bodies produce (non-ground reads in those bodies see only
+         the values recorded) is sampled, every derived h:t+1 atom is
+         materialised;
+      4. time t is dropped: the particle keeps time t+1 and the untimed
+         values.
+    Step and resample keep the previous particles for one filter_undo/1.
+    A step either completes for all particles or changes nothing.
+*/
+
+%!  filter_new(+ProgramFile, +N, +Seed, -Filter) is det.
+%
+%   Loads ProgramFile (ddc_load/2 into the module named by its absolute
+%   file name), seeds the random generator with Seed and creates N
+%   particles at time 0: every h:0 clause whose body holds is sampled (and
+%   h:0 derived atoms materialised); h:t clauses stay lazy.  Filter is an
+%   atom.  The filter lives in the calling thread.
+filter_new(File, N, Seed, F) :-
+    must_be(positive_integer, N),
+    must_be(integer, Seed),
+    resolve_file(File, Abs),
+    ddc_load(Abs, M),
+    set_random(seed(Seed)),
+    length(L, N),
+    maplist(init_particle(M), L),
+    Ws =.. [ws|L],
+    flag(ddc_filter_id, K, K+1),
+    atom_concat(ddc_filter_, K, F),
+    nb_setval(F, filter(M, N, 0, Ws, none)).
+
+init_particle(M, W) :-
+    new_world(M, 0, -1, [], W),
+    sweep(W, 0),
+    nb_setarg(4, W, 0).
+
+filter_state(F, S) :-
+    (   atom(F), nb_current(F, S0), S0 = filter(_, _, _, _, _)
+    ->  S = S0
+    ;   throw(error(ddc(unknown_filter(F), query), _))
+    ).
+
+%!  filter_time(+Filter, -T) is det.
+filter_time(F, T) :-
+    filter_state(F, filter(_, _, T, _, _)).
+
+%!  filter_size(+Filter, -N) is det.
+filter_size(F, N) :-
+    filter_state(F, filter(_, N, _, _, _)).
+
+%!  filter_free(+Filter) is det.
+filter_free(F) :-
+    (   atom(F), nb_current(F, _) -> nb_delete(F) ; true ).
+
+%!  filter_step(+Filter, +Observations, +Actions, -LogWeights) is det.
+%
+%   Advances every particle from t to t+1 (see the file header).
+%   Observations: ground terms `h ~= v` (weighted) or plain facts;
+%   Actions: ground facts.  LogWeights: N floats (-inf where the
+%   observations are impossible).  Throws
+%   error(ddc(no_observation_clause(Obs), ...)) if no clause defines an
+%   observation in some particle, and leaves the filter unchanged on any
+%   error.
+filter_step(F, Obs, Acts, LogWs) :-
+    filter_state(F, filter(M, N, T, Ws0, _)),
+    must_be(list, Obs),
+    must_be(list, Acts),
+    forall(member(O, Obs), must_be_ground_item(O)),
+    forall(member(A, Acts), must_be_ground_item(A)),
+    T1 is T+1,
+    M:'$ddc_info'(Info),
+    partition([O]>>(O = (_ ~= _)), Obs, Weighted, PlainObs),
+    append(Acts, PlainObs, Facts),
+    maplist(observation_key(Info, T1), Weighted, Keys),
+    duplicate_term(Ws0, Ws),
+    findall(LW, ( between(1, N, I), arg(I, Ws, W),
+                  step_particle(W, T1, Facts, Keys, LW) ), LogWs0),
+    (   LogWs0 = LogWs -> true ; LogWs = LogWs0 ),
+    nb_setval(F, filter(M, N, T1, Ws, prev(T, Ws0))).
+
+must_be_ground_item(X) :-
+    (   ground(X) -> true ; throw(error(ddc(not_ground(X), query), _)) ).
+
+%   observation_key(+Info, +T1, +Obs, -k(X, T, V, Obs))
+observation_key(Info, T1, (H ~= V), k(X, T, V, (H ~= V))) :-
+    read_key_code(H, ctx(_, T1, Info, query), X, T, TG),
+    call(TG).
+
+step_particle(W, T1, Facts, Keys, LW) :-
+    drop_step_keys(W),
+    nb_setarg(3, W, T1),
+    nb_setarg(12, W, Facts),
+    nb_setarg(6, W, 0.0),
+    nb_setarg(7, W, 0),
+    findall((X-TK)-V, member(k(X, TK, V, _), Keys), Ev),
+    nb_setarg(5, W, Ev),
+    (   weigh_observations(Keys, W)
+    ->  arg(6, W, LW)
+    ;   LW = -inf
+    ),
+    nb_setarg(5, W, []),
+    sweep(W, T1),
+    drop_before(W, T1),
+    nb_setarg(4, W, T1),
+    !.
+
+weigh_observations([], _).
+weigh_observations([k(X, T, V, O)|Ks], W) :-
+    (   '$read'(X, T, V, W)
+    ->  record_raw(X, T, V, W),
+        weigh_observations(Ks, W)
+    ;   arg(1, W, S),
+        (   store_get(S, X-T, '$undef')
+        ->  throw(error(ddc(no_observation_clause(O), query), _))
+        ;   fail
+        )
+    ).
+
+%   The untimed copy of a timed observation, for bodies that read it raw.
+record_raw(_, u, _, _) :- !.
+record_raw(X, _, V, W) :-
+    arg(1, W, S),
+    (   store_get(S, X-u, _)
+    ->  true
+    ;   store_put(S, X-u, V),
+        arg(13, W, SK),
+        nb_setarg(13, W, [X-u|SK])
+    ).
+
+drop_step_keys(W) :-
+    arg(13, W, SK),
+    (   SK == []
+    ->  true
+    ;   arg(1, W, S),
+        store_filter(S, [K, _]>>(\+ memberchk(K, SK)), S1),
+        nb_setarg(1, W, S1),
+        nb_setarg(13, W, [])
+    ).
+
+%   Keep the entries of time >= T1 and the untimed ones.
+drop_before(W, T1) :-
+    arg(1, W, S),
+    store_filter(S, keep_entry(T1), S1),
+    nb_setarg(1, W, S1).
+
+keep_entry(T1, K, _) :-
+    entry_time(K, T),
+    (   T == u -> true ; T >= T1 ).
+
+entry_time(_-T, T) :- !.
+entry_time('$memo'(_, T), T) :- !.
+entry_time('$mat'(_, T), T) :- !.
+entry_time(_, u).
+
+%   sweep(+W, +T): sample every random variable that a transition (or, at
+%   T = 0, prior) clause defines at T, and materialise the derived atoms
+%   of such clauses.
+sweep(W, T) :-
+    arg(2, W, M),
+    nb_setarg(11, W, sweep),
+    forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T) ),
+           ( Skip is Id-1,
+             forall(catch_head(M, X, T, W, Skip, Id),
+                    ignore('$read'(X, T, _, W))) )),
+    arg(1, W, S),
+    forall(( M:'$sweep'(der, K, N/A, _), sweep_kind(K, T) ),
+           ( functor(G, N, A), G =.. [_|Args],
+             derived_name(N, dt1, DN1), append(Args, [T, W], CArgs), H1 =.. [DN1|CArgs],
+             findall(G, ( M:H1, ground(G) ), L0),
+             sort(L0, L),
+             (   store_get(S, '$mat'(N/A, T), _) -> true
+             ;   store_put(S, '$mat'(N/A, T), L)
+             ) )),
+    nb_setarg(11, W, normal).
+
+sweep_kind(trans, T) :- T >= 1.
+sweep_kind(persist, T) :- T >= 1.
+sweep_kind(fixed(T), T).
+
+catch_head(M, X, T, W, Skip, Id) :-
+    M:'$rv'(X, T, W, Skip, none, _, _, Id, _),
+    ground(X).
+
+%!  filter_undo(+Filter) is det.
+%
+%   Restores the particles and the time from before the last step (or
+%   resampling).  Only one level is kept.
+filter_undo(F) :-
+    filter_state(F, filter(M, N, _, _, Prev)),
+    (   Prev = prev(T0, Ws0)
+    ->  nb_setval(F, filter(M, N, T0, Ws0, none))
+    ;   throw(error(ddc(nothing_to_undo, query), _))
+    ).
+
+%!  filter_resample(+Filter, +Indices) is det.
+%
+%   Particle i (1-based position in Indices) becomes a copy of particle
+%   Indices[i] (0-based), as chosen by the caller.
+filter_resample(F, Is) :-
+    filter_state(F, filter(M, N, T, Ws0, _)),
+    must_be(list(nonneg), Is),
+    (   length(Is, N) -> true
+    ;   throw(error(ddc(bad_indices(length_differs_from_particles(N)), query), _))
+    ),
+    (   forall(member(I, Is), I < N) -> true
+    ;   throw(error(ddc(bad_indices(index_out_of_range(N)), query), _))
+    ),
+    findall(W, ( member(I, Is), I1 is I+1, arg(I1, Ws0, W0), duplicate_term(W0, W) ), L),
+    Ws =.. [ws|L],
+    nb_setval(F, filter(M, N, T, Ws, prev(T, Ws0))).
+
+%!  filter_holds(+Filter, +Goal, -Flags) is det.
+%
+%   Flags: for each particle 1 if Goal is provable in its world at the
+%   current time, else 0.  In Goal, `t` is the current time and an
+%   untimed `h ~= V` or derived atom that the program only defines with a
+%   time index means h at the current time.  Random variables the proof
+%   needs and the particle lacks are sampled and kept in the particle.
+filter_holds(F, Goal, Flags) :-
+    filter_query(F, Goal, true, Sols),
+    maplist([S, B]>>(S == none -> B = 0 ; B = 1), Sols, Flags).
+
+%!  filter_values(+Filter, +Template, +Goal, -Values) is det.
+%
+%   Values: for each particle Template instantiated by the first solution
+%   of Goal, or the atom none.
+filter_values(F, Template, Goal, Values) :-
+    filter_query(F, Goal, Template, Values).
+
+filter_literal(Ctx, G, C) :-
+    cb(G, Ctx, C).
+
+filter_query(F, Goal, Template, Values) :-
+    filter_state(F, filter(M, N, T, Ws, _)),
+    M:'$ddc_info'(Info),
+    flag(ddc_query_id, Id, Id+1),
+    copy_term(Goal-Template, G1-X1),
+    Ctx = ctx(W, T, Info, query),
+    conj_list(G1, Ls),
+    maplist(filter_literal(Ctx), Ls, Cs),
+    conj_from_list(Cs, Code),
+    assertz(M:('$ddc_tmp'(Id, q, W, X1) :- Code)),
+    call_cleanup(
+        findall(V, ( between(1, N, I), arg(I, Ws, Wi),
+                     (   M:'$ddc_tmp'(Id, q, Wi, X) -> V = X ; V = none ) ),
+                Values),
+        retractall(M:'$ddc_tmp'(Id, _, _, _))).
