@@ -26,7 +26,13 @@ from perception.colour import DEFAULT_BINS, colour_names, histogram, hue_shift
 from perception.features import box_attributes, shape_features
 from perception.plane import Plane, fit_plane
 from perception.pointcloud import Backprojector
-from perception.segments import Segment, SkinWindow, components, occluded_side
+from perception.segments import (
+    Segment,
+    SkinWindow,
+    components,
+    merge_fragments,
+    occluded_side,
+)
 from percepts import Percept, PerceptFrame
 
 
@@ -48,6 +54,8 @@ class PipelineConfig:
     rest_height: float = 0.02
     top_k: int = 3
     truth_fraction: float = 0.5  # share of a segment's pixels that names its truth_id
+    fragment_pixels: int = 120  # object segments smaller than this may be fragments ...
+    fragment_gap: float = 0.015  # ... merged into a larger one whose box is this close (m)
 
 
 class Pipeline:
@@ -123,6 +131,7 @@ class Pipeline:
                 if len(idx) == 0:
                     continue
                 segments.append(Segment(kind, r, c, world[idx], heights[idx], bbox, label))
+        segments = merge_fragments(segments, cfg.fragment_pixels * scale, cfg.fragment_gap)
         self.last_segments = segments
         return segments
 

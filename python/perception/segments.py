@@ -70,3 +70,38 @@ def occluded_side(depth: np.ndarray, valid: np.ndarray, jump: float) -> np.ndarr
     far = np.where(valid, depth, np.float32(100.0)).astype(np.float32)
     nearest = cv2.erode(far, np.ones((3, 3), np.uint8))
     return valid & (depth - nearest > jump * np.maximum(depth, 0.5))
+
+
+def merge_fragments(segments: list[Segment], max_pixels: float, gap: float) -> list[Segment]:
+    """Merge small object segments (a mug's handle cut off at a depth jump) into the nearest
+    larger object segment whose 3-D box is within ``gap`` of them."""
+    objects = [s for s in segments if s.kind == "object"]
+    if len(objects) < 2:
+        return segments
+    boxes = {id(s): (s.points.min(axis=0), s.points.max(axis=0)) for s in objects}
+    order = sorted(objects, key=lambda s: len(s.rows))
+    merged: set[int] = set()
+    for small in order:
+        if len(small.rows) >= max_pixels:
+            break
+        lo, hi = boxes[id(small)]
+        best, best_d = None, gap
+        for big in objects:
+            if big is small or id(big) in merged or len(big.rows) <= len(small.rows):
+                continue
+            blo, bhi = boxes[id(big)]
+            d = float(np.linalg.norm(np.maximum(0.0, np.maximum(blo - hi, lo - bhi))))
+            if d <= best_d:
+                best, best_d = big, d
+        if best is None:
+            continue
+        best.rows = np.concatenate([best.rows, small.rows])
+        best.cols = np.concatenate([best.cols, small.cols])
+        best.points = np.concatenate([best.points, small.points])
+        best.heights = np.concatenate([best.heights, small.heights])
+        x0, y0, x1, y1 = best.bbox
+        a0, b0, a1, b1 = small.bbox
+        best.bbox = (min(x0, a0), min(y0, b0), max(x1, a1), max(y1, b1))
+        boxes[id(best)] = (np.minimum(boxes[id(best)][0], lo), np.maximum(boxes[id(best)][1], hi))
+        merged.add(id(small))
+    return [s for s in segments if id(s) not in merged]

@@ -591,6 +591,7 @@ def validate_scenario(scn: Scenario) -> None:
     # the timeline
     last = -math.inf
     busy: dict[str, tuple[float, float, int | None]] = {}
+    where = {o.id: (o.position[0], o.position[1]) for o in scn.objects}  # rough, for speeds
     for ev in scn.events:
         if ev.at < last:
             raise _err(scn, f"event '{ev.kind}' at {ev.at} comes after an event at {last}: "
@@ -599,7 +600,7 @@ def validate_scenario(scn: Scenario) -> None:
         for v in ev.params.values():
             if isinstance(v, float) and not math.isfinite(v):
                 raise _err(scn, f"event '{ev.kind}': NaN or infinity", ev.line)
-        _check_event(scn, ev, ids)
+        _check_event(scn, ev, ids, where)
         movers = _event_movers(ev)
         end = ev.at + float(ev.params.get("duration", 0.0))
         for m in movers:
@@ -638,7 +639,8 @@ def _event_movers(ev: Event) -> list[str]:
     return []
 
 
-def _check_event(scn: Scenario, ev: Event, ids: dict[str, ObjectSpec]) -> None:
+def _check_event(scn: Scenario, ev: Event, ids: dict[str, ObjectSpec],
+                 where: dict[str, tuple[float, float]]) -> None:
     p = ev.params
 
     def need(key: str) -> Any:
@@ -659,30 +661,37 @@ def _check_event(scn: Scenario, ev: Event, ids: dict[str, ObjectSpec]) -> None:
         if "speed" in p and "duration" in p and p["duration"]:
             raise _err(scn, "event 'move': give 'speed' or 'duration', not both", ev.line)
         if not p.get("duration"):
-            obj = ids[p["object"]]
-            pts = [obj.position[:2], *[v[:2] for v in p.get("via", [])], p["to"][:2]]
-            # duration is estimated from the start position; the timeline recomputes it
+            pts = [where[p["object"]], *[v[:2] for v in p.get("via", [])], p["to"][:2]]
+            # estimated from where the object should be; the timeline measures it again
             length = sum(math.dist(a, b) for a, b in zip(pts, pts[1:], strict=False))
             p["duration"] = max(length / p.get("speed", 0.15), 0.1)
+            p["estimated_duration"] = True
+        where[p["object"]] = (p["to"][0], p["to"][1])
     elif ev.kind in ("pick_up", "remove"):
         known(need("object"))
     elif ev.kind == "put_down":
         known(need("object"))
         need("to")
+        where[p["object"]] = (p["to"][0], p["to"][1])
     elif ev.kind == "put_under":
         inner = known(need("object"))
         outer = known(need("container"))
         if inner.id == outer.id:
             raise _err(scn, "event 'put_under': an object cannot go under itself", ev.line)
         _check_fits(scn, inner, outer, ev.line)
+        where[outer.id] = where[inner.id]
     elif ev.kind == "lift":
         cont = known(need("container"))
         if not cont.is_container:
             raise _err(scn, f"event 'lift': '{cont.id}' is not a container", ev.line)
+        x, y = where[cont.id]
+        to = p.get("to", (x, y + 0.13))
+        where[cont.id] = (to[0], to[1])
     elif ev.kind == "swap":
         a, b = known(need("a")), known(need("b"))
         if a.id == b.id:
             raise _err(scn, "event 'swap': 'a' and 'b' are the same object", ev.line)
+        where[a.id], where[b.id] = where[b.id], where[a.id]
     elif ev.kind == "shuffle":
         conts = need("containers")
         order = need("order")
@@ -691,5 +700,8 @@ def _check_event(scn: Scenario, ev: Event, ids: dict[str, ObjectSpec]) -> None:
         if sorted(order) != sorted(conts) or len(set(conts)) != len(conts):
             raise _err(scn, "event 'shuffle': 'order' must be a permutation of 'containers'",
                        ev.line)
+        before = dict(where)
+        for c, o in zip(conts, order, strict=True):
+            where[c] = before[o]
     elif ev.kind == "cover_camera":
         pass

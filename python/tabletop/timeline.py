@@ -274,9 +274,11 @@ class Timeline:
         mid = (pa + pb) / 2
         along = pb[:2] - pa[:2]
         n = np.array([-along[1], along[0], 0.0]) / max(float(np.linalg.norm(along)), 1e-9)
-        off = self.objects[a].footprint_radius() + self.objects[b].footprint_radius()
-        self._segment(a, t0, t1, pa, mid + n * off * 0.6, pb)
-        self._segment(b, t0, t1, pb, mid - n * off * 0.6, pa)
+        # sideways enough to pass each other, and anything standing between them
+        reach = self.objects[a].footprint_radius() + self.objects[b].footprint_radius()
+        off = max(0.6 * reach, 0.45 * float(np.linalg.norm(along)))
+        self._segment(a, t0, t1, pa, mid + n * off, pb)
+        self._segment(b, t0, t1, pb, mid - n * off, pa)
 
     def _ev_swap(self, ev: Event, t0: float, d: float) -> None:
         a, b = ev.params["a"], ev.params["b"]
