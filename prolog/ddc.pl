@@ -19,7 +19,7 @@
             expectation/5,              % +Evidence, +Query, ?X, -E, +Options
             distribution/5,             % +Evidence, +Query, ?X, -Dist, +Options
             ddc_query/6,                % +Module, +Evidence, +Query, +Options, -P, -Stats
-            ddc_query_text/5,           % +Module, +QueryText, +EvidenceText, +Options, -Result
+            ddc_query_text/6,           % +Module, +QueryText, +EvidenceText, +N, +Seed, -Result
             ddc_sample_world/4,         % +Module, +Query, +Options, -Facts
             logistic/3,                 % +Inputs, +Weights, -P
             linear/3,                   % +Inputs, +Weights, -Y
@@ -1155,21 +1155,22 @@ ddc_query(M, Ev, Q, Options, P, stats(SE, ESS, NPos, N)) :-
     SE is sqrt(max(0.0, SW2Y2 - 2*P*SW2Y + P*P*SW2)) / SW,
     ESS is SW*SW / SW2.
 
-%!  ddc_query_text(+Module, +QueryText, +EvidenceText, +Options, -Result) is det.
+%!  ddc_query_text(+Module, +QueryText, +EvidenceText, +Samples, +Seed, -Result) is det.
 %
-%   For the Python bridge: texts are parsed with the DC operators;
-%   EvidenceText '' means none.  Result = result(P, SE, ESS, N), or
-%   error(Message) with the printed message of the exception.
-ddc_query_text(M, QT, ET, Options, Result) :-
-    catch(( text_goal(QT, Q),
-            ( ET == '' -> Ev = true ; ET == "" -> Ev = true ; text_goal(ET, Ev) ),
-            ddc_query(M, Ev, Q, Options, P, stats(SE, ESS, _, N)),
-            Result = result(P, SE, ESS, N) ),
-          E,
-          ( message_to_codes_safe(E, Msg0), msg_string(Msg0, Msg), Result = error(Msg) )).
+%   For the Python bridge: the texts are parsed with the DC operators
+%   (EvidenceText '' means no evidence; Seed `none` means do not reseed).
+%   Result = [P, StdErr, ESS, Samples].  Errors are thrown as by query/4.
+ddc_query_text(M, QT, ET, N, Seed, [P, SE, ESS, N]) :-
+    text_goal(QT, Q),
+    (   empty_text(ET) -> Ev = true ; text_goal(ET, Ev) ),
+    (   Seed == none -> Opts = [samples(N)] ; Opts = [samples(N), seed(Seed)] ),
+    ddc_query(M, Ev, Q, Opts, P, stats(SE, ESS, _, N)).
 
-msg_string(S, S) :- string(S), !.
-msg_string(T, S) :- format(string(S), "~q", [T]).
+empty_text(T) :- var(T), !.
+empty_text('').
+empty_text("").
+empty_text(none).
+empty_text('None').
 
 text_goal(Text, G) :-
     catch(term_string(G, Text, [module(ddc)]), error(syntax_error(E), _),
@@ -1251,8 +1252,11 @@ one_sample(M, Id, Time, Ev, Mode, Acc) :-
     ;   true
     ).
 
+exp_w(L, W) :-
+    (   L =:= -inf -> W = 0.0 ; W is exp(L) ).
+
 accumulate(Acc, Mode, LW, DX, Succ, QLW, X) :-
-    W is exp(LW),
+    exp_w(LW, W),
     (   W =:= 0 -> true
     ;   arg(1, Acc, MinDX),
         (   DX < MinDX
@@ -1271,20 +1275,20 @@ reset_acc(Acc) :-
     nb_setarg(11, Acc, 0.0).
 
 add_sample(Acc, prob, W, Succ, QLW, _) :-
-    (   Succ == true -> Y is exp(QLW) ; Y = 0.0 ),
+    (   Succ == true -> exp_w(QLW, Y) ; Y = 0.0 ),
     acc_add(Acc, W, Y, Y),
     bump(Acc, 9, 1).
 add_sample(Acc, value, W, Succ, QLW, X) :-
     (   Succ == true
     ->  (   number(X) -> true ; throw(error(ddc(not_a_number(X), query), _)) ),
-        QW is exp(QLW), Y is QW*X
+        exp_w(QLW, QW), Y is QW*X
     ;   QW = 0.0, Y = 0.0
     ),
     acc_add(Acc, W, Y, QW),
     bump(Acc, 9, 1).
 add_sample(Acc, dist, W, Succ, QLW, X) :-
     (   Succ == true
-    ->  QW is exp(QLW), WQ is W*QW,
+    ->  exp_w(QLW, QW), WQ is W*QW,
         bump(Acc, 7, WQ),
         arg(8, Acc, Pairs0),
         (   select(X0-V0, Pairs0, Rest), X0 =@= X

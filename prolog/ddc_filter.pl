@@ -158,10 +158,13 @@ drop_step_keys(W) :-
     (   SK == []
     ->  true
     ;   arg(1, W, S),
-        store_filter(S, [K, _]>>(\+ memberchk(K, SK)), S1),
+        store_filter(S, not_step_key(SK), S1),
         nb_setarg(1, W, S1),
         nb_setarg(13, W, [])
     ).
+
+not_step_key(SK, K, _) :-
+    \+ memberchk(K, SK).
 
 %   Keep the entries of time >= T1 and the untimed ones.
 drop_before(W, T1) :-
