@@ -10,6 +10,7 @@ similarity vectors, and written as JSON (plus a report JSON with every figure).
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 from pathlib import Path
 
@@ -27,8 +28,15 @@ def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("train-matching", help="train the anchor matching function (SVM)",
                        description=__doc__)
     p.add_argument("streams", nargs="*", type=Path, help="percept streams (JSONL) with truth_id")
+    p.add_argument("--scenario", type=Path, action="append", default=[],
+                   help="a scenario file to simulate and perceive (repeatable)")
+    p.add_argument("--random-scenes", type=int, default=0, metavar="N",
+                   help="also simulate and perceive N random table scenes (tabletop)")
+    p.add_argument("--save-streams", type=Path, default=None, metavar="DIR",
+                   help="write the perceived streams there (JSONL), to train again without "
+                        "simulating")
     p.add_argument("--synthetic", type=int, default=0, metavar="N",
-                   help="also use N synthetic streams (anchoring.synthetic)")
+                   help="also use N synthetic streams (anchoring.synthetic; no simulator)")
     p.add_argument("--out", type=Path, default=DEFAULT_MODEL, help="model file (JSON)")
     p.add_argument("--report", type=Path, default=None,
                    help="figures as JSON (default: OUT with .report.json)")
@@ -47,11 +55,24 @@ def _streams(args: argparse.Namespace) -> list[tuple[str, list[PerceptFrame]]]:
         frames = list(read_percepts(path))
         if not any(p.truth_id is not None for f in frames for p in f.percepts):
             raise ValueError(f"{path}: no percept carries truth_id: cannot label pairs")
-        if len(args.streams) == 1 and not args.synthetic:  # one stream: split it in halves
+        alone = len(args.streams) == 1 and not (args.synthetic or scenes_wanted(args))
+        if alone:  # one stream: split it in halves
             half = len(frames) // 2
             out += [(f"{path}[:{half}]", frames[:half]), (f"{path}[{half}:]", frames[half:])]
         else:
             out.append((str(path), frames))
+    scenes = [(str(path), path) for path in args.scenario]
+    scenes += [(f"random-scene-{args.seed}-{k}", k) for k in range(args.random_scenes)]
+    for name, what in scenes:
+        frames = _perceive(what, args.seed)
+        if args.save_streams:
+            from percepts import write_percepts
+
+            args.save_streams.mkdir(parents=True, exist_ok=True)
+            stem = Path(name).stem if isinstance(what, Path) else name
+            write_percepts(args.save_streams / f"{stem}.jsonl", frames)
+        print(f"  perceived {name}: {len(frames)} frames")
+        out.append((name, frames))
     if args.synthetic:
         from anchoring import synthetic
 
@@ -128,3 +149,108 @@ def run(args: argparse.Namespace) -> int:
     report_path.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
     print(f"wrote {args.out} and {report_path}")
     return 0
+
+
+def scenes_wanted(args: argparse.Namespace) -> bool:
+    return bool(args.scenario or args.random_scenes)
+
+
+def _perceive(what: Path | int, seed: int) -> list[PerceptFrame]:
+    """Simulate and perceive a scenario file, or random scene number ``what``."""
+    from perception import perceive_scenario
+
+    scenario = what if isinstance(what, Path) else random_scene(1000 * seed + what)
+    return list(perceive_scenario(scenario, seed=seed))
+
+
+def _free_spot(rng: np.random.Generator, spots: list[tuple[float, float]],
+               gap: float = 0.16) -> tuple[float, float]:
+    """A table spot ``gap`` from the others (remembered: later objects keep clear of it)."""
+    for _ in range(200):
+        xy = (float(rng.uniform(-0.3, 0.3)), float(rng.uniform(-0.17, 0.2)))
+        if all(np.hypot(xy[0] - a, xy[1] - c) > gap for a, c in spots):
+            break
+    spots.append(xy)
+    return xy
+
+
+SCENE_COLOURS = ["red", "orange", "yellow", "green", "cyan", "blue", "purple", "pink", "brown",
+                 "white", "gray", "black"]
+
+
+def random_scene(seed: int):  # -> tabletop.Scenario
+    """A random table scene with the events the scenarios use: objects pushed around (also past
+    each other), balls and cans put under containers, containers swapped, moved and lifted, the
+    camera covered; look-alike objects on purpose. About 12-18 s at 15 fps."""
+    from tabletop import ScenarioBuilder, ScenarioError
+
+    for attempt in range(50):
+        rng = np.random.default_rng([seed, attempt])
+        b = ScenarioBuilder(f"training-{seed}", fps=15)
+        kinds = ["ball", "ball", "mug", "box", "can", "mug", "box", "cup"]
+        n = int(rng.integers(3, 7))
+        chosen = list(rng.choice(kinds, n, replace=False))
+        colours = list(rng.choice(SCENE_COLOURS, n, replace=True))
+        if rng.random() < 0.5 and chosen.count("ball") == 2:  # twins
+            i, j = [k for k, c in enumerate(chosen) if c == "ball"]
+            colours[j] = colours[i]
+        spots: list[tuple[float, float]] = []
+        free = functools.partial(_free_spot, rng, spots)
+
+        ids: dict[str, list[str]] = {}
+        for k, (cat, col) in enumerate(zip(chosen, colours, strict=True)):
+            oid = f"{cat}_{k}"
+            ids.setdefault(cat, []).append(oid)
+            xy = free()
+            if cat == "ball":
+                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.025, 0.035)))
+            elif cat in ("mug", "cup"):
+                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.04, 0.045)),
+                      height=float(rng.uniform(0.09, 0.11)))
+            elif cat == "can":
+                b.add(oid, cat, col, position=xy, radius=0.033, height=0.12)
+            else:
+                side = float(rng.uniform(0.13, 0.16))
+                b.add(oid, cat, col, position=xy, size=[side, side, side])
+        containers = ids.get("mug", []) + ids.get("box", []) + ids.get("cup", [])
+        small = ids.get("ball", []) + ids.get("can", [])
+        t = 1.0
+        hidden: dict[str, str] = {}
+        for _ in range(int(rng.integers(3, 7))):
+            what = rng.choice(["move", "move", "under", "swap", "lift", "cover"])
+            if what == "under" and small and containers:
+                obj = str(rng.choice(small))
+                free_c = [c for c in containers if c not in hidden.values()]
+                if obj in hidden or not free_c:
+                    continue
+                box = str(rng.choice(free_c))
+                if obj.startswith("can") and not box.startswith("box"):
+                    continue
+                b.put_under(t, obj, box, duration=2.5)
+                hidden[obj] = box
+                t += 3.0
+            elif what == "swap" and len(containers) >= 2:
+                a, c = (str(x) for x in rng.choice(containers, 2, replace=False))
+                b.swap(t, a, c, duration=float(rng.uniform(1.5, 2.5)))
+                t += 3.0
+            elif what == "lift" and hidden:
+                obj = str(rng.choice(sorted(hidden)))
+                b.lift(t, hidden.pop(obj), to=free(0.12), duration=2.5)
+                t += 3.0
+            elif what == "cover":
+                b.cover_camera(t, duration=float(rng.uniform(1.0, 2.5)))
+                t += 3.0
+            else:
+                movable = [o for os_ in ids.values() for o in os_ if o not in hidden]
+                obj = str(rng.choice(movable))
+                b.move(t, obj, to=free(0.12), speed=float(rng.uniform(0.08, 0.25)))
+                t += float(rng.uniform(2.0, 3.5))
+        for obj in sorted(hidden):
+            b.lift(t, hidden[obj], to=free(0.12), duration=2.5)
+            t += 3.0
+        b.data["duration"] = t + 1.0
+        try:
+            return b.build()
+        except ScenarioError:
+            continue
+    raise ValueError(f"could not build a valid random scene for seed {seed}")

@@ -1,0 +1,78 @@
+"""Labelled pairs from ground truth, the exported SVM, and the train-matching command."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from anchoring import training
+from anchoring.synthetic import stream
+from percepts import write_percepts
+
+
+def test_labelled_pairs_follow_the_ground_truth():
+    frames = stream(3, n_objects=3, seconds=1.0, miss_rate=0.0, spurious_rate=0.0, twins=False)
+    pairs = training.labelled_pairs(frames)
+    # frame 0 acquires 3 oracle anchors; every later frame pairs 3 percepts with 3 anchors
+    assert len(pairs) == 9 * (len(frames) - 1)
+    assert pairs.y.sum() == 3 * (len(frames) - 1)
+    same, other = pairs.x[pairs.y == 1], pairs.x[pairs.y == 0]
+    # the same object one frame later: within a few cm (noise, pushes at <= 25 cm/s, clipped
+    # segments); the others stand >= 14 cm apart
+    assert same[:, 2].min() > np.exp(-0.05)
+    assert other[:, 2].max() < np.exp(-0.12)
+    assert np.all(same[:, 4] > 0.9)
+
+
+def test_pairs_without_truth_are_skipped():
+    frames = stream(4, n_objects=2, seconds=0.5, spurious_rate=0.0)
+    for f in frames:
+        for p in f.percepts:
+            p.truth_id = None
+    assert len(training.labelled_pairs(frames)) == 0
+
+
+def test_exported_svm_equals_scikit_learn():
+    from sklearn.svm import SVC
+
+    rng = np.random.default_rng(0)
+    x = rng.uniform(0, 1, (300, 5))
+    y = (x[:, 2] + 0.3 * x[:, 1] > 0.9).astype(int)
+    model = training.fit_svm(training.PairSet(x, y, np.zeros(300, int)), c=10.0, gamma=2.0)
+    svc = SVC(C=10.0, gamma=2.0, class_weight="balanced").fit(x, y)
+    probe = rng.uniform(0, 1, (50, 5))
+    assert model.decision(probe) == pytest.approx(svc.decision_function(probe), abs=1e-8)
+
+
+def test_train_matching_command_writes_a_model(tmp_path):
+    from cli.anchoring_cli import main
+
+    paths = []
+    for k in range(4):
+        path = tmp_path / f"s{k}.jsonl"
+        write_percepts(path, stream(50 + k, n_objects=4, seconds=4.0, occlusion_rate=0.1))
+        paths.append(str(path))
+    out = tmp_path / "m.json"
+    assert main(["train-matching", *paths, "--out", str(out), "--max-pairs", "600"]) == 0
+    report = json.loads(out.with_suffix(".report.json").read_text())
+    assert report["held_out"]["accuracy"] > 0.95
+    from anchoring import AnchorManager, RbfSvm
+
+    model = RbfSvm.load(out)
+    assert model.info["held_out"] == report["held_out"]
+    AnchorManager(matcher=model)
+
+
+def test_train_matching_rejects_unlabelled_streams(tmp_path, capsys):
+    from cli.anchoring_cli import main
+
+    frames = stream(1, n_objects=2, seconds=0.5)
+    for f in frames:
+        for p in f.percepts:
+            p.truth_id = None
+    path = tmp_path / "plain.jsonl"
+    write_percepts(path, frames)
+    assert main(["train-matching", str(path), str(path)]) == 1
+    assert "plain.jsonl" in capsys.readouterr().err
