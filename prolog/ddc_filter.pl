@@ -53,7 +53,8 @@ filter_new(File, N, Seed, F) :-
     Ws =.. [ws|L],
     flag(ddc_filter_id, K, K+1),
     atom_concat(ddc_filter_, K, F),
-    nb_setval(F, filter(M, N, 0, Ws, none)).
+    random_property(state(R)),
+    nb_setval(F, filter(M, N, 0, Ws, none, R)).
 
 init_particle(M, W) :-
     new_world(M, 0, -1, [], W),
@@ -61,18 +62,26 @@ init_particle(M, W) :-
     nb_setarg(4, W, 0).
 
 filter_state(F, S) :-
-    (   atom(F), nb_current(F, S0), S0 = filter(_, _, _, _, _)
+    (   atom(F), nb_current(F, S0), S0 = filter(_, _, _, _, _, _)
     ->  S = S0
     ;   throw(error(ddc(unknown_filter(F), query), _))
     ).
 
+%   Each filter owns its random generator state: a filter's draws do not
+%   depend on what other filters or queries did in between.
+with_rng(R, Goal, R1) :-
+    random_property(state(Saved)),
+    set_random(state(R)),
+    call_cleanup(( Goal, random_property(state(R1)) ),
+                 set_random(state(Saved))).
+
 %!  filter_time(+Filter, -T) is det.
 filter_time(F, T) :-
-    filter_state(F, filter(_, _, T, _, _)).
+    filter_state(F, filter(_, _, T, _, _, _)).
 
 %!  filter_size(+Filter, -N) is det.
 filter_size(F, N) :-
-    filter_state(F, filter(_, N, _, _, _)).
+    filter_state(F, filter(_, N, _, _, _, _)).
 
 %!  filter_free(+Filter) is det.
 filter_free(F) :-
@@ -88,7 +97,7 @@ filter_free(F) :-
 %   observation in some particle, and leaves the filter unchanged on any
 %   error.
 filter_step(F, Obs, Acts, LogWs) :-
-    filter_state(F, filter(M, N, T, Ws0, _)),
+    filter_state(F, filter(M, N, T, Ws0, _, R0)),
     must_be(list, Obs),
     must_be(list, Acts),
     forall(member(O, Obs), must_be_ground_item(O)),
@@ -99,10 +108,11 @@ filter_step(F, Obs, Acts, LogWs) :-
     append(Acts, PlainObs, Facts),
     maplist(observation_key(Info, T1), Weighted, Keys),
     duplicate_term(Ws0, Ws),
-    findall(LW, ( between(1, N, I), arg(I, Ws, W),
-                  step_particle(W, T1, Facts, Keys, LW) ), LogWs0),
-    (   LogWs0 = LogWs -> true ; LogWs = LogWs0 ),
-    nb_setval(F, filter(M, N, T1, Ws, prev(T, Ws0))).
+    with_rng(R0,
+             findall(LW, ( between(1, N, I), arg(I, Ws, W),
+                           step_particle(W, T1, Facts, Keys, LW) ), LogWs),
+             R1),
+    nb_setval(F, filter(M, N, T1, Ws, prev(T, Ws0), R1)).
 
 must_be_ground_item(X) :-
     (   ground(X) -> true ; throw(error(ddc(not_ground(X), query), _)) ).
@@ -215,9 +225,9 @@ catch_head(M, X, T, W, Skip, Id) :-
 %   Restores the particles and the time from before the last step (or
 %   resampling).  Only one level is kept.
 filter_undo(F) :-
-    filter_state(F, filter(M, N, _, _, Prev)),
+    filter_state(F, filter(M, N, _, _, Prev, R)),
     (   Prev = prev(T0, Ws0)
-    ->  nb_setval(F, filter(M, N, T0, Ws0, none))
+    ->  nb_setval(F, filter(M, N, T0, Ws0, none, R))
     ;   throw(error(ddc(nothing_to_undo, query), _))
     ).
 
@@ -226,7 +236,7 @@ filter_undo(F) :-
 %   Particle i (1-based position in Indices) becomes a copy of particle
 %   Indices[i] (0-based), as chosen by the caller.
 filter_resample(F, Is) :-
-    filter_state(F, filter(M, N, T, Ws0, _)),
+    filter_state(F, filter(M, N, T, Ws0, _, R)),
     must_be(list(nonneg), Is),
     (   length(Is, N) -> true
     ;   throw(error(ddc(bad_indices(length_differs_from_particles(N)), query), _))
@@ -236,7 +246,7 @@ filter_resample(F, Is) :-
     ),
     findall(W, ( member(I, Is), I1 is I+1, arg(I1, Ws0, W0), duplicate_term(W0, W) ), L),
     Ws =.. [ws|L],
-    nb_setval(F, filter(M, N, T, Ws, prev(T, Ws0))).
+    nb_setval(F, filter(M, N, T, Ws, prev(T, Ws0), R)).
 
 %!  filter_holds(+Filter, +Goal, -Flags) is det.
 %
@@ -260,7 +270,8 @@ filter_literal(Ctx, G, C) :-
     cb(G, Ctx, C).
 
 filter_query(F, Goal, Template, Values) :-
-    filter_state(F, filter(M, N, T, Ws, _)),
+    filter_state(F, State),
+    State = filter(M, N, T, Ws, _, R0),
     M:'$ddc_info'(Info),
     flag(ddc_query_id, Id, Id+1),
     copy_term(Goal-Template, G1-X1),
@@ -270,7 +281,10 @@ filter_query(F, Goal, Template, Values) :-
     conj_from_list(Cs, Code),
     assertz(M:('$ddc_tmp'(Id, q, W, X1) :- Code)),
     call_cleanup(
-        findall(V, ( between(1, N, I), arg(I, Ws, Wi),
-                     (   M:'$ddc_tmp'(Id, q, Wi, X) -> V = X ; V = none ) ),
-                Values),
-        retractall(M:'$ddc_tmp'(Id, _, _, _))).
+        with_rng(R0,
+                 findall(V, ( between(1, N, I), arg(I, Ws, Wi),
+                              (   M:'$ddc_tmp'(Id, q, Wi, X) -> V = X ; V = none ) ),
+                         Values),
+                 R1),
+        retractall(M:'$ddc_tmp'(Id, _, _, _))),
+    nb_setarg(6, State, R1).
