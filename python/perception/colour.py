@@ -27,7 +27,7 @@ _HUES = (
     (200.0, "cyan"),
     (255.0, "blue"),
     (290.0, "purple"),
-    (340.0, "pink"),
+    (345.0, "pink"),
     (360.0, "red"),
 )
 
@@ -59,7 +59,7 @@ def _name(h_deg: float, s: float, v: float) -> str:
     if v < 0.22:
         return "black"
     if s < 0.3:
-        return "white" if v > 0.8 else "gray"
+        return "white" if v > 0.6 else "gray"
     if 15.0 <= h_deg < 45.0 and v < 0.55:
         return "brown"
     for upper, name in _HUES:

@@ -72,9 +72,19 @@ def occluded_side(depth: np.ndarray, valid: np.ndarray, jump: float) -> np.ndarr
     return valid & (depth - nearest > jump * np.maximum(depth, 0.5))
 
 
-def merge_fragments(segments: list[Segment], max_pixels: float, gap: float) -> list[Segment]:
-    """Merge small object segments (a mug's handle cut off at a depth jump) into the nearest
-    larger object segment whose 3-D box is within ``gap`` of them."""
+def _interpenetrate(a: tuple[np.ndarray, np.ndarray], b: tuple[np.ndarray, np.ndarray],
+                    depth: float) -> bool:
+    """Whether two 3-D boxes overlap by at least ``depth`` along every axis."""
+    return bool(np.all(np.minimum(a[1], b[1]) - np.maximum(a[0], b[0]) >= depth))
+
+
+def merge_fragments(segments: list[Segment], max_pixels: float, gap: float,
+                    overlap: float = 0.005) -> list[Segment]:
+    """Merge the pieces of one object that depth jumps cut apart: a small segment (a mug's
+    handle) into the nearest larger one whose 3-D box is within ``gap``, and any segment
+    whose 3-D box interpenetrates a larger one's by ``overlap`` along every axis (the far
+    inner wall of an upright cup, seen over its near rim: two solid objects' boxes do not
+    interpenetrate)."""
     objects = [s for s in segments if s.kind == "object"]
     if len(objects) < 2:
         return segments
@@ -82,14 +92,17 @@ def merge_fragments(segments: list[Segment], max_pixels: float, gap: float) -> l
     order = sorted(objects, key=lambda s: len(s.rows))
     merged: set[int] = set()
     for small in order:
-        if len(small.rows) >= max_pixels:
-            break
         lo, hi = boxes[id(small)]
         best, best_d = None, gap
         for big in objects:
             if big is small or id(big) in merged or len(big.rows) <= len(small.rows):
                 continue
             blo, bhi = boxes[id(big)]
+            if _interpenetrate(boxes[id(small)], boxes[id(big)], overlap):
+                best, best_d = big, -1.0
+                break
+            if len(small.rows) >= max_pixels:
+                continue
             d = float(np.linalg.norm(np.maximum(0.0, np.maximum(blo - hi, lo - bhi))))
             if d <= best_d:
                 best, best_d = big, d

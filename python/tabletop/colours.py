@@ -13,7 +13,7 @@ NAMED_COLOURS: dict[str, tuple[float, float, float]] = {
     "pink": (1.0, 0.4, 0.7),
     "brown": (0.45, 0.25, 0.08),
     "white": (0.95, 0.95, 0.95),
-    "gray": (0.5, 0.5, 0.5),
+    "gray": (0.45, 0.45, 0.45),
     "black": (0.08, 0.08, 0.08),
 }
 

@@ -129,6 +129,22 @@ class ObjectSpec:
             return (self.radius + HANDLE / 2, self.radius, self.height / 2)
         return (self.size[0] / 2, self.size[1] / 2, self.size[2] / 2)
 
+    def world_extents(self) -> tuple[float, float, float]:
+        """Extents of the world-frame axis-aligned bounding box at the object's yaw."""
+        hx, hy, hz = self.half_extents()
+        a = math.radians(self.yaw)
+        c, s = abs(math.cos(a)), abs(math.sin(a))
+        if self.shape in ("sphere", "cylinder", "cup"):
+            return (2 * hx, 2 * hy, 2 * hz)
+        if self.shape == "mug":  # a round tube (off-centre) and a handle pointing along yaw
+            ca, sa = math.cos(a), math.sin(a)
+            tube = (-HANDLE / 2 * ca, -HANDLE / 2 * sa)
+            tip = (tube[0] + (self.radius + HANDLE) * ca, tube[1] + (self.radius + HANDLE) * sa)
+            ex = max(tube[0] + self.radius, tip[0]) - min(tube[0] - self.radius, tip[0])
+            ey = max(tube[1] + self.radius, tip[1]) - min(tube[1] - self.radius, tip[1])
+            return (ex, ey, 2 * hz)
+        return (2 * (c * hx + s * hy), 2 * (s * hx + c * hy), 2 * hz)
+
     @property
     def rest_z(self) -> float:
         """z of the centre when the object stands on the table."""

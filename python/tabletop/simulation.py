@@ -196,6 +196,7 @@ class Simulation:
             objects[oid] = {
                 "position": [round(float(v), 5) for v in pos],
                 "category": obj.category,
+                "size": [round(v, 5) for v in obj.world_extents()],
                 "present": present,
                 "visible": bool(visible),
                 "pixels": int(n),
