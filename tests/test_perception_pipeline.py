@@ -134,7 +134,7 @@ def test_stream_round_trip(tmp_path):
 @pytest.mark.parametrize(("rgb", "name"), [
     ((220, 20, 20), "red"), ((20, 180, 30), "green"), ((20, 60, 220), "blue"),
     ((240, 220, 20), "yellow"), ((250, 250, 250), "white"), ((15, 15, 15), "black"),
-    ((128, 128, 128), "gray"), ((130, 40, 190), "purple"), ((255, 128, 0), "orange"),
+    ((110, 110, 110), "gray"), ((130, 40, 190), "purple"), ((255, 128, 0), "orange"),
 ])
 def test_colour_names_from_histogram_peaks(rgb, name):
     image = np.zeros((20, 20, 3), np.uint8)
