@@ -20,6 +20,8 @@
             distribution/5,             % +Evidence, +Query, ?X, -Dist, +Options
             ddc_query/6,                % +Module, +Evidence, +Query, +Options, -P, -Stats
             ddc_query_text/6,           % +Module, +QueryText, +EvidenceText, +N, +Seed, -Result
+            ddc_expectation_text/7,     % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Result
+            ddc_distribution_text/7,    % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Pairs
             ddc_sample_world/4,         % +Module, +Query, +Options, -Facts
             logistic/3,                 % +Inputs, +Weights, -P
             linear/3,                   % +Inputs, +Weights, -Y
@@ -1165,6 +1167,30 @@ ddc_query_text(M, QT, ET, N, Seed, [P, SE, ESS, N]) :-
     (   empty_text(ET) -> Ev = true ; text_goal(ET, Ev) ),
     (   Seed == none -> Opts = [samples(N)] ; Opts = [samples(N), seed(Seed)] ),
     ddc_query(M, Ev, Q, Opts, P, stats(SE, ESS, _, N)).
+
+%!  ddc_expectation_text(+Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Result) is det.
+%
+%   Result = [E, StdErr, ESS, N] for E[Value | Evidence, Query]; the
+%   texts share variables (Value is read together with Query).
+ddc_expectation_text(M, XT, QT, ET, N, Seed, [E, SE, ESS, N]) :-
+    format(string(Both), "(~w)-(~w)", [XT, QT]),
+    text_goal(Both, X-Q),
+    (   empty_text(ET) -> Ev = true ; text_goal(ET, Ev) ),
+    (   Seed == none -> Opts = [samples(N)] ; Opts = [samples(N), seed(Seed)] ),
+    expectation(Ev, Q, X, E, [stderr(SE), program(M)|Opts]),
+    ESS = N.
+
+%!  ddc_distribution_text(+Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Pairs) is det.
+%
+%   Pairs = [[P, ValueText], ...], the distribution of Value given
+%   Evidence and Query, values written with writeq.
+ddc_distribution_text(M, XT, QT, ET, N, Seed, Pairs) :-
+    format(string(Both), "(~w)-(~w)", [XT, QT]),
+    text_goal(Both, X-Q),
+    (   empty_text(ET) -> Ev = true ; text_goal(ET, Ev) ),
+    (   Seed == none -> Opts = [samples(N)] ; Opts = [samples(N), seed(Seed)] ),
+    distribution(Ev, Q, X, D, [program(M)|Opts]),
+    findall([P, VT], ( member(P:V, D), format(string(VT), "~q", [V]) ), Pairs).
 
 empty_text(T) :- var(T), !.
 empty_text('').

@@ -93,6 +93,42 @@ class Program:
         probability, stderr, ess, n = result["R"]  # type: ignore[misc]
         return QueryResult(float(probability), float(stderr), float(ess), int(n))
 
+    def expectation(
+        self,
+        value: str,
+        query: str,
+        evidence: str | None = None,
+        samples: int = DEFAULT_SAMPLES,
+        seed: int | None = None,
+    ) -> QueryResult:
+        """E[value | evidence, query]; ``value`` shares variables with ``query``.
+
+        The estimate is in ``probability`` (the field name is shared with :meth:`query`).
+        """
+        result = _call(
+            "ddc:ddc_expectation_text(M, X, Q, E, N, S, R)",
+            {"M": self.module, "X": value, "Q": query, "E": evidence or "",
+             "N": int(samples), "S": "none" if seed is None else int(seed)},
+        )
+        mean, stderr, ess, n = result["R"]  # type: ignore[misc]
+        return QueryResult(float(mean), float(stderr), float(ess), int(n))
+
+    def distribution(
+        self,
+        value: str,
+        query: str,
+        evidence: str | None = None,
+        samples: int = DEFAULT_SAMPLES,
+        seed: int | None = None,
+    ) -> list[tuple[float, str]]:
+        """[(p, value as Prolog text), ...]: the distribution of ``value`` given the query."""
+        result = _call(
+            "ddc:ddc_distribution_text(M, X, Q, E, N, S, R)",
+            {"M": self.module, "X": value, "Q": query, "E": evidence or "",
+             "N": int(samples), "S": "none" if seed is None else int(seed)},
+        )
+        return [(float(p), str(v)) for p, v in result["R"]]  # type: ignore[union-attr]
+
     def reload(self) -> Program:
         """Compile the file again (the previous program stays if the new text has an error)."""
         return load(self.path)
