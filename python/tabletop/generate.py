@@ -1,0 +1,58 @@
+"""Random shell games, built with :class:`tabletop.ScenarioBuilder`.
+
+K containers (mugs, boxes and cups, turned over, in a row), one ball; a hand covers the
+camera while the ball goes under a random container; S random swaps of two containers (the
+ball moves with its container); then the containers are lifted one by one in random order.
+The same seed gives the same game.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tabletop.builder import ScenarioBuilder
+
+CONTAINER_KINDS = (
+    ("mug", {"radius": 0.04, "height": 0.1}),
+    ("box", {"size": [0.12, 0.12, 0.12]}),
+    ("cup", {"radius": 0.04, "height": 0.1}),
+)
+COLOURS = ("blue", "green", "white", "purple", "yellow", "cyan", "black", "orange")
+
+
+def shell_game(containers: int = 3, swaps: int = 3, seed: int = 0, fps: float = 15.0,
+               swap_duration: float = 2.0) -> ScenarioBuilder:
+    """A random shell game with ``containers`` (2..5) containers and ``swaps`` swaps."""
+    if not 2 <= containers <= 5:
+        raise ValueError(f"containers must be 2 to 5, got {containers}")
+    if swaps < 0:
+        raise ValueError(f"swaps must be >= 0, got {swaps}")
+    rng = np.random.default_rng(seed)
+    b = ScenarioBuilder(f"shell_game_k{containers}_s{swaps}_seed{seed}", fps=fps)
+    b.add("ball_1", "ball", "red", position=(0.0, -0.17), radius=0.03)
+    spacing = 0.17 if containers <= 4 else 0.14
+    xs = (np.arange(containers) - (containers - 1) / 2) * spacing
+    colours = rng.permutation(COLOURS)[:containers]
+    counts: dict[str, int] = {}
+    ids = []
+    for i, x in enumerate(xs):
+        kind, params = CONTAINER_KINDS[int(rng.integers(len(CONTAINER_KINDS)))]
+        if i == 0 and containers >= 2:
+            kind, params = CONTAINER_KINDS[0]
+        counts[kind] = counts.get(kind, 0) + 1
+        oid = f"{kind}_{counts[kind]}"
+        ids.append(oid)
+        b.add(oid, kind, str(colours[i]), position=(float(x), 0.06), **params)
+    hider = ids[int(rng.integers(containers))]
+    t = 1.0
+    b.cover_camera(t, duration=2.6)
+    b.put_under(t + 0.2, "ball_1", hider, duration=2.2)
+    t += 3.2
+    for _ in range(swaps):
+        a, c = rng.choice(containers, size=2, replace=False)
+        b.swap(t, ids[int(a)], ids[int(c)], duration=swap_duration)
+        t += swap_duration + 0.4
+    for i in rng.permutation(containers):
+        b.lift(t, ids[int(i)], duration=2.0)
+        t += 2.5
+    return b
