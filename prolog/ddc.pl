@@ -866,7 +866,7 @@ sample_key(X, T, W, Val) :-
     arg(2, W, M),
     arg(1, W, S),
     (   M:'$rv'(X, T, W, 0, none, Out, Tier, Id, R)
-    ->  check_rivals(R, M, X, T, W, Tier, Id),
+    ->  (   R == false -> true ; check_rivals(R, M, X, T, W, Tier, Id) ),
         draw(Out, W, Val),
         store_put(S, X-T, Val)
     ;   store_put(S, X-T, '$undef'),
@@ -901,10 +901,10 @@ weigh_key(X, T, V, W, Acc) :-
     arg(2, W, M),
     arg(1, W, S),
     arg(10, W, Acc0),
-    nb_setarg(10, W, Acc),
+    (   Acc0 == Acc -> true ; nb_setarg(10, W, Acc) ),
     (   M:'$rv'(X, T, W, 0, ev(V), Out, Tier, Id, R)
-    ->  nb_setarg(10, W, Acc0),
-        check_rivals(R, M, X, T, W, Tier, Id),
+    ->  (   Acc0 == Acc -> true ; nb_setarg(10, W, Acc0) ),
+        (   R == false -> true ; check_rivals(R, M, X, T, W, Tier, Id) ),
         store_put(S, X-T, V),
         (   Out = '$prop'(LJ)
         ->  add_logw(W, Acc, LJ)
@@ -912,7 +912,7 @@ weigh_key(X, T, V, W, Acc) :-
         ->  checked(D, Id1, W), weigh(D, V, W, Acc)
         ;   weigh(Out, V, W, Acc)
         )
-    ;   nb_setarg(10, W, Acc0),
+    ;   (   Acc0 == Acc -> true ; nb_setarg(10, W, Acc0) ),
         store_put(S, X-T, '$undef'),
         fail
     ).
@@ -1217,15 +1217,86 @@ ddc_run(M, Ev0, Q, X, Options, Mode, R) :-
     evidence_goal(Ev0, EvG),
     M:'$ddc_info'(Info),
     prepare_query(M, Info, Time, EvG, Q, X, Ev, Id),
-    Acc = acc(1000000, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, [], 0, 0.0, 0.0),
     call_cleanup(
-        forall(between(1, N, _), one_sample(M, Id, Time, Ev, Mode, Acc)),
+        findall(S, ( between(1, N, _), one_sample(M, Id, Time, Ev, S) ), Samples),
         retractall(M:'$ddc_tmp'(Id, _, _, _))),
-    Acc = acc(_, SW, SW2, SWY, SW2Y, SW2Y2, SWQ, Pairs, NPos, SW2QY, SW2Q2),
-    (   SW > 0 -> true
-    ;   throw(error(ddc(zero_evidence(Ev0), query), _))
+    (   Samples == []
+    ->  throw(error(ddc(zero_evidence(Ev0), query), _))
+    ;   true
     ),
-    R = r(SW, SW2, SWY, SW2Y, SW2Y2, SWQ, Pairs, NPos, SW2QY, SW2Q2).
+    min_dx(Samples, 1000000000, MinDX),
+    summarise(Mode, Samples, MinDX, R).
+
+%   one_sample(+M, +Id, +Time, +Ev, -s(W, DX, QW, X)): fails when the
+%   evidence fails or has weight 0; QW is 0.0 when the query fails.
+one_sample(M, Id, Time, Ev, s(W, DX, QW, X)) :-
+    new_world(M, Time, -1, Ev, Wd),
+    M:'$ddc_tmp'(Id, ev, Wd, _),
+    !,
+    arg(6, Wd, LW),
+    LW > -inf,
+    W is exp(LW),
+    W > 0.0,
+    arg(7, Wd, DX),
+    (   M:'$ddc_tmp'(Id, q, Wd, X0)
+    ->  arg(8, Wd, QLW), exp_w(QLW, QW), X = X0
+    ;   QW = 0.0, X = '$none'
+    ).
+
+min_dx([], M, M).
+min_dx([s(_, DX, _, _)|Ss], M0, M) :-
+    (   DX < M0 -> min_dx(Ss, DX, M) ; min_dx(Ss, M0, M) ).
+
+%   R = r(SW, SW2, SWY, SW2Y, SW2Y2, SWQ, Pairs, NPos, SW2QY, SW2Q2) over
+%   the samples of dimension MinDX; Y = QW (prob), QW*X (value).
+summarise(dist, Samples, MinDX, r(SW, 0.0, 0.0, 0.0, 0.0, SWQ, Pairs, NPos, 0.0, 0.0)) :- !,
+    findall(X-WQ, ( member(s(W, MinDX, QW, X), Samples), QW > 0.0, WQ is W*QW ), XWs),
+    msort(XWs, Sorted),
+    group_pairs_by_key(Sorted, Groups),
+    findall(X-S, ( member(X-Ws, Groups), sum_list(Ws, S) ), Pairs),
+    aggregate_all(count, member(s(_, MinDX, _, _), Samples), NPos),
+    aggregate_all(sum(W), member(s(W, MinDX, _, _), Samples), SW),
+    aggregate_all(sum(V), member(_-V, Pairs), SWQ).
+summarise(prob, Samples, MinDX, r(SW, SW2, SWY, SW2Y, SW2Y2, SWY, [], N, SW2Y, SW2Y2)) :- !,
+    psums(Samples, MinDX, 0.0, 0.0, 0.0, 0.0, 0.0, 0, SW, SW2, SWY, SW2Y, SW2Y2, N).
+summarise(Mode, Samples, MinDX, R) :-
+    sums(Samples, Mode, MinDX, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0, 0.0, 0.0, R).
+
+%   Probability: Y = QW.
+psums([], _, SW, SW2, SWY, SW2Y, SW2Y2, N, SW, SW2, SWY, SW2Y, SW2Y2, N).
+psums([s(W, DX, Y, _)|Ss], MinDX, A0, B0, C0, D0, E0, N0, A, B, C, D, E, N) :-
+    (   DX =:= MinDX
+    ->  W2 is W*W,
+        A1 is A0 + W, B1 is B0 + W2,
+        (   Y =:= 0.0
+        ->  C1 = C0, D1 = D0, E1 = E0
+        ;   C1 is C0 + W*Y, W2Y is W2*Y, D1 is D0 + W2Y, E1 is E0 + W2Y*Y
+        ),
+        N1 is N0 + 1,
+        psums(Ss, MinDX, A1, B1, C1, D1, E1, N1, A, B, C, D, E, N)
+    ;   psums(Ss, MinDX, A0, B0, C0, D0, E0, N0, A, B, C, D, E, N)
+    ).
+
+sums([], _, _, SW, SW2, SWY, SW2Y, SW2Y2, SWQ, N, SW2QY, SW2Q2,
+     r(SW, SW2, SWY, SW2Y, SW2Y2, SWQ, [], N, SW2QY, SW2Q2)).
+sums([s(W, DX, Q, X)|Ss], Mode, MinDX, SW0, SW20, SWY0, SW2Y0, SW2Y20, SWQ0, N0, A0, B0, R) :-
+    (   DX =:= MinDX
+    ->  sample_y(Mode, Q, X, Y),
+        W2 is W*W,
+        SW is SW0 + W, SW2 is SW20 + W2,
+        SWY is SWY0 + W*Y, SW2Y is SW2Y0 + W2*Y, SW2Y2 is SW2Y20 + W2*Y*Y,
+        SWQ is SWQ0 + W*Q, A is A0 + W2*Q*Y, B is B0 + W2*Q*Q,
+        N is N0 + 1,
+        sums(Ss, Mode, MinDX, SW, SW2, SWY, SW2Y, SW2Y2, SWQ, N, A, B, R)
+    ;   sums(Ss, Mode, MinDX, SW0, SW20, SWY0, SW2Y0, SW2Y20, SWQ0, N0, A0, B0, R)
+    ).
+
+sample_y(prob, Q, _, Q).
+sample_y(value, Q, X, Y) :-
+    (   Q =:= 0.0 -> Y = 0.0
+    ;   number(X) -> Y is Q*X
+    ;   throw(error(ddc(not_a_number(X), query), _))
+    ).
 
 evidence_goal(V, _) :- var(V), !, instantiation_error(V).
 evidence_goal([], true) :- !.
@@ -1264,85 +1335,8 @@ query_literal(Ctx, G, Code) :-
 query_literal(Ctx, G, Code) :-
     cb(G, Ctx, Code).
 
-one_sample(M, Id, Time, Ev, Mode, Acc) :-
-    new_world(M, Time, -1, Ev, W),
-    (   M:'$ddc_tmp'(Id, ev, W, _),
-        arg(6, W, LW),
-        LW > -inf
-    ->  arg(7, W, DX),
-        (   M:'$ddc_tmp'(Id, q, W, X)
-        ->  arg(8, W, QLW), Succ = true
-        ;   QLW = 0.0, Succ = false
-        ),
-        accumulate(Acc, Mode, LW, DX, Succ, QLW, X)
-    ;   true
-    ).
-
 exp_w(L, W) :-
     (   L =:= -inf -> W = 0.0 ; W is exp(L) ).
-
-accumulate(Acc, Mode, LW, DX, Succ, QLW, X) :-
-    exp_w(LW, W),
-    (   W =:= 0 -> true
-    ;   arg(1, Acc, MinDX),
-        (   DX < MinDX
-        ->  nb_setarg(1, Acc, DX), reset_acc(Acc), add_sample(Acc, Mode, W, Succ, QLW, X)
-        ;   DX =:= MinDX
-        ->  add_sample(Acc, Mode, W, Succ, QLW, X)
-        ;   true
-        )
-    ).
-
-reset_acc(Acc) :-
-    forall(between(2, 7, I), nb_setarg(I, Acc, 0.0)),
-    nb_setarg(8, Acc, []),
-    nb_setarg(9, Acc, 0),
-    nb_setarg(10, Acc, 0.0),
-    nb_setarg(11, Acc, 0.0).
-
-add_sample(Acc, prob, W, Succ, QLW, _) :-
-    (   Succ == true -> exp_w(QLW, Y) ; Y = 0.0 ),
-    acc_add(Acc, W, Y, Y),
-    bump(Acc, 9, 1).
-add_sample(Acc, value, W, Succ, QLW, X) :-
-    (   Succ == true
-    ->  (   number(X) -> true ; throw(error(ddc(not_a_number(X), query), _)) ),
-        exp_w(QLW, QW), Y is QW*X
-    ;   QW = 0.0, Y = 0.0
-    ),
-    acc_add(Acc, W, Y, QW),
-    bump(Acc, 9, 1).
-add_sample(Acc, dist, W, Succ, QLW, X) :-
-    (   Succ == true
-    ->  exp_w(QLW, QW), WQ is W*QW,
-        bump(Acc, 7, WQ),
-        arg(8, Acc, Pairs0),
-        (   select(X0-V0, Pairs0, Rest), X0 =@= X
-        ->  V1 is V0+WQ, Pairs1 = [X0-V1|Rest]
-        ;   copy_term(X, XC), Pairs1 = [XC-WQ|Pairs0]
-        ),
-        sort(Pairs1, Pairs2),
-        nb_setarg(8, Acc, Pairs2)
-    ;   true
-    ),
-    bump(Acc, 2, W),
-    bump(Acc, 9, 1).
-
-acc_add(Acc, W, Y, Q) :-
-    W2 is W*W,
-    bump(Acc, 2, W),
-    bump(Acc, 3, W2),
-    WY is W*Y, bump(Acc, 4, WY),
-    W2Y is W2*Y, bump(Acc, 5, W2Y),
-    W2Y2 is W2*Y*Y, bump(Acc, 6, W2Y2),
-    WQ is W*Q, bump(Acc, 7, WQ),
-    W2QY is W2*Q*Y, bump(Acc, 10, W2QY),
-    W2Q2 is W2*Q*Q, bump(Acc, 11, W2Q2).
-
-bump(Acc, I, D) :-
-    arg(I, Acc, V0),
-    V is V0 + D,
-    nb_setarg(I, Acc, V).
 
 %!  ddc_sample_world(+Module, +Query, +Options, -Facts) is semidet.
 %

@@ -21,61 +21,81 @@
 
 /** <module> Non-backtrackable hash table for DDC worlds
 
-Store = tbl(Count, Buckets); Buckets = b(L1, ..., Ln), each Li unbound
-(empty) or a list of Key-Value.  Keys must be ground.
+Store = tbl(Count, Data); Data is a list of Key-Value while Count =< 8,
+else Buckets = b(L1, ..., Ln), each Li unbound (empty) or a list of
+Key-Value.  Keys must be ground.
 */
 
 :- meta_predicate store_filter(+, 2, -).
 
+%   Small stores (up to 8 entries) are a list of Key-Value in argument 2;
+%   larger ones a bucket term b(L1, ..., Ln).
+
 %!  store_new(-Store) is det.
-store_new(tbl(0, B)) :-
-    functor(B, b, 16).
+store_new(tbl(0, [])).
 
 %!  store_get(+Store, +Key, -Value) is semidet.
-store_get(tbl(_, B), K, V) :-
-    term_hash(K, H),
-    functor(B, _, S),
-    I is H mod S + 1,
-    arg(I, B, L),
-    nonvar(L),
-    memberchk(K-V0, L),
+store_get(tbl(_, D), K, V) :-
+    (   D = [_|_]
+    ->  memberchk(K-V0, D)
+    ;   D \== [],
+        term_hash(K, H),
+        functor(D, _, S),
+        I is H mod S + 1,
+        arg(I, D, L),
+        nonvar(L),
+        memberchk(K-V0, L)
+    ),
     V = V0.
 
 %!  store_put(+Store, +Key, +Value) is det.
 %
 %   Adds Key-Value (Key must not be present; the engine checks first).
 store_put(T, K, V) :-
-    T = tbl(C, B),
+    T = tbl(C, D),
+    C1 is C + 1,
+    nb_setarg(1, T, C1),
+    (   compound(D), \+ D = [_|_]
+    ->  bucket_put(D, K, V),
+        functor(D, _, S),
+        (   C1 > 2*S -> grow(T) ; true )
+    ;   C1 > 8
+    ->  functor(B, b, 16),
+        forall(member(K0-V0, [K-V|D]), bucket_put(B, K0, V0)),
+        nb_setarg(2, T, B)
+    ;   nb_setarg(2, T, [K-V|D])
+    ).
+
+bucket_put(B, K, V) :-
     term_hash(K, H),
     functor(B, _, S),
     I is H mod S + 1,
     arg(I, B, L),
-    (   var(L) -> nb_setarg(I, B, [K-V]) ; nb_setarg(I, B, [K-V|L]) ),
-    C1 is C + 1,
-    nb_setarg(1, T, C1),
-    (   C1 > 2*S -> grow(T) ; true ).
+    (   var(L) -> nb_setarg(I, B, [K-V]) ; nb_setarg(I, B, [K-V|L]) ).
 
 grow(T) :-
     T = tbl(_, B),
     functor(B, _, S),
     S2 is S*4,
     functor(B2, b, S2),
-    forall(( arg(_, B, L), nonvar(L), member(K-V, L) ),
-           ( term_hash(K, H), I is H mod S2 + 1, arg(I, B2, L2),
-             ( var(L2) -> nb_setarg(I, B2, [K-V]) ; nb_setarg(I, B2, [K-V|L2]) ) )),
+    forall(( arg(_, B, L), nonvar(L), member(K-V, L) ), bucket_put(B2, K, V)),
     nb_setarg(2, T, B2).
 
 %!  store_entries(+Store, -Pairs) is det.
-store_entries(tbl(_, B), Pairs) :-
-    findall(K-V, ( arg(_, B, L), nonvar(L), member(K-V, L) ), Pairs).
+store_entries(T, Pairs) :-
+    findall(K-V, store_match(T, K, V), Pairs).
 
 %!  store_match(+Store, ?Key, -Value) is nondet.
 %
 %   Enumerates the entries whose key unifies with Key (a scan).
-store_match(tbl(_, B), K, V) :-
-    arg(_, B, L),
-    nonvar(L),
-    member(K-V, L).
+store_match(tbl(_, D), K, V) :-
+    (   D = [_|_]
+    ->  member(K-V, D)
+    ;   compound(D),
+        arg(_, D, L),
+        nonvar(L),
+        member(K-V, L)
+    ).
 
 %!  store_size(+Store, -Count) is det.
 store_size(tbl(C, _), C).
