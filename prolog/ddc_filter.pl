@@ -52,7 +52,7 @@ filter_new(File, N, Seed, F) :-
     maplist(init_particle(M), L),
     Ws =.. [ws|L],
     flag(ddc_filter_id, K, K+1),
-    atom_concat(ddc_filter_, K, F),
+    atom_concat('$ddc_particles_', K, F),
     random_property(state(R)),
     nb_setval(F, filter(M, N, 0, Ws, none, R)).
 
