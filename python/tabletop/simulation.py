@@ -12,7 +12,7 @@ import pybullet as pb
 
 from tabletop import bodies
 from tabletop.camera import Camera, Intrinsics
-from tabletop.noise import add_noise
+from tabletop.noise import GaussianBank, add_noise
 from tabletop.scenario import Scenario
 from tabletop.timeline import Timeline
 
@@ -83,6 +83,7 @@ class Simulation:
         self.fps = float(fps or scenario.fps)
         self.rng = np.random.default_rng(seed)
         self.noise = noise and scenario.noise.enabled
+        self._bank: GaussianBank | None = None
         self.camera = Camera(scenario.camera, width, height)
         area = self.camera.width * self.camera.height / (320 * 240)
         self.min_visible_pixels = max(1, int(round(min_visible_pixels * area)))
@@ -158,7 +159,9 @@ class Simulation:
         rgb, depth, seg = self.camera.render(c)
         truth = self._truth(state, seg)
         if self.noise:
-            rgb, depth = add_noise(rgb, depth, self.scenario.noise, self.rng)
+            if self._bank is None:
+                self._bank = GaussianBank(self.rng, size=max(1 << 21, 2 * rgb.size))
+            rgb, depth = add_noise(rgb, depth, self.scenario.noise, self.rng, self._bank)
         self._index += 1
         return Frame(index=k, time=t, rgb=rgb, depth=depth, intrinsics=self.camera.intrinsics,
                      camera_pose=self.camera.pose.copy(), truth=truth, segmentation=seg,

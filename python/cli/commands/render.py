@@ -2,7 +2,8 @@
 
 Writes one PNG per frame (``frame_0000.png`` ...), ``depth_0000.png`` with ``--depth`` (a
 colour map, black where there is no depth), and ``DIR/SCENARIO.gif``; with ``--overlay`` the
-percepts' bounding boxes, best categories and colour names are drawn on the GIF frames.
+percepts' bounding boxes, best categories and colour names are drawn on the GIF frames (and
+written as ``overlay_0000.png`` ...).
 """
 
 from __future__ import annotations
@@ -32,10 +33,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.set_defaults(func=run)
 
 
-def depth_png(depth: np.ndarray, max_depth: float = 2.0) -> np.ndarray:
+def depth_png(depth: np.ndarray) -> np.ndarray:
+    """Depth as a colour map stretched over the frame's own range (near: red, far: blue)."""
     import cv2
 
-    scaled = np.clip(depth / max_depth * 255, 0, 255).astype(np.uint8)
+    valid = depth[depth > 0]
+    lo, hi = (np.percentile(valid, [1, 99]) if valid.size else (0.0, 1.0))
+    scaled = np.clip((depth - lo) / max(hi - lo, 1e-6) * 255, 0, 255).astype(np.uint8)
     coloured = cv2.applyColorMap(255 - scaled, cv2.COLORMAP_JET)[:, :, ::-1]
     coloured[depth <= 0] = 0
     return coloured
@@ -85,6 +89,7 @@ def run(args: argparse.Namespace) -> int:
             image = frame.rgb
             if pipeline is not None:
                 image = overlay(image, pipeline.process(frame))
+                imageio.imwrite(args.out / f"overlay_{frame.index:04d}.png", image)
             gif_frames.append(image)
             n += 1
         fps = sim.fps / max(args.every, 1)
