@@ -8,8 +8,10 @@ Per frame (:meth:`AnchorManager.process`):
    glitches (the original's fading rule);
 3. every (anchor, percept) pair gets its similarity vector and the learned matcher's score;
 4. percepts and anchors are assigned jointly, one to one, by the Hungarian method
-   (``scipy.optimize.linear_sum_assignment``) maximising the total score over the pairs the
-   matcher accepts (score > 0);
+   (``scipy.optimize.linear_sum_assignment``): as many pairs as possible among those the
+   matcher accepts (decision > 0), and among such assignments the one with the largest total
+   mean similarity (monotone in every attribute; an RBF SVM's decision value is not, and it
+   saturates for clear matches);
 5. matched percepts re-acquire their anchor, unmatched percepts acquire a new anchor, and the
    anchors that were not perceived are *tracked* (their position is whatever the reasoning
    later supplies through :meth:`AnchorManager.set_position_particles`, else the last value).
@@ -186,7 +188,11 @@ class AnchorManager:
             scores = np.asarray(self.matcher.decision(features), dtype=float)
             accept = scores > 0
             if accept.any():
-                cost = np.where(accept, -scores, 1e9)
+                # the matcher decides which pairs may match; the assignment takes as many
+                # accepted pairs as possible (1e9 per refused pair) and among those maximises
+                # the total mean similarity: monotone in every attribute, unlike an RBF SVM's
+                # decision value, which saturates and can rank a worse-fitting anchor higher
+                cost = np.where(accept, -features.mean(axis=-1), 1e9)
                 rows, cols = linear_sum_assignment(cost)
                 for r, c in zip(rows, cols, strict=True):
                     if accept[r, c]:

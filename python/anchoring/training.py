@@ -41,11 +41,19 @@ class PairSet:
 
 
 def labelled_pairs(frames: Iterable[PerceptFrame], group: int = 0,
-                   glitch_seconds: float = 1.0, history_size: int = 10) -> PairSet:
+                   glitch_seconds: float = 1.0, history_size: int = 10,
+                   track_hidden: bool = True, seed: int = 0) -> PairSet:
     """All (anchor, percept) pairs of a stream with their same-object labels.
 
-    Percepts without ``truth_id`` cannot be labelled and are skipped.
+    Percepts without ``truth_id`` cannot be labelled and are skipped. With ``track_hidden``,
+    an anchor whose object the frame's ground truth (``truth["objects"][id]``) says is present
+    but not visible gets, as in the running system, a position particle cloud (100 particles,
+    1.5 cm spread) around the true position, standing in for a reasoner that found it; so
+    re-acquisitions after an occlusion are labelled as the closed loop would see them, and the
+    classifier does not learn that a far-away percept is the same object. Without ground truth
+    (or with ``track_hidden=False``) a hidden anchor keeps its last position.
     """
+    rng = np.random.default_rng(seed)
     oracle: dict[str, Anchor] = {}
     xs: list[np.ndarray] = []
     ys: list[np.ndarray] = []
@@ -55,6 +63,8 @@ def labelled_pairs(frames: Iterable[PerceptFrame], group: int = 0,
             if not anchor.confirmed and frame.time - anchor.created > glitch_seconds:
                 del oracle[ident]
         if not percepts:
+            if track_hidden:
+                _track_hidden(oracle, set(), frame, rng)
             continue
         idents = list(oracle)
         if idents:
@@ -69,10 +79,43 @@ def labelled_pairs(frames: Iterable[PerceptFrame], group: int = 0,
             else:
                 anchor.reacquire(p)
                 anchor.confirmed = True
+        if track_hidden:
+            _track_hidden(oracle, {p.truth_id for p in percepts}, frame, rng)
     if not xs:
         return PairSet.concat([])
     y = np.concatenate(ys)
     return PairSet(np.concatenate(xs), y, np.full(y.shape[0], group))
+
+
+def _track_hidden(oracle: dict[str, Anchor], perceived: set[str | None], frame: PerceptFrame,
+                  rng: np.random.Generator) -> None:
+    objects = frame.truth.get("objects", {}) if isinstance(frame.truth, dict) else {}
+    for ident, anchor in oracle.items():
+        info = objects.get(ident)
+        if ident in perceived or not isinstance(info, dict) or "position" not in info:
+            continue
+        if info.get("visible", True) or not info.get("present", True):
+            continue
+        true = np.asarray(info["position"], dtype=float)
+        anchor.set_position_particles(true + rng.normal(0.0, 0.015, (100, 3)), None, frame.time)
+
+
+def lookalike_negatives(pairs: PairSet, rng: np.random.Generator, fraction: float = 0.5,
+                        min_distance: float = 0.12, max_distance: float = 0.6) -> PairSet:
+    """Hard negatives: an identical-looking *other* object somewhere else.
+
+    Streams rarely show two indistinguishable objects, so the learned boundary is left to
+    extrapolation exactly where position must decide (two red balls 30 cm apart). For a random
+    ``fraction`` of the same-object pairs this makes a copy labelled "different" whose position
+    similarity is that of a look-alike ``min_distance`` to ``max_distance`` away (uniform),
+    every other similarity unchanged. ``min_distance`` is the matching radius this teaches:
+    farther than that, an object is only re-acquired through the reasoning's particles.
+    """
+    same = np.flatnonzero(pairs.y == 1)
+    pick = rng.choice(same, int(round(fraction * same.size)), replace=False)
+    x = pairs.x[pick].copy()
+    x[:, FEATURES.index("position")] = np.exp(-rng.uniform(min_distance, max_distance, pick.size))
+    return PairSet(x, np.zeros(pick.size, int), pairs.group[pick])
 
 
 def balanced_subsample(pairs: PairSet, max_pairs: int, rng: np.random.Generator) -> PairSet:

@@ -42,8 +42,16 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="figures as JSON (default: OUT with .report.json)")
     p.add_argument("--original", type=Path, default=ORIGINAL,
                    help="the original ProbAnch matching_svm.yml to compare with")
+    p.add_argument("--evaluate", type=Path, action="append", default=[], metavar="PATH",
+                   help="a stream (.jsonl) or scenario (.yaml) used only for testing, reported "
+                        "on its own (repeatable; e.g. the shipped scenarios)")
     p.add_argument("--test-fraction", type=float, default=0.3)
     p.add_argument("--max-pairs", type=int, default=6000, help="training pairs after balancing")
+    p.add_argument("--lookalikes", type=float, default=0.5, metavar="FRACTION",
+                   help="hard negatives: look-alikes of this fraction of the same-object pairs, "
+                        "placed --radius to 0.6 m away (0 for none)")
+    p.add_argument("--radius", type=float, default=0.12,
+                   help="nearest look-alike distance (m): the matching radius taught")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--debug", action="store_true")
     p.set_defaults(func=run)
@@ -94,6 +102,9 @@ def run(args: argparse.Namespace) -> int:
     order = rng.permutation(len(streams))
     n_test = max(1, int(round(args.test_fraction * len(streams))))
     test_ids, train_ids = sorted(order[:n_test]), sorted(order[n_test:])
+    if args.lookalikes > 0:  # hard negatives, per stream (so they split with their stream)
+        pairs = [training.PairSet.concat([p, training.lookalike_negatives(
+            p, rng, args.lookalikes, args.radius)]) if p.y.any() else p for p in pairs]
     train = training.PairSet.concat(pairs[i] for i in train_ids)
     test = training.PairSet.concat(pairs[i] for i in test_ids)
     if train.y.min(initial=1) == 1 or train.y.max(initial=0) == 0:
@@ -142,6 +153,8 @@ def run(args: argparse.Namespace) -> int:
               f"different {orig['different_recall']:.4f}); agreement with ours {agree:.4f}")
     else:
         print(f"(original model {args.original} not found: no comparison)")
+    if args.evaluate:
+        report["evaluate"] = _evaluate(args, model)
     model.info.update({"held_out": held, "streams": len(streams)})
     args.out.parent.mkdir(parents=True, exist_ok=True)
     model.save(args.out)
@@ -149,6 +162,31 @@ def run(args: argparse.Namespace) -> int:
     report_path.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
     print(f"wrote {args.out} and {report_path}")
     return 0
+
+
+def _evaluate(args: argparse.Namespace, model: RbfSvm) -> dict:
+    original = RbfSvm.from_opencv_yaml(args.original) if args.original and \
+        Path(args.original).exists() else None
+    sets = []
+    for path in args.evaluate:
+        if path.suffix in (".yaml", ".yml"):
+            frames = _perceive(path, args.seed)
+        else:
+            frames = list(read_percepts(path))
+        sets.append(training.labelled_pairs(frames, group=len(sets)))
+    pairs = training.PairSet.concat(sets)
+    out: dict = {"paths": [str(p) for p in args.evaluate], "ours": training.scores(model, pairs)}
+    print(f"evaluation streams ({len(pairs)} pairs): ours accuracy {out['ours']['accuracy']:.4f} "
+          f"(same {out['ours']['same_recall']:.4f}, "
+          f"different {out['ours']['different_recall']:.4f})")
+    if original is not None:
+        out["original"] = training.scores(original, pairs)
+        out["agreement"] = float((original.predict(pairs.x) == model.predict(pairs.x)).mean())
+        print(f"  original accuracy {out['original']['accuracy']:.4f} "
+              f"(same {out['original']['same_recall']:.4f}, "
+              f"different {out['original']['different_recall']:.4f}); "
+              f"agreement {out['agreement']:.4f}")
+    return out
 
 
 def scenes_wanted(args: argparse.Namespace) -> bool:
