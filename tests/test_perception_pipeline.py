@@ -158,3 +158,29 @@ def test_histogram_bins_are_configurable_and_masked():
     hist = histogram(hsv_image(image, bins), mask, bins)
     assert hist.shape == (48,) and colour_names(hist, bins) == ["red"]
     assert cv2.countNonZero(mask) == 50
+
+
+def test_infinite_depth_is_ignored(static_frames):
+    frame, clean = static_frames[1][0]
+    depth = frame.depth.copy()
+    depth[::7, ::5] = np.inf
+    noisy = type(frame)(index=0, time=0.0, rgb=frame.rgb, depth=depth,
+                        intrinsics=frame.intrinsics, camera_pose=frame.camera_pose,
+                        truth=frame.truth, segmentation=frame.segmentation,
+                        body_names=frame.body_names)
+    percepts = Pipeline().process(noisy)
+    assert sorted(str(p.truth_id) for p in percepts) == sorted(str(p.truth_id) for p in clean)
+    for p in percepts:
+        p.validate()
+
+
+def test_bigger_frames_give_the_same_percepts():
+    scenario = load_scenario(ROOT / "scenarios" / "static.yaml")
+    with Simulation(scenario, width=640, height=480, seed=5) as sim:
+        frame = sim.step()
+    percepts = Pipeline().process(frame)
+    assert sorted(p.truth_id for p in percepts) == sorted(scenario.object_ids)
+    for p in percepts:
+        truth = frame.truth["objects"][p.truth_id]
+        assert np.linalg.norm(p.position - np.asarray(truth["position"])) < 0.01
+        assert np.all(np.abs(p.size / np.asarray(truth["size"]) - 1) < 0.15)

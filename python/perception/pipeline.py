@@ -84,7 +84,9 @@ class Pipeline:
         depth = frame.depth
         h, w = depth.shape
         scale = (h * w) / (320 * 240)
-        valid = depth > 0
+        valid = np.isfinite(depth) & (depth > 0)
+        if not valid.all():
+            depth = np.where(valid, depth, np.float32(0.0)).astype(np.float32)
         self.last_segments = []
         if int(valid.sum()) < 100:
             return []  # camera covered or blind: nothing to perceive
@@ -152,7 +154,8 @@ class Pipeline:
         out: list[Percept] = []
         shape_rows = []
         for i, seg in enumerate(segments):
-            z = float(frame.depth[seg.rows, seg.cols].mean())
+            # distance to the segment: metres per pixel = z / fx
+            z = float(np.linalg.norm(seg.points.mean(axis=0) - frame.camera_pose[:3, 3]))
             pixel = z / k.fx
             position, size = box_attributes(seg.points, seg.heights, self.plane,
                                             cfg.rest_height, pixel, camera_xy)
