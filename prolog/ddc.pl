@@ -818,10 +818,18 @@ time_code(E, _, _, _) :-
 %     Acc: argument index (6 or 8) of the log weight that likelihood
 %     weighting currently adds to.
 %     Mode: normal or sweep (non-ground reads enumerate recorded values only).
+%     Facts: Name/Arity-[Fact, ...] groups of the facts asserted into W.
+%     Check: true if overlapping clauses are checked in this world (the
+%     first overlap_checked_worlds/1 samples of a query, the first
+%     particles of a filter step; a check proves the later clauses'
+%     bodies, so it is not done in every world).
 
 new_world(M, Time, Frozen, Ev, W) :-
+    new_world(M, Time, Frozen, Ev, true, W).
+
+new_world(M, Time, Frozen, Ev, Check, W) :-
     store_new(S),
-    W = w(S, M, Time, Frozen, Ev, 0.0, 0, 0.0, 0, 6, normal, [], []).
+    W = w(S, M, Time, Frozen, Ev, 0.0, 0, 0.0, 0, 6, normal, [], [], Check).
 
 '$live'(W, T) :-
     arg(4, W, Fz),
@@ -875,7 +883,8 @@ sample_key(X, T, W, Val) :-
 
 check_rivals(false, _, _, _, _, _, _) :- !.
 check_rivals(true, M, X, T, W, Tier, Id) :-
-    (   M:'$rv'(X, T, W, Id, none, _, Tier, Id2, _)
+    (   arg(14, W, true),
+        M:'$rv'(X, T, W, Id, none, _, Tier, Id2, _)
     ->  clause_where(M, Id2, Where2),
         key_term(X, T, K),
         '$clause_error'(W, Id, overlapping_clauses(K, Where2))
@@ -886,10 +895,31 @@ key_term(X, u, X) :- !.
 key_term(X, T, X:T).
 
 draw('$chk'(D, Id), W, V) :- !,
-    checked(D, Id, W),
-    dist_sample(D, V).
+    (   cheap_check(D)
+    ->  checked(D, Id, W),
+        dist_sample(D, V)
+    ;   catch(dist_sample(D, V0), E, true),
+        (   var(E), nonvar(V0) -> V = V0
+        ;   checked(D, Id, W),          % throws the distribution's own error
+            (   var(E) -> V = V0 ; throw(E) )
+        )
+    ).
 draw(D, _, V) :-
     dist_sample(D, V).
+
+%   Distributions whose invalid parameters would not stop the sampler
+%   (probabilities not summing to 1 ...) are checked before each draw;
+%   the others (gaussian, beta, ...) only when sampling raises an error.
+cheap_check(finite(_)).
+cheap_check(propfinite(_)).
+cheap_check(logfinite(_)).
+cheap_check(uniform(_)).
+cheap_check(bool(_)).
+cheap_check(val(_)).
+cheap_check(poisson(_)).
+cheap_check(exponential(_)).
+cheap_check(contUniform(_, _)).
+cheap_check(D) :- var(D).
 
 checked(D, Id, W) :-
     catch(dist_check(D), error(ddc_distribution(D1, Why), _),
@@ -909,7 +939,10 @@ weigh_key(X, T, V, W, Acc) :-
         (   Out = '$prop'(LJ)
         ->  add_logw(W, Acc, LJ)
         ;   Out = '$chk'(D, Id1)
-        ->  checked(D, Id1, W), weigh(D, V, W, Acc)
+        ->  (   cheap_check(D)
+            ->  checked(D, Id1, W), weigh(D, V, W, Acc)
+            ;   catch(weigh(D, V, W, Acc), E, ( checked(D, Id1, W), throw(E) ))
+            )
         ;   weigh(Out, V, W, Acc)
         )
     ;   (   Acc0 == Acc -> true ; nb_setarg(10, W, Acc0) ),
@@ -988,7 +1021,21 @@ clause_where(M, _, M:0).
 '$fact'(W, G) :-
     arg(12, W, Fs),
     Fs \== [],
-    member(G, Fs).
+    functor(G, N, A),
+    memberchk(N/A-L, Fs),
+    member(G, L).
+
+%   group_facts(+Facts, -Groups): Name/Arity-[Fact, ...]
+group_facts(Facts, Groups) :-
+    findall(N/A-F, ( member(F, Facts), functor(F, N, A) ), Ps),
+    keysort(Ps, Sorted),
+    group_pairs_by_key(Sorted, Groups).
+
+%!  overlap_checked_worlds(-N) is det.
+%
+%   Overlapping clauses are looked for in the first N sampled worlds of a
+%   query and the first N particles of a filter step.
+overlap_checked_worlds(200).
 
 '$memo'(W, G, Call) :-
     arg(1, W, S),
@@ -1218,7 +1265,7 @@ ddc_run(M, Ev0, Q, X, Options, Mode, R) :-
     M:'$ddc_info'(Info),
     prepare_query(M, Info, Time, EvG, Q, X, Ev, Id),
     call_cleanup(
-        findall(S, ( between(1, N, _), one_sample(M, Id, Time, Ev, S) ), Samples),
+        findall(S, ( between(1, N, I), one_sample(M, Id, Time, Ev, I, S) ), Samples),
         retractall(M:'$ddc_tmp'(Id, _, _, _))),
     (   Samples == []
     ->  throw(error(ddc(zero_evidence(Ev0), query), _))
@@ -1229,8 +1276,10 @@ ddc_run(M, Ev0, Q, X, Options, Mode, R) :-
 
 %   one_sample(+M, +Id, +Time, +Ev, -s(W, DX, QW, X)): fails when the
 %   evidence fails or has weight 0; QW is 0.0 when the query fails.
-one_sample(M, Id, Time, Ev, s(W, DX, QW, X)) :-
-    new_world(M, Time, -1, Ev, Wd),
+one_sample(M, Id, Time, Ev, I, s(W, DX, QW, X)) :-
+    overlap_checked_worlds(C),
+    (   I =< C -> Check = true ; Check = false ),
+    new_world(M, Time, -1, Ev, Check, Wd),
     M:'$ddc_tmp'(Id, ev, Wd, _),
     !,
     arg(6, Wd, LW),

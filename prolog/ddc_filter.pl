@@ -28,7 +28,8 @@
       3. the transition clauses (h:t+1 heads) are swept: every ground head
          their bodies produce (non-ground reads in those bodies see only
          the values recorded) is sampled, every derived h:t+1 atom is
-         materialised;
+         materialised; heads observation(_) are left out (as in the
+         original: observations are not predicted, only weighted);
       4. time t is dropped: the particle keeps time t+1 and the untimed
          values.
     Step and resample keep the previous particles for one filter_undo/1.
@@ -105,11 +106,15 @@ filter_step(F, Obs, Acts, LogWs) :-
     T1 is T+1,
     M:'$ddc_info'(Info),
     partition([O]>>(O = (_ ~= _)), Obs, Weighted, PlainObs),
-    append(Acts, PlainObs, Facts),
+    append(Acts, PlainObs, Facts0),
+    group_facts(Facts0, Facts),
     maplist(observation_key(Info, T1), Weighted, Keys),
     duplicate_term(Ws0, Ws),
     with_rng(R0,
              findall(LW, ( between(1, N, I), arg(I, Ws, W),
+                           overlap_checked_worlds(C),
+                           ( I =< C -> Check = true ; Check = false ),
+                           nb_setarg(14, W, Check),
                            step_particle(W, T1, Facts, Keys, LW) ), LogWs),
              R1),
     nb_setval(F, filter(M, N, T1, Ws, prev(T, Ws0), R1)).
@@ -197,7 +202,7 @@ entry_time(_, u).
 sweep(W, T) :-
     arg(2, W, M),
     nb_setarg(11, W, sweep),
-    forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T) ),
+    forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T), \+ X = observation(_) ),
            ( Skip is Id-1,
              forall(catch_head(M, X, T, W, Skip, Id),
                     ignore('$read'(X, T, _, W))) )),
