@@ -12,7 +12,7 @@ object(ball_1) := true.
 object(box_1) := true.
 
 start(ball_1, (0.0, 0.0, 0.02)) := true.
-start(box_1, (0.05, 0.0, 0.05)) := true.
+start(box_1, (0.05, 0.0, 0.12)) := true.
 
 process_cov([0.0001, 0, 0, 0, 0.0001, 0, 0, 0, 0.0001]) := true.   % 1 cm per step
 sensor_cov([0.0004, 0, 0, 0, 0.0004, 0, 0, 0, 0.0004]) := true.    % 2 cm
