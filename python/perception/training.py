@@ -31,16 +31,16 @@ def random_object(rng: np.random.Generator, oid: str, category: str) -> dict:
     if category == "ball":
         obj["radius"] = float(rng.uniform(0.025, 0.045))
     elif category == "mug":
-        obj.update(radius=float(rng.uniform(0.035, 0.045)), height=float(rng.uniform(0.08, 0.11)),
+        obj.update(radius=float(rng.uniform(0.035, 0.048)), height=float(rng.uniform(0.08, 0.12)),
                    upside_down=bool(rng.random() < 0.7))
     elif category == "cup":
-        obj.update(radius=float(rng.uniform(0.028, 0.04)), height=float(rng.uniform(0.07, 0.10)),
+        obj.update(radius=float(rng.uniform(0.028, 0.046)), height=float(rng.uniform(0.07, 0.11)),
                    upside_down=bool(rng.random() < 0.7))
     elif category == "box":
-        obj["size"] = [float(rng.uniform(0.05, 0.16)), float(rng.uniform(0.05, 0.16)),
-                       float(rng.uniform(0.04, 0.15))]
+        obj["size"] = [float(rng.uniform(0.05, 0.17)), float(rng.uniform(0.05, 0.17)),
+                       float(rng.uniform(0.04, 0.17))]
     elif category == "can":
-        obj.update(radius=float(rng.uniform(0.028, 0.036)), height=float(rng.uniform(0.09, 0.13)))
+        obj.update(radius=float(rng.uniform(0.028, 0.038)), height=float(rng.uniform(0.09, 0.14)))
     return obj
 
 
@@ -97,7 +97,7 @@ def build_dataset(n_scenes: int, seed: int = 0) -> Dataset:
     return Dataset(np.array(feats), np.array(labels), np.array(scenes))
 
 
-def train(n_scenes: int = 300, seed: int = 0, hidden: int = 32
+def train(n_scenes: int = 500, seed: int = 0, hidden: int = 32
           ) -> tuple[CategoryModel, dict]:
     """Train on 80 % of the scenes, test on the rest. Returns the model and a report."""
     import sklearn
