@@ -7,6 +7,10 @@ route (open3d voxel grid, RANSAC plane and DBSCAN clustering, no features at all
 same frames.
 
     .venv/bin/python bench/perception.py [--scenario scenarios/shell_game.yaml] [--frames 60]
+                                         [--accuracy 40]
+
+With ``--accuracy N`` it also renders N random tables (the classifier's training
+distribution, other seeds) and compares the percepts with the ground truth.
 """
 
 from __future__ import annotations
@@ -45,6 +49,38 @@ def open3d_reference(frame, back: Backprojector, voxel: float) -> int:
     return int(labels.max() + 1) if len(labels) else 0
 
 
+def accuracy(tables: int, seed: int) -> None:
+    """Percepts against ground truth on random tables (any yaw, every category)."""
+    from perception.training import random_scene
+    from tabletop import parse_scenario
+
+    rng = np.random.default_rng(seed)
+    pipe = Pipeline()
+    n = wrong_count = far = off_size = colour = category = 0
+    for i in range(tables):
+        scenario = parse_scenario(random_scene(rng, i), f"<table {i}>")
+        with Simulation(scenario, seed=seed + i) as sim:
+            frame = sim.step()
+        percepts = pipe.process(frame)
+        visible = sorted(k for k, v in frame.truth["objects"].items() if v["visible"])
+        wrong_count += sorted(str(p.truth_id) for p in percepts) != visible
+        for p in percepts:
+            if p.truth_id is None:
+                continue
+            obj, truth = scenario.object(p.truth_id), frame.truth["objects"][p.truth_id]
+            n += 1
+            far += np.linalg.norm(p.position - np.asarray(truth["position"])) > 0.01
+            off_size += np.max(np.abs(p.size / np.asarray(truth["size"]) - 1)) > 0.15
+            colour += bool(p.colour_names) and p.colour_names[0] == obj.colour_name
+            category += p.best_category == obj.category
+    print(f"accuracy on {tables} random tables (seed {seed}), {n} percepts:")
+    print(f"  tables where the percepts are not exactly one per visible object: {wrong_count}")
+    print(f"  centroid more than 1 cm off: {far / n:.1%}   size more than 15 % off: "
+          f"{off_size / n:.1%}")
+    print(f"  first colour name right: {colour / n:.1%}   best category right: "
+          f"{category / n:.1%}")
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenario", type=Path, default=ROOT / "scenarios" / "shell_game.yaml")
@@ -52,6 +88,9 @@ def main() -> int:
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--width", type=int, default=320)
     parser.add_argument("--height", type=int, default=240)
+    parser.add_argument("--accuracy", type=int, default=0, metavar="TABLES",
+                        help="also check percepts against ground truth on TABLES random tables")
+    parser.add_argument("--seed", type=int, default=123, help="seed of the random tables")
     args = parser.parse_args()
 
     scenario = load_scenario(args.scenario)
@@ -87,6 +126,8 @@ def main() -> int:
     print(f"open3d reference    {ref_ms:7.2f} ms per frame  {1000 / ref_ms:7.1f} frames per "
           f"second (voxel 5 mm + RANSAC + DBSCAN, segmentation only) -> pipeline is "
           f"{ref_ms / ms:.2f}x faster")
+    if args.accuracy:
+        accuracy(args.accuracy, args.seed)
     return 0
 
 

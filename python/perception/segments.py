@@ -72,19 +72,22 @@ def occluded_side(depth: np.ndarray, valid: np.ndarray, jump: float) -> np.ndarr
     return valid & (depth - nearest > jump * np.maximum(depth, 0.5))
 
 
-def _interpenetrate(a: tuple[np.ndarray, np.ndarray], b: tuple[np.ndarray, np.ndarray],
-                    depth: float) -> bool:
-    """Whether two 3-D boxes overlap by at least ``depth`` along every axis."""
-    return bool(np.all(np.minimum(a[1], b[1]) - np.maximum(a[0], b[0]) >= depth))
+def _same_body(a: tuple[np.ndarray, np.ndarray], b: tuple[np.ndarray, np.ndarray],
+               touch: float) -> bool:
+    """Whether two 3-D boxes touch (within ``touch`` along every axis) and overlap over at
+    least half of the smaller extent along two axes: the near wall and the far inner wall of
+    an upright cup. Two solid objects standing apart do not."""
+    overlap = np.minimum(a[1], b[1]) - np.maximum(a[0], b[0])
+    smaller = np.minimum(a[1] - a[0], b[1] - b[0])
+    return bool(np.all(overlap >= -touch) and np.sum(overlap >= 0.5 * smaller) >= 2)
 
 
 def merge_fragments(segments: list[Segment], max_pixels: float, gap: float,
-                    overlap: float = 0.005) -> list[Segment]:
+                    touch: float = 0.005) -> list[Segment]:
     """Merge the pieces of one object that depth jumps cut apart: a small segment (a mug's
-    handle) into the nearest larger one whose 3-D box is within ``gap``, and any segment
-    whose 3-D box interpenetrates a larger one's by ``overlap`` along every axis (the far
-    inner wall of an upright cup, seen over its near rim: two solid objects' boxes do not
-    interpenetrate)."""
+    handle) into the nearest larger one whose 3-D box is within ``gap``, and any segment whose
+    3-D box touches a larger one's and overlaps it along two axes (the far inner wall of an
+    upright cup, seen over its near rim)."""
     objects = [s for s in segments if s.kind == "object"]
     if len(objects) < 2:
         return segments
@@ -98,7 +101,7 @@ def merge_fragments(segments: list[Segment], max_pixels: float, gap: float,
             if big is small or id(big) in merged or len(big.rows) <= len(small.rows):
                 continue
             blo, bhi = boxes[id(big)]
-            if _interpenetrate(boxes[id(small)], boxes[id(big)], overlap):
+            if _same_body(boxes[id(small)], boxes[id(big)], touch):
                 best, best_d = big, -1.0
                 break
             if len(small.rows) >= max_pixels:
