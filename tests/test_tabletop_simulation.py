@@ -149,3 +149,12 @@ def test_runtime_error_names_the_event_line():
     b.put_down(1.0, "ball_1", (0.1, 0.1))  # never picked up
     with pytest.raises(ScenarioError, match="not held by a hand"):
         frames_at(b.build(), [2.0])
+
+
+def test_a_container_covers_one_thing_at_a_time():
+    b = shell()
+    b.put_under(0.2, "ball_1", "box_1", duration=1.0)
+    b.put_under(1.4, "mug_1", "box_1", duration=1.0)
+    with pytest.raises(ScenarioError, match="already covers") as info:
+        frames_at(b.build(), [3.0])
+    assert info.value.line is None or info.value.line > 0

@@ -242,6 +242,9 @@ class Timeline:
         inner, outer = ev.params["object"], ev.params["container"]
         self._require_free(ev, inner)
         self._require_free(ev, outer)
+        if self.state.children(outer):
+            raise self._fail(ev, f"'{outer}' already covers {self.state.children(outer)}; "
+                             "lift it first")
         o_in, o_out = self.objects[inner], self.objects[outer]
         p_in, p_out = self._pos(inner), self._pos(outer)
         top = p_in[2] + o_in.half_extents()[2]
