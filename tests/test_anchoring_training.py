@@ -76,3 +76,15 @@ def test_train_matching_rejects_unlabelled_streams(tmp_path, capsys):
     write_percepts(path, frames)
     assert main(["train-matching", str(path), str(path)]) == 1
     assert "plain.jsonl" in capsys.readouterr().err
+
+
+def test_lookalike_negatives_move_only_the_position():
+    rng = np.random.default_rng(0)
+    x = np.tile([0.9, 0.95, 0.99, 0.9, 0.97], (40, 1))
+    y = np.array([1] * 30 + [0] * 10)
+    looks = training.lookalike_negatives(training.PairSet(x, y, np.zeros(40, int)), rng, 0.5,
+                                         0.12, 0.6)
+    assert len(looks) == 15 and not looks.y.any()
+    assert np.all(looks.x[:, [0, 1, 3, 4]] == [0.9, 0.95, 0.9, 0.97])
+    d = -np.log(looks.x[:, 2])
+    assert d.min() >= 0.12 and d.max() <= 0.6

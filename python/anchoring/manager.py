@@ -69,7 +69,10 @@ class FrameResult:
     tracked: list[str] = field(default_factory=list)  # anchors not perceived this frame
     dropped: list[str] = field(default_factory=list)  # glitches removed this frame
     rejected: list[Rejection] = field(default_factory=list)
-    features: np.ndarray | None = field(default=None, repr=False)  # (A, P, 5) of this frame
+    # the similarity vectors of this frame: (A, P, 5), rows the anchors ``compared`` (in that
+    # order), columns the valid percepts in input order (``rejected`` ones left out)
+    features: np.ndarray | None = field(default=None, repr=False)
+    compared: list[str] = field(default_factory=list)
 
     @property
     def symbols(self) -> dict[int, str]:
@@ -182,6 +185,7 @@ class AnchorManager:
         frame = [percepts[i] for i in valid]
         features = pair_features(anchors, frame)
         result.features = features
+        result.compared = [a.symbol for a in anchors]
         matched_anchor: dict[int, int] = {}  # index in frame -> index in anchors
         scores = np.zeros((len(anchors), len(frame)))
         if anchors and frame:

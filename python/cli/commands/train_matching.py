@@ -102,18 +102,22 @@ def run(args: argparse.Namespace) -> int:
     order = rng.permutation(len(streams))
     n_test = max(1, int(round(args.test_fraction * len(streams))))
     test_ids, train_ids = sorted(order[:n_test]), sorted(order[n_test:])
-    if args.lookalikes > 0:  # hard negatives, per stream (so they split with their stream)
-        pairs = [training.PairSet.concat([p, training.lookalike_negatives(
-            p, rng, args.lookalikes, args.radius)]) if p.y.any() else p for p in pairs]
-    train = training.PairSet.concat(pairs[i] for i in train_ids)
+    # hard negatives, per stream (so they split with their stream), kept apart for the report
+    looks = [training.lookalike_negatives(p, rng, args.lookalikes, args.radius)
+             if args.lookalikes > 0 and p.y.any() else training.PairSet.concat([])
+             for p in pairs]
+    train = training.PairSet.concat([pairs[i] for i in train_ids] + [looks[i] for i in train_ids])
     test = training.PairSet.concat(pairs[i] for i in test_ids)
+    test_looks = training.PairSet.concat(looks[i] for i in test_ids)
     if train.y.min(initial=1) == 1 or train.y.max(initial=0) == 0:
         raise ValueError("training pairs have only one label")
 
     # model selection: validate on a third of the training streams
     val_ids = set(train_ids[:: 3])
-    fit_part = training.PairSet.concat(pairs[i] for i in train_ids if i not in val_ids)
-    val_part = training.PairSet.concat(pairs[i] for i in train_ids if i in val_ids)
+    fit_part = training.PairSet.concat([pairs[i] for i in train_ids if i not in val_ids]
+                                       + [looks[i] for i in train_ids if i not in val_ids])
+    val_part = training.PairSet.concat([pairs[i] for i in train_ids if i in val_ids]
+                                       + [looks[i] for i in train_ids if i in val_ids])
     fit_sub = training.balanced_subsample(fit_part, args.max_pairs, rng)
     tried = []
     for c, g in GRID:
@@ -137,12 +141,20 @@ def run(args: argparse.Namespace) -> int:
         "C": c, "gamma": g, "support_vectors": int(model.coefficients.size),
         "held_out": held,
     }
+    if len(test_looks):
+        report["held_out_lookalikes"] = {
+            "pairs": len(test_looks),
+            "rejected": float((model.predict(test_looks.x) == 0).mean())}
     print(f"trained on {len(train)} pairs from {len(train_ids)} streams "
           f"(C={c:g}, gamma={g:g}, {model.coefficients.size} support vectors)")
     print(f"held-out ({len(test)} pairs, {len(test_ids)} streams): "
           f"accuracy {held['accuracy']:.4f}, "
           f"same-object recall {held['same_recall']:.4f}, "
           f"different-object recall {held['different_recall']:.4f}")
+    if len(test_looks):
+        print(f"held-out look-alikes ({len(test_looks)}: a same-object pair moved "
+              f"{args.radius:g}-0.6 m away) rejected: "
+              f"{report['held_out_lookalikes']['rejected']:.4f}")
     if args.original and Path(args.original).exists():
         original = RbfSvm.from_opencv_yaml(args.original)
         orig = training.scores(original, test)
@@ -151,6 +163,11 @@ def run(args: argparse.Namespace) -> int:
         print(f"original ProbAnch matching_svm.yml on the same pairs: accuracy "
               f"{orig['accuracy']:.4f} (same {orig['same_recall']:.4f}, "
               f"different {orig['different_recall']:.4f}); agreement with ours {agree:.4f}")
+        if len(test_looks):
+            report["original"]["held_out_lookalikes_rejected"] = float(
+                (original.predict(test_looks.x) == 0).mean())
+            print(f"original on the look-alikes: rejected "
+                  f"{report['original']['held_out_lookalikes_rejected']:.4f}")
     else:
         print(f"(original model {args.original} not found: no comparison)")
     if args.evaluate:
