@@ -102,12 +102,18 @@ class Pipeline:
         if plane is None:
             return []
         self.plane = plane
-        rows, cols = np.nonzero(valid)
+        # height above the plane of every pixel, without building the whole cloud:
+        # height = n . (R (z ray) + t) + d = z (ray . R^T n) + (n . t + d)
+        rot, t = pose[:3, :3], pose[:3, 3]
+        rays = self.backprojector.rays(k.fx, k.fy, k.cx, k.cy, k.width, k.height)
+        slope = rays @ (rot.T @ plane.normal).astype(np.float32)
+        height_img = depth * slope + np.float32(plane.normal @ t + plane.offset)
+        candidate = valid & (height_img > cfg.min_height) & (height_img < cfg.max_height)
+        rows, cols = np.nonzero(candidate)
         world = self.backprojector.world_points(depth, k, pose, rows, cols)
-        heights = plane.height(world)
+        heights = height_img[rows, cols]
         x0, x1, y0, y1 = cfg.workspace
-        keep = (heights > cfg.min_height) & (heights < cfg.max_height) & \
-            (world[:, 0] > x0) & (world[:, 0] < x1) & (world[:, 1] > y0) & (world[:, 1] < y1)
+        keep = (world[:, 0] > x0) & (world[:, 0] < x1) & (world[:, 1] > y0) & (world[:, 1] < y1)
         rows, cols, world, heights = rows[keep], cols[keep], world[keep], heights[keep]
         if len(rows) == 0:
             return []
@@ -126,6 +132,8 @@ class Pipeline:
         segments: list[Segment] = []
         for kind, mask, min_px in (("object", objects, cfg.min_pixels),
                                    ("skin", skin, cfg.skin_min_pixels)):
+            if cv2.countNonZero(mask) < min_px * scale:
+                continue
             for r, c, label, bbox in components(mask, max(1, int(round(min_px * scale)))):
                 idx = index[r, c]
                 ok = idx >= 0
