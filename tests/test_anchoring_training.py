@@ -46,7 +46,7 @@ def test_exported_svm_equals_scikit_learn():
     assert model.decision(probe) == pytest.approx(svc.decision_function(probe), abs=1e-8)
 
 
-def test_train_matching_command_writes_a_model(tmp_path):
+def test_train_matching_command_writes_a_model(tmp_path, capsys):
     from cli.anchoring_cli import main
 
     paths = []
@@ -63,6 +63,10 @@ def test_train_matching_command_writes_a_model(tmp_path):
     model = RbfSvm.load(out)
     assert model.info["held_out"] == report["held_out"]
     AnchorManager(matcher=model)
+    capsys.readouterr()
+    assert main(["train-matching", "--show-report", str(out.with_suffix(".report.json"))]) == 0
+    table = capsys.readouterr().out
+    assert f"| {report['held_out']['accuracy']:.4f} |" in table and "look-alikes" in table
 
 
 def test_train_matching_rejects_unlabelled_streams(tmp_path, capsys):

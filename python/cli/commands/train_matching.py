@@ -53,6 +53,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--radius", type=float, default=0.12,
                    help="nearest look-alike distance (m): the matching radius taught")
     p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--show-report", type=Path, default=None, metavar="REPORT",
+                   help="print the figures of a saved report (.report.json) as a Markdown "
+                        "table and exit")
     p.add_argument("--debug", action="store_true")
     p.set_defaults(func=run)
 
@@ -95,7 +98,55 @@ def _streams(args: argparse.Namespace) -> list[tuple[str, list[PerceptFrame]]]:
     return out
 
 
+def report_table(report: dict) -> str:
+    """The figures of a training report as a Markdown table (ours vs the original)."""
+    orig = report.get("original", {})
+    rows = [("| pairs | ours | original ProbAnch SVM |"), ("|---|---|---|")]
+
+    def fmt(d: dict | None, key: str) -> str:
+        return f"{d[key]:.4f}" if d and key in d else "-"
+
+    held, oh = report["held_out"], orig.get("held_out")
+    rows.append(f"| held-out streams ({report['test_pairs']} pairs, "
+                f"{report['test_positives']} same-object): accuracy | "
+                f"{fmt(held, 'accuracy')} | {fmt(oh, 'accuracy')} |")
+    rows.append(f"| same-object recall | {fmt(held, 'same_recall')} | {fmt(oh, 'same_recall')} |")
+    rows.append(f"| different-object recall | {fmt(held, 'different_recall')} | "
+                f"{fmt(oh, 'different_recall')} |")
+    if "held_out_lookalikes" in report:
+        look = report["held_out_lookalikes"]
+        rows.append(f"| look-alikes 0.12-0.6 m away ({look['pairs']}) rejected | "
+                    f"{look['rejected']:.4f} | "
+                    f"{fmt(orig, 'held_out_lookalikes_rejected')} |")
+    if "agreement" in orig:
+        rows.append(f"| agreement ours / original (held-out pairs) | {orig['agreement']:.4f} | |")
+    ev = report.get("evaluate")
+    if ev:
+        names = ", ".join(Path(p).stem for p in ev["paths"])
+        rows.append(f"| {names}: accuracy | {fmt(ev['ours'], 'accuracy')} | "
+                    f"{fmt(ev.get('original'), 'accuracy')} |")
+        rows.append(f"| same-object recall | {fmt(ev['ours'], 'same_recall')} | "
+                    f"{fmt(ev.get('original'), 'same_recall')} |")
+        rows.append(f"| different-object recall | {fmt(ev['ours'], 'different_recall')} | "
+                    f"{fmt(ev.get('original'), 'different_recall')} |")
+        if "agreement" in ev:
+            rows.append(f"| agreement ours / original | {ev['agreement']:.4f} | |")
+    rows.append(f"\nTraining pairs: {report['train_pairs']} ({report['train_positives']} "
+                f"same-object; look-alikes included) of "
+                f"{len(report['streams']) - len(report['test_streams'])} streams, a balanced "
+                f"sample of which fits the SVM; C = {report['C']:g}, gamma = "
+                f"{report['gamma']:g}, {report['support_vectors']} support vectors.")
+    return "\n".join(rows)
+
+
 def run(args: argparse.Namespace) -> int:
+    if args.show_report:
+        try:
+            report = json.loads(args.show_report.read_text(encoding="utf-8"))
+        except (OSError, json.JSONDecodeError) as exc:
+            raise ValueError(f"{args.show_report}: cannot read report: {exc}") from exc
+        print(report_table(report))
+        return 0
     rng = np.random.default_rng(args.seed)
     streams = _streams(args)
     pairs = [training.labelled_pairs(frames, group=g) for g, (_, frames) in enumerate(streams)]
@@ -170,14 +221,15 @@ def run(args: argparse.Namespace) -> int:
                   f"{report['original']['held_out_lookalikes_rejected']:.4f}")
     else:
         print(f"(original model {args.original} not found: no comparison)")
-    if args.evaluate:
-        report["evaluate"] = _evaluate(args, model)
     model.info.update({"held_out": held, "streams": len(streams)})
     args.out.parent.mkdir(parents=True, exist_ok=True)
     model.save(args.out)
     report_path = args.report or args.out.with_suffix(".report.json")
     report_path.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
     print(f"wrote {args.out} and {report_path}")
+    if args.evaluate:
+        report["evaluate"] = _evaluate(args, model)
+        report_path.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
     return 0
 
 
