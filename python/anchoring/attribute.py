@@ -24,7 +24,8 @@ class AttributeValueError(ValueError):
 class Attribute:
     """A volatile attribute value at ``time``: ``samples`` (N, D), ``weights`` (N,) summing to 1.
 
-    ``N == 1`` is the deterministic case. Weights are normalised on construction.
+    ``N == 1`` is the deterministic case. Weights are normalised on construction. Treat an
+    Attribute as immutable (make a new one to change it): derived arrays are cached.
     """
 
     samples: np.ndarray
@@ -104,6 +105,17 @@ class Attribute:
             positive = self.weights > 0
             cached = self.samples if positive.all() else self.samples[positive]
             self.__dict__["_support"] = cached
+        return cached
+
+    def augmented_support(self) -> np.ndarray:
+        """(D + 1, N) support samples transposed with their squared norms (cached)."""
+        cached = self.__dict__.get("_augmented")
+        if cached is None:
+            support = self.support()
+            cached = np.empty((self.dim + 1, support.shape[0]))
+            cached[:-1] = support.T
+            cached[-1] = (support * support).sum(axis=1)
+            self.__dict__["_augmented"] = cached
         return cached
 
     def to_json(self) -> dict[str, Any]:

@@ -11,7 +11,7 @@ from anchoring.similarity import (
     FEATURES,
     category_similarity,
     colour_similarity,
-    position_similarity,
+    position_similarity_augmented,
     size_similarity,
     time_similarity,
 )
@@ -35,8 +35,9 @@ def pair_features(anchors: Sequence[Anchor], percepts: Sequence[Percept]) -> np.
         np.array([an.colour.value for an in anchors]),
         np.array([_normalised(pc.colour_histogram) for pc in percepts]),
     )
-    out[..., 2] = position_similarity(
-        [an.position.support() for an in anchors], np.array([pc.position for pc in percepts])
+    out[..., 2] = position_similarity_augmented(
+        [an.position.augmented_support() for an in anchors],
+        np.array([pc.position for pc in percepts]),
     )
     out[..., 3] = size_similarity(
         np.array([an.size.value for an in anchors]), np.array([pc.size for pc in percepts])

@@ -39,21 +39,42 @@ def position_similarity(
     """``exp(-min_i ||s_i - x||)``: the maximum over each anchor's position samples (particles).
 
     ``anchor_samples[a]`` is (N_a, 3) (N_a = 1 for a deterministic position); the maximum of the
-    similarity over the samples is the paper's point estimate at the modes (section 3.2). All
-    samples of all anchors are compared with all percepts in one matrix product (no Python loop
-    over particles), ``||x - s||^2 = ||x||^2 + ||s||^2 - 2 x.s``, then a segmented minimum per
-    anchor. Three passes over the (percepts x samples) matrix, in a reused buffer.
+    similarity over the samples is the paper's point estimate at the modes (section 3.2).
+    """
+    return position_similarity_augmented([augment(s) for s in anchor_samples], percept_positions)
+
+
+def augment(samples: np.ndarray) -> np.ndarray:
+    """(4, N): the samples' coordinates and squared norms, for :func:`position_similarity_augmented`
+    (cache it with the samples: ``Attribute.augmented_support``)."""
+    s = np.asarray(samples, dtype=float).reshape(-1, 3)
+    out = np.empty((4, s.shape[0]))
+    out[:3] = s.T
+    out[3] = (s * s).sum(axis=1)
+    return out
+
+
+def position_similarity_augmented(
+    anchor_augmented: Sequence[np.ndarray], percept_positions: np.ndarray
+) -> np.ndarray:
+    """:func:`position_similarity` from :func:`augment`-ed samples.
+
+    ``||x - s||^2 = ||x||^2 + (-2x, 1) . (s, ||s||^2)``: one matrix product over all samples of
+    all anchors into a reused buffer, a segmented minimum along its rows, then ``||x||^2`` on
+    the small result. No per-particle Python loop, two passes over the big matrix.
     """
     x = np.asarray(percept_positions, dtype=float).reshape(-1, 3)
-    if len(anchor_samples) == 0 or x.shape[0] == 0:
-        return np.zeros((len(anchor_samples), x.shape[0]))
-    counts = np.fromiter((s.shape[0] for s in anchor_samples), dtype=np.intp)
-    s_t = np.concatenate([np.asarray(s, dtype=float).T for s in anchor_samples], axis=1)  # (3, M)
-    d2 = _WORKSPACE.get("d2", (x.shape[0], s_t.shape[1]))  # (P, M): reduce along rows
-    np.matmul(-2.0 * x, s_t, out=d2)
-    d2 += np.einsum("ij,ij->j", s_t, s_t)
+    if len(anchor_augmented) == 0 or x.shape[0] == 0:
+        return np.zeros((len(anchor_augmented), x.shape[0]))
+    counts = np.fromiter((s.shape[1] for s in anchor_augmented), dtype=np.intp)
+    s_aug = np.concatenate(anchor_augmented, axis=1)  # (4, M)
+    x_aug = np.empty((x.shape[0], 4))
+    x_aug[:, :3] = -2.0 * x
+    x_aug[:, 3] = 1.0
+    d2 = _WORKSPACE.get("d2", (x.shape[0], s_aug.shape[1]))  # (P, M): reduce along rows
+    np.matmul(x_aug, s_aug, out=d2)
     starts = np.concatenate(([0], np.cumsum(counts)[:-1]))
-    nearest = np.minimum.reduceat(d2, starts, axis=1).T + np.einsum("ij,ij->i", x, x)
+    nearest = np.minimum.reduceat(d2, starts, axis=1).T + (x * x).sum(axis=1)
     return np.exp(-np.sqrt(np.maximum(nearest, 0.0)))
 
 
