@@ -1,0 +1,116 @@
+/*  too.pl -- the theory of occlusion: which object may hide which, and where a hidden object is.
+
+    An ordinary DDC program, filtered over time by the particle filter (prolog/ddc.pl);
+    edit it freely.  What the runner tells it at every step t+1 (one camera frame):
+
+      facts         object(A)          every anchor that exists, as an atom (ball-1 -> ball_1)
+                    category(A, C)     its best category: ball, mug, cup, box, can, skin, ...
+                    observed(A)        A was perceived in this frame
+      observations  observation(pos(A)) ~= (X,Y,Z)   its perceived position (metres, z up)
+
+    What it reads back, per particle: pos(A):t ~= (X,Y,Z) and occluded_by(A, O):t.
+*/
+
+% ------------------------------------------------------------------ parameters
+% Variances are per axis, in square metres; one step is one camera frame.
+obs_var(0.0001).            % measurement noise of a perceived position: (1 cm)^2
+motion_var(0.0004).         % how far a perceived object moves in one frame: (2 cm)^2
+reappear_var(0.0025).       % where a hidden object shows up again, around its belief: (5 cm)^2
+follow_var(0.000004).       % jitter of a hidden object that follows its occluder: (2 mm)^2
+occluder_reach(0.15).       % an occluder is within 15 cm of the object in the table plane ...
+occluder_rise(0.02).        % ... and its centre is no more than 2 cm lower than the object's
+
+% ------------------------------------------------------------------ background knowledge
+% What cannot hide anything: a ball does not afford occluding.
+cannot_occlude(ball) := true.
+% What cannot be hidden by other objects: hands (skin) are not anchored inside anything.
+cannot_be_occluded(skin) := true.
+cannot_be_occluded(hand) := true.
+% What carries what it hides through space (a hand lifts a grasped object); containers slide
+% over the table and what they cover stays on the table.
+carrier(skin) := true.
+carrier(hand) := true.
+
+can_occlude(O) := category(O, C), \+ cannot_occlude(C).
+can_be_occluded(A) := category(A, C), \+ cannot_be_occluded(C).
+
+% ------------------------------------------------------------------ seen and hidden
+seen(A):t+1 := observed(A).
+hidden(A):t+1 := object(A), \+ observed(A).
+% The camera saw nothing at all (covered by a hand): an object lost now could be anywhere.
+blind:t+1 := \+ observed(_).
+
+% An object hidden while blind stays "lost anywhere" until an occluder explains it.
+lost_anywhere(A):t+1 := hidden(A):t+1, blind:t+1, \+ occluded_by(A, _):t+1.
+lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
+
+% ------------------------------------------------------------------ occlusion
+% O could hide A: O is perceived now, may occlude, and is near A's last position and not
+% below it, or A was lost while the camera was blind (then every occluder on the table could).
+occluder_candidate(A, O):t+1 :=
+    hidden(A):t+1, can_be_occluded(A),
+    observed(O), O \== A, can_occlude(O),
+    pos(A):t ~= (X, Y, Z), pos(O):t+1 ~= (XO, YO, ZO),
+    (   lost_anywhere(A):t
+    ->  true
+    ;   occluder_reach(R), occluder_rise(H),
+        D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, Z < ZO + H
+    ).
+
+% When an object is hidden and nothing explains it yet, each particle picks its occluder
+% uniformly among the candidates (the paper's sample_occluder).
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, \+ occluded_by(A, _):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
+
+occluded_by(A, O):t+1 := pick_occluder(A):t+1 ~= O.
+% The occlusion lasts while the object is hidden and its occluder is perceived.
+occluded_by(A, O):t+1 := occluded_by(A, O):t, hidden(A):t+1, observed(O).
+% Transitive occlusion (section 5.3 of the paper; remove this clause to switch it off): an
+% object whose occluder is itself hidden under something stays with it.
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, hidden(A):t+1, hidden(O):t+1, occluded_by(O, _):t+1.
+
+% ------------------------------------------------------------------ positions
+% First sighting: at the perceived position.
+pos(A):t+1 ~ gaussian([X, Y, Z], C) :=
+    observed(A), observation(pos(A)) ~= (X, Y, Z), \+ pos(A):t ~= _,
+    obs_var(V), diagonal(V, C).
+% Perceived again: drawn from the posterior of (motion prior x measurement), the optimal
+% proposal; the particle is weighted by the predictive density below.
+pos(A):t+1 ~ gaussian([MX, MY, MZ], C) :=
+    observed(A), observation(pos(A)) ~= (OX, OY, OZ), pos(A):t ~= (X, Y, Z),
+    prior_var(A, P):t+1, obs_var(R), K is P / (P + R),
+    MX is X + K*(OX-X), MY is Y + K*(OY-Y), MZ is Z + K*(OZ-Z),
+    V is (1-K)*P, diagonal(V, C).
+% Hidden under an occluder that has just been picked: under it, at the object's own height.
+pos(A):t+1 ~ gaussian([XO, YO, Z], C) :=
+    hidden(A):t+1, occluded_by(A, O):t+1, \+ occluded_by(A, O):t,
+    pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (_, _, Z),
+    follow_var(V), diagonal(V, C).
+% Hidden under the same occluder as before: moves with it (in the table plane; a carrier
+% such as a hand also lifts it).
+pos(A):t+1 ~ gaussian([MX, MY, MZ], C) :=
+    hidden(A):t+1, occluded_by(A, O):t+1, occluded_by(A, O):t,
+    pos(O):t ~= (X0, Y0, Z0), pos(O):t+1 ~= (X1, Y1, Z1), pos(A):t ~= (X, Y, Z),
+    MX is X + X1 - X0, MY is Y + Y1 - Y0,
+    (   category(O, CO), carrier(CO) -> MZ is Z + Z1 - Z0 ; MZ = Z ),
+    follow_var(V), diagonal(V, C).
+% Hidden and unexplained: it stays where it was last believed to be.
+pos(A):t+1 ~ val(P) :=
+    hidden(A):t+1, \+ occluded_by(A, _):t+1, pos(A):t ~= P.
+
+% ------------------------------------------------------------------ observation model
+% A perceived position weights each particle by its predictive density: motion + noise for an
+% object that was perceived in the previous frame, a wider one for an object that reappears.
+observation(pos(A)):t+1 ~ gaussian([X, Y, Z], C) :=
+    pos(A):t ~= (X, Y, Z), predictive_var(A, V):t+1, diagonal(V, C).
+% A new object: nothing to compare with (weight 1).
+observation(pos(A)):t+1 ~ val(_) :=
+    object(A), \+ pos(A):t ~= _.
+
+prior_var(A, P):t+1 := object(A), seen(A):t, motion_var(P).
+prior_var(A, P):t+1 := object(A), \+ seen(A):t, reappear_var(P).
+predictive_var(A, V):t+1 := prior_var(A, P):t+1, obs_var(R), V is P + R.
+
+diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V]).

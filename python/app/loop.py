@@ -1,0 +1,126 @@
+"""The per-frame loop: perception -> anchoring -> reasoning -> feedback into the anchors."""
+
+from __future__ import annotations
+
+import logging
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from anchoring import AnchorManager, FrameResult
+from app.reasoning import DEFAULT_THEORY, AnchorState, OcclusionReasoner
+from app.sources import SourceFrame
+from evaluation import FrameTimings, Hypothesis, TrackingRecord, point_estimate, record_for_frame
+
+logger = logging.getLogger(__name__)
+
+#: Ground-truth ids the evaluation leaves out: hands are not objects on the table.
+IGNORED_TRUTH = ("hand", "hand_1", "camera_cover")
+
+
+@dataclass
+class LoopConfig:
+    particles: int = 1000
+    theory: Path = DEFAULT_THEORY
+    seed: int = 0
+    reasoning: bool = True
+
+
+@dataclass
+class FrameOutcome:
+    """Everything one frame produced, for records, pictures and the world file."""
+
+    source: SourceFrame
+    result: FrameResult
+    record: TrackingRecord
+    hidden_beliefs: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+
+
+class AnchoringLoop:
+    """Owns the anchor manager and (with reasoning) the occlusion reasoner for one run."""
+
+    def __init__(self, config: LoopConfig, manager: AnchorManager | None = None) -> None:
+        self.config = config
+        self.manager = manager or AnchorManager()
+        self.reasoner = (
+            OcclusionReasoner(config.theory, particles=config.particles, seed=config.seed)
+            if config.reasoning else None
+        )
+        self.rejected_percepts = 0
+
+    def close(self) -> None:
+        if self.reasoner is not None:
+            self.reasoner.close()
+
+    def process(self, source: SourceFrame) -> FrameOutcome:
+        frame = source.percepts
+        started = time.perf_counter()
+        result = self.manager.process(frame.time, frame.percepts)
+        anchoring_ms = (time.perf_counter() - started) * 1000
+        rejected = len(frame.rejected) + len(result.rejected)
+        self.rejected_percepts += rejected
+        for rejection in result.rejected:
+            logger.warning("frame %d: percept %d dropped: %s", frame.frame,
+                           rejection.percept_index, rejection.reason)
+
+        filter_ms = 0.0
+        hidden: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+        if self.reasoner is not None:
+            started = time.perf_counter()
+            perceived = {a.symbol: frame.percepts[a.percept_index].position
+                         for a in result.assignments}
+            states = [
+                AnchorState(anchor.symbol, anchor.best_category,
+                            tuple(perceived[anchor.symbol]) if anchor.symbol in perceived
+                            else None)
+                for anchor in self.manager.anchors
+            ]
+            self.reasoner.step(states)
+            for symbol in result.tracked:
+                belief = self.reasoner.belief(symbol)
+                if belief is not None:
+                    self.manager.set_position_particles(symbol, belief.positions,
+                                                        belief.weights)
+                    hidden[symbol] = (belief.positions, belief.weights)
+            filter_ms = (time.perf_counter() - started) * 1000
+
+        record = record_for_frame(
+            frame,
+            self.hypotheses(result),
+            [(frame.percepts[a.percept_index], a.symbol) for a in result.assignments],
+            FrameTimings(perception=source.perception_ms, anchoring=anchoring_ms,
+                         filter=filter_ms),
+            ignore=IGNORED_TRUTH,
+            rejected_percepts=rejected,
+        )
+        return FrameOutcome(source, result, record, hidden)
+
+    def hypotheses(self, result: FrameResult) -> dict[str, Hypothesis]:
+        perceived = {a.symbol for a in result.assignments}
+        out: dict[str, Hypothesis] = {}
+        for anchor in self.manager.anchors:
+            attribute = anchor.position
+            if attribute.is_probabilistic:
+                position = point_estimate(attribute.samples, attribute.weights)
+            else:
+                position = np.asarray(attribute.mean(), dtype=float)
+            out[anchor.symbol] = Hypothesis(position=position,
+                                            perceived=anchor.symbol in perceived)
+        return out
+
+
+def run_frames(frames: Iterable[SourceFrame], config: LoopConfig,
+               on_frame: Callable[[FrameOutcome, AnchoringLoop], None] | None = None,
+               ) -> tuple[list[TrackingRecord], AnchoringLoop]:
+    """Play frames through a new loop; ``on_frame`` sees each outcome (pictures, progress)."""
+    loop = AnchoringLoop(config)
+    records: list[TrackingRecord] = []
+    for source in frames:
+        outcome = loop.process(source)
+        records.append(outcome.record)
+        if on_frame is not None:
+            on_frame(outcome, loop)
+    return records, loop

@@ -1,0 +1,131 @@
+"""A whole run: frames from a scenario or a percept stream through the loop, then the summary,
+pictures, GIF and world file in an output directory."""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from tqdm import tqdm
+
+from app.loop import AnchoringLoop, FrameOutcome, LoopConfig, run_frames
+from app.pictures import FramePictures
+from app.reasoning import DEFAULT_THEORY
+from app.sources import scenario_frames, scenario_length, stream_frames
+from app.world_file import write_world
+from bridge import load as load_program
+from evaluation import TrackingRecord, evaluate, make_summary, write_records, write_summary
+
+logger = logging.getLogger(__name__)
+
+
+@dataclass
+class RunOptions:
+    scenario: Path | None = None
+    percepts: Path | None = None
+    particles: int = 1000
+    theory: Path = DEFAULT_THEORY
+    seed: int = 0
+    reasoning: bool = True
+    out: Path | None = None
+    picture_every: int = 1
+    progress: bool = True
+    width: int | None = None
+    height: int | None = None
+
+
+@dataclass
+class RunOutput:
+    summary: dict[str, Any]
+    records: list[TrackingRecord]
+    out: Path | None
+    gif: Path | None = None
+    pictures: list[Path] = field(default_factory=list)
+
+
+def check_theory(path: Path) -> None:
+    """Load the theory once before the first frame: a syntax or distribution error stops the
+    run here with the file, line and cause."""
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: no such theory file")
+    load_program(path)
+
+
+def run(options: RunOptions) -> RunOutput:
+    if (options.scenario is None) == (options.percepts is None):
+        raise ValueError("give a scenario or a percept stream (--percepts), not both")
+    if options.reasoning:
+        check_theory(options.theory)
+    if options.scenario is not None:
+        frames = scenario_frames(options.scenario, seed=options.seed, width=options.width,
+                                 height=options.height)
+        total = scenario_length(options.scenario)
+        name = options.scenario.stem
+    else:
+        assert options.percepts is not None
+        frames = stream_frames(options.percepts)
+        total = None
+        name = options.percepts.stem
+    pictures = None
+    if options.out is not None:
+        options.out.mkdir(parents=True, exist_ok=True)
+        pictures = FramePictures(options.out, every=options.picture_every)
+    bar = tqdm(total=total, unit="frame", desc=name, disable=not options.progress)
+
+    def on_frame(outcome: FrameOutcome, loop: AnchoringLoop) -> None:
+        if pictures is not None:
+            pictures(outcome, loop)
+        bar.update(1)
+
+    config = LoopConfig(particles=options.particles, theory=options.theory, seed=options.seed,
+                        reasoning=options.reasoning)
+    try:
+        records, loop = run_frames(frames, config, on_frame)
+    finally:
+        bar.close()
+    try:
+        evaluation = evaluate(records)
+        extra = {
+            "scenario": name,
+            "method": "reasoning" if options.reasoning else "no-reasoning",
+            "particles": options.particles if options.reasoning else 0,
+            "seed": options.seed,
+            "zero_weight_events": (loop.reasoner.filter.zero_weight_events
+                                   if loop.reasoner is not None else 0),
+        }
+        if options.out is None:
+            return RunOutput(make_summary(records, evaluation, extra=extra), records, None)
+        summary = write_summary(options.out / "summary.json", records, evaluation, extra=extra)
+        output = RunOutput(summary, records, options.out)
+        write_records(options.out / "records.jsonl", records)
+        perceived = {s for s, h in records[-1].hypotheses.items() if h.perceived} \
+            if records else set()
+        write_world(options.out / "world.pl", loop, perceived)
+        if pictures is not None:
+            output.pictures = pictures.paths
+            output.gif = pictures.finish(options.out / "run.gif")
+        return output
+    finally:
+        loop.close()
+
+
+def format_summary(summary: dict[str, Any]) -> str:
+    """The summary a person reads at the end of a run."""
+    lines = [f"{summary.get('scenario', 'run')}: {summary['frames']} frames "
+             f"({summary.get('method', '')})"]
+    for obj in summary["objects"]:
+        kept = "identity kept" if obj["identity_kept"] else "IDENTITY LOST"
+        lines.append(f"  {obj['id']:<10} {' -> '.join(obj['symbols']) or '(never anchored)':<30}"
+                     f" {kept}")
+    idf1 = summary.get("idf1")
+    lines.append(f"  ID switches {summary['id_switches']}, IDF1 "
+                 f"{'n/a' if idf1 is None else f'{idf1:.3f}'}, rejected percepts "
+                 f"{summary.get('rejected_percepts', 0)}")
+    ms = summary["ms_per_frame"]
+    fps = 1000.0 / ms["total"] if ms["total"] > 0 else float("inf")
+    lines.append(f"  ms per frame: perception {ms['perception']:.1f}, anchoring "
+                 f"{ms['anchoring']:.1f}, filter {ms['filter']:.1f}, total {ms['total']:.1f} "
+                 f"({fps:.1f} frames per second)")
+    return "\n".join(lines)

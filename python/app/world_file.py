@@ -1,0 +1,72 @@
+"""The final world state as a Prolog file a person can query with ``prolog/world.pl``.
+
+The file holds plain facts:
+
+- ``anchor(Atom, Symbol, Category, Perceived, LastSeen)``: every anchor;
+- ``attribute(Atom, Name, Value)``: its attributes (position mean, size, colour names,
+  category probabilities);
+- ``particle(I, Weight)`` and ``particle_fact(I, Fact)``: the particle set of the filter, each
+  particle's facts being ``pos(Atom, (X,Y,Z))`` and ``occluded_by(Atom, Occluder)``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from app.loop import AnchoringLoop
+from app.naming import category_atom, symbol_atom
+from bridge.terms import quote_atom, to_term
+
+
+def _fmt(x: float) -> str:
+    return repr(float(round(x, 5)))
+
+
+def world_facts(loop: AnchoringLoop, perceived: set[str]) -> list[str]:
+    lines = [
+        "% World state written by `anchoring run`; load with: swipl prolog/world.pl THIS_FILE",
+        ":- dynamic anchor/5, attribute/3, particle/2, particle_fact/2.",
+    ]
+    for anchor in loop.manager.anchors:
+        atom = symbol_atom(anchor.symbol)
+        mean = np.asarray(anchor.position.mean(), dtype=float)
+        lines.append(
+            f"anchor({atom}, {quote_atom(anchor.symbol)}, "
+            f"{category_atom(anchor.best_category)}, "
+            f"{'true' if anchor.symbol in perceived else 'false'}, "
+            f"{_fmt(anchor.last_seen)})."
+        )
+        lines.append(f"attribute({atom}, position, ({', '.join(_fmt(v) for v in mean)})).")
+        extents = np.asarray(anchor.size.mean(), dtype=float).reshape(-1)
+        lines.append(f"attribute({atom}, size, ({', '.join(_fmt(v) for v in extents)})).")
+        lines.append(f"attribute({atom}, colour_names, {to_term(list(anchor.colour_names))}).")
+        categories = sorted(anchor.category.items(), key=lambda kv: -kv[1])
+        pairs = ", ".join(f"{_fmt(p)}-{category_atom(c)}" for c, p in categories)
+        lines.append(f"attribute({atom}, category, [{pairs}]).")
+    if loop.reasoner is not None:
+        lines.extend(particle_facts(loop))
+    return lines
+
+
+def particle_facts(loop: AnchoringLoop) -> list[str]:
+    reasoner = loop.reasoner
+    assert reasoner is not None
+    weights = reasoner.filter.weights
+    lines = [f"particle({i}, {float(w)!r})." for i, w in enumerate(weights)]
+    for anchor in loop.manager.anchors:
+        atom = symbol_atom(anchor.symbol)
+        positions = reasoner.filter.values("P", f"pos({atom}):t ~= P")
+        occluders = reasoner.filter.values("O", f"occluded_by({atom}, O):t")
+        for i, (pos, occ) in enumerate(zip(positions, occluders, strict=True)):
+            if pos is not None:
+                x, y, z = (float(v) for v in pos)
+                lines.append(f"particle_fact({i}, pos({atom}, ({_fmt(x)}, {_fmt(y)}, {_fmt(z)}))).")
+            if occ is not None:
+                lines.append(f"particle_fact({i}, occluded_by({atom}, {to_term(str(occ))})).")
+    return lines
+
+
+def write_world(path: Path, loop: AnchoringLoop, perceived: set[str]) -> None:
+    path.write_text("\n".join(world_facts(loop, perceived)) + "\n", encoding="utf-8")
