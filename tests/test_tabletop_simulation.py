@@ -158,3 +158,12 @@ def test_a_container_covers_one_thing_at_a_time():
     with pytest.raises(ScenarioError, match="already covers") as info:
         frames_at(b.build(), [3.0])
     assert info.value.line is None or info.value.line > 0
+
+
+def test_put_under_can_slide_the_object_under_a_container_in_place():
+    b = shell()
+    b.put_under(0.2, "ball_1", "box_1", duration=1.0, move="object")
+    fr = frames_at(b.build(), [1.6])[1.6].truth["objects"]
+    assert fr["box_1"]["position"] == pytest.approx([0.0, 0.05, 0.06], abs=1e-9)
+    assert fr["ball_1"]["position"][:2] == pytest.approx([0.0, 0.05], abs=1e-9)
+    assert fr["ball_1"]["hidden_by"] == "box_1"

@@ -43,7 +43,7 @@ class PipelineConfig:
     min_height: float = 0.008  # above the table plane
     max_height: float = 0.5
     workspace: tuple[float, float, float, float] = (-0.6, 0.6, -0.5, 0.5)  # x0 x1 y0 y1
-    depth_jump: float = 0.03  # relative depth step that separates two segments
+    depth_jump: float = 0.02  # relative depth step that separates two segments
     min_pixels: int = 30
     skin_min_pixels: int = 60
     skin: SkinWindow = field(default_factory=SkinWindow)

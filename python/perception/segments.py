@@ -74,16 +74,18 @@ def occluded_side(depth: np.ndarray, valid: np.ndarray, jump: float) -> np.ndarr
 
 def _same_body(a: tuple[np.ndarray, np.ndarray], b: tuple[np.ndarray, np.ndarray],
                touch: float) -> bool:
-    """Whether two 3-D boxes touch (within ``touch`` along every axis) and overlap over at
-    least half of the smaller extent along two axes: the near wall and the far inner wall of
-    an upright cup. Two solid objects standing apart do not."""
+    """Whether two 3-D boxes touch (within ``touch`` along every axis), overlap over at least
+    half of the smaller extent along two axes and have their tops at the same height (within
+    1 cm): the near wall and the far inner wall of an upright cup, both ending at its rim.
+    An object standing just behind another of another height does not qualify."""
     overlap = np.minimum(a[1], b[1]) - np.maximum(a[0], b[0])
     smaller = np.minimum(a[1] - a[0], b[1] - b[0])
-    return bool(np.all(overlap >= -touch) and np.sum(overlap >= 0.5 * smaller) >= 2)
+    return bool(np.all(overlap >= -touch) and np.sum(overlap >= 0.5 * smaller) >= 2
+                and abs(float(a[1][2] - b[1][2])) <= 0.01)
 
 
 def merge_fragments(segments: list[Segment], max_pixels: float, gap: float,
-                    touch: float = 0.005) -> list[Segment]:
+                    touch: float = 0.01) -> list[Segment]:
     """Merge the pieces of one object that depth jumps cut apart: a small segment (a mug's
     handle) into the nearest larger one whose 3-D box is within ``gap``, and any segment whose
     3-D box touches a larger one's and overlaps it along two axes (the far inner wall of an

@@ -97,7 +97,7 @@ def build_dataset(n_scenes: int, seed: int = 0) -> Dataset:
     return Dataset(np.array(feats), np.array(labels), np.array(scenes))
 
 
-def train(n_scenes: int = 500, seed: int = 0, hidden: int = 32
+def train(n_scenes: int = 800, seed: int = 0, hidden: int = 32
           ) -> tuple[CategoryModel, dict]:
     """Train on 80 % of the scenes, test on the rest. Returns the model and a report."""
     import sklearn

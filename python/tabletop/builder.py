@@ -75,9 +75,12 @@ class ScenarioBuilder:
                  ) -> ScenarioBuilder:
         return self.event(at, "put_down", object=obj, to=to, duration=duration)
 
-    def put_under(self, at: float, obj: str, container: str, duration: float = 2.0
-                  ) -> ScenarioBuilder:
-        return self.event(at, "put_under", object=obj, container=container, duration=duration)
+    def put_under(self, at: float, obj: str, container: str, duration: float = 2.0,
+                  move: str | None = None) -> ScenarioBuilder:
+        """``move="object"`` slides the object under the container where it stands; by
+        default the container is carried over the object."""
+        return self.event(at, "put_under", object=obj, container=container, duration=duration,
+                          move=move)
 
     def lift(self, at: float, container: str, to: tuple[float, ...] | None = None,
              duration: float = 2.0, height: float | None = None) -> ScenarioBuilder:

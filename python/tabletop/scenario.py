@@ -367,7 +367,7 @@ def _colour(r: _Reader, key: str = "colour") -> tuple[tuple[float, float, float]
 _OBJECT_KEYS = {"id", "category", "shape", "colour", "color", "radius", "height", "size",
                 "position", "yaw", "upside_down", "under", "mesh", "mesh_scale"}
 _EVENT_KEYS = {"at", "do", "object", "to", "via", "speed", "duration", "container", "a", "b",
-               "containers", "order", "hand", "height"}
+               "containers", "order", "hand", "height", "move"}
 _CAMERA_KEYS = {"width", "height", "fov_y", "fx", "fy", "cx", "cy", "position", "target", "up",
                 "near", "far", "min_depth", "max_depth"}
 _NOISE_KEYS = {"depth_sigma_base", "depth_sigma_quadratic", "edge_jump", "edge_dropout",
@@ -434,7 +434,7 @@ def _parse_event(source: str, node: Any) -> Event:
         raise r.fail(f"unknown event '{kind}' (known: {', '.join(EVENT_KINDS)})", "do")
     r.what = f"event '{kind}' at {at}"
     params: dict[str, Any] = {}
-    for key in ("object", "container", "a", "b", "hand"):
+    for key in ("object", "container", "a", "b", "hand", "move"):
         if r.has(key):
             params[key] = r.string(key)
     for key in ("speed", "duration", "height"):
@@ -647,7 +647,7 @@ def _event_movers(ev: Event) -> list[str]:
     if ev.kind in ("move", "lift", "pick_up", "put_down"):
         return [p.get("object") or p.get("container")]
     if ev.kind == "put_under":
-        return [p["container"]]
+        return [p["container"], p["object"]]
     if ev.kind == "swap":
         return [p["a"], p["b"]]
     if ev.kind == "shuffle":
@@ -695,7 +695,14 @@ def _check_event(scn: Scenario, ev: Event, ids: dict[str, ObjectSpec],
         if inner.id == outer.id:
             raise _err(scn, "event 'put_under': an object cannot go under itself", ev.line)
         _check_fits(scn, inner, outer, ev.line)
-        where[outer.id] = where[inner.id]
+        mover = p.setdefault("move", "container")
+        if mover not in ("container", "object"):
+            raise _err(scn, f"event 'put_under': 'move' must be 'container' or 'object', got "
+                       f"'{mover}'", ev.line)
+        if mover == "container":
+            where[outer.id] = where[inner.id]
+        else:
+            where[inner.id] = where[outer.id]
     elif ev.kind == "lift":
         cont = known(need("container"))
         if not cont.is_container:

@@ -250,6 +250,15 @@ class Timeline:
         top = p_in[2] + o_in.half_extents()[2]
         lift_z = max(top + o_out.half_extents()[2] + 0.03, p_out[2] + 0.05)
         dx, dy = o_out.cavity_offset()
+        if ev.params.get("move") == "object":
+            # the container is lifted where it stands, the object slides under it
+            up = np.array([p_out[0], p_out[1], lift_z])
+            spot = np.array([p_out[0] + dx, p_out[1] + dy, p_in[2]])
+            self._segment(outer, t0, t0 + 0.3 * d, p_out, up)
+            self._segment(inner, t0 + 0.3 * d, t0 + 0.7 * d, p_in, spot)
+            self._segment(outer, t0 + 0.7 * d, t0 + d, up, [p_out[0], p_out[1], o_out.rest_z])
+            self._action(t0 + d, self._attach(inner, outer))
+            return
         final = np.array([p_in[0] - dx, p_in[1] - dy, o_out.rest_z])
         self._segment(outer, t0, t0 + 0.3 * d, p_out, [p_out[0], p_out[1], lift_z])
         self._segment(outer, t0 + 0.3 * d, t0 + 0.7 * d, [p_out[0], p_out[1], lift_z],

@@ -15,7 +15,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "train-classifier", help="train the category classifier on rendered views",
         description=__doc__.split("\n\n")[1] if __doc__ else None)
-    parser.add_argument("--scenes", type=int, default=500, help="random tables (default 500)")
+    parser.add_argument("--scenes", type=int, default=800, help="random tables (default 800)")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     parser.add_argument("--out", type=Path, default=None,
                         help="model file (default: python/perception/models/category_mlp.json)")
