@@ -113,8 +113,9 @@ class Attribute:
         if cached is None:
             support = self.support()
             cached = np.empty((self.dim + 1, support.shape[0]))
-            cached[:-1] = support.T
-            cached[-1] = (support * support).sum(axis=1)
+            coords = cached[:-1]
+            coords[...] = support.T
+            np.einsum("ij,ij->j", coords, coords, out=cached[-1])
             self.__dict__["_augmented"] = cached
         return cached
 
