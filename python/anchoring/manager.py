@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import json
 import logging
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -44,6 +45,7 @@ from percepts import Percept, PerceptError
 log = logging.getLogger("anchoring")
 
 FORMAT = "anchoring-world/1"
+_NUMBER_LIST = re.compile(r"\[\s+([-+0-9eE.,\s]+?)\s+\]")
 
 
 @dataclass
@@ -240,8 +242,11 @@ class AnchorManager:
         }
 
     def save(self, path: str | Path) -> None:
-        """Write the world model as indented JSON (a person can read it)."""
-        Path(path).write_text(json.dumps(self.to_json(), indent=1) + "\n", encoding="utf-8")
+        """Write the world model as indented JSON (a person can read it): one anchor field per
+        line, each list of numbers (a position, a particle, a histogram) on one line."""
+        text = json.dumps(self.to_json(), indent=1)
+        text = _NUMBER_LIST.sub(lambda m: "[" + " ".join(m.group(1).split()) + "]", text)
+        Path(path).write_text(text + "\n", encoding="utf-8")
 
     @classmethod
     def load(cls, path: str | Path, matcher: Matcher | None = None) -> AnchorManager:
