@@ -167,3 +167,14 @@ def test_put_under_can_slide_the_object_under_a_container_in_place():
     assert fr["box_1"]["position"] == pytest.approx([0.0, 0.05, 0.06], abs=1e-9)
     assert fr["ball_1"]["position"][:2] == pytest.approx([0.0, 0.05], abs=1e-9)
     assert fr["ball_1"]["hidden_by"] == "box_1"
+
+
+def test_an_object_let_go_above_the_table_falls_and_settles():
+    b = ScenarioBuilder("drop")
+    b.add("ball_1", "ball", "red", position=(0.0, 0.0))
+    b.move(0.2, "ball_1", (0.1, 0.0, 0.3), duration=1.0)
+    fr = frames_at(b.build(), [1.2, 1.4, 2.0])
+    assert fr[1.2].truth["objects"]["ball_1"]["position"][2] == pytest.approx(0.3, abs=1e-6)
+    # after 0.2 s of free fall it has dropped g t^2 / 2 = 0.196 m
+    assert fr[1.4].truth["objects"]["ball_1"]["position"][2] == pytest.approx(0.104, abs=2e-3)
+    assert fr[2.0].truth["objects"]["ball_1"]["position"] == pytest.approx([0.1, 0.0, 0.03])

@@ -21,6 +21,7 @@ from tabletop.scenario import Event, ObjectSpec, Scenario
 
 HAND_HOME = np.array([0.95, 0.15, 0.25])  # out of view, to the right of the table
 CARRY_Z = 0.22  # height of the hand's centre while it carries something
+GRAVITY = 9.81
 
 
 def _smooth(s: float) -> float:
@@ -34,9 +35,12 @@ class Segment:
     t0: float
     t1: float
     points: list[np.ndarray]
+    falling: bool = False  # uniformly accelerated (a free fall) instead of smooth
 
     def position(self, t: float) -> np.ndarray:
-        s = _smooth((t - self.t0) / (self.t1 - self.t0)) if self.t1 > self.t0 else 1.0
+        f = min(max((t - self.t0) / (self.t1 - self.t0), 0.0), 1.0) if self.t1 > self.t0 \
+            else 1.0
+        s = f * f if self.falling else _smooth(f)
         lengths = [float(np.linalg.norm(b - a)) for a, b in zip(self.points, self.points[1:],
                                                                strict=False)]
         total = sum(lengths)
@@ -205,6 +209,13 @@ class Timeline:
                                                                        strict=False))
             d = max(length / ev.params["speed"], 1e-3)
         self._segment(body, t0, t0 + d, *[p + offset for p in pts])
+        rest = self.objects[oid].rest_z
+        if body == oid and pts[-1][2] > rest + 1e-3:
+            # let go above the table: it falls and settles (nothing is stacked)
+            drop = float(pts[-1][2] - rest)
+            self.segments.append(Segment(oid, t0 + d, t0 + d + math.sqrt(2 * drop / GRAVITY),
+                                         [pts[-1], np.array([pts[-1][0], pts[-1][1], rest])],
+                                         falling=True))
 
     def _ev_pick_up(self, ev: Event, t0: float, d: float) -> None:
         oid = ev.params["object"]
