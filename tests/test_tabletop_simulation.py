@@ -178,3 +178,16 @@ def test_an_object_let_go_above_the_table_falls_and_settles():
     # after 0.2 s of free fall it has dropped g t^2 / 2 = 0.196 m
     assert fr[1.4].truth["objects"]["ball_1"]["position"][2] == pytest.approx(0.104, abs=2e-3)
     assert fr[2.0].truth["objects"]["ball_1"]["position"] == pytest.approx([0.1, 0.0, 0.03])
+
+
+def test_picking_up_a_container_leaves_what_it_covered():
+    b = ScenarioBuilder("reveal")
+    b.add("cup_1", "cup", "orange", position=(0.0, 0.05), radius=0.04, height=0.09)
+    b.add("ball_1", "ball", "red", under="cup_1")
+    b.pick_up(0.2, "cup_1", duration=1.5)
+    fr = frames_at(b.build(), [0.0, 2.0])
+    assert fr[0.0].truth["objects"]["ball_1"]["hidden_by"] == "cup_1"
+    ball = fr[2.0].truth["objects"]["ball_1"]
+    assert ball["visible"] and ball["under"] is None
+    assert ball["position"] == pytest.approx([0.0, 0.05, 0.03], abs=1e-9)
+    assert fr[2.0].truth["objects"]["cup_1"]["held_by"] == "hand_1"

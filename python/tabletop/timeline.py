@@ -231,7 +231,12 @@ class Timeline:
         carry = np.array([grip[0], grip[1], max(CARRY_Z, grip[2] + 0.1)])
         self._segment(hand, t0, t0 + 0.4 * d, self._pos(hand), above)
         self._segment(hand, t0 + 0.4 * d, t0 + 0.6 * d, above, grip)
-        self._action(t0 + 0.6 * d, self._attach(oid, hand))
+
+        def grasp() -> None:
+            for child in self.state.children(oid):  # what it covered stays on the table
+                self.state.parent.pop(child, None)
+            self.state.parent[oid] = hand
+        self._action(t0 + 0.6 * d, grasp)
         self._segment(hand, t0 + 0.6 * d, t0 + d, grip, carry)
 
     def _ev_put_down(self, ev: Event, t0: float, d: float) -> None:
