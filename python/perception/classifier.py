@@ -26,14 +26,17 @@ class CategoryModel:
     weights: list[np.ndarray]
     biases: list[np.ndarray]
     meta: dict
+    temperature: float = 1.0  # softmax temperature, fitted on held-out scenes
 
-    def probabilities(self, features: np.ndarray) -> np.ndarray:
+    def probabilities(self, features: np.ndarray, temperature: float | None = None
+                      ) -> np.ndarray:
         """(N, C) class probabilities for (N, F) features."""
         x = (np.atleast_2d(features) - self.mean) / self.scale
         for i, (w, b) in enumerate(zip(self.weights, self.biases, strict=True)):
             x = x @ w + b
             if i < len(self.weights) - 1:
                 x = np.maximum(x, 0.0)
+        x = x / (self.temperature if temperature is None else temperature)
         x = x - x.max(axis=1, keepdims=True)
         e = np.exp(x)
         return e / e.sum(axis=1, keepdims=True)
@@ -54,6 +57,7 @@ class CategoryModel:
             "scale": self.scale.tolist(),
             "weights": [w.tolist() for w in self.weights],
             "biases": [b.tolist() for b in self.biases],
+            "temperature": self.temperature,
             "meta": self.meta,
         }
 
@@ -71,4 +75,5 @@ class CategoryModel:
             weights=[np.asarray(w, float) for w in data["weights"]],
             biases=[np.asarray(b, float) for b in data["biases"]],
             meta=dict(data.get("meta", {})),
+            temperature=float(data.get("temperature", 1.0)),
         )

@@ -1,8 +1,9 @@
 """`anchoring train-classifier`: train the category classifier on rendered views.
 
 Renders random tables (3-4 objects of the categories ball, box, can, cup, mug), segments
-them with the pipeline, trains a small MLP on the shape features of 80 % of the scenes, tests
-it on the other 20 % and writes the model (JSON weights) with its held-out accuracy.
+them with the pipeline, trains a small MLP on the shape features of 60 % of the scenes, fits
+its softmax temperature on 20 %, tests it on the last 20 % and writes the model (JSON
+weights) with its held-out accuracy.
 """
 
 from __future__ import annotations
@@ -33,8 +34,12 @@ def run(args: argparse.Namespace) -> int:
     model.save(out)
     labels = report["confusion"]["labels"]
     print(f"held-out accuracy {report['held_out_accuracy']:.3f} on {report['test_segments']} "
-          f"segments ({report['train_segments']} for training, {report['scenes']} scenes, "
+          f"segments ({report['train_segments']} for training, "
+          f"{report['calibration_segments']} for calibration, {report['scenes']} scenes, "
           f"seed {report['seed']})")
+    print(f"softmax temperature {report['temperature']:.2f}: held-out log loss "
+          f"{report['held_out_nll']:.3f} (uncalibrated {report['held_out_nll_uncalibrated']:.3f}),"
+          f" mean top probability {report['mean_top_probability']:.3f}")
     print("confusion (rows: true, columns: predicted)")
     print("        " + " ".join(f"{c:>5}" for c in labels))
     for name, row in zip(labels, report["confusion"]["matrix"], strict=True):
