@@ -110,11 +110,11 @@ def test_shipped_model_decides_the_obvious_cases():
     same = np.array([0.95, 0.97, math.exp(-0.01), 0.9, 2 / (1 + math.exp(1 / 15))])
     far = same.copy()
     far[2] = math.exp(-0.5)
-    other_colour = same.copy()
-    other_colour[1] = 0.2
+    # a mug lifted where a hidden ball's particles are: another category, colour and size
+    container = np.array([0.0, 0.5, math.exp(-0.05), 0.3, 2 / (1 + math.exp(2.0))])
     assert m.decision(same) > 0
     assert m.decision(far) < 0
-    assert m.decision(other_colour) < 0
+    assert m.decision(container) < 0
     assert m.decision(np.stack([same, far])).shape == (2,)
 
 
