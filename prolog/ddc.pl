@@ -222,6 +222,7 @@ declare_program_preds(M, Info) :-
     dynamic(M:'$ddc_info'/1),
     dynamic(M:'$ddc_tmp'/4),
     dynamic(M:'$sweep'/4),
+    dynamic(M:'$sweep_key'/4),
     forall(member(N/A, DerU),
            ( A1 is A+1, derived_name(N, d, DN), dynamic(M:DN/A1),
              derived_name(N, d0, DN0), dynamic(M:DN0/A1) )),
@@ -256,7 +257,10 @@ compile_program(File, M, Items0, Clauses, Info) :-
     derived_dispatchers(Info, Ds),
     clause_positions(Items, File, Ps),
     findall('$sweep'(rv, K, X, Id),
-            ( member(rv(Id, X, K, _, _, _), Items), K \== u, K \== state ), Sw1),
+            ( member(rv(Id, X, K, _, _, _), Items), K \== u, K \== state ), Sw1a),
+    findall(C, ( member(rv(Id, X, K, _, B, _), Items), K \== u, K \== state,
+                 sweep_key_clause(Id, X, K, B, Info, C) ), Sw1b),
+    append(Sw1a, Sw1b, Sw1),
     findall('$sweep'(der, K, N/A, 0),
             ( member(der(_, X, K, _, _), Items), K \== u, K \== state, functor(X, N, A) ), Sw2a),
     sort(Sw2a, Sw2),
@@ -468,6 +472,37 @@ compile_rv(Id, X, K, D, B, L, File, Info, Items, Clause) :-
     ;   Body = ( Id > Skip, Guard, BodyCode, GroundCheck, DistCode, Out = Out0 )
     ),
     Clause = (Head :- Body).
+
+%   '$sweep_key'(Id, X, T, W): the candidate heads X of transition clause
+%   Id at time T: the shortest prefix of its body that binds the head's
+%   variables (the filter's sweep then reads each candidate, which picks
+%   the clause that applies; running whole bodies there would be wasted).
+sweep_key_clause(Id, X, K, B, Info, ('$sweep_key'(Id, X, TArg, W) :- Guard, Code)) :-
+    time_guard(K, TArg, W, Tc, Guard),
+    conj_list(B, Ls),
+    term_variables(X, HVs),
+    binding_prefix(Ls, HVs, Prefix),
+    conj_from_list(Prefix, PB),
+    cb(PB, ctx(W, Tc, Info, clause), Code).
+
+binding_prefix(_, [], []) :- !.
+binding_prefix([], _, []).
+binding_prefix([L|Ls], Vs, [L|P]) :-
+    (   binds_nothing(L) -> Vs1 = Vs
+    ;   term_variables(L, LVs), vars_not_in(Vs, LVs, Vs1)
+    ),
+    binding_prefix(Ls, Vs1, P).
+
+binds_nothing(L) :- var(L), !, fail.
+binds_nothing(\+ _).
+binds_nothing(L) :- compound(L), functor(L, Op, 2), memberchk(Op, [<, >, =<, >=, =:=, =\=, \==, ==]).
+
+vars_not_in([], _, []).
+vars_not_in([V|Vs], LVs, Out) :-
+    (   memberchk_eq(V, LVs) -> Out = Out1 ; Out = [V|Out1] ),
+    vars_not_in(Vs, LVs, Out1).
+
+memberchk_eq(X, L) :- nonvar(L), L = [Y|Ys], ( X == Y -> true ; memberchk_eq(X, Ys) ).
 
 clause_compile_error(error(ddc(C, _), _), File, L) :- !,
     throw(error(ddc(C, File:L), _)).
@@ -895,7 +930,9 @@ key_term(X, u, X) :- !.
 key_term(X, T, X:T).
 
 draw('$chk'(D, Id), W, V) :- !,
-    (   cheap_check(D)
+    (   fast_valid(D)
+    ->  dist_sample(D, V)
+    ;   cheap_check(D)
     ->  checked(D, Id, W),
         dist_sample(D, V)
     ;   catch(dist_sample(D, V0), E, true),
@@ -910,6 +947,10 @@ draw(D, _, V) :-
 %   Distributions whose invalid parameters would not stop the sampler
 %   (probabilities not summing to 1 ...) are checked before each draw;
 %   the others (gaussian, beta, ...) only when sampling raises an error.
+%   Parameters valid by construction (a common case, tested inline).
+fast_valid(uniform(L)) :- is_list(L), L \== [].
+fast_valid(val(_)).
+
 cheap_check(finite(_)).
 cheap_check(propfinite(_)).
 cheap_check(logfinite(_)).
@@ -939,7 +980,9 @@ weigh_key(X, T, V, W, Acc) :-
         (   Out = '$prop'(LJ)
         ->  add_logw(W, Acc, LJ)
         ;   Out = '$chk'(D, Id1)
-        ->  (   cheap_check(D)
+        ->  (   fast_valid(D)
+            ->  weigh(D, V, W, Acc)
+            ;   cheap_check(D)
             ->  checked(D, Id1, W), weigh(D, V, W, Acc)
             ;   catch(weigh(D, V, W, Acc), E, ( checked(D, Id1, W), throw(E) ))
             )
@@ -961,9 +1004,8 @@ weigh(D, V, W, Acc) :-
 %   dead, so that "no clause applies" and "weight 0" stay distinct.
 add_logw(W, Acc, LP) :-
     arg(Acc, W, L0),
-    (   LP =:= -inf -> L = LP
-    ;   L0 =:= -inf -> L = L0
-    ;   L is L0 + LP
+    (   LP > -inf, L0 > -inf -> L is L0 + LP
+    ;   L is -inf
     ),
     nb_setarg(Acc, W, L).
 

@@ -105,7 +105,7 @@ filter_step(F, Obs, Acts, LogWs) :-
     forall(member(A, Acts), must_be_ground_item(A)),
     T1 is T+1,
     M:'$ddc_info'(Info),
-    partition([O]>>(O = (_ ~= _)), Obs, Weighted, PlainObs),
+    partition(weighted_observation, Obs, Weighted, PlainObs),
     append(Acts, PlainObs, Facts0),
     group_facts(Facts0, Facts),
     maplist(observation_key(Info, T1), Weighted, Keys),
@@ -118,6 +118,9 @@ filter_step(F, Obs, Acts, LogWs) :-
                            step_particle(W, T1, Facts, Keys, LW) ), LogWs),
              R1),
     nb_setval(F, filter(M, N, T1, Ws, prev(T, Ws0), R1)).
+
+weighted_observation(O) :-
+    nonvar(O), O = (_ ~= _).
 
 must_be_ground_item(X) :-
     (   ground(X) -> true ; throw(error(ddc(not_ground(X), query), _)) ).
@@ -173,8 +176,7 @@ drop_step_keys(W) :-
     (   SK == []
     ->  true
     ;   arg(1, W, S),
-        store_filter(S, not_step_key(SK), S1),
-        nb_setarg(1, W, S1),
+        store_retain(S, not_step_key(SK)),
         nb_setarg(13, W, [])
     ).
 
@@ -184,8 +186,7 @@ not_step_key(SK, K, _) :-
 %   Keep the entries of time >= T1 and the untimed ones.
 drop_before(W, T1) :-
     arg(1, W, S),
-    store_filter(S, keep_entry(T1), S1),
-    nb_setarg(1, W, S1).
+    store_retain(S, keep_entry(T1)).
 
 keep_entry(T1, K, _) :-
     entry_time(K, T),
@@ -203,9 +204,10 @@ sweep(W, T) :-
     arg(2, W, M),
     nb_setarg(11, W, sweep),
     forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T), \+ X = observation(_) ),
-           ( Skip is Id-1,
-             forall(catch_head(M, X, T, W, Skip, Id),
-                    ignore('$read'(X, T, _, W))) )),
+           forall(M:'$sweep_key'(Id, X, T, W),
+                  (   ground(X) -> ignore('$read'(X, T, _, W))
+                  ;   '$clause_error'(W, Id, non_ground_head(X))
+                  ))),
     arg(1, W, S),
     forall(( M:'$sweep'(der, K, N/A, _), sweep_kind(K, T) ),
            ( functor(G, N, A), G =.. [_|Args],
@@ -220,10 +222,6 @@ sweep(W, T) :-
 sweep_kind(trans, T) :- T >= 1.
 sweep_kind(persist, T) :- T >= 1.
 sweep_kind(fixed(T), T).
-
-catch_head(M, X, T, W, Skip, Id) :-
-    M:'$rv'(X, T, W, Skip, none, _, _, Id, _),
-    ground(X).
 
 %!  filter_undo(+Filter) is det.
 %
@@ -262,7 +260,10 @@ filter_resample(F, Is) :-
 %   needs and the particle lacks are sampled and kept in the particle.
 filter_holds(F, Goal, Flags) :-
     filter_query(F, Goal, true, Sols),
-    maplist([S, B]>>(S == none -> B = 0 ; B = 1), Sols, Flags).
+    maplist(solution_flag, Sols, Flags).
+
+solution_flag(S, B) :-
+    (   S == none -> B = 0 ; B = 1 ).
 
 %!  filter_values(+Filter, +Template, +Goal, -Values) is det.
 %

@@ -16,6 +16,7 @@
             store_entries/2,        % +Store, -Pairs
             store_match/3,          % +Store, ?Key, -Value   (non-ground key: scan)
             store_filter/3,         % +Store, :Keep, -NewStore
+            store_retain/2,         % +Store, :Keep  (in place)
             store_size/2            % +Store, -Count
           ]).
 
@@ -26,7 +27,7 @@ else Buckets = b(L1, ..., Ln), each Li unbound (empty) or a list of
 Key-Value.  Keys must be ground.
 */
 
-:- meta_predicate store_filter(+, 2, -).
+:- meta_predicate store_filter(+, 2, -), store_retain(+, 2).
 
 %   Small stores (up to 8 entries) are a list of Key-Value in argument 2;
 %   larger ones a bucket term b(L1, ..., Ln).
@@ -106,3 +107,43 @@ store_size(tbl(C, _), C).
 store_filter(T, Keep, New) :-
     store_new(New),
     forall(( store_match(T, K, V), call(Keep, K, V) ), store_put(New, K, V)).
+
+%!  store_retain(+Store, :Keep) is det.
+%
+%   Removes, in place, the entries K-V for which call(Keep, K, V) fails.
+store_retain(T, Keep) :-
+    T = tbl(_, D),
+    (   D == []
+    ->  true
+    ;   D = [_|_]
+    ->  include_kv(D, Keep, D1, 0, C),
+        nb_setarg(2, T, D1),
+        nb_setarg(1, T, C)
+    ;   functor(D, _, S),
+        retain_buckets(1, S, D, Keep, 0, C),
+        nb_setarg(1, T, C)
+    ).
+
+retain_buckets(I, S, B, Keep, C0, C) :-
+    (   I > S
+    ->  C = C0
+    ;   arg(I, B, L),
+        (   var(L)
+        ->  C1 = C0
+        ;   include_kv(L, Keep, L1, C0, C1),
+            (   L1 == L -> true
+            ;   L1 == [] -> nb_setarg(I, B, _)
+            ;   nb_setarg(I, B, L1)
+            )
+        ),
+        I1 is I+1,
+        retain_buckets(I1, S, B, Keep, C1, C)
+    ).
+
+include_kv([], _, [], C, C).
+include_kv([K-V|T], Keep, Out, C0, C) :-
+    (   call(Keep, K, V)
+    ->  Out = [K-V|Out1], C1 is C0+1
+    ;   Out = Out1, C1 = C0
+    ),
+    include_kv(T, Keep, Out1, C1, C).
