@@ -48,10 +48,11 @@ class Anchor:
 
     def __post_init__(self) -> None:
         # window sums over the history, for the mean size and colour (re-acquire hot path)
+        self._hists = deque((_normalised(p.colour_histogram) for p in self.history),
+                            maxlen=self.history.maxlen)
         self._size_sum = np.sum([p.size for p in self.history], axis=0) if self.history \
             else np.zeros(3)
-        self._hist_sum = np.sum([_normalised(p.colour_histogram) for p in self.history], axis=0) \
-            if self.history else np.zeros(self.colour.dim)
+        self._hist_sum = np.sum(self._hists, axis=0) if self.history else np.zeros(self.colour.dim)
 
     # --- creation and update -------------------------------------------------------------
     @classmethod
@@ -76,12 +77,13 @@ class Anchor:
         """Update with a (validated) percept of this anchor's object."""
         t = percept.time
         if len(self.history) == self.history.maxlen:
-            old = self.history[0]
-            self._size_sum -= old.size
-            self._hist_sum -= _normalised(old.colour_histogram)
+            self._size_sum -= self.history[0].size
+            self._hist_sum -= self._hists[0]
+        hist = _normalised(percept.colour_histogram)
         self.history.append(percept)
+        self._hists.append(hist)
         self._size_sum += percept.size
-        self._hist_sum += _normalised(percept.colour_histogram)
+        self._hist_sum += hist
         n = len(self.history)
         self.position = Attribute.deterministic(percept.position, t, checked=False)
         self.size = Attribute.deterministic(self._size_sum / n, t, checked=False)
@@ -106,13 +108,18 @@ class Anchor:
             raise ValueError(f"{self.symbol}: positions must be (N, 3), got {positions.shape}")
         t = self.position.time if time is None else time
         self.position = Attribute.probabilistic(positions, weights, t)
+        self.position.augmented_support()  # the matching form, prepared once per update
 
     # --- views ---------------------------------------------------------------------------
+    def category_average(self) -> dict[str, float]:
+        """The category estimate (average over all percepts), unsorted."""
+        n = self.category_count
+        return {k: v / n for k, v in self.category_sums.items()}
+
     @property
     def category(self) -> dict[str, float]:
         """The current category estimate (average over all percepts), best first."""
-        avg = {k: v / self.category_count for k, v in self.category_sums.items()}
-        return dict(sorted(avg.items(), key=lambda kv: (-kv[1], kv[0])))
+        return dict(sorted(self.category_average().items(), key=lambda kv: (-kv[1], kv[0])))
 
     @property
     def best_category(self) -> str:

@@ -29,10 +29,10 @@ def pair_features(anchors: Sequence[Anchor], percepts: Sequence[Percept]) -> np.
     if a == 0 or p == 0:
         return out
     out[..., 0] = category_similarity(
-        [an.category for an in anchors], [pc.category for pc in percepts]
+        [an.category_average() for an in anchors], [pc.category for pc in percepts]
     )
     out[..., 1] = colour_similarity(
-        np.array([an.colour.value for an in anchors]),
+        np.array([an.colour.samples[0] for an in anchors]),
         np.array([_normalised(pc.colour_histogram) for pc in percepts]),
     )
     out[..., 2] = position_similarity_augmented(
@@ -40,7 +40,7 @@ def pair_features(anchors: Sequence[Anchor], percepts: Sequence[Percept]) -> np.
         np.array([pc.position for pc in percepts]),
     )
     out[..., 3] = size_similarity(
-        np.array([an.size.value for an in anchors]), np.array([pc.size for pc in percepts])
+        np.array([an.size.samples[0] for an in anchors]), np.array([pc.size for pc in percepts])
     )
     out[..., 4] = time_similarity(
         np.array([an.last_seen for an in anchors]), np.array([pc.time for pc in percepts])
