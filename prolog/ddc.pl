@@ -471,7 +471,17 @@ compile_rv(Id, X, K, D, B, L, File, Info, Items, Clause) :-
                  ) )
     ;   Body = ( Id > Skip, Guard, BodyCode, GroundCheck, DistCode, Out = Out0 )
     ),
-    Clause = (Head :- Body).
+    drop_unused_time(Guard, Tc, Body, Body1),
+    Clause = (Head :- Body1).
+
+%   An untimed clause reads the world's time only if its body uses it.
+drop_unused_time(Guard, Tc, Body, Body1) :-
+    (   Guard = arg(3, _, Tc0), Tc0 == Tc,
+        Body = (A, G, Rest), G == Guard,
+        \+ occurs_in(Tc, Rest)
+    ->  Body1 = (A, Rest)
+    ;   Body1 = Body
+    ).
 
 %   '$sweep_key'(Id, X, T, W): the candidate heads X of transition clause
 %   Id at time T: the shortest prefix of its body that binds the head's
@@ -670,7 +680,10 @@ compile_der(_Id, X, K, B, Info, Clause) :-
         derived_name(N, Kind, DN),
         append(Args, [W], HArgs),
         Head =.. [DN|HArgs],
-        Clause = (Head :- arg(3, W, Tc), BodyCode)
+        (   occurs_in(Tc, BodyCode)
+        ->  Clause = (Head :- arg(3, W, Tc), BodyCode)
+        ;   Clause = (Head :- BodyCode)
+        )
     ;   tier(K, Tier),
         ( Tier == 2 -> Kind = dt2 ; Kind = dt1 ),
         derived_name(N, Kind, DN),
@@ -740,6 +753,10 @@ cb(\+ A, C, \+ CA) :- !, cb(A, C, CA).
 cb(once(A), C, once(CA)) :- !, cb(A, C, CA).
 cb(ignore(A), C, ignore(CA)) :- !, cb(A, C, CA).
 cb(forall(A,B), C, forall(CA,CB)) :- !, cb(A, C, CA), cb(B, C, CB).
+cb(findall(T,G,L), _, Code) :-              % peephole: a range of integers
+    var(T), nonvar(G), G = between(Lo, Hi, T1), T1 == T,
+    \+ occurs_in(T, Lo-Hi), !,
+    Code = ( Lo1 is Lo, Hi1 is Hi, ( Hi1 >= Lo1 -> numlist(Lo1, Hi1, L) ; L = [] ) ).
 cb(findall(T,G,L), C, findall(T,CG,L)) :- !, cb(G, C, CG).
 cb(findall(T,G,L,R), C, findall(T,CG,L,R)) :- !, cb(G, C, CG).
 cb(findall_forward(T,G,L), C, findall(T,CG,L)) :- !, cb(G, C, CG).
@@ -747,7 +764,10 @@ cb(aggregate_all(S,G,R), C, aggregate_all(S,CG,R)) :- !, cb(G, C, CG).
 cb(H ~= V, C, Code) :- !,
     read_key_code(H, C, X, T, TG),
     Ctx = C, Ctx = ctx(W, _, _, _),
-    Code = (TG, ddc:'$read'(X, T, V, W)).
+    (   ground(X)
+    ->  Code = (TG, ddc:read_key(X, T, V, W))
+    ;   Code = (TG, ddc:'$read'(X, T, V, W))
+    ).
 cb(true(P), _, ddc:'$flip'(P)) :- !.
 cb(sample(D, X), _, ddc:'$sample_inline'(D, X)) :- !.
 cb(belief(A), _, ground(A)) :- !.
@@ -1325,9 +1345,9 @@ one_sample(M, Id, Time, Ev, I, s(W, DX, QW, X)) :-
     M:'$ddc_tmp'(Id, ev, Wd, _),
     !,
     arg(6, Wd, LW),
-    LW > -inf,
-    W is exp(LW),
-    W > 0.0,
+    (   LW == 0.0 -> W = 1.0
+    ;   LW > -inf, W is exp(LW), W > 0.0
+    ),
     arg(7, Wd, DX),
     (   M:'$ddc_tmp'(Id, q, Wd, X0)
     ->  arg(8, Wd, QLW), exp_w(QLW, QW), X = X0
@@ -1427,7 +1447,10 @@ query_literal(Ctx, G, Code) :-
     cb(G, Ctx, Code).
 
 exp_w(L, W) :-
-    (   L =:= -inf -> W = 0.0 ; W is exp(L) ).
+    (   L == 0.0 -> W = 1.0
+    ;   L =:= -inf -> W = 0.0
+    ;   W is exp(L)
+    ).
 
 %!  ddc_sample_world(+Module, +Query, +Options, -Facts) is semidet.
 %

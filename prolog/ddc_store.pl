@@ -54,17 +54,23 @@ store_get(tbl(_, D), K, V) :-
 %   Adds Key-Value (Key must not be present; the engine checks first).
 store_put(T, K, V) :-
     T = tbl(C, D),
-    C1 is C + 1,
-    nb_setarg(1, T, C1),
-    (   compound(D), \+ D = [_|_]
-    ->  bucket_put(D, K, V),
+    (   D = [_|_]
+    ->  (   C >= 8
+        ->  functor(B, b, 16),
+            forall(member(K0-V0, [K-V|D]), bucket_put(B, K0, V0)),
+            nb_setarg(2, T, B)
+        ;   nb_setarg(2, T, [K-V|D])
+        ),
+        C1 is C + 1,
+        nb_setarg(1, T, C1)
+    ;   D == []
+    ->  nb_setarg(2, T, [K-V]),
+        nb_setarg(1, T, 1)
+    ;   bucket_put(D, K, V),
+        C1 is C + 1,
+        nb_setarg(1, T, C1),
         functor(D, _, S),
         (   C1 > 2*S -> grow(T) ; true )
-    ;   C1 > 8
-    ->  functor(B, b, 16),
-        forall(member(K0-V0, [K-V|D]), bucket_put(B, K0, V0)),
-        nb_setarg(2, T, B)
-    ;   nb_setarg(2, T, [K-V|D])
     ).
 
 bucket_put(B, K, V) :-
