@@ -875,8 +875,8 @@ time_code(E, _, _, _) :-
 %     Mode: normal or sweep (non-ground reads enumerate recorded values only).
 %     Facts: Name/Arity-[Fact, ...] groups of the facts asserted into W.
 %     Check: true if overlapping clauses are checked in this world (the
-%     first overlap_checked_worlds/1 samples of a query, the first
-%     particles of a filter step; a check proves the later clauses'
+%     first overlap_checked_worlds/1 samples of a query, the first 20
+%     particles of each filter step; a check proves the later clauses'
 %     bodies, so it is not done in every world).
 
 new_world(M, Time, Frozen, Ev, W) :-
@@ -1096,7 +1096,7 @@ group_facts(Facts, Groups) :-
 %!  overlap_checked_worlds(-N) is det.
 %
 %   Overlapping clauses are looked for in the first N sampled worlds of a
-%   query and the first N particles of a filter step.
+%   query (and in the first 20 particles of every filter step).
 overlap_checked_worlds(200).
 
 '$memo'(W, G, Call) :-
