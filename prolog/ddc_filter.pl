@@ -30,8 +30,9 @@
          the values recorded) is sampled, every derived h:t+1 atom is
          materialised; heads observation(_) are left out (as in the
          original: observations are not predicted, only weighted);
-      4. time t is dropped: the particle keeps time t+1 and the untimed
-         values.
+      4. time t is no longer derivable (frozen): queries at t+1 may still
+         read h:t; the values of t-1 and the raw observations of t are
+         dropped at the start of the next step.
     Step and resample keep the previous particles for one filter_undo/1.
     A step either completes for all particles or changes nothing.
 */
@@ -130,7 +131,13 @@ observation_key(Info, T1, (H ~= V), k(X, T, V, (H ~= V))) :-
     call(TG).
 
 step_particle(W, T1, Facts, Keys, LW) :-
-    drop_step_keys(W),
+    %   the previous step's raw observations and everything before time t
+    %   (kept until now for queries at t that look one step back) go
+    arg(1, W, S),
+    arg(13, W, SK),
+    T is T1-1,
+    store_prune(S, T, SK),
+    nb_setarg(13, W, []),
     nb_setarg(3, W, T1),
     nb_setarg(12, W, Facts),
     nb_setarg(6, W, 0.0),
@@ -143,7 +150,6 @@ step_particle(W, T1, Facts, Keys, LW) :-
     ),
     nb_setarg(5, W, []),
     sweep(W, T1),
-    drop_before(W, T1),
     nb_setarg(4, W, T1),
     !.
 
@@ -169,32 +175,6 @@ record_raw(X, _, V, W) :-
         arg(13, W, SK),
         nb_setarg(13, W, [X-u|SK])
     ).
-
-drop_step_keys(W) :-
-    arg(13, W, SK),
-    (   SK == []
-    ->  true
-    ;   arg(1, W, S),
-        store_retain(S, not_step_key(SK)),
-        nb_setarg(13, W, [])
-    ).
-
-not_step_key(SK, K, _) :-
-    \+ memberchk(K, SK).
-
-%   Keep the entries of time >= T1 and the untimed ones.
-drop_before(W, T1) :-
-    arg(1, W, S),
-    store_retain(S, keep_entry(T1)).
-
-keep_entry(T1, K, _) :-
-    entry_time(K, T),
-    (   T == u -> true ; T >= T1 ).
-
-entry_time(_-T, T) :- !.
-entry_time('$memo'(_, T), T) :- !.
-entry_time('$mat'(_, T), T) :- !.
-entry_time(_, u).
 
 %   sweep(+W, +T): sample every random variable that a transition (or, at
 %   T = 0, prior) clause defines at T, and materialise the derived atoms

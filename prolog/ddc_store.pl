@@ -17,6 +17,7 @@
             store_match/3,          % +Store, ?Key, -Value   (non-ground key: scan)
             store_filter/3,         % +Store, :Keep, -NewStore
             store_retain/2,         % +Store, :Keep  (in place)
+            store_prune/3,          % +Store, +MinTime, +DropKeys (in place)
             store_size/2            % +Store, -Count
           ]).
 
@@ -153,3 +154,53 @@ include_kv([K-V|T], Keep, Out, C0, C) :-
     ;   Out = Out1, C1 = C0
     ),
     include_kv(T, Keep, Out1, C1, C).
+
+%!  store_prune(+Store, +MinTime, +DropKeys) is det.
+%
+%   In place: removes the entries whose key has a time below MinTime (keys
+%   X-T, '$memo'(G, T), '$mat'(S, T) with an integer T) and the untimed
+%   entries whose key is in DropKeys.  The specialised form of
+%   store_retain/2 the particle filter runs at every step.
+store_prune(T, MinT, Drop) :-
+    T = tbl(_, D),
+    (   D == []
+    ->  true
+    ;   D = [_|_]
+    ->  prune_list(D, MinT, Drop, D1, 0, C),
+        nb_setarg(2, T, D1),
+        nb_setarg(1, T, C)
+    ;   functor(D, _, S),
+        prune_buckets(1, S, D, MinT, Drop, 0, C),
+        nb_setarg(1, T, C)
+    ).
+
+prune_buckets(I, S, B, MinT, Drop, C0, C) :-
+    (   I > S
+    ->  C = C0
+    ;   arg(I, B, L),
+        (   var(L)
+        ->  C1 = C0
+        ;   prune_list(L, MinT, Drop, L1, C0, C1),
+            (   L1 == L -> true
+            ;   L1 == [] -> nb_setarg(I, B, _)
+            ;   nb_setarg(I, B, L1)
+            )
+        ),
+        I1 is I+1,
+        prune_buckets(I1, S, B, MinT, Drop, C1, C)
+    ).
+
+prune_list([], _, _, [], C, C).
+prune_list([E|Es], MinT, Drop, Out, C0, C) :-
+    E = K-_,
+    (   key_time(K, T)
+    ->  (   T >= MinT -> Out = [E|Out1], C1 is C0+1 ; Out = Out1, C1 = C0 )
+    ;   Drop \== [], memberchk(K, Drop)
+    ->  Out = Out1, C1 = C0
+    ;   Out = [E|Out1], C1 is C0+1
+    ),
+    prune_list(Es, MinT, Drop, Out1, C1, C).
+
+key_time(_-T, T) :- integer(T), !.
+key_time('$memo'(_, T), T) :- integer(T), !.
+key_time('$mat'(_, T), T) :- integer(T).
