@@ -99,7 +99,8 @@ filter_free(F) :-
 %   observation in some particle, and leaves the filter unchanged on any
 %   error.
 filter_step(F, Obs, Acts, LogWs) :-
-    filter_state(F, filter(M, N, T, Ws0, _, R0)),
+    filter_state(F, State),
+    State = filter(M, N, T, Ws0, _, R0),
     must_be(list, Obs),
     must_be(list, Acts),
     forall(member(O, Obs), must_be_ground_item(O)),
@@ -110,14 +111,34 @@ filter_step(F, Obs, Acts, LogWs) :-
     append(Acts, PlainObs, Facts0),
     group_facts(Facts0, Facts),
     maplist(observation_key(Info, T1), Weighted, Keys),
-    duplicate_term(Ws0, Ws),
+    scratch_copy(F, Ws0, Ws),
     with_rng(R0,
              findall(LW, ( between(1, N, I), arg(I, Ws, W),
                            ( I =< 20 -> Check = true ; Check = false ),
                            nb_setarg(14, W, Check),
                            step_particle(W, T1, Facts, Keys, LW) ), LogWs),
              R1),
-    nb_setval(F, filter(M, N, T1, Ws, prev(T, Ws0), R1)).
+    commit(F, State, T1, Ws, T, Ws0, R1).
+
+%   scratch_copy(+F, +Ws0, -Ws): Ws is a copy of Ws0 held by a global
+%   variable (so that it survives the query and can be changed in place).
+scratch_copy(F, Ws0, Ws) :-
+    atom_concat(F, '$next', FN),
+    nb_setval(FN, Ws0),
+    nb_getval(FN, Ws).
+
+%   commit: the filter now holds Ws at time T and keeps Ws0 (time T0) for
+%   filter_undo/1.  Both are global terms already, so they are linked,
+%   not copied again.
+commit(F, State, T, Ws, T0, Ws0, R) :-
+    nb_setarg(5, State, prev(T0, '$')),
+    arg(5, State, Prev),
+    nb_linkarg(2, Prev, Ws0),
+    nb_linkarg(4, State, Ws),
+    nb_setarg(3, State, T),
+    nb_setarg(6, State, R),
+    atom_concat(F, '$next', FN),
+    nb_delete(FN).
 
 weighted_observation(O) :-
     nonvar(O), O = (_ ~= _).
@@ -218,7 +239,8 @@ filter_undo(F) :-
 %   Particle i (1-based position in Indices) becomes a copy of particle
 %   Indices[i] (0-based), as chosen by the caller.
 filter_resample(F, Is) :-
-    filter_state(F, filter(M, N, T, Ws0, _, R)),
+    filter_state(F, State),
+    State = filter(_, N, T, Ws0, _, R),
     must_be(list(nonneg), Is),
     (   length(Is, N) -> true
     ;   throw(error(ddc(bad_indices(length_differs_from_particles(N)), query), _))
@@ -226,9 +248,10 @@ filter_resample(F, Is) :-
     (   forall(member(I, Is), I < N) -> true
     ;   throw(error(ddc(bad_indices(index_out_of_range(N)), query), _))
     ),
-    findall(W, ( member(I, Is), I1 is I+1, arg(I1, Ws0, W0), duplicate_term(W0, W) ), L),
-    Ws =.. [ws|L],
-    nb_setval(F, filter(M, N, T, Ws, prev(T, Ws0), R)).
+    findall(W, ( member(I, Is), I1 is I+1, arg(I1, Ws0, W) ), L),
+    Ws1 =.. [ws|L],
+    scratch_copy(F, Ws1, Ws),       % one copy: copies of one particle are independent
+    commit(F, State, T, Ws, T, Ws0, R).
 
 %!  filter_holds(+Filter, +Goal, -Flags) is det.
 %
