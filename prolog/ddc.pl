@@ -58,6 +58,23 @@
 
 /** <module> Dynamic Distributional Clauses
 
+## API (final signatures)
+
+  - ddc_load(+File), ddc_load(+File, ?Module), ddc_program(-Module)
+  - query(+Query, -P), query(+Query, -P, +Options),
+    query(+Evidence, +Query, -P, +Options), query(+PosEv, +NegEv, +Query, +N, -P),
+    query(+PosEv, +NegEv, +Query, ?X, +N, -Avg, -SuccSum, -Sum),
+    expectation(+Evidence, +Query, ?X, -E, +Options),
+    distribution(+Evidence, +Query, ?X, -Dist, +Options),
+    ddc_query(+Module, +Evidence, +Query, +Options, -P, -stats(SE, ESS, NCounted, N))
+  - Python bridge helpers: ddc_query_text/6, ddc_expectation_text/7, ddc_distribution_text/7
+  - logistic(+Inputs, +Weights, -P), linear(+Inputs, +Weights, -Y)
+  - Particle filter (ddc_filter.pl): filter_new(+ProgramFile, +N, +Seed, -Filter),
+    filter_step(+Filter, +Observations, +Actions, -LogWeights), filter_undo(+Filter),
+    filter_resample(+Filter, +Indices), filter_holds(+Filter, +Goal, -Flags),
+    filter_values(+Filter, +Template, +Goal, -Values), filter_time(+Filter, -T),
+    filter_size(+Filter, -N), filter_free(+Filter)
+
 ## Loading
 
     ?- ddc_load('prolog/examples/tutorial.pl'), query(coin ~= true, P).
