@@ -981,23 +981,18 @@ draw('$chk'(D, Id), W, V) :- !,
 draw(D, _, V) :-
     dist_sample(D, V).
 
-%   Distributions whose invalid parameters would not stop the sampler
-%   (probabilities not summing to 1 ...) are checked before each draw;
-%   the others (gaussian, beta, ...) only when sampling raises an error.
+%   Parameters are checked before each draw, except for the multivariate
+%   Gaussians, whose check (a Cholesky factorisation) is the sampler's own
+%   work: those are checked only when sampling raises an error.
+cheap_check(D) :-
+    \+ expensive_check(D).
+
 %   Parameters valid by construction (a common case, tested inline).
 fast_valid(uniform(L)) :- is_list(L), L \== [].
 fast_valid(val(_)).
 
-cheap_check(finite(_)).
-cheap_check(propfinite(_)).
-cheap_check(logfinite(_)).
-cheap_check(uniform(_)).
-cheap_check(bool(_)).
-cheap_check(val(_)).
-cheap_check(poisson(_)).
-cheap_check(exponential(_)).
-cheap_check(contUniform(_, _)).
-cheap_check(D) :- var(D).
+expensive_check(gaussian(M, _)) :- is_list(M).
+expensive_check(indepGaussians(_)).
 
 checked(D, Id, W) :-
     catch(dist_check(D), error(ddc_distribution(D1, Why), _),
