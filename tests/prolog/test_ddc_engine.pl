@@ -186,6 +186,10 @@ test(invalid_parameters_at_run_time) :-
     load_text(['a ~ val(1).', 'b ~ gaussian(0, V) := a ~= A, V is -A.'], M),
     error_at(query(true, b ~= _, _, [program(M), samples(5)]), distribution(_, negative_variance), 2).
 
+test(invalid_gamma_shape_at_run_time) :-
+    load_text(['a ~ val(1).', 'b ~ gamma(S, 1.0) := a ~= A, S is -A.'], M),
+    error_at(query(true, b ~= _, _, [program(M), samples(5)]), distribution(gamma(_, _), _), 2).
+
 test(non_ground_head) :-
     load_text(['a ~ val(1).', 'b(_) ~ val(1) := a ~= _.', 'q := b(_) ~= 1.'], M),
     error_at(query(true, q, _, [program(M), samples(5)]), non_ground_head(_), 2).
