@@ -29,7 +29,7 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "python"))
 
 import filter_numpy_reference as model  # noqa: E402
-from bridge import Filter  # noqa: E402
+from bridge import Filter, FilterError  # noqa: E402
 
 TARGET_MS = 33.0
 
@@ -84,9 +84,16 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{'N':>6} {'M':>4} {'ddc ms/step':>12} {'numpy ms/step':>14} {'ratio':>8} "
           f"{'us/particle':>12} {'in Prolog':>9} {'new ms':>9} {'resampled':>9}", flush=True)
     last = None
+    failed = False
     for n, m in configs:
-        ddc = time_ddc(n, m, args.steps, args.seed)
         numpy_ms = time_numpy(n, m, args.steps, args.seed)
+        try:
+            ddc = time_ddc(n, m, args.steps, args.seed)
+        except FilterError as exc:  # e.g. the engine ran out of stack: report, go on
+            first_line = str(exc).splitlines()[0]
+            print(f"{n:>6} {m:>4} {'failed':>12} {numpy_ms:>14.2f}   {first_line}", flush=True)
+            failed = True
+            continue
         ratio = ddc["ms_per_step"] / numpy_ms
         print(f"{n:>6} {m:>4} {ddc['ms_per_step']:>12.1f} {numpy_ms:>14.2f} {ratio:>8.0f} "
               f"{1000 * ddc['ms_per_step'] / n:>12.1f} {ddc['prolog_share']:>9.0%} "
@@ -99,7 +106,7 @@ def main(argv: list[str] | None = None) -> int:
         last = {"ms_per_step": ddc["ms_per_step"], "numpy_ms_per_step": numpy_ms}
     if args.json and last is not None:
         print(json.dumps(last))
-    return 0
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":
