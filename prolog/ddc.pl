@@ -242,10 +242,11 @@ declare_program_preds(M, Info) :-
     dynamic(M:'$sweep_key'/4),
     forall(member(N/A, DerU),
            ( A1 is A+1, derived_name(N, d, DN), dynamic(M:DN/A1),
-             derived_name(N, d0, DN0), dynamic(M:DN0/A1) )),
+             derived_name(N, d0, DN0), dynamic(M:DN0/A1),
+             derived_name(N, ds, DNS), dynamic(M:DNS/A1) )),
     forall(member(N/A, DerT),
            ( A2 is A+2,
-             forall(member(K, [dt, dt0, dt1, dt2]),
+             forall(member(K, [dt, dt0, dt1, dt2, dts]),
                     ( derived_name(N, K, DN), dynamic(M:DN/A2) )) )).
 
 derived_name(N, Kind, Name) :-
@@ -271,15 +272,17 @@ compile_program(File, M, Items0, Clauses, Info) :-
     findall(C, ( member(I, Items), \+ state_rv(I), compile_item(I, File, Info, Items, C) ), Cs1),
     findall(C, ( member(I, Items), state_rv(I), compile_item(I, File, Info, Items, C) ), Cs2),
     append(Cs1, Cs2, Cs0),
-    derived_dispatchers(Info, Ds),
+    derived_dispatchers(M, Info, Ds),
     clause_positions(Items, File, Ps),
     findall('$sweep'(rv, K, X, Id),
             ( member(rv(Id, X, K, _, _, _), Items), K \== u, K \== state ), Sw1a),
     findall(C, ( member(rv(Id, X, K, _, B, _), Items), K \== u, K \== state,
                  sweep_key_clause(Id, X, K, B, Info, C) ), Sw1b),
     append(Sw1a, Sw1b, Sw1),
-    findall('$sweep'(der, K, N/A, 0),
-            ( member(der(_, X, K, _, _), Items), K \== u, K \== state, functor(X, N, A) ), Sw2a),
+    Info = info(_, _, _, _, _, Impure, _),
+    findall('$sweep'(der, K, N/A, Sh),
+            ( member(der(_, X, K, _, _), Items), K \== u, K \== state, functor(X, N, A),
+              ( memberchk(clean(t/N/A), Impure) -> Sh = shared ; Sh = 0 ) ), Sw2a),
     sort(Sw2a, Sw2),
     append([DirClauses, Cs0, Ds, Ps, Sw1, Sw2], Clauses).
 
@@ -406,7 +409,10 @@ program_info(Items, Opts, info(DerU, DerT, RvU, RvT, Plain, Impure, First)) :-
     findall(N/A, ( member(plain(builtin(P), _), Items), callable(P), functor(P, N, A) ), P1),
     append(P0, P1, P2), sort(P2, Plain),
     findall(S, ( member(first(Spec), Opts), spec_list(Spec, Ss), member(S, Ss) ), First),
-    impure_preds(Items, Impure).
+    impure_preds(Items, Impure0),
+    append(RvU, RvT, Rvs),
+    clean_preds(Items, Rvs, Clean),
+    append(Impure0, Clean, Impure).
 
 clause_head((H :- _), H) :- !.
 clause_head(H, H).
@@ -423,6 +429,43 @@ impure_preds(Items, Impure) :-
     sort(Seed0, Seed),
     impure_fix(Seed, Edges, Impure).
 
+%   Derived predicates whose truth depends only on the facts asserted into
+%   the world (and on plain Prolog, parameters, other such predicates):
+%   no random variable is read, nothing random is drawn.  Listed in the
+%   Impure slot of info/7 as clean(u/N/A) or clean(t/N/A).  All particles
+%   of a filter step hold the same facts, so their answers are computed
+%   once per step and shared ('$shared'/3).  Conservative: any doubt
+%   (a variable goal, call/N, a random builtin, a term that names a random
+%   variable) makes a predicate particle-dependent.
+clean_preds(Items, Rvs, Clean) :-
+    findall(K-Dirty-Calls,
+            ( member(der(_, X, Kind, B, _), Items),
+              functor(X, N, A), tkind(Kind, TK), K = TK/N/A,
+              body_calls(B, Calls),
+              ( body_dirty(B, Rvs) -> Dirty = true ; Dirty = false ) ),
+            Edges),
+    findall(K, member(K-_-_, Edges), Ks0), sort(Ks0, Ks),
+    findall(K, member(K-true-_, Edges), D0), sort(D0, Dirty0),
+    dirty_fix(Dirty0, Edges, Dirty),
+    findall(clean(K), ( member(K, Ks), \+ memberchk(K, Dirty) ), Clean).
+
+dirty_fix(S0, Edges, S) :-
+    findall(K, ( member(K-_-Cs, Edges), \+ memberchk(K, S0),
+                 member(C, Cs), memberchk(C, S0) ), New0),
+    sort(New0, New),
+    (   New == [] -> S = S0 ; append(S0, New, S1), sort(S1, S2), dirty_fix(S2, Edges, S) ).
+
+body_dirty(B, _) :- body_call(B, '$var'), !.
+body_dirty(B, _) :- body_call(B, u/N/_), ( N == call ; sub_atom(N, _, _, _, random) ), !.
+body_dirty(B, Rvs) :-
+    sub_term(S, B), nonvar(S),
+    (   S = (_ ~= _)
+    ;   S = true(_)
+    ;   S = sample(_, _)
+    ;   S = X:_, nonvar(X), callable(X), functor(X, N, A), memberchk(N/A, Rvs)
+    ;   callable(S), functor(S, N, A), memberchk(N/A, Rvs)
+    ), !.
+
 tkind(u, u) :- !.
 tkind(_, t).
 
@@ -435,7 +478,7 @@ impure_fix(S0, Edges, S) :-
 body_calls(B, Calls) :-
     findall(C, body_call(B, C), Calls).
 
-body_call(V, _) :- var(V), !, fail.
+body_call(V, '$var') :- var(V), !.
 body_call((A,B), C) :- !, ( body_call(A, C) ; body_call(B, C) ).
 body_call((A;B), C) :- !, ( body_call(A, C) ; body_call(B, C) ).
 body_call((A->B), C) :- !, ( body_call(A, C) ; body_call(B, C) ).
@@ -693,7 +736,10 @@ compile_der(_Id, X, K, B, Info, Clause) :-
     cb(B, Ctx, BodyCode),
     length(Args, Ar),
     (   K == u
-    ->  ( memberchk(u/N/Ar, Impure) -> Kind = d0 ; Kind = d ),
+    ->  (   memberchk(u/N/Ar, Impure) -> Kind = d0
+        ;   memberchk(clean(u/N/Ar), Impure) -> Kind = ds
+        ;   Kind = d
+        ),
         derived_name(N, Kind, DN),
         append(Args, [W], HArgs),
         Head =.. [DN|HArgs],
@@ -713,26 +759,32 @@ compile_der(_Id, X, K, B, Info, Clause) :-
 %   One dispatcher per derived predicate: world facts first, then the
 %   program's clauses (memoised when impure); timed ones read materialised
 %   facts at frozen times.
-derived_dispatchers(Info, Cs) :-
+derived_dispatchers(M, Info, Cs) :-
     Info = info(DerU, DerT, _, _, _, Impure, _),
-    findall(C, ( member(N/A, DerU), der_dispatch_u(N, A, Impure, C) ), Cu),
-    findall(C, ( member(N/A, DerT), der_dispatch_t(N, A, Impure, C) ), Ct),
+    findall(C, ( member(N/A, DerU), der_dispatch_u(M, N, A, Impure, C) ), Cu),
+    findall(C, ( member(N/A, DerT), der_dispatch_t(M, N, A, Impure, C) ), Ct),
     append(Cu, Ct, Cs).
 
-der_dispatch_u(N, A, Impure, C) :-
+der_dispatch_u(M, N, A, Impure, C) :-
     length(Args, A),
     G =.. [N|Args],
     derived_name(N, d, DN),
     append(Args, [W], HArgs),
     Head =.. [DN|HArgs],
-    (   C = (Head :- ddc:'$fact'(W, G))
+    (   memberchk(clean(u/N/A), Impure)
+    ->  derived_name(N, ds, DNS),
+        HS =.. [DNS|HArgs],
+        (   C = (Head :- ddc:'$shared'(G, G, M:HS))
+        ;   C = (HS :- ddc:'$fact'(W, G))
+        )
+    ;   C = (Head :- ddc:'$fact'(W, G))
     ;   memberchk(u/N/A, Impure),
         derived_name(N, d0, DN0),
         Call =.. [DN0|HArgs],
         C = (Head :- ( ground(G) -> ddc:'$memo'(W, G, Call) ; Call ))
     ).
 
-der_dispatch_t(N, A, Impure, C) :-
+der_dispatch_t(M, N, A, Impure, C) :-
     length(Args, A),
     G =.. [N|Args],
     append(Args, [T, W], HArgs),
@@ -745,6 +797,13 @@ der_dispatch_t(N, A, Impure, C) :-
         ;   C = (H0 :- ( ddc:'$frozen_at'(W, T) -> ddc:'$mat'(W, G, T) ; H1 ))
         ;   C = (H0 :- H2)
         ;   C = (H0 :- ddc:'$fact'(W, G:T))
+        )
+    ;   memberchk(clean(t/N/A), Impure)
+    ->  derived_name(N, dts, DNS), HS =.. [DNS|HArgs],
+        (   C = (Head :- ddc:'$shared'(G:T, G:T, M:HS))
+        ;   C = (HS :- ( ddc:'$frozen_at'(W, T) -> ddc:'$mat'(W, G, T) ; H1 ))
+        ;   C = (HS :- H2)
+        ;   C = (HS :- ddc:'$fact'(W, G:T))
         )
     ;   (   C = (Head :- ( ddc:'$frozen_at'(W, T) -> ddc:'$mat'(W, G, T) ; H1 ))
         ;   C = (Head :- H2)
@@ -1122,6 +1181,30 @@ overlap_checked_worlds(200).
         (   store_get(S, K, _) -> true ; store_put(S, K, V) ),
         V == true
     ).
+
+%   '$shared'(+Key, ?Template, :Goal): the solutions of a clean derived
+%   atom (clean_preds/3), computed once per filter step (or filter query)
+%   for all particles and kept in a trie keyed by the variant of Key;
+%   outside the filter (no shared table) Goal is simply called.
+:- meta_predicate '$shared'(+, ?, 0).
+'$shared'(Key, Tmpl, Goal) :-
+    (   nb_current('$ddc_shared', Tr), Tr \== none
+    ->  (   trie_lookup(Tr, Key, L)
+        ->  true
+        ;   findall(Tmpl, Goal, L),
+            ( trie_insert(Tr, Key, L) -> true ; true )
+        ),
+        member(Tmpl, L)
+    ;   call(Goal)
+    ).
+
+%   with_shared(:Goal): runs Goal with a fresh table of shared answers.
+:- meta_predicate with_shared(0).
+with_shared(Goal) :-
+    (   nb_current('$ddc_shared', Old) -> true ; Old = none ),
+    trie_new(Tr),
+    nb_setval('$ddc_shared', Tr),
+    call_cleanup(Goal, ( nb_setval('$ddc_shared', Old), trie_destroy(Tr) )).
 
 '$mat'(W, G, T) :-
     arg(1, W, S),

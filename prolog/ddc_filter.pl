@@ -51,7 +51,7 @@ filter_new(File, N, Seed, F) :-
     ddc_load(Abs, M),
     set_random(seed(Seed)),
     length(L, N),
-    maplist(init_particle(M), L),
+    with_shared(maplist(init_particle(M), L)),
     Ws =.. [ws|L],
     flag(ddc_filter_id, K, K+1),
     atom_concat('$ddc_particles_', K, F),
@@ -113,10 +113,11 @@ filter_step(F, Obs, Acts, LogWs) :-
     maplist(observation_key(Info, T1), Weighted, Keys),
     scratch_copy(F, Ws0, Ws),
     with_rng(R0,
-             findall(LW, ( between(1, N, I), arg(I, Ws, W),
-                           ( I =< 20 -> Check = true ; Check = false ),
-                           nb_setarg(14, W, Check),
-                           step_particle(W, T1, Facts, Keys, LW) ), LogWs),
+             with_shared(
+                 findall(LW, ( between(1, N, I), arg(I, Ws, W),
+                               ( I =< 20 -> Check = true ; Check = false ),
+                               nb_setarg(14, W, Check),
+                               step_particle(W, T1, Facts, Keys, LW) ), LogWs)),
              R1),
     commit(F, State, T1, Ws, T, Ws0, R1).
 
@@ -209,10 +210,13 @@ sweep(W, T) :-
                   ;   '$clause_error'(W, Id, non_ground_head(X))
                   ))),
     arg(1, W, S),
-    forall(( M:'$sweep'(der, K, N/A, _), sweep_kind(K, T) ),
+    forall(( M:'$sweep'(der, K, N/A, Sh), sweep_kind(K, T) ),
            ( functor(G, N, A), G =.. [_|Args],
              derived_name(N, dt1, DN1), append(Args, [T, W], CArgs), H1 =.. [DN1|CArgs],
-             findall(G, ( M:H1, ground(G) ), L0),
+             (   Sh == shared
+             ->  findall(G, ( '$shared'('$sweep'(G):T, G, M:H1), ground(G) ), L0)
+             ;   findall(G, ( M:H1, ground(G) ), L0)
+             ),
              sort(L0, L),
              (   store_get(S, '$mat'(N/A, T), _) -> true
              ;   store_put(S, '$mat'(N/A, T), L)
@@ -290,9 +294,10 @@ filter_query(F, Goal, Template, Values) :-
     assertz(M:('$ddc_tmp'(Id, q, W, X1) :- Code)),
     call_cleanup(
         with_rng(R0,
-                 findall(V, ( between(1, N, I), arg(I, Ws, Wi),
-                              (   M:'$ddc_tmp'(Id, q, Wi, X) -> V = X ; V = none ) ),
-                         Values),
+                 with_shared(
+                     findall(V, ( between(1, N, I), arg(I, Ws, Wi),
+                                  (   M:'$ddc_tmp'(Id, q, Wi, X) -> V = X ; V = none ) ),
+                             Values)),
                  R1),
         retractall(M:'$ddc_tmp'(Id, _, _, _))),
     nb_setarg(6, State, R1).
