@@ -115,6 +115,11 @@ def test_shipped_model_decides_the_obvious_cases():
     assert m.decision(same) > 0
     assert m.decision(far) < 0
     assert m.decision(container) < 0
+    # re-acquired through the reasoning's particles after a long occlusion: still the same
+    for gap in (3.0, 10.0, 60.0):
+        stale = same.copy()
+        stale[4] = 2 / (1 + math.exp(gap))
+        assert m.decision(stale) > 0, gap
     assert m.decision(np.stack([same, far])).shape == (2,)
 
 

@@ -92,3 +92,15 @@ def test_lookalike_negatives_move_only_the_position():
     assert np.all(looks.x[:, [0, 1, 3, 4]] == [0.9, 0.95, 0.9, 0.97])
     d = -np.log(looks.x[:, 2])
     assert d.min() >= 0.12 and d.max() <= 0.6
+
+
+def test_stale_positives_change_only_the_time():
+    rng = np.random.default_rng(1)
+    x = np.tile([0.9, 0.95, 0.99, 0.9, 0.97], (20, 1))
+    y = np.array([1] * 10 + [0] * 10)
+    stale = training.stale_positives(training.PairSet(x, y, np.zeros(20, int)), rng, 0.5,
+                                     1.0, 30.0)
+    assert len(stale) == 5 and stale.y.all()
+    assert np.all(stale.x[:, :4] == [0.9, 0.95, 0.99, 0.9])
+    gap = np.log((2 - stale.x[:, 4]) / stale.x[:, 4])  # inverse of 2 / (1 + e^gap)
+    assert gap.min() >= 1.0 - 1e-9 and gap.max() <= 30.0 + 1e-6

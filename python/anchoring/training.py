@@ -118,6 +118,25 @@ def lookalike_negatives(pairs: PairSet, rng: np.random.Generator, fraction: floa
     return PairSet(x, np.zeros(pick.size, int), pairs.group[pick])
 
 
+def stale_positives(pairs: PairSet, rng: np.random.Generator, fraction: float = 0.3,
+                    min_gap: float = 1.0, max_gap: float = 30.0) -> PairSet:
+    """Same-object pairs seen again after a long gap (the reasoning kept the object).
+
+    Long occlusions are few in any stream, so the boundary at a small time similarity is left
+    to extrapolation, and an SVM may refuse a perfect match only because the object was hidden
+    for a while: exactly the re-acquisition through the reasoning's particles that anchoring is
+    for. For a random ``fraction`` of the same-object pairs this makes a copy, still labelled
+    "same", whose time similarity is that of a gap of ``min_gap`` to ``max_gap`` seconds
+    (uniform); every other similarity unchanged.
+    """
+    same = np.flatnonzero(pairs.y == 1)
+    pick = rng.choice(same, int(round(fraction * same.size)), replace=False)
+    x = pairs.x[pick].copy()
+    gap = rng.uniform(min_gap, max_gap, pick.size)
+    x[:, FEATURES.index("time")] = 2.0 * np.exp(-gap) / (1.0 + np.exp(-gap))
+    return PairSet(x, np.ones(pick.size, int), pairs.group[pick])
+
+
 def balanced_subsample(pairs: PairSet, max_pairs: int, rng: np.random.Generator) -> PairSet:
     """At most ``max_pairs`` pairs, half of each label where possible (uniform within label)."""
     keep: list[np.ndarray] = []

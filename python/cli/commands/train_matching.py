@@ -52,6 +52,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "placed --radius to 0.6 m away (0 for none)")
     p.add_argument("--radius", type=float, default=0.12,
                    help="nearest look-alike distance (m): the matching radius taught")
+    p.add_argument("--stale", type=float, default=0.3, metavar="FRACTION",
+                   help="copies of this fraction of the same-object pairs seen again after "
+                        "1-30 s, still the same object (0 for none)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--show-report", type=Path, default=None, metavar="REPORT",
                    help="print the figures of a saved report (.report.json) as a Markdown "
@@ -118,6 +121,10 @@ def report_table(report: dict) -> str:
         rows.append(f"| look-alikes 0.12-0.6 m away ({look['pairs']}) rejected | "
                     f"{look['rejected']:.4f} | "
                     f"{fmt(orig, 'held_out_lookalikes_rejected')} |")
+    if "held_out_stale" in report:
+        stale = report["held_out_stale"]
+        rows.append(f"| same object seen again after 1-30 s ({stale['pairs']}) accepted | "
+                    f"{stale['accepted']:.4f} | {fmt(orig, 'held_out_stale_accepted')} |")
     if "agreement" in orig:
         rows.append(f"| agreement ours / original (held-out pairs) | {orig['agreement']:.4f} | |")
     ev = report.get("evaluate")
@@ -132,7 +139,7 @@ def report_table(report: dict) -> str:
         if "agreement" in ev:
             rows.append(f"| agreement ours / original | {ev['agreement']:.4f} | |")
     rows.append(f"\nTraining pairs: {report['train_pairs']} ({report['train_positives']} "
-                f"same-object; look-alikes included) of "
+                f"same-object; stale and look-alike copies included) of "
                 f"{len(report['streams']) - len(report['test_streams'])} streams, a balanced "
                 f"sample of which fits the SVM; C = {report['C']:g}, gamma = "
                 f"{report['gamma']:g}, {report['support_vectors']} support vectors.")
@@ -154,9 +161,14 @@ def run(args: argparse.Namespace) -> int:
     n_test = max(1, int(round(args.test_fraction * len(streams))))
     test_ids, train_ids = sorted(order[:n_test]), sorted(order[n_test:])
     # hard negatives, per stream (so they split with their stream), kept apart for the report
-    looks = [training.lookalike_negatives(p, rng, args.lookalikes, args.radius)
-             if args.lookalikes > 0 and p.y.any() else training.PairSet.concat([])
-             for p in pairs]
+    looks = []
+    for p in pairs:  # stale copies first, so that look-alikes also come with long gaps
+        extra = [training.stale_positives(p, rng, args.stale)] \
+            if args.stale > 0 and p.y.any() else []
+        both = training.PairSet.concat([p, *extra])
+        if args.lookalikes > 0 and p.y.any():
+            extra.append(training.lookalike_negatives(both, rng, args.lookalikes, args.radius))
+        looks.append(training.PairSet.concat(extra))
     train = training.PairSet.concat([pairs[i] for i in train_ids] + [looks[i] for i in train_ids])
     test = training.PairSet.concat(pairs[i] for i in test_ids)
     test_looks = training.PairSet.concat(looks[i] for i in test_ids)
@@ -193,9 +205,13 @@ def run(args: argparse.Namespace) -> int:
         "held_out": held,
     }
     if len(test_looks):
-        report["held_out_lookalikes"] = {
-            "pairs": len(test_looks),
-            "rejected": float((model.predict(test_looks.x) == 0).mean())}
+        neg, pos = test_looks.y == 0, test_looks.y == 1
+        pred = model.predict(test_looks.x)
+        report["held_out_lookalikes"] = {"pairs": int(neg.sum()),
+                                         "rejected": float((pred[neg] == 0).mean())}
+        if pos.any():
+            report["held_out_stale"] = {"pairs": int(pos.sum()),
+                                        "accepted": float((pred[pos] == 1).mean())}
     print(f"trained on {len(train)} pairs from {len(train_ids)} streams "
           f"(C={c:g}, gamma={g:g}, {model.coefficients.size} support vectors)")
     print(f"held-out ({len(test)} pairs, {len(test_ids)} streams): "
@@ -203,9 +219,12 @@ def run(args: argparse.Namespace) -> int:
           f"same-object recall {held['same_recall']:.4f}, "
           f"different-object recall {held['different_recall']:.4f}")
     if len(test_looks):
-        print(f"held-out look-alikes ({len(test_looks)}: a same-object pair moved "
-              f"{args.radius:g}-0.6 m away) rejected: "
+        print(f"held-out look-alikes ({report['held_out_lookalikes']['pairs']}: a same-object "
+              f"pair moved {args.radius:g}-0.6 m away) rejected: "
               f"{report['held_out_lookalikes']['rejected']:.4f}")
+    if "held_out_stale" in report:
+        print(f"held-out stale same-object pairs ({report['held_out_stale']['pairs']}: seen "
+              f"again after 1-30 s) accepted: {report['held_out_stale']['accepted']:.4f}")
     if args.original and Path(args.original).exists():
         original = RbfSvm.from_opencv_yaml(args.original)
         orig = training.scores(original, test)
@@ -215,10 +234,15 @@ def run(args: argparse.Namespace) -> int:
               f"{orig['accuracy']:.4f} (same {orig['same_recall']:.4f}, "
               f"different {orig['different_recall']:.4f}); agreement with ours {agree:.4f}")
         if len(test_looks):
-            report["original"]["held_out_lookalikes_rejected"] = float(
-                (original.predict(test_looks.x) == 0).mean())
+            opred = original.predict(test_looks.x)
+            neg, pos = test_looks.y == 0, test_looks.y == 1
+            report["original"]["held_out_lookalikes_rejected"] = float((opred[neg] == 0).mean())
             print(f"original on the look-alikes: rejected "
                   f"{report['original']['held_out_lookalikes_rejected']:.4f}")
+            if pos.any():
+                report["original"]["held_out_stale_accepted"] = float((opred[pos] == 1).mean())
+                print(f"original on the stale pairs: accepted "
+                      f"{report['original']['held_out_stale_accepted']:.4f}")
     else:
         print(f"(original model {args.original} not found: no comparison)")
     model.info.update({"held_out": held, "streams": len(streams)})
@@ -305,10 +329,12 @@ def random_scene(seed: int):  # -> tabletop.Scenario
         free = functools.partial(_free_spot, rng, spots)
 
         ids: dict[str, list[str]] = {}
+        where: dict[str, tuple[float, float]] = {}  # rough positions, for "front"
         for k, (cat, col) in enumerate(zip(chosen, colours, strict=True)):
             oid = f"{cat}_{k}"
             ids.setdefault(cat, []).append(oid)
             xy = free()
+            where[oid] = xy
             if cat == "ball":
                 b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.025, 0.035)))
             elif cat in ("mug", "cup"):
@@ -324,7 +350,7 @@ def random_scene(seed: int):  # -> tabletop.Scenario
         t = 1.0
         hidden: dict[str, str] = {}
         for _ in range(int(rng.integers(3, 7))):
-            what = rng.choice(["move", "move", "under", "swap", "lift", "cover"])
+            what = rng.choice(["move", "move", "under", "swap", "lift", "cover", "front"])
             if what == "under" and small and containers:
                 obj = str(rng.choice(small))
                 free_c = [c for c in containers if c not in hidden.values()]
@@ -335,22 +361,46 @@ def random_scene(seed: int):  # -> tabletop.Scenario
                     continue
                 b.put_under(t, obj, box, duration=2.5)
                 hidden[obj] = box
+                where[box] = where[obj]
                 t += 3.0
             elif what == "swap" and len(containers) >= 2:
                 a, c = (str(x) for x in rng.choice(containers, 2, replace=False))
                 b.swap(t, a, c, duration=float(rng.uniform(1.5, 2.5)))
+                where[a], where[c] = where[c], where[a]
                 t += 3.0
             elif what == "lift" and hidden:
                 obj = str(rng.choice(sorted(hidden)))
-                b.lift(t, hidden.pop(obj), to=free(0.12), duration=2.5)
+                box = hidden.pop(obj)
+                where[box] = free(0.12)
+                b.lift(t, box, to=where[box], duration=2.5)
                 t += 3.0
+            elif what == "front" and containers:
+                # a container passes in front of another object (between it and the camera,
+                # which looks from -y): the object is partly hidden, its percept a fragment
+                box = str(rng.choice([c for c in containers if c not in hidden.values()]
+                                     or containers))
+                others = [o for os_ in ids.values() for o in os_
+                          if o != box and o not in hidden]
+                if box in hidden.values() or not others:
+                    continue
+                target = str(rng.choice(others))
+                tx, ty = where[target]
+                spot = (tx + float(rng.uniform(-0.03, 0.03)),
+                        ty - float(rng.uniform(0.15, 0.18)))
+                if not (-0.32 < spot[0] < 0.32 and -0.2 < spot[1] < 0.22):
+                    continue
+                spots.append(spot)
+                b.move(t, box, to=spot, speed=float(rng.uniform(0.08, 0.2)))
+                where[box] = spot
+                t += float(rng.uniform(3.0, 4.5))
             elif what == "cover":
                 b.cover_camera(t, duration=float(rng.uniform(1.0, 2.5)))
                 t += 3.0
             else:
                 movable = [o for os_ in ids.values() for o in os_ if o not in hidden]
                 obj = str(rng.choice(movable))
-                b.move(t, obj, to=free(0.12), speed=float(rng.uniform(0.08, 0.25)))
+                where[obj] = free(0.12)
+                b.move(t, obj, to=where[obj], speed=float(rng.uniform(0.08, 0.25)))
                 t += float(rng.uniform(2.0, 3.5))
         for obj in sorted(hidden):
             b.lift(t, hidden[obj], to=free(0.12), duration=2.5)
