@@ -19,6 +19,8 @@ reappear_var(0.0025).       % where a hidden object shows up again, around its b
 follow_var(0.000004).       % jitter of a hidden object that follows its occluder: (2 mm)^2
 occluder_reach(0.15).       % an occluder is within 15 cm of the object in the table plane ...
 occluder_rise(0.02).        % ... and its centre is no more than 2 cm lower than the object's
+cover_height(0.12).         % a container whose centre rises more than this above the object's
+                            % centre no longer covers it (it was lifted)
 
 % ------------------------------------------------------------------ background knowledge
 % What cannot hide anything: a ball does not afford occluding.
@@ -40,16 +42,24 @@ hidden(A):t+1 := object(A), \+ observed(A).
 % The camera saw nothing at all (covered by a hand): an object lost now could be anywhere.
 blind:t+1 := \+ observed(_).
 
+% A container covers an object while its centre is not lifted far above the object's; a
+% carrier (a hand) covers what it holds wherever it goes.
+covers(O, A):t+1 := category(O, C), carrier(C), A \== O.
+covers(O, A):t+1 :=
+    category(O, C), \+ carrier(C), A \== O,
+    pos(O):t+1 ~= (_, _, ZO), pos(A):t ~= (_, _, Z), cover_height(H), ZO < Z + H.
+
 % An object hidden while blind stays "lost anywhere" until an occluder explains it.
 lost_anywhere(A):t+1 := hidden(A):t+1, blind:t+1, \+ occluded_by(A, _):t+1.
 lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
 
 % ------------------------------------------------------------------ occlusion
-% O could hide A: O is perceived now, may occlude, and is near A's last position and not
-% below it, or A was lost while the camera was blind (then every occluder on the table could).
+% O could hide A: O is perceived now, may occlude, covers A, and is near A's last position
+% and not below it, or A was lost while the camera was blind (then every occluder on the
+% table could).
 occluder_candidate(A, O):t+1 :=
     hidden(A):t+1, can_be_occluded(A),
-    observed(O), O \== A, can_occlude(O),
+    observed(O), O \== A, can_occlude(O), covers(O, A):t+1,
     pos(A):t ~= (X, Y, Z), pos(O):t+1 ~= (XO, YO, ZO),
     (   lost_anywhere(A):t
     ->  true
@@ -57,15 +67,19 @@ occluder_candidate(A, O):t+1 :=
         D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, Z < ZO + H
     ).
 
-% When an object is hidden and nothing explains it yet, each particle picks its occluder
-% uniformly among the candidates (the paper's sample_occluder).
+% When a perceived object vanishes (or one lost while blind can now be explained), each
+% particle picks its occluder uniformly among the candidates (the paper's sample_occluder).
+% An object that stays hidden after its occluder was lifted away is not re-explained: it
+% stays where it was believed to be.
 pick_occluder(A):t+1 ~ uniform(Os) :=
     hidden(A):t+1, \+ occluded_by(A, _):t,
+    ( seen(A):t ; lost_anywhere(A):t ),
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
 
 occluded_by(A, O):t+1 := pick_occluder(A):t+1 ~= O.
-% The occlusion lasts while the object is hidden and its occluder is perceived.
-occluded_by(A, O):t+1 := occluded_by(A, O):t, hidden(A):t+1, observed(O).
+% The occlusion lasts while the object is hidden and its occluder is perceived and still
+% covers it.
+occluded_by(A, O):t+1 := occluded_by(A, O):t, hidden(A):t+1, observed(O), covers(O, A):t+1.
 % Transitive occlusion (section 5.3 of the paper; remove this clause to switch it off): an
 % object whose occluder is itself hidden under something stays with it.
 occluded_by(A, O):t+1 :=
