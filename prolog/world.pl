@@ -51,8 +51,9 @@ anchors(As) :-
 %!  prob(:Goal, -P) is det.
 %
 %   The weighted fraction of particles in which Goal holds.  Goal is a conjunction of
-%   particle facts (pos(Atom, (X,Y,Z)), occluded_by(Atom, Occ)) and Prolog tests.  Anchors
-%   that were perceived in the last frame have no particles: ask anchor/5 about them.
+%   particle facts (pos(Atom, (X,Y,Z)), occluded_by(Atom, Occ)) and Prolog tests.  Every
+%   anchor the filter knows has a position in every particle; perceived ones are tight
+%   around the perceived position.
 prob(Goal, P) :-
     aggregate_all(sum(W), user:particle(_, W), Total),
     (   Total =:= 0

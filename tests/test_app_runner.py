@@ -1,0 +1,90 @@
+"""The main job end to end on a short scenario: perception -> anchoring -> filter -> anchors."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from app.runner import RunOptions, run
+from plunit_runner import ROOT, swipl_executable
+
+SCENARIO = """\
+name: ball_under_mug_moved
+fps: 5
+objects:
+  - {id: ball_1, category: ball, colour: red, radius: 0.03, position: [-0.1, -0.05]}
+  - {id: mug_1, category: mug, colour: blue, radius: 0.04, height: 0.1, position: [0.05, 0.05]}
+events:
+  - {at: 1.0, do: put_under, object: ball_1, container: mug_1, duration: 2.0}
+  - {at: 3.5, do: move, object: mug_1, to: [0.2, 0.1], duration: 2.0}
+  - {at: 6.0, do: lift, container: mug_1, duration: 2.0}
+"""
+
+
+@pytest.fixture(scope="module")
+def scenario(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    path = tmp_path_factory.mktemp("scenario") / "ball_under_mug_moved.yaml"
+    path.write_text(SCENARIO)
+    return path
+
+
+@pytest.fixture(scope="module")
+def reasoning_run(scenario: Path, tmp_path_factory: pytest.TempPathFactory):
+    out = tmp_path_factory.mktemp("run")
+    return run(RunOptions(scenario=scenario, particles=60, seed=0, out=out, progress=False,
+                          picture_every=4))
+
+
+def test_the_ball_is_reacquired_as_ball_1_after_the_mug_moved(reasoning_run) -> None:
+    objects = {o["id"]: o for o in reasoning_run.summary["objects"]}
+    assert objects["ball_1"]["symbols"] == ["ball-1"]
+    assert objects["ball_1"]["identity_kept"] is True
+    assert objects["mug_1"]["identity_kept"] is True
+
+
+def test_without_reasoning_the_revealed_ball_is_a_new_anchor(scenario: Path) -> None:
+    output = run(RunOptions(scenario=scenario, reasoning=False, progress=False))
+    objects = {o["id"]: o for o in output.summary["objects"]}
+    assert objects["ball_1"]["identity_kept"] is False
+    assert len(objects["ball_1"]["symbols"]) >= 2
+
+
+def test_outputs_summary_pictures_gif_and_world(reasoning_run) -> None:
+    out = reasoning_run.out
+    summary = json.loads((out / "summary.json").read_text())
+    for key in ("frames", "objects", "id_switches", "idf1", "ms_per_frame"):
+        assert key in summary
+    assert set(summary["ms_per_frame"]) >= {"perception", "anchoring", "filter", "total"}
+    assert summary["frames"] == len(reasoning_run.records)
+    assert reasoning_run.gif is not None and reasoning_run.gif.stat().st_size > 0
+    assert len(list((out / "frames").glob("*.png"))) == len(reasoning_run.pictures) > 0
+    # the world file answers questions in swipl through prolog/world.pl
+    goal = ("anchors(As), memberchk(ball_1, As), prob(pos(ball_1, _), P), "
+            "prob(occluded_by(ball_1, _), Q), format('~w ~w~n', [P, Q]), halt")
+    result = subprocess.run(
+        [swipl_executable(), "-q", "-g", goal, "-t", "halt(1)",
+         str(ROOT / "prolog" / "world.pl"), str(out / "world.pl")],
+        capture_output=True, text=True, timeout=60,
+    )
+    assert result.returncode == 0, result.stderr
+    p_known, p_hidden = (float(v) for v in result.stdout.split())
+    assert p_known == pytest.approx(1.0)  # every particle knows where the ball is
+    assert p_hidden == pytest.approx(0.0)  # and none has it under the mug: it is seen at the end
+
+
+def test_a_theory_with_an_error_stops_the_run_before_the_first_frame(
+        scenario: Path, tmp_path: Path) -> None:
+    theory = tmp_path / "broken.pl"
+    theory.write_text("ok := true.\nbroken(X := .\n")
+    result = subprocess.run(
+        [str(Path(sys.executable).parent / "anchoring"), "run", str(scenario), "--theory",
+         str(theory), "--quiet", "--out", str(tmp_path / "out")],
+        capture_output=True, text=True, timeout=120,
+    )
+    assert result.returncode != 0
+    assert f"{theory}:2" in result.stderr
+    assert not (tmp_path / "out" / "summary.json").exists()
