@@ -14,8 +14,8 @@ def register(sub: Any) -> None:
                             description=__doc__)
     parser.add_argument("--out", type=Path, default=ROOT / "out" / "demo",
                         help="output directory (default out/demo)")
-    parser.add_argument("--particles", type=int, default=300,
-                        help="particles of the filter (default 300)")
+    parser.add_argument("--particles", type=int, default=200,
+                        help="particles of the filter (default 200)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
     parser.set_defaults(func=main)
