@@ -280,13 +280,45 @@ compile_program(File, M, Items0, Clauses, Info) :-
                  sweep_key_clause(Id, X, K, B, Info, C) ), Sw1b),
     append(Sw1a, Sw1b, Sw1),
     Info = info(_, _, _, _, _, Impure, _),
-    findall('$sweep'(der, K, N/A, Sh),
-            ( member(der(_, X, K, _, _), Items), K \== u, K \== state, functor(X, N, A),
-              ( memberchk(clean(t/N/A), Impure) -> Sh = shared ; Sh = 0 ) ), Sw2a),
+    %   '$sweep'(der, Kind, N/A, sw(Shared, When, G, Call, T, W)): Call (the
+    %   h:t+1 clauses of derived predicate N/A) gives the instances G at T
+    %   in W; When is eager (materialised by the sweep: the program reads
+    %   N/A at a time other than t+1) or lazy (on first demand, '$mat'/3)
+    findall(K-N/A, ( member(der(_, X, K, _, _), Items), K \== u, K \== state,
+                     functor(X, N, A) ), DKs0),
+    sort(DKs0, DKs),
+    lookback_preds(Items, Back),
+    findall('$sweep'(der, K, N/A, sw(Sh, When, G, H1, T, W)),
+            ( member(K-N/A, DKs),
+              ( memberchk(clean(t/N/A), Impure) -> Sh = shared ; Sh = 0 ),
+              ( memberchk(N/A, Back) -> When = eager ; When = lazy ),
+              functor(G, N, A), G =.. [_|Args],
+              derived_name(N, dt1, DN1), append(Args, [T, W], CArgs), H1 =.. [DN1|CArgs] ),
+            Sw2a),
     sort(Sw2a, Sw2),
     append([DirClauses, Cs0, Ds, Ps, Sw1, Sw2], Clauses).
 
 state_rv(rv(_, _, state, _, _, _)).
+
+%   lookback_preds(+Items, -Preds): the N/A read in some body at a time
+%   other than t+1 (t, t-K, a number, a variable, current/prior), i.e.
+%   possibly at a frozen time by the program itself.
+lookback_preds(Items, Preds) :-
+    findall(N/A, ( member(I, Items),
+                   ( I = rv(_, _, _, _, B, _) ; I = der(_, _, _, B, _) ),
+                   time_ref(B, X, TE), \+ next_time(TE),
+                   callable(X), functor(X, N, A) ), L),
+    sort(L, Preds).
+
+next_time(TE) :- nonvar(TE), TE = T0+K, T0 == t, K == 1.
+
+time_ref(V, _, _) :- var(V), !, fail.
+time_ref((X0:T0)+K, X, TE) :- T0 == t, integer(K), !, X = X0, TE = t+K.
+time_ref((X0:T0)-K, X, TE) :- T0 == t, integer(K), !, X = X0, TE = t-K.
+time_ref(X0:TE0, X, TE) :- !, X = X0, TE = TE0.
+time_ref(current(X0), X, t) :- !, X = X0.
+time_ref(prior(X0), X, 0) :- !, X = X0.
+time_ref(T, X, TE) :- compound(T), arg(_, T, A), time_ref(A, X, TE).
 
 classify_items([], _, _, [], []).
 classify_items([t(T, L)|Ts], File, Id, Items, Dirs) :-
@@ -549,11 +581,14 @@ drop_unused_time(Guard, Tc, Body, Body1) :-
 %   the clause that applies; running whole bodies there would be wasted).
 sweep_key_clause(Id, X, K, B, Info, ('$sweep_key'(Id, X, TArg, W) :- Guard, Code)) :-
     time_guard(K, TArg, W, Tc, Guard),
+    sweep_prefix(X, B, PB),
+    cb(PB, ctx(W, Tc, Info, clause), Code).
+
+sweep_prefix(X, B, PB) :-
     conj_list(B, Ls),
     term_variables(X, HVs),
     binding_prefix(Ls, HVs, Prefix),
-    conj_from_list(Prefix, PB),
-    cb(PB, ctx(W, Tc, Info, clause), Code).
+    conj_from_list(Prefix, PB).
 
 binding_prefix(_, [], []) :- !.
 binding_prefix([], _, []).
@@ -1209,7 +1244,15 @@ with_shared(Goal) :-
 '$mat'(W, G, T) :-
     arg(1, W, S),
     functor(G, N, A),
-    store_get(S, '$mat'(N/A, T), L),
+    (   store_get(S, '$mat'(N/A, T), L)
+    ->  true
+    ;   arg(4, W, T),                   % the last frozen time only
+        arg(2, W, M),
+        once(( M:'$sweep'(der, K, N/A, Sw), Sw = sw(_, lazy, _, _, T, W),
+               sweep_kind(K, T) )),
+        lazy_materialise(W, M, N/A, Sw, T),
+        store_get(S, '$mat'(N/A, T), L)
+    ),
     member(G, L).
 
 '$flip'(P) :-

@@ -205,23 +205,47 @@ sweep(W, T) :-
     arg(2, W, M),
     nb_setarg(11, W, sweep),
     forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T), \+ X = observation(_) ),
-           forall(M:'$sweep_key'(Id, X, T, W),
+           forall(sweep_candidate(M, Id, X, T, W),
                   (   ground(X) -> ignore('$read'(X, T, _, W))
                   ;   '$clause_error'(W, Id, non_ground_head(X))
                   ))),
-    arg(1, W, S),
-    forall(( M:'$sweep'(der, K, N/A, Sh), sweep_kind(K, T) ),
-           ( functor(G, N, A), G =.. [_|Args],
-             derived_name(N, dt1, DN1), append(Args, [T, W], CArgs), H1 =.. [DN1|CArgs],
-             (   Sh == shared
-             ->  findall(G, ( '$shared'('$sweep'(G):T, G, M:H1), ground(G) ), L0)
-             ;   findall(G, ( M:H1, ground(G) ), L0)
-             ),
-             sort(L0, L),
-             (   store_get(S, '$mat'(N/A, T), _) -> true
-             ;   store_put(S, '$mat'(N/A, T), L)
-             ) )),
+    forall(( M:'$sweep'(der, K, N/A, Sw), Sw = sw(_, eager, _, _, T, W), sweep_kind(K, T) ),
+           materialise(W, M, N/A, Sw, T)),
     nb_setarg(11, W, normal).
+
+%   materialise(+W, +M, +N/A, +Sw, +T): the instances of derived
+%   predicate N/A at T, from its transition clauses, recorded as
+%   '$mat'(N/A, T) (time T is then frozen: no longer derivable).
+materialise(W, M, N/A, sw(Sh, _, G, H1, T, W), T) :-
+    arg(1, W, S),
+    (   Sh == shared
+    ->  findall(G, ( '$shared'('$sweep'(G):T, G, M:H1), ground(G) ), L0)
+    ;   findall(G, ( M:H1, ground(G) ), L0)
+    ),
+    sort(L0, L),
+    (   store_get(S, '$mat'(N/A, T), _) -> true
+    ;   store_put(S, '$mat'(N/A, T), L)
+    ).
+
+%   A derived predicate the program never reads one step back (only at
+%   t+1) is not materialised by the sweep: the first read at the last
+%   frozen time T (a query after the step) materialises it, in the state
+%   the sweep would have seen (T derivable again, sweep mode) before
+%   freezing T again.  Once the next step has begun, such an atom at
+%   T-1 or earlier can no longer be derived (its inputs are pruned).
+lazy_materialise(W, M, NA, Sw, T) :-
+    arg(4, W, Fz),
+    arg(11, W, Mode),
+    Fz1 is T-1,
+    setup_call_cleanup(( nb_setarg(4, W, Fz1), nb_setarg(11, W, sweep) ),
+                       materialise(W, M, NA, Sw, T),
+                       ( nb_setarg(4, W, Fz), nb_setarg(11, W, Mode) )).
+
+%   (Sharing the candidates of clauses whose key prefix is clean, as the
+%   derived atoms are, was measured slower: those prefixes are one or two
+%   fact lookups, cheaper than the shared table's findall and copy.)
+sweep_candidate(M, Id, X, T, W) :-
+    M:'$sweep_key'(Id, X, T, W).
 
 sweep_kind(trans, T) :- T >= 1.
 sweep_kind(persist, T) :- T >= 1.

@@ -28,6 +28,10 @@ else Buckets = b(L1, ..., Ln), each Li unbound (empty) or a list of
 Key-Value.  Keys must be ground.
 */
 
+:- use_module(library(apply)).
+:- use_module(library(aggregate)).
+:- use_module(library(lists)).
+
 :- meta_predicate store_filter(+, 2, -), store_retain(+, 2).
 
 %   Small stores (up to 8 entries) are a list of Key-Value in argument 2;
@@ -53,7 +57,22 @@ store_get(tbl(_, D), K, V) :-
 %!  store_put(+Store, +Key, +Value) is det.
 %
 %   Adds Key-Value (Key must not be present; the engine checks first).
+%   Keys X-Time with a compound X are also indexed by X's functor and the
+%   time (entry '$by'(Name/Arity, Time) -> ix(Xs)), so that store_match/3
+%   with a partly bound X reads only those keys instead of the whole table.
 store_put(T, K, V) :-
+    put_(T, K, V),
+    (   K = X-Tm, compound(X)
+    ->  functor(X, N, A),
+        (   store_get(T, '$by'(N/A, Tm), Cell)
+        ->  arg(1, Cell, Xs),
+            nb_setarg(1, Cell, [X|Xs])
+        ;   put_(T, '$by'(N/A, Tm), ix([X]))
+        )
+    ;   true
+    ).
+
+put_(T, K, V) :-
     T = tbl(C, D),
     (   D = [_|_]
     ->  (   C >= 8
@@ -95,7 +114,15 @@ store_entries(T, Pairs) :-
 
 %!  store_match(+Store, ?Key, -Value) is nondet.
 %
-%   Enumerates the entries whose key unifies with Key (a scan).
+%   Enumerates the entries whose key unifies with Key (through the index
+%   for a key X-Time with a compound X and a bound time, else a scan; the
+%   index entries themselves are never enumerated).
+store_match(T, K, V) :-
+    nonvar(K), K = X-Tm, compound(X), nonvar(Tm), !,
+    functor(X, N, A),
+    store_get(T, '$by'(N/A, Tm), ix(Xs)),
+    member(X, Xs),
+    store_get(T, X-Tm, V).
 store_match(tbl(_, D), K, V) :-
     (   D = [_|_]
     ->  member(K-V, D)
@@ -103,16 +130,18 @@ store_match(tbl(_, D), K, V) :-
         arg(_, D, L),
         nonvar(L),
         member(K-V, L)
-    ).
+    ),
+    \+ K = '$by'(_, _).
 
 %!  store_size(+Store, -Count) is det.
-store_size(tbl(C, _), C).
+store_size(T, C) :-
+    aggregate_all(count, store_match(T, _, _), C).
 
 %!  store_filter(+Store, :Keep, -New) is det.
 %
 %   New holds the entries K-V of Store for which call(Keep, K, V) succeeds.
 store_filter(T, Keep, New) :-
-    store_new(New),
+    store_new(New),   % (store_match/3 leaves the index out: store_put/3 rebuilds it)
     forall(( store_match(T, K, V), call(Keep, K, V) ), store_put(New, K, V)).
 
 %!  store_retain(+Store, :Keep) is det.
@@ -149,7 +178,7 @@ retain_buckets(I, S, B, Keep, C0, C) :-
 
 include_kv([], _, [], C, C).
 include_kv([K-V|T], Keep, Out, C0, C) :-
-    (   call(Keep, K, V)
+    (   ( K = '$by'(_, _) ; call(Keep, K, V) )
     ->  Out = [K-V|Out1], C1 is C0+1
     ;   Out = Out1, C1 = C0
     ),
@@ -162,6 +191,15 @@ include_kv([K-V|T], Keep, Out, C0, C) :-
 %   entries whose key is in DropKeys.  The specialised form of
 %   store_retain/2 the particle filter runs at every step.
 store_prune(T, MinT, Drop) :-
+    prune_(T, MinT, Drop),
+    forall(( member(X-Tm, Drop), compound(X), functor(X, N, A),
+             store_get(T, '$by'(N/A, Tm), Cell) ),
+           (   arg(1, Cell, Xs),
+               exclude(==(X), Xs, Xs1),
+               nb_setarg(1, Cell, Xs1)
+           )).
+
+prune_(T, MinT, Drop) :-
     T = tbl(_, D),
     (   D == []
     ->  true
@@ -203,4 +241,5 @@ prune_list([E|Es], MinT, Drop, Out, C0, C) :-
 
 key_time(_-T, T) :- integer(T), !.
 key_time('$memo'(_, T), T) :- integer(T), !.
-key_time('$mat'(_, T), T) :- integer(T).
+key_time('$mat'(_, T), T) :- integer(T), !.
+key_time('$by'(_, T), T) :- integer(T).
