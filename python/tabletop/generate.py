@@ -30,7 +30,7 @@ def shell_game(containers: int = 3, swaps: int = 3, seed: int = 0, fps: float = 
     rng = np.random.default_rng(seed)
     b = ScenarioBuilder(f"shell_game_k{containers}_s{swaps}_seed{seed}", fps=fps)
     b.add("ball_1", "ball", "red", position=(0.0, -0.17), radius=0.03)
-    spacing = 0.17 if containers <= 4 else 0.14
+    spacing = 0.18  # wide enough for two 12 cm boxes side by side (their footprints must not touch)
     xs = (np.arange(containers) - (containers - 1) / 2) * spacing
     colours = rng.permutation(COLOURS)[:containers]
     counts: dict[str, int] = {}
