@@ -57,12 +57,12 @@ store_get(tbl(_, D), K, V) :-
 %!  store_put(+Store, +Key, +Value) is det.
 %
 %   Adds Key-Value (Key must not be present; the engine checks first).
-%   Keys X-Time with a compound X are also indexed by X's functor and the
+%   Keys X-Time with a compound X and an integer Time are also indexed by X's functor and the
 %   time (entry '$by'(Name/Arity, Time) -> ix(Xs)), so that store_match/3
 %   with a partly bound X reads only those keys instead of the whole table.
 store_put(T, K, V) :-
     put_(T, K, V),
-    (   K = X-Tm, compound(X)
+    (   K = X-Tm, compound(X), integer(Tm)
     ->  functor(X, N, A),
         (   store_get(T, '$by'(N/A, Tm), Cell)
         ->  arg(1, Cell, Xs),
@@ -115,10 +115,10 @@ store_entries(T, Pairs) :-
 %!  store_match(+Store, ?Key, -Value) is nondet.
 %
 %   Enumerates the entries whose key unifies with Key (through the index
-%   for a key X-Time with a compound X and a bound time, else a scan; the
+%   for a key X-Time with a compound X and an integer time, else a scan; the
 %   index entries themselves are never enumerated).
 store_match(T, K, V) :-
-    nonvar(K), K = X-Tm, compound(X), nonvar(Tm), !,
+    nonvar(K), K = X-Tm, compound(X), integer(Tm), !,
     functor(X, N, A),
     store_get(T, '$by'(N/A, Tm), ix(Xs)),
     member(X, Xs),
@@ -191,15 +191,6 @@ include_kv([K-V|T], Keep, Out, C0, C) :-
 %   entries whose key is in DropKeys.  The specialised form of
 %   store_retain/2 the particle filter runs at every step.
 store_prune(T, MinT, Drop) :-
-    prune_(T, MinT, Drop),
-    forall(( member(X-Tm, Drop), compound(X), functor(X, N, A),
-             store_get(T, '$by'(N/A, Tm), Cell) ),
-           (   arg(1, Cell, Xs),
-               exclude(==(X), Xs, Xs1),
-               nb_setarg(1, Cell, Xs1)
-           )).
-
-prune_(T, MinT, Drop) :-
     T = tbl(_, D),
     (   D == []
     ->  true
