@@ -29,6 +29,7 @@ class RunOptions:
     theory: Path = DEFAULT_THEORY
     seed: int = 0
     reasoning: bool = True
+    resample_threshold: float = 0.5
     out: Path | None = None
     picture_every: int = 1
     progress: bool = True
@@ -80,7 +81,8 @@ def run(options: RunOptions) -> RunOutput:
         bar.update(1)
 
     config = LoopConfig(particles=options.particles, theory=options.theory, seed=options.seed,
-                        reasoning=options.reasoning)
+                        reasoning=options.reasoning,
+                        resample_threshold=options.resample_threshold)
     try:
         records, loop = run_frames(frames, config, on_frame)
     finally:
