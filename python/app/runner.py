@@ -29,7 +29,7 @@ class RunOptions:
     theory: Path = DEFAULT_THEORY
     seed: int = 0
     reasoning: bool = True
-    resample_threshold: float = 0.5
+    resample_threshold: float = 0.9
     out: Path | None = None
     picture_every: int = 1
     progress: bool = True

@@ -16,8 +16,8 @@ def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> N
     parser.add_argument("--theory", type=Path, default=DEFAULT_THEORY,
                         help="theory of occlusion, a DDC program (default prolog/too.pl)")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
-    parser.add_argument("--resample-threshold", type=float, default=0.5,
-                        help="resample when ESS < this fraction of the particles (default 0.5)")
+    parser.add_argument("--resample-threshold", type=float, default=0.9,
+                        help="resample when ESS < this fraction of the particles (default 0.9)")
     parser.add_argument("--out", type=Path, default=None,
                         help="write summary.json, per-frame PNGs, run.gif and world.pl here")
     parser.add_argument("--every", type=int, default=1,
