@@ -17,10 +17,6 @@ from evaluation import FrameTimings, Hypothesis, TrackingRecord, point_estimate,
 
 logger = logging.getLogger(__name__)
 
-#: Ground-truth ids the evaluation leaves out: hands are not objects on the table.
-IGNORED_TRUTH = ("hand", "hand_1", "camera_cover")
-
-
 @dataclass
 class LoopConfig:
     particles: int = 1000
@@ -103,7 +99,6 @@ class AnchoringLoop:
             [(frame.percepts[a.percept_index], a.symbol) for a in result.assignments],
             FrameTimings(perception=source.perception_ms, anchoring=anchoring_ms,
                          filter=filter_ms),
-            ignore=IGNORED_TRUTH,
             rejected_percepts=rejected,
         )
         return FrameOutcome(source, result, record, hidden)

@@ -4,8 +4,8 @@ position particles of hidden anchors out. The only module of :mod:`app` that use
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -31,7 +31,6 @@ class Belief:
 
     positions: np.ndarray
     weights: np.ndarray
-    occluders: list[tuple[float, str]] = field(default_factory=list)  # (p, symbol)
 
 
 class OcclusionReasoner:
@@ -98,8 +97,3 @@ class OcclusionReasoner:
     def close(self) -> None:
         self.filter.close()
 
-
-def states_from(symbols_categories: Iterable[tuple[str, str]],
-                perceived: dict[str, tuple[float, float, float]]) -> list[AnchorState]:
-    """Anchor states for a frame: every (symbol, category), perceived ones with a position."""
-    return [AnchorState(s, c, perceived.get(s)) for s, c in symbols_categories]
