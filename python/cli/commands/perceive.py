@@ -11,17 +11,14 @@ import argparse
 import time
 from pathlib import Path
 
+from cli.options import add_frame_options
+
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "perceive", help="run perception on a scenario and write the percept stream (JSONL)",
         description=__doc__.split("\n\n")[1] if __doc__ else None)
-    parser.add_argument("scenario", type=Path, help="scenario YAML file")
-    parser.add_argument("--out", type=Path, required=True, help="percept stream (.jsonl)")
-    parser.add_argument("--width", type=int, default=None, help="image width (default 320)")
-    parser.add_argument("--height", type=int, default=None, help="image height (default 240)")
-    parser.add_argument("--fps", type=float, default=None, help="frames per second of time")
-    parser.add_argument("--seed", type=int, default=0, help="sensor noise seed")
+    add_frame_options(parser)
     parser.add_argument("--model", type=Path, default=None, help="category model (JSON)")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
     parser.set_defaults(func=run)

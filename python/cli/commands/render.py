@@ -9,21 +9,17 @@ written as ``overlay_0000.png`` ...).
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 import numpy as np
+
+from cli.options import add_frame_options
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "render", help="render a scenario's camera frames to PNGs and a GIF",
         description=__doc__.split("\n\n")[1] if __doc__ else None)
-    parser.add_argument("scenario", type=Path, help="scenario YAML file")
-    parser.add_argument("--out", type=Path, required=True, help="output folder")
-    parser.add_argument("--width", type=int, default=None, help="image width (default 320)")
-    parser.add_argument("--height", type=int, default=None, help="image height (default 240)")
-    parser.add_argument("--fps", type=float, default=None, help="frames per second of time")
-    parser.add_argument("--seed", type=int, default=0, help="sensor noise seed")
+    add_frame_options(parser)
     parser.add_argument("--no-noise", action="store_true", help="clean frames")
     parser.add_argument("--depth", action="store_true", help="also write depth PNGs")
     parser.add_argument("--overlay", action="store_true",
