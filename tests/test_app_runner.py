@@ -88,3 +88,29 @@ def test_a_theory_with_an_error_stops_the_run_before_the_first_frame(
     assert result.returncode != 0
     assert f"{theory}:2" in result.stderr
     assert not (tmp_path / "out" / "summary.json").exists()
+
+
+def test_a_percept_with_nan_is_dropped_counted_and_the_run_goes_on(tmp_path: Path) -> None:
+    import numpy as np
+
+    from percepts import Percept, PerceptFrame, write_percepts
+
+    def ball(t: float, x: float) -> Percept:
+        hist = np.zeros(8)
+        hist[0] = 1.0
+        return Percept(time=t, position=np.array([x, 0.0, 0.03]), size=np.full(3, 0.06),
+                       colour_histogram=hist, category={"ball": 0.9, "cup": 0.1})
+
+    frames = []
+    for k in range(6):
+        percepts = [ball(k / 5, 0.1)]
+        if k == 2:
+            bad = ball(k / 5, 0.3)
+            bad.position[1] = float("nan")
+            percepts.append(bad)
+        frames.append(PerceptFrame(k, k / 5, percepts))
+    stream = tmp_path / "stream.jsonl"
+    write_percepts(stream, frames)
+    output = run(RunOptions(percepts=stream, particles=20, progress=False))
+    assert output.summary["frames"] == 6
+    assert output.summary["rejected_percepts"] == 1
