@@ -17,6 +17,7 @@ obs_var(0.0001).            % measurement noise of a perceived position: (1 cm)^
 motion_var(0.0004).         % how far a perceived object moves in one frame: (2 cm)^2
 reappear_var(0.0025).       % where a hidden object shows up again, around its belief: (5 cm)^2
 follow_var(0.000004).       % jitter of a hidden object that follows its occluder: (2 mm)^2
+follow_keep(0.95).          % fraction of its offset from the occluder's centre kept per frame
 occluder_reach(0.15).       % an occluder is within 15 cm of the object in the table plane ...
 occluder_rise(0.02).        % ... and its centre is no more than 2 cm lower than the object's
 cover_height(0.12).         % a container whose centre rises more than this above the object's
@@ -49,6 +50,11 @@ covers(O, A):t+1 :=
     category(O, C), \+ carrier(C), A \== O,
     pos(O):t+1 ~= (_, _, ZO), pos(A):t ~= (_, _, Z), cover_height(H), ZO < Z + H.
 
+% An object that vanished with nothing to explain it stays "lost" until an occluder explains
+% it: the box that hides it may still be coming down over it when it vanishes (its rim, partly
+% hidden, is the last thing perceived), or perception missed it for a frame.  An object whose
+% occluder was lifted away is not lost: it stays on the table where it was believed to be.
+lost(A):t+1 := hidden(A):t+1, \+ occluded_by(A, _):t+1, ( seen(A):t ; lost(A):t ).
 % An object hidden while blind stays "lost anywhere" until an occluder explains it.
 lost_anywhere(A):t+1 := hidden(A):t+1, blind:t+1, \+ occluded_by(A, _):t+1.
 lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
@@ -67,13 +73,13 @@ occluder_candidate(A, O):t+1 :=
         D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, Z < ZO + H
     ).
 
-% When a perceived object vanishes (or one lost while blind can now be explained), each
-% particle picks its occluder uniformly among the candidates (the paper's sample_occluder).
-% An object that stays hidden after its occluder was lifted away is not re-explained: it
-% stays where it was believed to be.
+% When a perceived object vanishes (or a lost one can now be explained), each particle picks
+% its occluder uniformly among the candidates (the paper's sample_occluder).  An object that
+% stays hidden after its occluder was lifted away is not re-explained: it stays where it was
+% believed to be.
 pick_occluder(A):t+1 ~ uniform(Os) :=
     hidden(A):t+1, \+ occluded_by(A, _):t,
-    ( seen(A):t ; lost_anywhere(A):t ),
+    ( seen(A):t ; lost(A):t ),
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
 
 occluded_by(A, O):t+1 := pick_occluder(A):t+1 ~= O.
@@ -81,35 +87,60 @@ occluded_by(A, O):t+1 := pick_occluder(A):t+1 ~= O.
 % covers it.
 occluded_by(A, O):t+1 := occluded_by(A, O):t, hidden(A):t+1, observed(O), covers(O, A):t+1.
 % Transitive occlusion (section 5.3 of the paper; remove this clause to switch it off): an
-% object whose occluder is itself hidden under something stays with it.
+% object whose occluder is itself hidden stays with it, under whatever hides the occluder (or,
+% while the occluder is lost, where the occluder is believed to be, until something explains
+% it: a box lowered over a mug hides the mug a few frames before it covers it).
 occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, hidden(A):t+1, hidden(O):t+1, occluded_by(O, _):t+1.
+    occluded_by(A, O):t, hidden(A):t+1, hidden(O):t+1.
 
 % ------------------------------------------------------------------ positions
+% A perceived object's position is the same in every particle: its filtered estimate, a point
+% (val) rather than a sample.  One filter carries all objects, so a particle's weight is the
+% product of every perceived object's predictive density; were the perceived positions sampled
+% per particle (e.g. from the Kalman posterior, the optimal proposal), every frame's weights
+% would differ only by those objects' own measurement noise, the effective sample size would
+% fall below the threshold nearly every frame, and each resampling would randomly thin the
+% modes of hidden objects whose particles carry no information of their own (genetic drift:
+% the shell game's ball lost its mode under the right container before it was lifted).  A
+% perceived object's posterior hardly depends on which occlusion hypothesis a particle holds,
+% so it is marginalised out of the particles (the Rao-Blackwellisation of section 2.2 of the
+% paper: keep analytically what needs no sampling); its point is the mean of that Gaussian
+% posterior.  Its measurement still weights every particle with the Gaussian predictive
+% density below; the density is simply the same in every particle that agrees on where the
+% object was, so the weights only move when the particles disagree: when a hidden object is
+% seen again, at the positions the particles had believed it to be (the informative event
+% that selects the right mode).
 % First sighting: at the perceived position.
-pos(A):t+1 ~ gaussian([X, Y, Z], C) :=
-    observed(A), observation(pos(A)) ~= (X, Y, Z), \+ pos(A):t ~= _,
-    obs_var(V), diagonal(V, C).
-% Perceived again: drawn from the posterior of (motion prior x measurement), the optimal
-% proposal; the particle is weighted by the predictive density below.
-pos(A):t+1 ~ gaussian([MX, MY, MZ], C) :=
-    observed(A), observation(pos(A)) ~= (OX, OY, OZ), pos(A):t ~= (X, Y, Z),
+pos(A):t+1 ~ val((X, Y, Z)) :=
+    observed(A), observation(pos(A)) ~= (X, Y, Z), \+ pos(A):t ~= _.
+% Perceived in the previous frame too: the mean of the posterior of (motion prior x
+% measurement) (a Kalman step with a fixed gain).
+pos(A):t+1 ~ val((MX, MY, MZ)) :=
+    observed(A), seen(A):t, observation(pos(A)) ~= (OX, OY, OZ), pos(A):t ~= (X, Y, Z),
     prior_var(A, P):t+1, obs_var(R), K is P / (P + R),
-    MX is X + K*(OX-X), MY is Y + K*(OY-Y), MZ is Z + K*(OZ-Z),
-    V is (1-K)*P, diagonal(V, C).
+    MX is X + K*(OX-X), MY is Y + K*(OY-Y), MZ is Z + K*(OZ-Z).
+% Seen again after being hidden: at the perceived position, in every particle (the particle's
+% weight already says how well its belief predicted the position; from here on the particles
+% agree again).
+pos(A):t+1 ~ val((X, Y, Z)) :=
+    observed(A), \+ seen(A):t, pos(A):t ~= _, observation(pos(A)) ~= (X, Y, Z).
 % Hidden under an occluder that has just been picked: under it, at the object's own height.
 pos(A):t+1 ~ gaussian([XO, YO, Z], C) :=
     hidden(A):t+1, occluded_by(A, O):t+1, \+ occluded_by(A, O):t,
     pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (_, _, Z),
     follow_var(V), diagonal(V, C).
 % Hidden under the same occluder as before: moves with it (in the table plane; a carrier
-% such as a hand also lifts it).
-pos(A):t+1 ~ gaussian([MX, MY, MZ], C) :=
+% such as a hand also lifts it).  Its offset from the occluder's centre is kept with
+% follow_keep and jittered with follow_var, so the belief settles within the occluder's
+% footprint (spread sqrt(follow_var / (1 - follow_keep^2)), 6 mm) instead of wandering
+% further off frame after frame; its height hardly jitters (an object under a container stays
+% on the table).
+pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
     hidden(A):t+1, occluded_by(A, O):t+1, occluded_by(A, O):t,
     pos(O):t ~= (X0, Y0, Z0), pos(O):t+1 ~= (X1, Y1, Z1), pos(A):t ~= (X, Y, Z),
-    MX is X + X1 - X0, MY is Y + Y1 - Y0,
+    follow_keep(K), MX is X1 + K*(X - X0), MY is Y1 + K*(Y - Y0),
     (   category(O, CO), carrier(CO) -> MZ is Z + Z1 - Z0 ; MZ = Z ),
-    follow_var(V), diagonal(V, C).
+    follow_var(V), VZ is V / 100.
 % Hidden and unexplained: it stays where it was last believed to be.
 pos(A):t+1 ~ val(P) :=
     hidden(A):t+1, \+ occluded_by(A, _):t+1, pos(A):t ~= P.
