@@ -24,13 +24,11 @@ class LoopConfig:
     seed: int = 0
     reasoning: bool = True
     # Resample when the effective sample size falls below this fraction of N (the filter's
-    # default). The perceived objects' weights move every frame, so resampling happens almost
-    # every frame, and each resampling randomly thins the modes of hidden objects, whose own
-    # weights carry no information (genetic drift). Lower thresholds resample less but let the
-    # weights degenerate more; single runs at 100 particles went both ways (the shell game's
-    # ball kept at 0.5 and lost at 0.9 on one percept stream; 2 of 3 random games' balls lost
-    # at 0.5 and none at 0.9), so the default stays; a filter that does not couple the objects'
-    # weights is the real fix.
+    # default). The theory gives every perceived object the same position in all particles, so
+    # the weights only move on informative events (a hidden object seen again, at the places
+    # the particles had it) and resampling happens then, not every frame: hidden objects' modes
+    # no longer drift. (With positions sampled per particle, resampling ran nearly every frame
+    # for the perceived objects' own noise and randomly thinned the hidden ball's modes.)
     resample_threshold: float = 0.9
 
 
@@ -117,15 +115,14 @@ class AnchoringLoop:
         return out
 
 
-def run_frames(frames: Iterable[SourceFrame], config: LoopConfig,
+def run_frames(frames: Iterable[SourceFrame], loop: AnchoringLoop,
                on_frame: Callable[[FrameOutcome, AnchoringLoop], None] | None = None,
-               ) -> tuple[list[TrackingRecord], AnchoringLoop]:
-    """Play frames through a new loop; ``on_frame`` sees each outcome (pictures, progress)."""
-    loop = AnchoringLoop(config)
+               ) -> list[TrackingRecord]:
+    """Play frames through ``loop``; ``on_frame`` sees each outcome (pictures, progress)."""
     records: list[TrackingRecord] = []
     for source in frames:
         outcome = loop.process(source)
         records.append(outcome.record)
         if on_frame is not None:
             on_frame(outcome, loop)
-    return records, loop
+    return records

@@ -15,7 +15,6 @@ from app.pictures import FramePictures
 from app.reasoning import DEFAULT_THEORY
 from app.sources import scenario_frames, scenario_length, stream_frames
 from app.world_file import write_world
-from bridge import load as load_program
 from evaluation import TrackingRecord, evaluate, make_summary, write_records, write_summary
 
 logger = logging.getLogger(__name__)
@@ -46,19 +45,24 @@ class RunOutput:
     pictures: list[Path] = field(default_factory=list)
 
 
-def check_theory(path: Path) -> None:
-    """Load the theory once before the first frame: a syntax or distribution error stops the
-    run here with the file, line and cause."""
-    if not path.exists():
-        raise FileNotFoundError(f"{path}: no such theory file")
-    load_program(path)
-
-
 def run(options: RunOptions) -> RunOutput:
     if (options.scenario is None) == (options.percepts is None):
         raise ValueError("give a scenario or a percept stream (--percepts), not both")
-    if options.reasoning:
-        check_theory(options.theory)
+    if options.reasoning and not options.theory.is_file():
+        raise FileNotFoundError(f"{options.theory}: no such theory file")
+    config = LoopConfig(particles=options.particles, theory=options.theory, seed=options.seed,
+                        reasoning=options.reasoning,
+                        resample_threshold=options.resample_threshold)
+    # The loop's filter loads the theory (once) here, before the first frame: a syntax or
+    # distribution error stops the run with the file, line and cause.
+    loop = AnchoringLoop(config)
+    try:
+        return _run(options, loop)
+    finally:
+        loop.close()
+
+
+def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
     if options.scenario is not None:
         frames = scenario_frames(options.scenario, seed=options.seed, width=options.width,
                                  height=options.height)
@@ -80,37 +84,31 @@ def run(options: RunOptions) -> RunOutput:
             pictures(outcome, loop)
         bar.update(1)
 
-    config = LoopConfig(particles=options.particles, theory=options.theory, seed=options.seed,
-                        reasoning=options.reasoning,
-                        resample_threshold=options.resample_threshold)
     try:
-        records, loop = run_frames(frames, config, on_frame)
+        records = run_frames(frames, loop, on_frame)
     finally:
         bar.close()
-    try:
-        evaluation = evaluate(records)
-        extra = {
-            "scenario": name,
-            "method": "reasoning" if options.reasoning else "no-reasoning",
-            "particles": options.particles if options.reasoning else 0,
-            "seed": options.seed,
-            "zero_weight_events": (loop.reasoner.filter.zero_weight_events
-                                   if loop.reasoner is not None else 0),
-        }
-        if options.out is None:
-            return RunOutput(make_summary(records, evaluation, extra=extra), records, None)
-        summary = write_summary(options.out / "summary.json", records, evaluation, extra=extra)
-        output = RunOutput(summary, records, options.out)
-        write_records(options.out / "records.jsonl", records)
-        perceived = {s for s, h in records[-1].hypotheses.items() if h.perceived} \
-            if records else set()
-        write_world(options.out / "world.pl", loop, perceived)
-        if pictures is not None:
-            output.pictures = pictures.paths
-            output.gif = pictures.finish(options.out / "run.gif")
-        return output
-    finally:
-        loop.close()
+    evaluation = evaluate(records)
+    extra = {
+        "scenario": name,
+        "method": "reasoning" if options.reasoning else "no-reasoning",
+        "particles": options.particles if options.reasoning else 0,
+        "seed": options.seed,
+        "zero_weight_events": (loop.reasoner.filter.zero_weight_events
+                               if loop.reasoner is not None else 0),
+    }
+    if options.out is None:
+        return RunOutput(make_summary(records, evaluation, extra=extra), records, None)
+    summary = write_summary(options.out / "summary.json", records, evaluation, extra=extra)
+    output = RunOutput(summary, records, options.out)
+    write_records(options.out / "records.jsonl", records)
+    perceived = {s for s, h in records[-1].hypotheses.items() if h.perceived} \
+        if records else set()
+    write_world(options.out / "world.pl", loop, perceived)
+    if pictures is not None:
+        output.pictures = pictures.paths
+        output.gif = pictures.finish(options.out / "run.gif")
+    return output
 
 
 def format_summary(summary: dict[str, Any]) -> str:

@@ -329,7 +329,9 @@ class Filter:
             {"P": str(self.program_path), "N": self.particles, "S": self.seed, "K": key},
         )
         if result["Err"]:
-            raise FilterError(f"{self.program_path}: {result['Err']}")
+            error = str(result["Err"])  # usually "file:line: cause" already
+            raise FilterError(error if str(path) in error or str(self.program_path) in error
+                              else f"{self.program_path}: {error}")
         self._key = key
 
     # -- life cycle ---------------------------------------------------------------------------
