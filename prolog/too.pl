@@ -45,16 +45,11 @@ blind:t+1 := \+ observed(_).
 
 % A container covers an object while its centre is not lifted far above the object's; a
 % carrier (a hand) covers what it holds wherever it goes.
-covers(O, A):t+1 := category(O, C), carrier(C), A \== O.
+covers(O, A):t+1 := category(O, C), carrier(C), object(A), A \== O.
 covers(O, A):t+1 :=
     category(O, C), \+ carrier(C), A \== O,
     pos(O):t+1 ~= (_, _, ZO), pos(A):t ~= (_, _, Z), cover_height(H), ZO < Z + H.
 
-% An object that vanished with nothing to explain it stays "lost" until an occluder explains
-% it: the box that hides it may still be coming down over it when it vanishes (its rim, partly
-% hidden, is the last thing perceived), or perception missed it for a frame.  An object whose
-% occluder was lifted away is not lost: it stays on the table where it was believed to be.
-lost(A):t+1 := hidden(A):t+1, \+ occluded_by(A, _):t+1, ( seen(A):t ; lost(A):t ).
 % An object hidden while blind stays "lost anywhere" until an occluder explains it.
 lost_anywhere(A):t+1 := hidden(A):t+1, blind:t+1, \+ occluded_by(A, _):t+1.
 lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
@@ -73,23 +68,50 @@ occluder_candidate(A, O):t+1 :=
         D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, Z < ZO + H
     ).
 
-% When a perceived object vanishes (or a lost one can now be explained), each particle picks
-% its occluder uniformly among the candidates (the paper's sample_occluder).  An object that
-% stays hidden after its occluder was lifted away is not re-explained: it stays where it was
-% believed to be.
-pick_occluder(A):t+1 ~ uniform(Os) :=
-    hidden(A):t+1, \+ occluded_by(A, _):t,
-    ( seen(A):t ; lost(A):t ),
-    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
+% What a particle may pick when A is hidden and under nothing:
+% - A vanished just now: one of the candidates, or `behind`: A stays where it was, hidden from
+%   the camera's view by something in front of it (a container carried or swapped past it,
+%   two containers merged into one segment for a few frames) or missed by perception.  Without
+%   that choice every particle would put a mug that vanished while another container passed
+%   in front of it under that container, and the mug, seen again where it was, would be a new
+%   anchor.
+% - A was lost while the camera was blind: any covering occluder on the table (its old place
+%   says nothing: it was moved unseen).
+% - A has been hidden under nothing (behind something, or left on the table when its container
+%   was lifted away, or no occluder was near when it vanished): only an occluder that is
+%   lowered over it, i.e. covers it now and did not in the previous frame (a box that was
+%   still too high when the mug under it vanished; a container put back over an object).  A
+%   container sliding on the table does not slide over what stands there.
+lowered_over(O, A):t+1 :=
+    occluder_candidate(A, O):t+1, pos(A):t ~= (_, _, Z), cover_height(H),
+    (   pos(O):t ~= (_, _, ZO)
+    ->  ZO >= Z + H
+    ;   true
+    ).
 
-occluded_by(A, O):t+1 := pick_occluder(A):t+1 ~= O.
+% Each particle picks uniformly among the choices (the paper's sample_occluder, plus
+% `behind`).  (The list with `behind` is built in the body: written in the head,
+% `uniform([behind | Os])`, the engine stopped at the first vanishing with an instantiation
+% error in its store.)
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, \+ occluded_by(A, _):t, lost_anywhere(A):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, \+ occluded_by(A, _):t, seen(A):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \== [],
+    Os = [behind | Os1].
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, \+ occluded_by(A, _):t, \+ seen(A):t, \+ lost_anywhere(A):t,
+    findall_forward(O, lowered_over(O, A):t+1, Os0), sort(Os0, Os), Os \== [].
+
+occluded_by(A, O):t+1 := pick_occluder(A):t+1 ~= O, O \== behind.
 % The occlusion lasts while the object is hidden and its occluder is perceived and still
 % covers it.
 occluded_by(A, O):t+1 := occluded_by(A, O):t, hidden(A):t+1, observed(O), covers(O, A):t+1.
 % Transitive occlusion (section 5.3 of the paper; remove this clause to switch it off): an
 % object whose occluder is itself hidden stays with it, under whatever hides the occluder (or,
-% while the occluder is lost, where the occluder is believed to be, until something explains
-% it: a box lowered over a mug hides the mug a few frames before it covers it).
+% while the occluder is under nothing, where the occluder is believed to be: a box lowered
+% over a mug hides the mug a few frames before it covers it).
 occluded_by(A, O):t+1 :=
     occluded_by(A, O):t, hidden(A):t+1, hidden(O):t+1.
 

@@ -22,50 +22,100 @@ def test_symbol_atoms() -> None:
     assert symbol_atom("3d-thing") == "a_3d_thing"
 
 
+def half_within_binomial(p: float, n: int) -> bool:
+    """A vanished object with one candidate occluder is under it or `behind` (stays where it
+    was, hidden from view) with probability 1/2 each: p within 4.5 standard errors."""
+    return abs(p - 0.5) < 4.5 * np.sqrt(0.25 / n)
+
+
 def test_hidden_ball_follows_the_mug_that_covers_it() -> None:
-    reasoner = OcclusionReasoner(particles=60, seed=1)
+    n = 60
+    reasoner = OcclusionReasoner(particles=n, seed=1)
     try:
         for _ in range(2):
             step(reasoner, {"mug-1": ("mug", MUG), "ball-1": ("ball", BALL)})
         step(reasoner, {"mug-1": ("mug", MUG), "ball-1": ("ball", None)})
-        assert reasoner.occluders("ball-1")[0][1] == "mug-1"
-        assert reasoner.occluders("ball-1")[0][0] == pytest.approx(1.0)
+        occluders = reasoner.occluders("ball-1")
+        assert [s for _, s in occluders] == ["mug-1"]
+        p_under = occluders[0][0]
+        assert half_within_binomial(p_under, n)
         for k in range(1, 7):  # the mug slides 30 cm to the right
             step(reasoner, {"mug-1": ("mug", (0.05 * k, 0.0, 0.05)), "ball-1": ("ball", None)})
         belief = reasoner.belief("ball-1")
         assert belief is not None
-        mean = belief.weights @ belief.positions
-        # under the mug (within a few cm: picked at the mug's centre, then moved with it)
-        assert abs(mean[0] - 0.30) < 0.03 and abs(mean[1]) < 0.03
-        assert abs(mean[2] - 0.03) < 0.01  # stays on the table: a mug is not a carrier
+        # under the mug (within a few cm: picked at the mug's centre, then moved with it), or
+        # where it vanished; nothing in between
+        under = np.abs(belief.positions[:, 0] - 0.30) < 0.03
+        stayed = np.abs(belief.positions[:, 0] - BALL[0]) < 0.01
+        assert np.all(under | stayed)
+        assert belief.weights[under].sum() == pytest.approx(p_under)
+        assert np.all(np.abs(belief.positions[:, 1]) < 0.03)
+        # stays on the table: a mug is not a carrier
+        assert np.all(np.abs(belief.positions[:, 2] - 0.03) < 0.01)
     finally:
         reasoner.close()
 
 
 def test_lifting_the_mug_ends_the_occlusion_and_leaves_the_ball_on_the_table() -> None:
-    reasoner = OcclusionReasoner(particles=40, seed=2)
+    n = 40
+    reasoner = OcclusionReasoner(particles=n, seed=2)
     try:
         step(reasoner, {"mug-1": ("mug", MUG), "ball-1": ("ball", BALL)})
         step(reasoner, {"mug-1": ("mug", MUG), "ball-1": ("ball", None)})
-        assert reasoner.probability("occluded_by(ball_1, mug_1):t") == pytest.approx(1.0)
+        assert half_within_binomial(reasoner.probability("occluded_by(ball_1, mug_1):t"), n)
         step(reasoner, {"mug-1": ("mug", (0.0, 0.0, 0.25)), "ball-1": ("ball", None)})
         assert reasoner.probability("occluded_by(ball_1, _):t") == pytest.approx(0.0)
         belief = reasoner.belief("ball-1")
         assert belief is not None
-        assert np.all(np.abs(belief.positions[:, :2]).max(axis=1) < 0.03)
+        assert np.all(np.abs(belief.positions[:, :2]).max(axis=1) < 0.06)
     finally:
         reasoner.close()
 
 
 def test_a_ball_is_never_the_occluder_and_a_far_box_is_not_a_candidate() -> None:
-    reasoner = OcclusionReasoner(particles=50, seed=3)
+    n = 50
+    reasoner = OcclusionReasoner(particles=n, seed=3)
     scene = {"ball-1": ("ball", (0.0, 0.0, 0.03)), "ball-2": ("ball", (0.06, 0.0, 0.03)),
              "box-1": ("box", (0.0, 0.08, 0.06)), "mug-1": ("mug", (0.5, 0.0, 0.05))}
     try:
         step(reasoner, scene)
         step(reasoner, {**scene, "ball-1": ("ball", None)})
         occluders = dict((s, p) for p, s in reasoner.occluders("ball-1"))
-        assert occluders == {"box-1": pytest.approx(1.0)}
+        assert set(occluders) == {"box-1"}
+        assert half_within_binomial(occluders["box-1"], n)
+    finally:
+        reasoner.close()
+
+
+def test_a_box_lowered_over_a_vanished_mug_covers_it_a_container_sliding_by_does_not() -> None:
+    reasoner = OcclusionReasoner(particles=30, seed=5)
+    mug, ball = ("mug", (0.0, 0.0, 0.05)), ("ball", (0.4, 0.0, 0.03))
+    try:
+        step(reasoner, {"mug-1": mug, "box-1": ("box", (0.0, 0.0, 0.30)), "ball-1": ball,
+                        "mug-2": ("mug", (0.4, 0.4, 0.05))})
+        # the mug vanishes under the box while the box is still too high to cover it; the ball
+        # vanishes (missed) with no container near
+        step(reasoner, {"mug-1": ("mug", None), "box-1": ("box", (0.0, 0.0, 0.22)),
+                        "ball-1": ("ball", None), "mug-2": ("mug", (0.4, 0.4, 0.05))})
+        assert reasoner.probability("occluded_by(mug_1, _):t") == pytest.approx(0.0)
+        assert reasoner.probability("occluded_by(ball_1, _):t") == pytest.approx(0.0)
+        # the box comes down over the mug; mug-2 slides on the table over the ball's place
+        for k in range(1, 5):
+            step(reasoner, {"mug-1": ("mug", None),
+                            "box-1": ("box", (0.0, 0.0, 0.22 - 0.04 * k)),
+                            "ball-1": ("ball", None),
+                            "mug-2": ("mug", (0.4, 0.4 - 0.1 * k, 0.05))})
+        assert reasoner.probability("occluded_by(mug_1, box_1):t") == pytest.approx(1.0)
+        assert reasoner.probability("occluded_by(ball_1, _):t") == pytest.approx(0.0)
+        # and the mug moves with the box
+        for k in range(1, 4):
+            step(reasoner, {"mug-1": ("mug", None), "box-1": ("box", (0.1 * k, 0.0, 0.06)),
+                            "ball-1": ("ball", None), "mug-2": ("mug", (0.4, 0.0, 0.05))})
+        belief, box = reasoner.belief("mug-1"), reasoner.belief("box-1")
+        assert belief is not None and box is not None
+        box_x = float(box.weights @ box.positions[:, 0])  # the filtered estimate (lags a bit)
+        assert box_x > 0.25
+        assert np.all(np.abs(belief.positions[:, 0] - box_x) < 0.02)
     finally:
         reasoner.close()
 
