@@ -18,6 +18,7 @@ from anchoring.manager import (
     FrameResult,
     Rejection,
     SymbolTable,
+    Withheld,
 )
 from anchoring.matcher import DEFAULT_MODEL, Matcher, MatcherError, RbfSvm, load_default_matcher
 from anchoring.similarity import FEATURES
@@ -37,6 +38,7 @@ __all__ = [
     "RbfSvm",
     "Rejection",
     "SymbolTable",
+    "Withheld",
     "load_default_matcher",
     "pair_features",
 ]

@@ -14,7 +14,21 @@ Per frame (:meth:`AnchorManager.process`):
    saturates for clear matches);
 5. matched percepts re-acquire their anchor, unmatched percepts acquire a new anchor, and the
    anchors that were not perceived are *tracked* (their position is whatever the reasoning
-   later supplies through :meth:`AnchorManager.set_position_particles`, else the last value).
+   later supplies through :meth:`AnchorManager.set_position_particles`, else the last value);
+6. except that an unmatched percept that is a plausible *partial or merged view* of anchors
+   not perceived this frame is *withheld* (no symbol, reported in ``result.withheld``): its 3-D
+   box overlaps such an anchor's box placed at the anchor's last perceived position or at one
+   of its particles, and its colour is not unlike the anchor's. A mug's rim above the box in
+   front of it, the first sliver of a mug coming out from behind a box, a container half
+   revealed as its cover is lifted, two containers seen as one segment for a frame: these are
+   views of objects that already have anchors, and a new anchor for them would give the
+   object's percepts a second symbol. A percept withheld because of one anchor for longer than
+   ``withhold_seconds`` in a row is acquired after all (a new object put where a hidden one is
+   believed is not refused for ever).
+
+A pair the matcher accepts is still refused when the percept is far larger than the anchor in
+the table plane (``merge_ratio``: its largest horizontal extent more than that many times the
+anchor's plus 2 cm): two objects seen as one segment must not re-acquire one of them.
 
 Symbols are ``<category>-<k>``: the k-th anchor acquired with that best category. A symbol never
 changes during the anchor's life, even when its category estimate changes later (the anchor's
@@ -65,12 +79,22 @@ class Rejection:
 
 
 @dataclass
+class Withheld:
+    """Percept ``percept_index`` was left without a symbol: it looks like a partial or merged
+    view of the anchors ``symbols`` (not perceived this frame)."""
+
+    percept_index: int
+    symbols: list[str]
+
+
+@dataclass
 class FrameResult:
     time: float
     assignments: list[Assignment] = field(default_factory=list)
     tracked: list[str] = field(default_factory=list)  # anchors not perceived this frame
     dropped: list[str] = field(default_factory=list)  # glitches removed this frame
     rejected: list[Rejection] = field(default_factory=list)
+    withheld: list[Withheld] = field(default_factory=list)  # partial / merged views, no symbol
     # the similarity vectors of this frame: (A, P, 5), rows the anchors ``compared`` (in that
     # order), columns the valid percepts in input order (``rejected`` ones left out)
     features: np.ndarray | None = field(default=None, repr=False)
@@ -120,10 +144,20 @@ class AnchorManager:
         matcher: Matcher | None = None,
         glitch_seconds: float = 1.0,
         history_size: int = 10,
+        withhold_seconds: float = 1.0,
+        view_margin: float = 0.01,
+        view_colour: float = 0.7,
+        merge_ratio: float = 1.5,
     ) -> None:
         self.matcher: Matcher = matcher if matcher is not None else load_default_matcher()
         self.glitch_seconds = float(glitch_seconds)
         self.history_size = int(history_size)
+        # partial / merged views (see the module doc); withhold_seconds <= 0 switches it off
+        self.withhold_seconds = float(withhold_seconds)
+        self.view_margin = float(view_margin)
+        self.view_colour = float(view_colour)
+        self.merge_ratio = float(merge_ratio)
+        self._withholding: dict[str, float] = {}  # anchor symbol -> since when it withholds
         self.symbols = SymbolTable()
         self.time: float | None = None
         self._anchors: dict[str, Anchor] = {}
@@ -192,7 +226,7 @@ class AnchorManager:
         scores = np.zeros((len(anchors), len(frame)))
         if anchors and frame:
             scores = np.asarray(self.matcher.decision(features), dtype=float)
-            accept = scores > 0
+            accept = (scores > 0) & ~self._merged_views(anchors, frame)
             if accept.any():
                 # the matcher decides which pairs may match; the assignment takes as many
                 # accepted pairs as possible (1e9 per refused pair) and among those maximises
@@ -204,10 +238,14 @@ class AnchorManager:
                     if accept[r, c]:
                         matched_anchor[int(c)] = int(r)
 
+        matched = {anchors[r].symbol for r in matched_anchor.values()}
+        views = self._views(anchors, frame, features, matched_anchor, matched, time)
         perceived: set[str] = set()
         for j, i in enumerate(valid):
             percept = percepts[i]
-            if j in matched_anchor:
+            if j in views:
+                result.withheld.append(Withheld(i, views[j]))
+            elif j in matched_anchor:
                 anchor = anchors[matched_anchor[j]]
                 anchor.reacquire(percept)
                 anchor.confirmed = True
@@ -221,6 +259,43 @@ class AnchorManager:
                 result.assignments.append(Assignment(i, symbol, "acquire"))
         result.tracked = [a.symbol for a in anchors if a.symbol not in perceived]
         return result
+
+    def _merged_views(self, anchors: list[Anchor], frame: list[Percept]) -> np.ndarray:
+        """(A, P) True where the percept is far too large in the table plane to be a view of
+        the anchor alone (two objects seen as one segment)."""
+        a = np.array([an.size.samples[0][:2].max() for an in anchors])
+        p = np.array([pc.size[:2].max() for pc in frame])
+        return p[None, :] > self.merge_ratio * a[:, None] + 0.02
+
+    def _views(self, anchors: list[Anchor], frame: list[Percept], features: np.ndarray,
+               matched_anchor: dict[int, int], matched: set[str], time: float
+               ) -> dict[int, list[str]]:
+        """Unmatched percepts (index in ``frame``) that are partial or merged views of anchors
+        not perceived this frame -> those anchors' symbols (see the module doc)."""
+        views: dict[int, list[str]] = {}
+        if self.withhold_seconds <= 0 or not anchors:
+            self._withholding.clear()
+            return views
+        unseen = [k for k, an in enumerate(anchors) if an.symbol not in matched]
+        still: dict[str, float] = {}
+        for j, percept in enumerate(frame):
+            if j in matched_anchor:
+                continue
+            hits = []
+            for k in unseen:
+                anchor = anchors[k]
+                if features[k, j, 1] < self.view_colour:
+                    continue
+                if not _boxes_overlap(anchor, percept, self.view_margin):
+                    continue
+                since = self._withholding.get(anchor.symbol, time)
+                still[anchor.symbol] = since
+                if time - since <= self.withhold_seconds:
+                    hits.append(anchor.symbol)
+            if hits:
+                views[j] = hits
+        self._withholding = still
+        return views
 
     def _histogram_bins(self, percepts: Sequence[Percept]) -> int | None:
         for anchor in self._anchors.values():
@@ -237,6 +312,10 @@ class AnchorManager:
             "time": self.time,
             "glitch_seconds": self.glitch_seconds,
             "history_size": self.history_size,
+            "withhold_seconds": self.withhold_seconds,
+            "view_margin": self.view_margin,
+            "view_colour": self.view_colour,
+            "merge_ratio": self.merge_ratio,
             "symbol_counters": self.symbols.counters,
             "anchors": [a.to_json() for a in self._anchors.values()],
         }
@@ -265,6 +344,10 @@ class AnchorManager:
                 matcher,
                 glitch_seconds=float(record["glitch_seconds"]),
                 history_size=int(record["history_size"]),
+                withhold_seconds=float(record.get("withhold_seconds", 1.0)),
+                view_margin=float(record.get("view_margin", 0.01)),
+                view_colour=float(record.get("view_colour", 0.7)),
+                merge_ratio=float(record.get("merge_ratio", 1.5)),
             )
             manager.time = None if record.get("time") is None else float(record["time"])
             manager.symbols = SymbolTable(
@@ -281,6 +364,21 @@ class AnchorManager:
                 raise
             raise AnchorManagerError(f"{path}: bad world file: {exc!r}") from exc
         return manager
+
+
+def _boxes_overlap(anchor: Anchor, percept: Percept, margin: float) -> bool:
+    """Whether the percept's 3-D box overlaps (within ``margin``) the anchor's box placed at its
+    last perceived position or at any of its particles of positive weight."""
+    half = (anchor.size.samples[0] + percept.size) / 2 + margin
+    centres = [anchor.history[-1].position[None, :]] if anchor.history else []
+    if anchor.position.is_probabilistic:
+        centres.append(anchor.position.samples[anchor.position.weights > 0])
+    else:
+        centres.append(anchor.position.samples)
+    for c in centres:
+        if np.any(np.all(np.abs(c - percept.position) <= half, axis=1)):
+            return True
+    return False
 
 
 def _invalid(percept: Percept, bins: int | None) -> str | None:
