@@ -124,6 +124,34 @@ def test_two_containers_seen_as_one_segment_do_not_steal_a_symbol():
     assert r.symbols == {0: "mug-1", 1: "mug-2"}
 
 
+def test_two_mugs_touching_seen_as_one_segment_are_not_re_acquired():
+    """The merged segment is only 1.6 times a mug wide (two mugs side by side, one partly
+    behind the other): it holds both mugs' last positions and is larger than each."""
+    m = AnchorManager()
+    a = lambda t, x: percept(t, [x, 0.0, 0.042], "mug", hue=5, truth="A")  # noqa: E731
+    b = lambda t, x: percept(t, [x, 0.0, 0.042], "mug", hue=2, truth="B")  # noqa: E731
+    t = seen(m, 0.0, 10, lambda t: [a(t, -0.04), b(t, 0.045)])
+    merged = percept(t, [0.0, 0.0, 0.042], {"box": 0.8, "mug": 0.2}, hue=5,
+                     size=(0.16, 0.09, 0.082), truth="A")
+    r = m.process(t, [merged])
+    assert r.assignments == [] and sorted(r.withheld[0].symbols) == ["mug-1", "mug-2"]
+    r = m.process(t + 1 / 15, [a(t, -0.045), b(t, 0.05)])
+    assert r.symbols == {0: "mug-1", 1: "mug-2"}
+
+
+def test_a_mug_lowered_over_a_ball_is_still_the_mug():
+    """The mug's percept holds the ball's last position too, but it is not larger than the
+    mug: it re-acquires the mug."""
+    m = AnchorManager()
+    ball = lambda t: percept(t, [0.0, 0.0, 0.03], "ball", hue=0, size=(0.06, 0.06, 0.06))  # noqa: E731
+    t = 0.0
+    for k in range(10):  # the mug slides over the ball
+        m.process(t, [ball(t), percept(t, [0.0, 0.1 - 0.01 * k, 0.042], "mug", hue=5)])
+        t += 1 / 15
+    r = m.process(t, [percept(t, [0.0, 0.0, 0.042], "mug", hue=5)])
+    assert r.symbols == {0: "mug-1"} and r.tracked == ["ball-1"]
+
+
 def test_an_anchor_seen_first_in_part_is_still_reacquired_when_seen_whole():
     """The merge gate must not lock out an anchor acquired from a partial view."""
     m = AnchorManager()

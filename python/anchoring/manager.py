@@ -28,7 +28,9 @@ Per frame (:meth:`AnchorManager.process`):
 
 A pair the matcher accepts is still refused when the percept is far larger than the anchor in
 the table plane (``merge_ratio``: its largest horizontal extent more than that many times the
-anchor's plus 2 cm): two objects seen as one segment must not re-acquire one of them.
+anchor's plus 2 cm), or when it holds the last positions of two anchors just perceived and is
+larger than each (:meth:`AnchorManager._merged_views`): two objects seen as one segment must
+not re-acquire one of them; such a percept is withheld.
 
 Symbols are ``<category>-<k>``: the k-th anchor acquired with that best category. A symbol never
 changes during the anchor's life, even when its category estimate changes later (the anchor's
@@ -148,6 +150,7 @@ class AnchorManager:
         view_margin: float = 0.01,
         view_colour: float = 0.7,
         merge_ratio: float = 1.5,
+        merge_seconds: float = 0.5,
     ) -> None:
         self.matcher: Matcher = matcher if matcher is not None else load_default_matcher()
         self.glitch_seconds = float(glitch_seconds)
@@ -157,6 +160,7 @@ class AnchorManager:
         self.view_margin = float(view_margin)
         self.view_colour = float(view_colour)
         self.merge_ratio = float(merge_ratio)
+        self.merge_seconds = float(merge_seconds)
         self._withholding: dict[str, float] = {}  # anchor symbol -> since when it withholds
         self.symbols = SymbolTable()
         self.time: float | None = None
@@ -223,10 +227,12 @@ class AnchorManager:
         result.features = features
         result.compared = [a.symbol for a in anchors]
         matched_anchor: dict[int, int] = {}  # index in frame -> index in anchors
+        merged: dict[int, list[int]] = {}  # index in frame -> anchors seen as one segment
         scores = np.zeros((len(anchors), len(frame)))
         if anchors and frame:
             scores = np.asarray(self.matcher.decision(features), dtype=float)
-            accept = (scores > 0) & ~self._merged_views(anchors, frame)
+            refuse, merged = self._merged_views(anchors, frame, time)
+            accept = (scores > 0) & ~refuse
             if accept.any():
                 # the matcher decides which pairs may match; the assignment takes as many
                 # accepted pairs as possible (1e9 per refused pair) and among those maximises
@@ -239,7 +245,7 @@ class AnchorManager:
                         matched_anchor[int(c)] = int(r)
 
         matched = {anchors[r].symbol for r in matched_anchor.values()}
-        views = self._views(anchors, frame, features, matched_anchor, matched, time)
+        views = self._views(anchors, frame, features, matched_anchor, matched, merged, time)
         perceived: set[str] = set()
         for j, i in enumerate(valid):
             percept = percepts[i]
@@ -260,16 +266,38 @@ class AnchorManager:
         result.tracked = [a.symbol for a in anchors if a.symbol not in perceived]
         return result
 
-    def _merged_views(self, anchors: list[Anchor], frame: list[Percept]) -> np.ndarray:
-        """(A, P) True where the percept is far too large in the table plane to be a view of
-        the anchor alone (two objects seen as one segment)."""
-        a = np.array([an.size.samples[0][:2].max() for an in anchors])
-        p = np.array([pc.size[:2].max() for pc in frame])
-        return p[None, :] > self.merge_ratio * a[:, None] + 0.02
+    def _merged_views(self, anchors: list[Anchor], frame: list[Percept], time: float
+                      ) -> tuple[np.ndarray, dict[int, list[int]]]:
+        """Two objects seen as one segment: (A, P) pairs refused, and the percepts (index in
+        ``frame``) judged merged -> the anchors (indices) merged in them.
+
+        A pair is refused when the percept is far larger in the table plane than the anchor
+        (``merge_ratio``), or when the percept's box holds the last perceived positions of two
+        or more anchors perceived within ``merge_seconds`` and is larger than each of them
+        (its largest horizontal extent over 1.2 times theirs plus 1 cm): a container lowered
+        over a ball holds the ball's position too, but is not larger than itself."""
+        a_ext = np.array([an.size.samples[0][:2].max() for an in anchors])
+        p_ext = np.array([pc.size[:2].max() for pc in frame])
+        refuse = p_ext[None, :] > self.merge_ratio * a_ext[:, None] + 0.02
+        merged: dict[int, list[int]] = {}
+        recent = [k for k, an in enumerate(anchors)
+                  if an.history and time - an.last_seen <= self.merge_seconds]
+        if len(recent) < 2:
+            return refuse, merged
+        centres = np.array([anchors[k].history[-1].position for k in recent])
+        positions = np.array([pc.position for pc in frame])
+        half = np.array([pc.size for pc in frame]) / 2
+        inside = np.all(np.abs(centres[:, None, :] - positions[None]) <= half[None], axis=2)
+        for j in np.nonzero(inside.sum(axis=0) >= 2)[0]:
+            held = [recent[r] for r in np.nonzero(inside[:, j])[0]]
+            if all(p_ext[j] > 1.2 * a_ext[k] + 0.01 for k in held):
+                refuse[held, j] = True
+                merged[int(j)] = held
+        return refuse, merged
 
     def _views(self, anchors: list[Anchor], frame: list[Percept], features: np.ndarray,
-               matched_anchor: dict[int, int], matched: set[str], time: float
-               ) -> dict[int, list[str]]:
+               matched_anchor: dict[int, int], matched: set[str],
+               merged: dict[int, list[int]], time: float) -> dict[int, list[str]]:
         """Unmatched percepts (index in ``frame``) that are partial or merged views of anchors
         not perceived this frame -> those anchors' symbols (see the module doc)."""
         views: dict[int, list[str]] = {}
@@ -284,10 +312,11 @@ class AnchorManager:
             hits = []
             for k in unseen:
                 anchor = anchors[k]
-                if features[k, j, 1] < self.view_colour:
-                    continue
-                if not _boxes_overlap(anchor, percept, self.view_margin):
-                    continue
+                if k not in merged.get(j, ()):
+                    if features[k, j, 1] < self.view_colour:
+                        continue
+                    if not _boxes_overlap(anchor, percept, self.view_margin):
+                        continue
                 since = self._withholding.get(anchor.symbol, time)
                 still[anchor.symbol] = since
                 if time - since <= self.withhold_seconds:
@@ -316,6 +345,7 @@ class AnchorManager:
             "view_margin": self.view_margin,
             "view_colour": self.view_colour,
             "merge_ratio": self.merge_ratio,
+            "merge_seconds": self.merge_seconds,
             "symbol_counters": self.symbols.counters,
             "anchors": [a.to_json() for a in self._anchors.values()],
         }
@@ -348,6 +378,7 @@ class AnchorManager:
                 view_margin=float(record.get("view_margin", 0.01)),
                 view_colour=float(record.get("view_colour", 0.7)),
                 merge_ratio=float(record.get("merge_ratio", 1.5)),
+                merge_seconds=float(record.get("merge_seconds", 0.5)),
             )
             manager.time = None if record.get("time") is None else float(record["time"])
             manager.symbols = SymbolTable(
