@@ -56,6 +56,12 @@
 :- op(1105, xfx, <-).
 :- op(1150, xfx, pr).
 
+%   Arithmetic compiled to virtual-machine instructions instead of calls to
+%   is/2 and friends (the flag is local to this file): about a fifth fewer
+%   instructions per sample.  Program clauses are asserted the same way
+%   (optimised/1).
+:- set_prolog_flag(optimise, true).
+
 /** <module> Dynamic Distributional Clauses
 
 ## API (final signatures)
@@ -227,10 +233,18 @@ install_program(M, File, Clauses, Info) :-
     set_module(M:base(user)),
     set_module(M:class(user)),
     declare_program_preds(M, Info),
-    forall(member(C, Clauses), assertz(M:C)),
+    optimised(forall(member(C, Clauses), assertz(M:C))),
     assertz(M:'$ddc_info'(Info)),
     retractall(program_file_(M, _)),
     assertz(program_file_(M, File)).
+
+%   optimised(:Goal): Goal (asserting clauses) with arithmetic compiled
+%   inline, as in this file; the caller's flag is restored.
+:- meta_predicate optimised(0).
+optimised(Goal) :-
+    current_prolog_flag(optimise, Old),
+    setup_call_cleanup(set_prolog_flag(optimise, true), Goal,
+                       set_prolog_flag(optimise, Old)).
 
 declare_program_preds(M, Info) :-
     Info = info(DerU, DerT, _, _, _, _, _),
@@ -867,7 +881,8 @@ cb(forall(A,B), C, forall(CA,CB)) :- !, cb(A, C, CA), cb(B, C, CB).
 cb(findall(T,G,L), _, Code) :-              % peephole: a range of integers
     var(T), nonvar(G), G = between(Lo, Hi, T1), T1 == T,
     \+ occurs_in(T, Lo-Hi), !,
-    Code = ( Lo1 is Lo, Hi1 is Hi, ( Hi1 >= Lo1 -> numlist(Lo1, Hi1, L) ; L = [] ) ).
+    Code = ( Lo1 is Lo, Hi1 is Hi,
+             ( integer(Lo1), integer(Hi1) -> ddc:range_(Lo1, Hi1, L) ; ddc:'$range'(Lo1, Hi1, L) ) ).
 cb(findall(T,G,L), C, findall(T,CG,L)) :- !, cb(G, C, CG).
 cb(findall(T,G,L,R), C, findall(T,CG,L,R)) :- !, cb(G, C, CG).
 cb(findall_forward(T,G,L), C, findall(T,CG,L)) :- !, cb(G, C, CG).
@@ -1017,23 +1032,21 @@ new_world(M, Time, Frozen, Ev, Check, W) :-
 read_key(X, T, V, W) :-
     arg(1, W, S),
     (   store_get(S, X-T, Val)
-    ->  Val \== '$undef',
-        match(Val, V)
-    ;   new_value(X, T, W, Val),
-        match(Val, V)
+    ->  Val \== '$undef'
+    ;   arg(5, W, Ev),                  % not yet read: evidence, or sampled
+        (   Ev \== [], memberchk((X-T)-EV, Ev)
+        ->  weigh_key(X, T, EV, W, 6),
+            Val = EV
+        ;   sample_key(X, T, W, Val)
+        )
+    ),
+    (   Val = V -> true                 % match/2, inline
+    ;   number(Val), number(V), Val =:= V
     ).
 
 match(Val, V) :-
     (   Val = V -> true
     ;   number(Val), number(V), Val =:= V
-    ).
-
-new_value(X, T, W, Val) :-
-    arg(5, W, Ev),
-    (   Ev \== [], memberchk((X-T)-EV, Ev)
-    ->  weigh_key(X, T, EV, W, 6),
-        Val = EV
-    ;   sample_key(X, T, W, Val)
     ).
 
 sample_key(X, T, W, Val) :-
@@ -1061,7 +1074,7 @@ key_term(X, u, X) :- !.
 key_term(X, T, X:T).
 
 draw('$chk'(D, Id), W, V) :- !,
-    (   fast_valid(D)
+    (   ( D = uniform(L) -> is_list(L), L \== [] ; D = val(_) )     % fast_valid/1, inline
     ->  dist_sample(D, V)
     ;   cheap_check(D)
     ->  checked(D, Id, W),
@@ -1106,7 +1119,7 @@ weigh_key(X, T, V, W, Acc) :-
         (   Out = '$prop'(LJ)
         ->  add_logw(W, Acc, LJ)
         ;   Out = '$chk'(D, Id1)
-        ->  (   fast_valid(D)
+        ->  (   ( D = uniform(L) -> is_list(L), L \== [] ; D = val(_) )   % fast_valid/1
             ->  weigh(D, V, W, Acc)
             ;   cheap_check(D)
             ->  checked(D, Id1, W), weigh(D, V, W, Acc)
@@ -1254,6 +1267,20 @@ with_shared(Goal) :-
         store_get(S, '$mat'(N/A, T), L)
     ),
     member(G, L).
+
+%   '$range'(+Lo, +Hi, -L): L = [Lo, ..., Hi], as findall(X, between(Lo, Hi,
+%   X), L) (whose errors it keeps for non-integers) without its overhead.
+'$range'(Lo, Hi, L) :-
+    (   integer(Lo), integer(Hi)
+    ->  range_(Lo, Hi, L)
+    ;   findall(X, between(Lo, Hi, X), L)
+    ).
+
+range_(Lo, Hi, L) :-
+    (   Lo > Hi
+    ->  L = []
+    ;   L = [Lo|T], Lo1 is Lo+1, range_(Lo1, Hi, T)
+    ).
 
 '$flip'(P) :-
     random_float < P.
@@ -1479,17 +1506,24 @@ ddc_run(M, Ev0, Q, X, Options, Mode, R) :-
 one_sample(M, Id, Time, Ev, I, s(W, DX, QW, X)) :-
     (   I =< 200 -> Check = true ; Check = false ),   % overlap_checked_worlds/1
     new_world(M, Time, -1, Ev, Check, Wd),
-    M:'$ddc_tmp'(Id, ev, Wd, _),
-    !,
+    M:'$ddc_tmp'(Id, s, Wd, Out),       % evidence, then the query (prepare_query/8)
     arg(6, Wd, LW),
     (   LW == 0.0 -> W = 1.0
     ;   LW > -inf, W is exp(LW), W > 0.0
     ),
     arg(7, Wd, DX),
-    (   M:'$ddc_tmp'(Id, q, Wd, X0)
-    ->  arg(8, Wd, QLW), exp_w(QLW, QW), X = X0
+    (   Out = q(X0)
+    ->  arg(8, Wd, QLW),
+        (   QLW == 0.0 -> QW = 1.0 ; exp_w(QLW, QW) ),
+        X = X0
     ;   QW = 0.0, X = '$none'
     ).
+
+%   '$ev_holds'(+W): the evidence proven so far has a weight above 0 (the
+%   query is not proven in a world of weight 0).
+'$ev_holds'(W) :-
+    arg(6, W, LW),
+    LW > -inf.
 
 min_dx([], M, M).
 min_dx([s(_, DX, _, _)|Ss], M0, M) :-
@@ -1560,13 +1594,19 @@ prepare_query(M, Info, Time, EvG, Q, X, Ev, Id) :-
     conj_list(EvG1, EvLs),
     evidence_map(EvLs, Ctx, Ev),
     cb(EvG1, Ctx, EvCode),
-    assertz(M:('$ddc_tmp'(Id, ev, W, _) :- EvCode)),
-    Ctx2 = ctx(W2, Time, Info, query),
+    Ctx2 = ctx(W, Time, Info, query),
     copy_term(Q-X, Q2-X2),
     conj_list(Q2, QLs),
     maplist(query_literal(Ctx2), QLs, QCodes),
     conj_from_list(QCodes, QCode),
-    assertz(M:('$ddc_tmp'(Id, q, W2, X2) :- QCode)).
+    %   one call per sample: the first proof of the evidence, then the query
+    %   (Out = q(X) when it holds, none when it fails)
+    optimised(assertz(M:('$ddc_tmp'(Id, s, W, Out) :-
+                            EvCode, !,
+                            (   ddc:'$ev_holds'(W), QCode
+                            ->  Out = q(X2)
+                            ;   Out = none
+                            )))).
 
 %   Ground top-level evidence literals h ~= v are weighted, not sampled.
 evidence_map(Ls, Ctx, Ev) :-

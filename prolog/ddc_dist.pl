@@ -25,6 +25,9 @@
             dist_support/2,             % +Dist, -Pairs
             dist_mean/2                 % +Dist, -Mean
           ]).
+%   Arithmetic compiled inline (local to this file; see ddc.pl).
+:- set_prolog_flag(optimise, true).
+
 :- use_module(library(lists)).
 
 /** <module> Distributions of the DDC engine
@@ -419,8 +422,14 @@ uniform_sample(A:C, X) :- !,
 uniform_sample(List, X) :-
     length(List, N),
     I is random(N),
-    nth0(I, List, X0), !,
+    list_pick(I, List, X0),
     X = X0.
+
+%   list_pick(+I, +List, -X): X is the I-th (0-based) element, I valid.
+list_pick(0, [X|_], X) :- !.
+list_pick(I, [_|T], X) :-
+    I1 is I - 1,
+    list_pick(I1, T, X).
 
 int_draw(A, C, X) :-
     X is A + random(C - A + 1).
@@ -836,10 +845,9 @@ uniform_log_mass(A:C, X, LP) :- !,
         )
     ).
 uniform_log_mass(List, X, LP) :-
-    count_matching(List, X, 0, C),
+    count_matching(List, X, 0, C, 0, N),
     (   C > 0
-    ->  length(List, N),
-        LP is log(C/N)
+    ->  LP is log(C/N)
     ;   LP is -inf
     ).
 
@@ -849,10 +857,16 @@ grid_log_mass([A|As], [C|Cs], [X|Xs], LP0, LP) :-
     LP1 is LP0 - log(C - A + 1),
     grid_log_mass(As, Cs, Xs, LP1, LP).
 
-count_matching([], _, C, C).
-count_matching([V|Vs], X, C0, C) :-
-    (   same_value(V, X) -> C1 is C0 + 1 ; C1 = C0 ),
-    count_matching(Vs, X, C1, C).
+%   count_matching(+List, +X, +C0, -C, +N0, -N): C matching elements of N.
+count_matching([], _, C, C, N, N).
+count_matching([V|Vs], X, C0, C, N0, N) :-
+    (   V == X -> C1 is C0 + 1          % the common cases, without a call
+    ;   integer(V), integer(X) -> C1 = C0
+    ;   same_value(V, X) -> C1 is C0 + 1
+    ;   C1 = C0
+    ),
+    N1 is N0 + 1,
+    count_matching(Vs, X, C1, C, N1, N).
 
 sum_matching([], _, S, S).
 sum_matching([P:V|T], X, S0, S) :-

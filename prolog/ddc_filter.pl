@@ -161,11 +161,11 @@ step_particle(W, T1, Facts, Keys, LW) :-
     store_prune(S, T, SK),
     nb_setarg(13, W, []),
     nb_setarg(3, W, T1),
-    nb_setarg(12, W, Facts),
+    nb_linkarg(12, W, Facts),           % ground, shared by all particles: no copy
     nb_setarg(6, W, 0.0),
     nb_setarg(7, W, 0),
     findall((X-TK)-V, member(k(X, TK, V, _), Keys), Ev),
-    nb_setarg(5, W, Ev),
+    nb_linkarg(5, W, Ev),               % ground
     (   weigh_observations(Keys, W)
     ->  arg(6, W, LW)
     ;   LW = -inf
@@ -195,7 +195,7 @@ record_raw(X, _, V, W) :-
     ->  true
     ;   store_put(S, X-u, V),
         arg(13, W, SK),
-        nb_setarg(13, W, [X-u|SK])
+        nb_linkarg(13, W, [X-u|SK])
     ).
 
 %   sweep(+W, +T): sample every random variable that a transition (or, at
@@ -315,7 +315,7 @@ filter_query(F, Goal, Template, Values) :-
     conj_list(G1, Ls),
     maplist(filter_literal(Ctx), Ls, Cs),
     conj_from_list(Cs, Code),
-    assertz(M:('$ddc_tmp'(Id, q, W, X1) :- Code)),
+    optimised(assertz(M:('$ddc_tmp'(Id, q, W, X1) :- Code))),
     call_cleanup(
         with_rng(R0,
                  with_shared(

@@ -28,6 +28,9 @@ else Buckets = b(L1, ..., Ln), each Li unbound (empty) or a list of
 Key-Value.  Keys must be ground.
 */
 
+%   Arithmetic compiled inline (local to this file; see ddc.pl).
+:- set_prolog_flag(optimise, true).
+
 :- use_module(library(apply)).
 :- use_module(library(aggregate)).
 :- use_module(library(lists)).
