@@ -11,6 +11,11 @@ of ``bridge.Filter`` and, in the same run, of the vectorised numpy implementatio
 model, and prints ms per step for both and their ratio. With ``--json`` (one configuration)
 the last line is ``{"ms_per_step": x, "numpy_ms_per_step": y}``.
 
+It also runs bench/filter_floor.pl, the same arithmetic for perceived objects hand-written in
+Prolog (per particle and object: a 3-D Gaussian move and a Gaussian log density; no clauses, no
+store, no occluder choice), the least any engine that samples particles one by one in
+SWI-Prolog can cost, and prints the engine's ratio to it.
+
 Target (issue 4): N = 1000, M = 10 in at most 33 ms per step (30 Hz).
 """
 
@@ -18,7 +23,9 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
@@ -58,6 +65,16 @@ def time_ddc(particles: int, objects: int, steps: int, seed: int) -> dict[str, f
             }
 
 
+def time_floor(particles: int, objects: int) -> float | None:
+    """ms per step of bench/filter_floor.pl: per-particle Prolog arithmetic alone, no engine."""
+    swipl = shutil.which("swipl", path=str(Path(sys.executable).parent)) or shutil.which("swipl")
+    if swipl is None:
+        return None
+    out = subprocess.run([swipl, "-O", str(HERE / "filter_floor.pl"), str(particles),
+                          str(objects)], capture_output=True, text=True, check=True).stdout
+    return float(json.loads(out.strip().splitlines()[-1])["floor_ms_per_step"])
+
+
 def time_numpy(particles: int, objects: int, steps: int, seed: int) -> float:
     frames = model.scenario(objects, steps, seed=seed)
     f = model.NumpyOcclusionFilter(objects, particles, seed=seed)
@@ -82,6 +99,7 @@ def main(argv: list[str] | None = None) -> int:
     else:
         configs = [(n, m) for m in (3, 10, 20) for n in (100, 1000, 5000)]
     print(f"{'N':>6} {'M':>4} {'ddc ms/step':>12} {'numpy ms/step':>14} {'ratio':>8} "
+          f"{'floor ms':>9} {'/floor':>7} "
           f"{'us/particle':>12} {'in Prolog':>9} {'new ms':>9} {'resampled':>9}", flush=True)
     last = None
     failed = False
@@ -95,7 +113,11 @@ def main(argv: list[str] | None = None) -> int:
             failed = True
             continue
         ratio = ddc["ms_per_step"] / numpy_ms
+        floor = time_floor(n, m)
+        floor_text = (f"{floor:>9.1f} {ddc['ms_per_step'] / floor:>7.1f}" if floor
+                      else f"{'-':>9} {'-':>7}")
         print(f"{n:>6} {m:>4} {ddc['ms_per_step']:>12.1f} {numpy_ms:>14.2f} {ratio:>8.0f} "
+              f"{floor_text} "
               f"{1000 * ddc['ms_per_step'] / n:>12.1f} {ddc['prolog_share']:>9.0%} "
               f"{ddc['new_ms']:>9.0f} "
               f"{ddc['resamplings']:>6}/{args.steps}", flush=True)
@@ -103,7 +125,8 @@ def main(argv: list[str] | None = None) -> int:
             verdict = "meets" if ddc["ms_per_step"] <= TARGET_MS else "misses"
             print(f"  N=1000 M=10: {ddc['ms_per_step']:.1f} ms/step {verdict} the "
                   f"{TARGET_MS:.0f} ms target", flush=True)
-        last = {"ms_per_step": ddc["ms_per_step"], "numpy_ms_per_step": numpy_ms}
+        last = {"ms_per_step": ddc["ms_per_step"], "numpy_ms_per_step": numpy_ms,
+                "floor_ms_per_step": floor}
     if args.json and last is not None:
         print(json.dumps(last))
     return 1 if failed else 0
