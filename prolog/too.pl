@@ -17,6 +17,7 @@ obs_var(0.0001).            % measurement noise of a perceived position: (1 cm)^
 motion_var(0.0004).         % how far a perceived object moves in one frame: (2 cm)^2
 reappear_var(0.0025).       % where a hidden object shows up again, around its belief: (5 cm)^2
 follow_var(0.000004).       % jitter of a hidden object that follows its occluder: (2 mm)^2
+wander_var(0.0001).         % how far a hidden object under nothing may move in a frame: (1 cm)^2
 follow_keep(0.95).          % fraction of its offset from the occluder's centre kept per frame
 occluder_reach(0.15).       % an occluder is within 15 cm of the object in the table plane ...
 occluder_rise(0.02).        % ... and its centre is no more than 2 cm lower than the object's
@@ -163,9 +164,13 @@ pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
     follow_keep(K), MX is X1 + K*(X - X0), MY is Y1 + K*(Y - Y0),
     (   category(O, CO), carrier(CO) -> MZ is Z + Z1 - Z0 ; MZ = Z ),
     follow_var(V), VZ is V / 100.
-% Hidden and unexplained: it stays where it was last believed to be.
-pos(A):t+1 ~ val(P) :=
-    hidden(A):t+1, \+ occluded_by(A, _):t+1, pos(A):t ~= P.
+% Hidden under nothing (behind something, or left on the table): it may be moved while unseen
+% (a mug carried behind a box), so its belief spreads in the table plane by wander_var per
+% frame around where it was last believed to be; a reappearance then weights the particles
+% by where they had it, and matching finds the particles near it.
+pos(A):t+1 ~ gaussian([X, Y, Z], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
+    hidden(A):t+1, \+ occluded_by(A, _):t+1, pos(A):t ~= (X, Y, Z),
+    wander_var(V), VZ is V / 100.
 
 % ------------------------------------------------------------------ observation model
 % A perceived position weights each particle by its predictive density: motion + noise for an

@@ -44,12 +44,12 @@ def test_hidden_ball_follows_the_mug_that_covers_it() -> None:
         belief = reasoner.belief("ball-1")
         assert belief is not None
         # under the mug (within a few cm: picked at the mug's centre, then moved with it), or
-        # where it vanished; nothing in between
+        # near where it vanished (wandering by wander_var, 1 cm per frame: 6 standard
+        # deviations after 7 frames is 16 cm)
         under = np.abs(belief.positions[:, 0] - 0.30) < 0.03
-        stayed = np.abs(belief.positions[:, 0] - BALL[0]) < 0.01
-        assert np.all(under | stayed)
         assert belief.weights[under].sum() == pytest.approx(p_under)
-        assert np.all(np.abs(belief.positions[:, 1]) < 0.03)
+        assert np.all(np.abs(belief.positions[~under, 0] - BALL[0]) < 0.16)
+        assert np.all(np.abs(belief.positions[under, 1]) < 0.03)
         # stays on the table: a mug is not a carrier
         assert np.all(np.abs(belief.positions[:, 2] - 0.03) < 0.01)
     finally:
@@ -67,7 +67,11 @@ def test_lifting_the_mug_ends_the_occlusion_and_leaves_the_ball_on_the_table() -
         assert reasoner.probability("occluded_by(ball_1, _):t") == pytest.approx(0.0)
         belief = reasoner.belief("ball-1")
         assert belief is not None
-        assert np.all(np.abs(belief.positions[:, :2]).max(axis=1) < 0.06)
+        # it stays on the table (not lifted with the mug), where it was believed: under the
+        # mug's centre or where it vanished, 5 cm beside it
+        assert np.all(np.abs(belief.positions[:, 2] - BALL[2]) < 0.01)
+        mean = belief.weights @ belief.positions
+        assert np.linalg.norm(mean[:2]) < 0.06
     finally:
         reasoner.close()
 
