@@ -288,10 +288,12 @@ compile_program(File, M, Items0, Clauses, Info) :-
     append(Cs1, Cs2, Cs0),
     derived_dispatchers(M, Info, Ds),
     clause_positions(Items, File, Ps),
+    findall(Id-K-C, ( member(rv(Id, X, K, _, B, _), Items), K \== u, K \== state,
+                      sweep_key_clause(Id, X, K, B, Info, C) ), SwKs0),
+    distinct_sweep_keys(SwKs0, SwKs),
     findall('$sweep'(rv, K, X, Id),
-            ( member(rv(Id, X, K, _, _, _), Items), K \== u, K \== state ), Sw1a),
-    findall(C, ( member(rv(Id, X, K, _, B, _), Items), K \== u, K \== state,
-                 sweep_key_clause(Id, X, K, B, Info, C) ), Sw1b),
+            ( member(Id-K-C, SwKs), C = ('$sweep_key'(_, X, _, _) :- _) ), Sw1a),
+    findall(C, member(_-_-C, SwKs), Sw1b),
     append(Sw1a, Sw1b, Sw1),
     Info = info(_, _, _, _, _, Impure, _),
     %   '$sweep'(der, Kind, N/A, sw(Shared, When, G, Call, T, W)): Call (the
@@ -493,7 +495,14 @@ clean_preds(Items, Rvs, Clean) :-
     findall(K, member(K-_-_, Edges), Ks0), sort(Ks0, Ks),
     findall(K, member(K-true-_, Edges), D0), sort(D0, Dirty0),
     dirty_fix(Dirty0, Edges, Dirty),
-    findall(clean(K), ( member(K, Ks), \+ memberchk(K, Dirty) ), Clean).
+    findall(clean(K), ( member(K, Ks), \+ memberchk(K, Dirty) ), Clean0),
+    %   clean untimed predicates defined by unit clauses only (`object(o1)
+    %   := true.`): a first-argument indexed lookup is cheaper than the
+    %   shared table, so they are called directly (der_dispatch_u/5)
+    findall(unit(K), ( member(clean(K), Clean0), K = u/N/A,
+                       \+ ( member(der(_, X, Kind, B, _), Items), tkind(Kind, u),
+                            functor(X, N, A), B \== true ) ), Units),
+    append(Clean0, Units, Clean).
 
 dirty_fix(S0, Edges, S) :-
     findall(K, ( member(K-_-Cs, Edges), \+ memberchk(K, S0),
@@ -593,6 +602,23 @@ drop_unused_time(Guard, Tc, Body, Body1) :-
 %   Id at time T: the shortest prefix of its body that binds the head's
 %   variables (the filter's sweep then reads each candidate, which picks
 %   the clause that applies; running whole bodies there would be wasted).
+%   distinct_sweep_keys(+Id-Kind-Clause, -Kept): the clauses of one random
+%   variable often share the prefix that enumerates their heads
+%   (`object(O)`): the sweep reads each key once, so a clause whose key
+%   enumerator is a variant of an earlier one (same kind) is left out.
+distinct_sweep_keys([], []).
+distinct_sweep_keys([Id-K-C|T], [Id-K-C|Kept]) :-
+    sweep_key_shape(C, S),
+    exclude(same_sweep_key(K, S), T, T1),
+    distinct_sweep_keys(T1, Kept).
+
+same_sweep_key(K, S, _-K2-C2) :-
+    K2 == K,
+    sweep_key_shape(C2, S2),
+    S2 =@= S.
+
+sweep_key_shape(('$sweep_key'(_, X, T, W) :- B), s(X, T, W, B)).
+
 sweep_key_clause(Id, X, K, B, Info, ('$sweep_key'(Id, X, TArg, W) :- Guard, Code)) :-
     time_guard(K, TArg, W, Tc, Guard),
     sweep_prefix(X, B, PB),
@@ -823,7 +849,10 @@ der_dispatch_u(M, N, A, Impure, C) :-
     (   memberchk(clean(u/N/A), Impure)
     ->  derived_name(N, ds, DNS),
         HS =.. [DNS|HArgs],
-        (   C = (Head :- ddc:'$shared'(G, G, M:HS))
+        (   (   memberchk(unit(u/N/A), Impure)
+            ->  C = (Head :- HS)
+            ;   C = (Head :- ddc:'$shared'(G, G, M:HS))
+            )
         ;   C = (HS :- ddc:'$fact'(W, G))
         )
     ;   C = (Head :- ddc:'$fact'(W, G))
