@@ -37,3 +37,38 @@ def test_every_method_runs_on_the_same_cached_stream(tmp_path: Path) -> None:
         rows.append(("tiny", method, summary))
     table = results_table(rows)
     assert "| tiny | reasoning | 1 |" in table and "| tiny | sort | 1 |" in table
+
+
+def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypatch) -> None:
+    import app.experiment as experiment
+
+    calls: list[tuple[str, int]] = []
+
+    def fake_unit(label, scenario, seed, methods, particles, cache):
+        calls.append((scenario.stem, seed))
+        kept = seed % 2 == 0
+        return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": m,
+                 "particles": particles,
+                 "summary": {"objects": [{"id": "ball_1", "symbols": ["ball-1"],
+                                          "identity_kept": kept}],
+                             "id_switches": 0, "idf1": 1.0}}
+                for m in methods]
+
+    monkeypatch.setattr(experiment, "run_unit", fake_unit)
+    options = experiment.ExperimentOptions(out=tmp_path, seeds=2, games=0, particles=50,
+                                           methods=("reasoning",), scenarios=("transitive",))
+    table = experiment.run_experiment(options)
+    assert calls == [("transitive", 0), ("transitive", 1)]
+    assert "| transitive | reasoning | 2 | 1/2 (50 %) | 1/2 (50 %) |" in table
+
+    calls.clear()
+    options.seeds = 3                      # one more seed: only it runs
+    table = experiment.run_experiment(options)
+    assert calls == [("transitive", 2)]
+    assert "| transitive | reasoning | 3 | 2/3 (67 %) | 2/3 (67 %) |" in table
+    assert len(experiment.read_summaries(tmp_path / "summaries.jsonl")) == 3
+
+    calls.clear()
+    options.particles = 100                # another particle count: everything runs again
+    experiment.run_experiment(options)
+    assert calls == [("transitive", 0), ("transitive", 1), ("transitive", 2)]

@@ -3,13 +3,16 @@ scenario over several seeds and for random shell games, with reasoning, without 
 published multi-object trackers run on the same percepts.
 
 Each (scenario, seed) is perceived once (the stream is cached as JSON Lines in the output
-directory) and every method runs on that same stream.
+directory) and every method runs on that same stream. The (scenario, seed) units run in
+``jobs`` worker processes; a unit whose every method is already in ``OUT/summaries.jsonl``
+(an interrupted or extended run) is not run again.
 """
 
 from __future__ import annotations
 
 import json
 from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -35,6 +38,7 @@ class ExperimentOptions:
     methods: Sequence[str] = METHODS
     scenarios: Sequence[str] = SHIPPED
     first_game_seed: int = 0
+    jobs: int = 1
 
 
 def game_scenarios(out: Path, games: int, first_seed: int = 0) -> list[Path]:
@@ -77,28 +81,68 @@ def run_method(method: str, stream: Path, particles: int, seed: int) -> dict[str
     return make_summary(records, evaluate(records), extra={"method": method})
 
 
+def run_unit(label: str, scenario: Path, seed: int, methods: Sequence[str], particles: int,
+             cache: Path) -> list[dict[str, Any]]:
+    """Every method on one (scenario, seed): the lines of ``summaries.jsonl``."""
+    stream = percept_stream(scenario, seed, cache)
+    return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": method,
+             "particles": particles, "summary": run_method(method, stream, particles, seed)}
+            for method in methods]
+
+
+def read_summaries(path: Path) -> list[dict[str, Any]]:
+    """The lines of a ``summaries.jsonl`` (none if it does not exist)."""
+    if not path.exists():
+        return []
+    with open(path, encoding="utf-8") as lines:
+        return [json.loads(line) for line in lines if line.strip()]
+
+
 def run_experiment(options: ExperimentOptions,
                    progress: Callable[[str], None] | None = None) -> str:
-    """Run everything, write ``OUT/summaries.jsonl`` and ``OUT/results.md``; return the table."""
+    """Run everything, write ``OUT/summaries.jsonl`` and ``OUT/results.md``; return the table.
+
+    Units already complete in ``OUT/summaries.jsonl`` with the same particle count are kept,
+    not run again; the table covers exactly the units of ``options``."""
     out = options.out
     out.mkdir(parents=True, exist_ok=True)
-    jobs: list[tuple[str, Path, int]] = []
+    units: list[tuple[str, Path, int]] = []
     for name in options.scenarios:
         for seed in range(options.seeds):
-            jobs.append((name, ROOT / "scenarios" / f"{name}.yaml", seed))
+            units.append((name, ROOT / "scenarios" / f"{name}.yaml", seed))
     for path in game_scenarios(out, options.games, options.first_game_seed):
-        jobs.append(("generated shell games", path, 0))
-    rows: list[tuple[str, str, dict[str, Any]]] = []
-    with open(out / "summaries.jsonl", "w", encoding="utf-8") as log:
-        for label, scenario, seed in jobs:
-            stream = percept_stream(scenario, seed, out / "percepts")
-            for method in options.methods:
-                if progress is not None:
-                    progress(f"{scenario.stem} seed {seed}: {method}")
-                summary = run_method(method, stream, options.particles, seed)
-                rows.append((label, method, summary))
-                log.write(json.dumps({"scenario": scenario.stem, "group": label, "seed": seed,
-                                      "method": method, "summary": summary}) + "\n")
+        units.append(("generated shell games", path, 0))
+
+    log_path = out / "summaries.jsonl"
+    done: dict[tuple[str, int, str], dict[str, Any]] = {
+        (line["scenario"], line["seed"], line["method"]): line
+        for line in read_summaries(log_path)
+        if line.get("particles", options.particles) == options.particles
+    }
+    todo = [unit for unit in units
+            if any((unit[1].stem, unit[2], m) not in done for m in options.methods)]
+    with open(log_path, "a", encoding="utf-8") as log:
+        def record(lines: list[dict[str, Any]]) -> None:
+            for line in lines:
+                done[(line["scenario"], line["seed"], line["method"])] = line
+                log.write(json.dumps(line) + "\n")
+            log.flush()
+            if progress is not None and lines:
+                progress(f"{lines[0]['scenario']} seed {lines[0]['seed']}: done "
+                         f"({len(done)} runs recorded)")
+
+        args = [(label, scenario, seed, list(options.methods), options.particles,
+                 out / "percepts") for label, scenario, seed in todo]
+        if options.jobs > 1 and len(args) > 1:
+            with ProcessPoolExecutor(max_workers=options.jobs) as pool:
+                for lines in pool.map(run_unit, *zip(*args, strict=True)):
+                    record(lines)
+        else:
+            for a in args:
+                record(run_unit(*a))
+
+    rows = [(label, method, done[(scenario.stem, seed, method)]["summary"])
+            for label, scenario, seed in units for method in options.methods]
     table = results_table(rows)
     (out / "results.md").write_text(table, encoding="utf-8")
     return table

@@ -21,6 +21,9 @@ def register(sub: Any) -> None:
                              "ocsort (default all)")
     parser.add_argument("--scenarios", default=None,
                         help="comma-separated shipped scenarios (default all four)")
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="worker processes, one (scenario, seed) each (default 1); runs "
+                             "already in OUT/summaries.jsonl are kept, not run again")
     parser.set_defaults(func=main)
 
 
@@ -34,7 +37,8 @@ def main(args: argparse.Namespace) -> int:
     scenarios = args.scenarios.split(",") if args.scenarios else list(SHIPPED)
     table = run_experiment(
         ExperimentOptions(out=args.out, seeds=args.seeds, games=args.games,
-                          particles=args.particles, methods=methods, scenarios=scenarios),
+                          particles=args.particles, methods=methods, scenarios=scenarios,
+                          jobs=args.jobs),
         progress=lambda msg: print(msg, flush=True),
     )
     print(table)
