@@ -18,6 +18,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description=__doc__.split("\n\n")[1] if __doc__ else None)
     parser.add_argument("--scenes", type=int, default=800, help="random tables (default 800)")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    parser.add_argument("--hard", type=float, default=0.4,
+                        help="share of scenes with a partly hidden or a lifted object "
+                             "(default 0.4)")
     parser.add_argument("--out", type=Path, default=None,
                         help="model file (default: python/perception/models/category_mlp.json)")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
@@ -25,10 +28,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from perception.classifier import DEFAULT_MODEL
+    from perception.classifier import DEFAULT_MODEL, CategoryModel
     from perception.training import train
 
-    model, report = train(args.scenes, args.seed)
+    previous = CategoryModel.load(DEFAULT_MODEL) if DEFAULT_MODEL.exists() else None
+    model, report = train(args.scenes, args.seed, hard=args.hard, previous=previous)
     out = args.out or DEFAULT_MODEL
     out.parent.mkdir(parents=True, exist_ok=True)
     model.save(out)
@@ -44,5 +48,12 @@ def run(args: argparse.Namespace) -> int:
     print("        " + " ".join(f"{c:>5}" for c in labels))
     for name, row in zip(labels, report["confusion"]["matrix"], strict=True):
         print(f"{name:>7} " + " ".join(f"{v:>5}" for v in row))
+    views = report["held_out_by_view"]
+    print("held-out accuracy by view: " + ", ".join(
+        f"{k} {v['accuracy']:.3f} ({v['segments']})" for k, v in views.items()))
+    if "previous_model" in report:
+        old = report["previous_model"]
+        print(f"previous model on the same segments: {old['held_out_accuracy']:.3f}; by view: "
+              + ", ".join(f"{k} {v['accuracy']:.3f}" for k, v in old["held_out_by_view"].items()))
     print(f"model -> {out}")
     return 0
