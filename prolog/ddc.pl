@@ -566,12 +566,13 @@ compile_item(der(Id, X, K, B, _), _, Info, _, Clause) :-
     compile_der(Id, X, K, B, Info, Clause).
 
 %   '$rv'(X, T, W, Skip, Ev, Out, Tier, Id, Rivals)
-compile_rv(Id, X, K, D, B, L, File, Info, Items, Clause) :-
+compile_rv(Id, X, K, D0, B0, L, File, Info, Items, Clause) :-
     Head = '$rv'(X, TArg, W, Skip, Ev, Out, Tier, Id, Rivals),
     tier(K, Tier),
     rivals(Id, X, K, Tier, Info, Items, Rivals),
     time_guard(K, TArg, W, Tc, Guard),
     Ctx = ctx(W, Tc, Info, clause),
+    range_support(X, D0, B0, D, B),
     catch(cb(B, Ctx, BodyCode), E, clause_compile_error(E, File, L)),
     (   ground(X) -> GroundCheck = true
     ;   GroundCheck = ( ground(X) -> true ; ddc:'$clause_error'(W, Id, non_ground_head(X)) )
@@ -588,6 +589,31 @@ compile_rv(Id, X, K, D, B, L, File, Info, Items, Clause) :-
     ),
     drop_unused_time(Guard, Tc, Body, Body1),
     Clause = (Head :- Body1).
+
+%   range_support(+Head, +Dist, +Body, -Dist1, -Body1): a clause that builds
+%   the list of integers Lo..Hi only to be the support of a uniform
+%   (`x ~ uniform(L) := ..., findall(I, between(Lo, Hi, I), L).`) draws
+%   from the range itself, uniform(Lo:Hi): the same value for the same random
+%   state, and the mass of a value without building or scanning the list.
+%   Only when L is used nowhere else.  (An empty range is the same error,
+%   empty_support, shown as uniform(Lo:Hi) instead of uniform([]).)
+range_support(X, uniform(L), B, uniform(Lo1:Hi1), B1) :-
+    var(L), \+ occurs_in(L, X),
+    conj_list(B, Ls),
+    select(F, Ls, ddc:'$range_bounds'(Lo, Hi, Lo1, Hi1), Ls1),
+    nonvar(F), F = findall(T, G, L2), L2 == L, var(T),
+    nonvar(G), G = between(Lo, Hi, T1), T1 == T, \+ occurs_in(T, Lo-Hi),
+    term_variables(Ls1, Vs), \+ memberchk_eq(L, Vs),
+    !,
+    conj_from_list(Ls1, B1).
+range_support(_, D, B, D, B).
+
+%   '$range_bounds'(+Lo, +Hi, -Lo1, -Hi1): the integer bounds of a range,
+%   with between/3's errors.
+'$range_bounds'(Lo, Hi, Lo1, Hi1) :-
+    Lo1 is Lo, Hi1 is Hi,
+    must_be(integer, Lo1),
+    must_be(integer, Hi1).
 
 %   An untimed clause reads the world's time only if its body uses it.
 drop_unused_time(Guard, Tc, Body, Body1) :-
@@ -1103,7 +1129,7 @@ key_term(X, u, X) :- !.
 key_term(X, T, X:T).
 
 draw('$chk'(D, Id), W, V) :- !,
-    (   ( D = uniform(L) -> is_list(L), L \== [] ; D = val(_) )     % fast_valid/1, inline
+    (   fast_valid(D)
     ->  dist_sample(D, V)
     ;   cheap_check(D)
     ->  checked(D, Id, W),
@@ -1124,7 +1150,10 @@ cheap_check(D) :-
     \+ expensive_check(D).
 
 %   Parameters valid by construction (a common case, tested inline).
-fast_valid(uniform(L)) :- is_list(L), L \== [].
+fast_valid(uniform(S)) :-
+    (   S = A:C, integer(A), integer(C) -> C >= A
+    ;   is_list(S), S \== []
+    ).
 fast_valid(val(_)).
 
 expensive_check(gaussian(M, _)) :- is_list(M).
@@ -1148,7 +1177,7 @@ weigh_key(X, T, V, W, Acc) :-
         (   Out = '$prop'(LJ)
         ->  add_logw(W, Acc, LJ)
         ;   Out = '$chk'(D, Id1)
-        ->  (   ( D = uniform(L) -> is_list(L), L \== [] ; D = val(_) )   % fast_valid/1
+        ->  (   fast_valid(D)
             ->  weigh(D, V, W, Acc)
             ;   cheap_check(D)
             ->  checked(D, Id1, W), weigh(D, V, W, Acc)
