@@ -383,7 +383,19 @@ dist_sugar(D, finite(L)) :-
     forall(member(A, Args), nonvar(A)), forall(member(A, Args), A = _:_), !,
     L = Args.
 dist_sugar(uniform(A, B), contUniform(A, B)) :- !.
+dist_sugar(uniform(L), uniform(Lo:Hi)) :-   % a constant list Lo, Lo+1, ..., Hi: the
+    integer_run(L, Lo, Hi), Hi > Lo, !.    % same draws, without walking the list
 dist_sugar(D, D).
+
+%   integer_run(+List, -First, -Last): List is First, First+1, ..., Last.
+integer_run(L, Lo, Hi) :-
+    is_list(L), L = [Lo|T], integer(Lo),
+    integer_run_(T, Lo, Hi).
+
+integer_run_([], Hi, Hi).
+integer_run_([X|T], Prev, Hi) :-
+    integer(X), X =:= Prev + 1,
+    integer_run_(T, X, Hi).
 
 %   Directives.
 directives_options([], _, _, [], []).
