@@ -276,9 +276,11 @@ filter_resample(F, Is) :-
     (   forall(member(I, Is), I < N) -> true
     ;   throw(error(ddc(bad_indices(index_out_of_range(N)), query), _))
     ),
+    %   findall/3 copies each chosen particle on its own: copies of one
+    %   particle are independent worlds; the new set is linked, not copied
+    %   again (it holds no variable bound outside it)
     findall(W, ( member(I, Is), I1 is I+1, arg(I1, Ws0, W) ), L),
-    Ws1 =.. [ws|L],
-    scratch_copy(F, Ws1, Ws),       % one copy: copies of one particle are independent
+    Ws =.. [ws|L],
     commit(F, State, T, Ws, T, Ws0, R).
 
 %!  filter_holds(+Filter, +Goal, -Flags) is det.

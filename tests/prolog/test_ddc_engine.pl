@@ -291,6 +291,23 @@ test(undo_resample_values) :-
     filter_values(Fi, nope, fail, None), maplist(==(none), None),
     filter_free(Fi).
 
+test(resampled_copies_are_independent_worlds) :-
+    %   four copies of one particle: a variable that none of them holds yet
+    %   is then sampled in each on its own (a copy shares nothing with the
+    %   others), while what they held before is the same in all
+    pit_world(F),
+    filter_new(F, 4, 3, Fi),
+    filter_values(Fi, X, maze(5,5) ~= X, Held),
+    filter_resample(Fi, [1, 1, 1, 1]),
+    filter_values(Fi, X1, maze(5,5) ~= X1, Held1),
+    nth0(1, Held, H), maplist(==(H), Held1),
+    findall(Vs, ( between(6, 25, K),
+                  filter_values(Fi, Y, maze(K,K) ~= Y, Vs) ), Draws),
+    %   20 fresh cells in 4 copies: with P(pit) = 0.2 the copies agree on
+    %   all 20 with probability (0.8^4 + 0.2^4)^20, about 1e-7
+    \+ maplist([Vs]>>( Vs = [V|Rest], maplist(==(V), Rest) ), Draws),
+    filter_free(Fi).
+
 test(observation_without_clause_is_an_error) :-
     pit_world(F),
     filter_new(F, 3, 1, Fi),
