@@ -162,9 +162,45 @@ def test_an_anchor_seen_first_in_part_is_still_reacquired_when_seen_whole():
 
 
 def test_world_file_keeps_the_view_parameters(tmp_path):
-    m = AnchorManager(withhold_seconds=0.4, view_margin=0.02, view_colour=0.6, merge_ratio=2.0)
+    m = AnchorManager(withhold_seconds=0.4, view_margin=0.02, view_colour=0.6, merge_ratio=2.0,
+                      merge_seconds=0.3, reid_seconds=0.5, reid_similarity=(0.6, 0.8, 0.5))
     m.process(0.0, [percept(0.0, [0.0, 0.0, 0.04], "mug")])
     m.save(tmp_path / "w.json")
     back = AnchorManager.load(tmp_path / "w.json")
-    assert (back.withhold_seconds, back.view_margin, back.view_colour, back.merge_ratio) == \
-        (0.4, 0.02, 0.6, 2.0)
+    assert (back.withhold_seconds, back.view_margin, back.view_colour, back.merge_ratio,
+            back.merge_seconds, back.reid_seconds, back.reid_similarity) == \
+        (0.4, 0.02, 0.6, 2.0, 0.3, 0.5, (0.6, 0.8, 0.5))
+
+
+def blind_then_moved(manager: AnchorManager, hues: tuple[float, float],
+                     after: tuple[float, float] = (0.0, 0.2)):
+    """Two cups and a ball; the camera is covered for 2 s while the first cup is carried
+    22 cm over the ball (cups at x = -0.2 and 0.2, then at ``after``); then the first frame."""
+    cups = lambda t, xa, xb: [  # noqa: E731
+        percept(t, [xa, 0.1, 0.05], "cup", hue=hues[0], size=(0.08, 0.08, 0.1)),
+        percept(t, [xb, 0.1, 0.05], "cup", hue=hues[1], size=(0.08, 0.08, 0.1))]
+    t = seen(manager, 0.0, 10, lambda t: [*cups(t, -0.2, 0.2), percept(
+        t, [0.0, -0.1, 0.03], "ball", size=(0.06, 0.06, 0.06))])
+    t = seen(manager, t, 30, lambda t: [])
+    return manager.process(t, cups(t, *after))
+
+
+def test_a_unique_cup_moved_while_the_camera_was_covered_keeps_its_symbol():
+    r = blind_then_moved(AnchorManager(), hues=(7, 2))
+    assert r.symbols == {0: "cup-1", 1: "cup-2"}
+    assert r.assignments[0].score == 0.0  # by appearance, not by the matcher
+    off = blind_then_moved(AnchorManager(reid_seconds=0), hues=(7, 2))
+    assert off.symbols[0] == "cup-3"  # the matcher alone refuses it: 22 cm off after 2 s
+
+
+def test_the_other_look_alike_accounted_for_by_position_leaves_one_candidate():
+    r = blind_then_moved(AnchorManager(), hues=(2, 2))
+    assert r.symbols == {0: "cup-1", 1: "cup-2"}
+
+
+def test_two_look_alikes_left_over_are_not_decided_by_appearance():
+    """Both identical cups moved while the camera was covered: either could be either."""
+    r = blind_then_moved(AnchorManager(), hues=(2, 2), after=(0.0, -0.05))
+    assert sorted(r.acquired) == ["cup-3", "cup-4"]
+    r = blind_then_moved(AnchorManager(), hues=(7, 2), after=(0.0, -0.05))
+    assert r.symbols == {0: "cup-1", 1: "cup-2"}  # told apart by colour

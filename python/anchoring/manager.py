@@ -26,6 +26,16 @@ Per frame (:meth:`AnchorManager.process`):
    ``withhold_seconds`` in a row is acquired after all (a new object put where a hidden one is
    believed is not refused for ever).
 
+What the matcher and the assignment leave unmatched may still be *re-identified by
+appearance*: a percept that looks like exactly one of the anchors left over (category, colour
+and size similarities of at least ``reid_similarity``, position not asked), an anchor not
+perceived for ``reid_seconds`` that looks like no other percept left over, re-acquires it
+(``score`` 0). The learned matcher refuses an object seen again 12 cm or more from where it
+was believed (an identical-looking object elsewhere is another object); but when the camera
+was covered while a container was carried over the ball, or a cup came out from behind a
+passing container, the only black cup on the table is still the black cup. With two
+look-alikes left over, nothing is decided by appearance.
+
 A pair the matcher accepts is still refused when the percept is far larger than the anchor in
 the table plane (``merge_ratio``: its largest horizontal extent more than that many times the
 anchor's plus 2 cm), or when it holds the last positions of two anchors just perceived and is
@@ -151,6 +161,8 @@ class AnchorManager:
         view_colour: float = 0.7,
         merge_ratio: float = 1.5,
         merge_seconds: float = 0.5,
+        reid_seconds: float = 0.3,
+        reid_similarity: tuple[float, float, float] = (0.5, 0.9, 0.7),
     ) -> None:
         self.matcher: Matcher = matcher if matcher is not None else load_default_matcher()
         self.glitch_seconds = float(glitch_seconds)
@@ -161,6 +173,9 @@ class AnchorManager:
         self.view_colour = float(view_colour)
         self.merge_ratio = float(merge_ratio)
         self.merge_seconds = float(merge_seconds)
+        # re-identification of a unique look-alike (see _unique_lookalikes); <= 0: off
+        self.reid_seconds = float(reid_seconds)
+        self.reid_similarity = tuple(float(v) for v in reid_similarity)
         self._withholding: dict[str, float] = {}  # anchor symbol -> since when it withholds
         self.symbols = SymbolTable()
         self.time: float | None = None
@@ -228,6 +243,7 @@ class AnchorManager:
         result.compared = [a.symbol for a in anchors]
         matched_anchor: dict[int, int] = {}  # index in frame -> index in anchors
         merged: dict[int, list[int]] = {}  # index in frame -> anchors seen as one segment
+        refuse = np.zeros((len(anchors), len(frame)), bool)
         scores = np.zeros((len(anchors), len(frame)))
         if anchors and frame:
             scores = np.asarray(self.matcher.decision(features), dtype=float)
@@ -244,6 +260,10 @@ class AnchorManager:
                     if accept[r, c]:
                         matched_anchor[int(c)] = int(r)
 
+        for j, k in self._unique_lookalikes(anchors, features, matched_anchor, refuse,
+                                            time).items():
+            matched_anchor[j] = k
+            scores[k, j] = 0.0  # re-identified by appearance, not accepted by the matcher
         matched = {anchors[r].symbol for r in matched_anchor.values()}
         views = self._views(anchors, frame, features, matched_anchor, matched, merged, time)
         perceived: set[str] = set()
@@ -294,6 +314,36 @@ class AnchorManager:
                 refuse[held, j] = True
                 merged[int(j)] = held
         return refuse, merged
+
+    def _unique_lookalikes(self, anchors: list[Anchor], features: np.ndarray,
+                           matched_anchor: dict[int, int], refuse: np.ndarray, time: float
+                           ) -> dict[int, int]:
+        """Re-identification by appearance for what the matcher left unmatched: percept ->
+        anchor (indices) where the percept looks like that anchor (category, colour and size
+        similarities at least ``reid_similarity``), the anchor has not been perceived for
+        ``reid_seconds`` or more, and neither has another such look-alike among the anchors
+        and percepts left over. Position is not asked: after the camera was covered, or
+        after a container was carried over something while unseen, an object may be anywhere
+        on the table; but it is still the only black cup."""
+        if self.reid_seconds <= 0 or not anchors or features.shape[1] == 0:
+            return {}
+        taken = set(matched_anchor.values())
+        free_a = np.array([k not in taken and anchors[k].confirmed
+                           and time - anchors[k].last_seen >= self.reid_seconds
+                           for k in range(len(anchors))])
+        free_p = np.array([j not in matched_anchor for j in range(features.shape[1])])
+        cat, col, size = (np.asarray(self.reid_similarity, dtype=float))
+        alike = ((features[..., 0] >= cat) & (features[..., 1] >= col)
+                 & (features[..., 3] >= size) & ~refuse)
+        # uniqueness counts every anchor and percept left over, even one too recent to take
+        left_a = np.array([k not in taken for k in range(len(anchors))])
+        alike_left = alike & left_a[:, None] & free_p[None, :]
+        out: dict[int, int] = {}
+        for j in np.nonzero(free_p)[0]:
+            ks = np.nonzero(alike_left[:, j])[0]
+            if len(ks) == 1 and free_a[ks[0]] and alike_left[ks[0]].sum() == 1:
+                out[int(j)] = int(ks[0])
+        return out
 
     def _views(self, anchors: list[Anchor], frame: list[Percept], features: np.ndarray,
                matched_anchor: dict[int, int], matched: set[str],
@@ -346,6 +396,8 @@ class AnchorManager:
             "view_colour": self.view_colour,
             "merge_ratio": self.merge_ratio,
             "merge_seconds": self.merge_seconds,
+            "reid_seconds": self.reid_seconds,
+            "reid_similarity": list(self.reid_similarity),
             "symbol_counters": self.symbols.counters,
             "anchors": [a.to_json() for a in self._anchors.values()],
         }
@@ -379,6 +431,8 @@ class AnchorManager:
                 view_colour=float(record.get("view_colour", 0.7)),
                 merge_ratio=float(record.get("merge_ratio", 1.5)),
                 merge_seconds=float(record.get("merge_seconds", 0.5)),
+                reid_seconds=float(record.get("reid_seconds", 0.3)),
+                reid_similarity=tuple(record.get("reid_similarity", (0.5, 0.9, 0.7))),
             )
             manager.time = None if record.get("time") is None else float(record["time"])
             manager.symbols = SymbolTable(
