@@ -44,6 +44,9 @@ def shell_game(containers: int = 3, swaps: int = 3, seed: int = 0, fps: float = 
         ids.append(oid)
         b.add(oid, kind, str(colours[i]), position=(float(x), 0.06), **params)
     hider = ids[int(rng.integers(containers))]
+    # where each container stands: the row, and the ball's place for the one put over it
+    spot = {oid: (float(x), 0.06) for oid, x in zip(ids, xs, strict=True)}
+    spot[hider] = (0.0, -0.17)
     t = 1.0
     b.cover_camera(t, duration=2.6)
     b.put_under(t + 0.2, "ball_1", hider, duration=2.2)
@@ -51,8 +54,14 @@ def shell_game(containers: int = 3, swaps: int = 3, seed: int = 0, fps: float = 
     for _ in range(swaps):
         a, c = rng.choice(containers, size=2, replace=False)
         b.swap(t, ids[int(a)], ids[int(c)], duration=swap_duration)
+        spot[ids[int(a)]], spot[ids[int(c)]] = spot[ids[int(c)]], spot[ids[int(a)]]
         t += swap_duration + 0.4
     for i in rng.permutation(containers):
-        b.lift(t, ids[int(i)], duration=2.0)
+        x, y = spot[ids[int(i)]]
+        # set down 13 cm further back, clear of the row; the one on the ball's place (in
+        # front of the row) 13 cm to the side instead: further back it would land on the
+        # row's middle container (two boxes 10 cm apart), in front it would hide the ball
+        to = (x, y + 0.13) if y > 0 else (x + 0.13, y)
+        b.lift(t, ids[int(i)], to=to, duration=2.0)
         t += 2.5
     return b
