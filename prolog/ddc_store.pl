@@ -5,8 +5,8 @@
     atom and every fact asserted into it.  The store must survive
     backtracking (a variable sampled inside \+ or a failed branch stays
     sampled: each random variable is drawn at most once per world), so it is
-    a hash table updated with nb_setarg/3: an insertion copies only the
-    entry and its (short) bucket chain, never the whole table.
+    a hash table updated with nb_setarg/3 and nb_linkarg/3: an insertion
+    copies only the new entry, never the chain or the table.
 */
 
 :- module(ddc_store,
@@ -69,7 +69,7 @@ store_put(T, K, V) :-
     ->  functor(X, N, A),
         (   store_get(T, '$by'(N/A, Tm), Cell)
         ->  arg(1, Cell, Xs),
-            nb_setarg(1, Cell, [X|Xs])
+            set_entries(1, Cell, [X|Xs])
         ;   put_(T, '$by'(N/A, Tm), ix([X]))
         )
     ;   true
@@ -82,12 +82,12 @@ put_(T, K, V) :-
         ->  functor(B, b, 16),
             forall(member(K0-V0, [K-V|D]), bucket_put(B, K0, V0)),
             nb_setarg(2, T, B)
-        ;   nb_setarg(2, T, [K-V|D])
+        ;   set_entries(2, T, [K-V|D])
         ),
         C1 is C + 1,
         nb_setarg(1, T, C1)
     ;   D == []
-    ->  nb_setarg(2, T, [K-V]),
+    ->  set_entries(2, T, [K-V]),
         nb_setarg(1, T, 1)
     ;   bucket_put(D, K, V),
         C1 is C + 1,
@@ -101,7 +101,17 @@ bucket_put(B, K, V) :-
     functor(B, _, S),
     I is H mod S + 1,
     arg(I, B, L),
-    (   var(L) -> nb_setarg(I, B, [K-V]) ; nb_setarg(I, B, [K-V|L]) ).
+    (   var(L) -> set_entries(I, B, [K-V]) ; set_entries(I, B, [K-V|L]) ).
+
+%   set_entries(+I, +Term, +[K-V|Rest]): non-backtrackable assignment of a
+%   chain whose Rest is already held by the store.  Only the new entry is
+%   copied (it may share bindings that backtracking would undo); the new cell
+%   that joins it to Rest is linked (nb_linkarg/3 freezes the global stack as
+%   nb_setarg/3 does, and the cell holds no variable): an insertion copies
+%   one entry instead of the whole chain.
+set_entries(I, T, [KV|Rest]) :-
+    duplicate_term(KV, E),
+    nb_linkarg(I, T, [E|Rest]).
 
 grow(T) :-
     T = tbl(_, B),
