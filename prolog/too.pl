@@ -18,6 +18,7 @@ motion_var(0.0004).         % how far a perceived object moves in one frame: (2 
 reappear_var(0.0025).       % where a hidden object shows up again, around its belief: (5 cm)^2
 follow_var(0.000004).       % jitter of a hidden object that follows its occluder: (2 mm)^2
 wander_var(0.0001).         % how far a hidden object under nothing may move in a frame: (1 cm)^2
+coast_keep(0.9).            % fraction of its velocity a hidden object under nothing keeps per frame
 follow_keep(0.95).          % fraction of its offset from the occluder's centre kept per frame
 occluder_reach(0.15).       % an occluder is within 15 cm of the object in the table plane ...
 occluder_rise(0.02).        % ... and its centre is no more than 2 cm lower than the object's
@@ -165,12 +166,26 @@ pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
     (   category(O, CO), carrier(CO) -> MZ is Z + Z1 - Z0 ; MZ = Z ),
     follow_var(V), VZ is V / 100.
 % Hidden under nothing (behind something, or left on the table): it may be moved while unseen
-% (a mug carried behind a box), so its belief spreads in the table plane by wander_var per
-% frame around where it was last believed to be; a reappearance then weights the particles
-% by where they had it, and matching finds the particles near it.
-pos(A):t+1 ~ gaussian([X, Y, Z], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
+% (a mug carried behind a box, a container swapped while merged with another in the image).
+% It coasts on with the velocity it had when it vanished, slowing down (coast_keep per frame,
+% so at most 1 / (1 - coast_keep) frames' worth of its last motion: a static object stays),
+% and its belief spreads by wander_var per frame in the table plane; a reappearance then
+% weights the particles by where they had it, and matching finds the particles near it.
+pos(A):t+1 ~ gaussian([MX, MY, Z], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
     hidden(A):t+1, \+ occluded_by(A, _):t+1, pos(A):t ~= (X, Y, Z),
+    velocity(A, VX, VY):t+1, MX is X + VX, MY is Y + VY,
     wander_var(V), VZ is V / 100.
+
+% The velocity (metres per frame, in the table plane) of a perceived object: the change of its
+% filtered position; of a hidden object under nothing: the last one, slowing down; else none.
+vel(A):t+1 ~ val((VX, VY)) :=
+    observed(A), seen(A):t, pos(A):t ~= (X0, Y0, _), pos(A):t+1 ~= (X1, Y1, _),
+    VX is X1 - X0, VY is Y1 - Y0.
+vel(A):t+1 ~ val((VX, VY)) :=
+    hidden(A):t+1, \+ occluded_by(A, _):t+1, velocity(A, VX, VY):t+1.
+velocity(A, VX, VY):t+1 :=
+    vel(A):t ~= (VX0, VY0), coast_keep(K), VX is K * VX0, VY is K * VY0.
+velocity(A, 0.0, 0.0):t+1 := object(A), \+ vel(A):t ~= _.
 
 % ------------------------------------------------------------------ observation model
 % A perceived position weights each particle by its predictive density: motion + noise for an

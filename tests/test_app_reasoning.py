@@ -52,6 +52,9 @@ def test_hidden_ball_follows_the_mug_that_covers_it() -> None:
         assert np.all(np.abs(belief.positions[under, 1]) < 0.03)
         # stays on the table: a mug is not a carrier
         assert np.all(np.abs(belief.positions[:, 2] - 0.03) < 0.01)
+        # believed under the mug only while unseen
+        step(reasoner, {"mug-1": ("mug", (0.30, 0.0, 0.05)), "ball-1": ("ball", BALL)})
+        assert reasoner.probability("occluded_by(ball_1, _):t") == pytest.approx(0.0)
     finally:
         reasoner.close()
 
