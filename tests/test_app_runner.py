@@ -12,14 +12,19 @@ import pytest
 from app.runner import RunOptions, run
 from plunit_runner import ROOT, swipl_executable
 
+# Two look-alike balls, both hidden when ball_1 is revealed: anchoring cannot tell them apart by
+# appearance, so only where ball_1 is believed to be (the reasoning) keeps its symbol.
 SCENARIO = """\
 name: ball_under_mug_moved
 fps: 5
 objects:
   - {id: ball_1, category: ball, colour: red, radius: 0.03, position: [-0.1, -0.05]}
   - {id: mug_1, category: mug, colour: blue, radius: 0.04, height: 0.1, position: [0.05, 0.05]}
+  - {id: ball_2, category: ball, colour: red, radius: 0.03, position: [-0.25, 0.2]}
+  - {id: box_1, category: box, colour: green, size: [0.12, 0.12, 0.12], position: [-0.05, 0.25]}
 events:
   - {at: 1.0, do: put_under, object: ball_1, container: mug_1, duration: 2.0}
+  - {at: 1.0, do: put_under, object: ball_2, container: box_1, duration: 2.0}
   - {at: 3.5, do: move, object: mug_1, to: [0.2, 0.1], duration: 2.0}
   - {at: 6.0, do: lift, container: mug_1, duration: 2.0}
 """
@@ -41,8 +46,9 @@ def reasoning_run(scenario: Path, tmp_path_factory: pytest.TempPathFactory):
 
 def test_the_ball_is_reacquired_as_ball_1_after_the_mug_moved(reasoning_run) -> None:
     objects = {o["id"]: o for o in reasoning_run.summary["objects"]}
-    assert objects["ball_1"]["symbols"] == ["ball-1"]
+    assert len(objects["ball_1"]["symbols"]) == 1  # ball-1 or ball-2: whichever it got first
     assert objects["ball_1"]["identity_kept"] is True
+    assert objects["ball_2"]["identity_kept"] is True
     assert objects["mug_1"]["identity_kept"] is True
 
 
@@ -63,8 +69,10 @@ def test_outputs_summary_pictures_gif_and_world(reasoning_run) -> None:
     assert reasoning_run.gif is not None and reasoning_run.gif.stat().st_size > 0
     assert len(list((out / "frames").glob("*.png"))) == len(reasoning_run.pictures) > 0
     # the world file answers questions in swipl through prolog/world.pl
-    goal = ("anchors(As), memberchk(ball_1, As), prob(pos(ball_1, _), P), "
-            "prob(occluded_by(ball_1, _), Q), format('~w ~w~n', [P, Q]), halt")
+    objects = {o["id"]: o for o in summary["objects"]}
+    ball = objects["ball_1"]["symbols"][0].replace("-", "_")  # its anchor's atom
+    goal = (f"anchors(As), memberchk({ball}, As), prob(pos({ball}, _), P), "
+            f"prob(occluded_by({ball}, _), Q), format('~w ~w~n', [P, Q]), halt")
     result = subprocess.run(
         [swipl_executable(), "-q", "-g", goal, "-t", "halt(1)",
          str(ROOT / "prolog" / "world.pl"), str(out / "world.pl")],
