@@ -305,8 +305,50 @@ class Timeline:
         # sideways enough to pass each other, and anything standing between them
         reach = self.objects[a].footprint_radius() + self.objects[b].footprint_radius()
         off = max(0.6 * reach, 0.45 * float(np.linalg.norm(along)))
-        self._segment(a, t0, t1, pa, mid + n * off, pb)
-        self._segment(b, t0, t1, pb, mid - n * off, pa)
+        oa, ob = self._clear_detour(a, b, pa, pb, mid, n, off, reach)
+        self._segment(a, t0, t1, pa, mid + n * oa, pb)
+        self._segment(b, t0, t1, pb, mid + n * ob, pa)
+
+    def _clear_detour(self, a: str, b: str, pa: np.ndarray, pb: np.ndarray, mid: np.ndarray,
+                      n: np.ndarray, off: float, reach: float) -> tuple[float, float]:
+        """Signed sideways offsets of the two swapped containers' waypoints: ``(off, -off)``
+        unless one of the paths would go through another object standing on the table (a
+        container passing 6 cm from a mug of the row, inside it); then the offsets, on a
+        2 cm grid, whose paths keep the most clearance from the other objects and from each
+        other (each path sampled at the same fractions of its length, as both are played)."""
+        skip = {a, b, *self.state.descendants(a), *self.state.descendants(b)}
+        others = [o for o in self.objects if o in self.state.present and o not in skip
+                  and self.state.parent.get(o) is None]
+        if not others:
+            return off, -off
+        where = np.array([self._pos(o)[:2] for o in others])  # (K, 2)
+        radius = np.array([self.objects[o].footprint_radius() for o in others])
+        ra, rb = self.objects[a].footprint_radius(), self.objects[b].footprint_radius()
+        f = np.linspace(0.0, 1.0, 21)[:, None]  # fractions of the move
+
+        def path(p0: np.ndarray, w: np.ndarray, p1: np.ndarray) -> np.ndarray:
+            # (S, 2): the polyline p0 -> w -> p1 at the fractions f of its length (as
+            # Segment.position moves along it)
+            l1, l2 = float(np.linalg.norm(w - p0)), float(np.linalg.norm(p1 - w))
+            d = f * (l1 + l2)
+            first = p0 + (w - p0) * np.minimum(d / max(l1, 1e-9), 1.0)
+            return np.where(d <= l1, first, w + (p1 - w) * ((d - l1) / max(l2, 1e-9)))
+
+        def clearance(oa: float, ob: float) -> float:
+            wa, wb = mid[:2] + n[:2] * oa, mid[:2] + n[:2] * ob
+            qa, qb = path(pa[:2], wa, pb[:2]), path(pb[:2], wb, pa[:2])
+            da = np.linalg.norm(qa[:, None] - where[None], axis=2) - 0.9 * (ra + radius)
+            db = np.linalg.norm(qb[:, None] - where[None], axis=2) - 0.9 * (rb + radius)
+            dab = np.linalg.norm(qa - qb, axis=1) - 0.9 * reach
+            return float(min(da.min(), db.min(), dab.min()))
+
+        if clearance(off, -off) >= 0:
+            return off, -off
+        grid = np.arange(-0.36, 0.3601, 0.02)
+        best = max((clearance(x, y), -abs(x) - abs(y), x, y) for x in grid for y in grid
+                    if abs(x - y) >= reach)
+        return (float(best[2]), float(best[3])) if best[0] > clearance(off, -off) \
+            else (off, -off)
 
     def _ev_swap(self, ev: Event, t0: float, d: float) -> None:
         a, b = ev.params["a"], ev.params["b"]
