@@ -842,11 +842,19 @@ conj_from_list([G], G) :- !.
 conj_from_list([G|Gs], (G, C)) :- conj_from_list(Gs, C).
 
 %   Derived atoms.
-compile_der(_Id, X, K, B, Info, Clause) :-
+compile_der(Id, X, K, B, Info, Clause) :-
     Info = info(_, _, _, _, _, Impure, _),
     X =.. [N|Args],
     Ctx = ctx(W, Tc, Info, clause),
-    cb(B, Ctx, BodyCode),
+    cb(B, Ctx, BodyCode0),
+    %   a derived atom is a ground fact of the world: a head left with
+    %   variables by its body (`covers(O, A) := category(O, hand), A \== O`)
+    %   is the clause's error, not an atom dropped or stored unbound
+    (   ground(X)
+    ->  BodyCode = BodyCode0
+    ;   BodyCode = ( BodyCode0,
+                     ( ground(X) -> true ; ddc:'$clause_error'(W, Id, non_ground_head(X)) ) )
+    ),
     length(Args, Ar),
     (   K == u
     ->  (   memberchk(u/N/Ar, Impure) -> Kind = d0

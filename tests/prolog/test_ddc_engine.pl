@@ -194,6 +194,24 @@ test(non_ground_head) :-
     load_text(['a ~ val(1).', 'b(_) ~ val(1) := a ~= _.', 'q := b(_) ~= 1.'], M),
     error_at(query(true, q, _, [program(M), samples(5)]), non_ground_head(_), 2).
 
+test(non_ground_derived_head) :-
+    %   covers(O, A) for every A: not range-restricted, an error naming the
+    %   clause, in a query and in a filter step that materialises it
+    Lines = ['category(h, hand) := true.', 'carrier(hand) := true.',
+             'covers(O, A) := category(O, C), carrier(C), A \\== O.',
+             'q := covers(h, _).'],
+    load_text(Lines, M),
+    error_at(query(true, q, _, [program(M), samples(5)]), non_ground_head(covers(h, _)), 3),
+    program(['category(h, hand) := true.', 'carrier(hand) := true.',
+             'covers(O, A):t+1 := category(O, C), carrier(C), A \\== O.',
+             'x:0 ~ val(0).', 'x:t+1 ~ val(1) := covers(h, a):t.',
+             'x:t+1 ~ val(2) := \\+ covers(h, a):t.',
+             'observation(o):t+1 ~ val(_) := true.'], F),
+    filter_new(F, 3, 1, Fi),
+    error_at(forall(between(1, 2, _), filter_step(Fi, [observation(o) ~= 1], [], _)),
+             non_ground_head(covers(h, _)), 3),
+    filter_free(Fi).
+
 test(overlapping_clauses) :-
     load_text(['a ~ finite([0.5:1, 0.5:2]).', 'b ~ val(1) := a ~= 1.', 'b ~ val(2) := a ~= _.'], M),
     error_at(query(true, b ~= _, _, [program(M), samples(50), seed(1)]), overlapping_clauses(b, _:3), 2).
