@@ -59,6 +59,23 @@ def test_without_reasoning_the_revealed_ball_is_a_new_anchor(scenario: Path) -> 
     assert len(objects["ball_1"]["symbols"]) >= 2
 
 
+def test_reidentification_by_appearance_is_anchorings_own_and_can_be_switched_off(
+        tmp_path: Path) -> None:
+    # one red ball only: without reasoning, anchoring re-identifies it by appearance (the only
+    # anchor left over that looks like it); with that switched off it becomes a new anchor
+    single = "\n".join(line for line in SCENARIO.splitlines()
+                        if "ball_2" not in line and "box_1" not in line)
+    path = tmp_path / "one_ball.yaml"
+    path.write_text(single + "\n")
+    kept = {}
+    for reidentify in (True, False):
+        output = run(RunOptions(scenario=path, reasoning=False, reidentify=reidentify,
+                                progress=False))
+        kept[reidentify] = {o["id"]: o for o in output.summary["objects"]}["ball_1"]
+    assert kept[True]["identity_kept"] is True
+    assert kept[False]["identity_kept"] is False and len(kept[False]["symbols"]) >= 2
+
+
 def test_outputs_summary_pictures_gif_and_world(reasoning_run) -> None:
     out = reasoning_run.out
     summary = json.loads((out / "summary.json").read_text())

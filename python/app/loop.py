@@ -30,6 +30,10 @@ class LoopConfig:
     # no longer drift. (With positions sampled per particle, resampling ran nearly every frame
     # for the perceived objects' own noise and randomly thinned the hidden ball's modes.)
     resample_threshold: float = 0.9
+    # Anchoring may re-identify a percept by appearance alone when it looks like exactly one
+    # anchor left over (AnchorManager.reid_seconds); False switches that off, so that only
+    # the matcher (and, with reasoning, the particles of hidden anchors) re-acquires.
+    reidentify: bool = True
 
 
 @dataclass
@@ -47,7 +51,8 @@ class AnchoringLoop:
 
     def __init__(self, config: LoopConfig, manager: AnchorManager | None = None) -> None:
         self.config = config
-        self.manager = manager or AnchorManager()
+        self.manager = manager or (AnchorManager() if config.reidentify
+                                   else AnchorManager(reid_seconds=0))
         self.reasoner = (
             OcclusionReasoner(config.theory, particles=config.particles, seed=config.seed,
                               resample_threshold=config.resample_threshold)

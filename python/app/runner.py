@@ -29,6 +29,7 @@ class RunOptions:
     seed: int = 0
     reasoning: bool = True
     resample_threshold: float = 0.9
+    reidentify: bool = True
     out: Path | None = None
     picture_every: int = 1
     progress: bool = True
@@ -52,7 +53,8 @@ def run(options: RunOptions) -> RunOutput:
         raise FileNotFoundError(f"{options.theory}: no such theory file")
     config = LoopConfig(particles=options.particles, theory=options.theory, seed=options.seed,
                         reasoning=options.reasoning,
-                        resample_threshold=options.resample_threshold)
+                        resample_threshold=options.resample_threshold,
+                        reidentify=options.reidentify)
     # The loop's filter loads the theory (once) here, before the first frame: a syntax or
     # distribution error stops the run with the file, line and cause.
     loop = AnchoringLoop(config)

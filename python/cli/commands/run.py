@@ -34,6 +34,9 @@ def register(sub: Any) -> None:
                         help="a recorded percept stream (JSON Lines) instead of a scenario")
     parser.add_argument("--no-reasoning", action="store_true",
                         help="anchoring alone: hidden anchors keep their last position")
+    parser.add_argument("--no-reid", action="store_true",
+                        help="anchoring does not re-identify a percept by appearance alone "
+                             "(a unique look-alike of an anchor left over)")
     add_run_options(parser)
     parser.set_defaults(func=main)
 
@@ -44,7 +47,7 @@ def main(args: argparse.Namespace) -> int:
     output = run(RunOptions(
         scenario=args.scenario, percepts=args.percepts, particles=args.particles,
         theory=args.theory, seed=args.seed, reasoning=not args.no_reasoning,
-        resample_threshold=args.resample_threshold, out=args.out,
+        resample_threshold=args.resample_threshold, reidentify=not args.no_reid, out=args.out,
         picture_every=args.every, progress=not args.quiet,
     ))
     print(format_summary(output.summary))
