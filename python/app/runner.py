@@ -12,7 +12,6 @@ from tqdm import tqdm
 
 from app.loop import AnchoringLoop, FrameOutcome, LoopConfig, run_frames
 from app.pictures import FramePictures
-from app.reasoning import DEFAULT_THEORY
 from app.sources import scenario_frames, scenario_length, stream_frames
 from app.world_file import write_world
 from evaluation import TrackingRecord, evaluate, make_summary, write_records, write_summary
@@ -21,15 +20,12 @@ logger = logging.getLogger(__name__)
 
 
 @dataclass
-class RunOptions:
+class RunOptions(LoopConfig):
+    """The loop's configuration (particles, theory, seed, reasoning, ...) plus what to play
+    and where to write."""
+
     scenario: Path | None = None
     percepts: Path | None = None
-    particles: int = 1000
-    theory: Path = DEFAULT_THEORY
-    seed: int = 0
-    reasoning: bool = True
-    resample_threshold: float = 0.9
-    reidentify: bool = True
     out: Path | None = None
     picture_every: int = 1
     progress: bool = True
@@ -51,13 +47,9 @@ def run(options: RunOptions) -> RunOutput:
         raise ValueError("give a scenario or a percept stream (--percepts), not both")
     if options.reasoning and not options.theory.is_file():
         raise FileNotFoundError(f"{options.theory}: no such theory file")
-    config = LoopConfig(particles=options.particles, theory=options.theory, seed=options.seed,
-                        reasoning=options.reasoning,
-                        resample_threshold=options.resample_threshold,
-                        reidentify=options.reidentify)
     # The loop's filter loads the theory (once) here, before the first frame: a syntax or
     # distribution error stops the run with the file, line and cause.
-    loop = AnchoringLoop(config)
+    loop = AnchoringLoop(options)
     try:
         return _run(options, loop)
     finally:
