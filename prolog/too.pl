@@ -92,9 +92,7 @@ lowered_over(O, A):t+1 :=
     ).
 
 % Each particle picks uniformly among the choices (the paper's sample_occluder, plus
-% `behind`).  (The list with `behind` is built in the body: written in the head,
-% `uniform([behind | Os])`, the engine stopped at the first vanishing with an instantiation
-% error in its store.)
+% `behind`).
 pick_occluder(A):t+1 ~ uniform(Os) :=
     hidden(A):t+1, \+ occluded_by(A, _):t, lost_anywhere(A):t,
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].

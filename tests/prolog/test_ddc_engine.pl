@@ -353,4 +353,30 @@ test(gaussian_observation_weights) :-
     maplist([L, V]>>( E is -0.5*log(2*pi*0.25) - (0.3-V)**2/(2*0.25), abs(E - L) < 1.0e-9 ), LW, Xs),
     filter_free(Fi).
 
+test(uniform_over_a_list_built_in_the_head) :-
+    %   the support [behind | Os] is built in the head from a findall_forward
+    %   over a timed derived atom (the theory of occlusion's pick_occluder):
+    %   each particle picks one of the three once a vanishes, and keeps it
+    program([ 'pos(A):t+1 ~ val(P) := observed(A), observation(pos(A)) ~= P.',
+              'pos(A):t+1 ~ val(P) := object(A), \\+ observed(A), pos(A):t ~= P.',
+              'seen(A):t+1 := observed(A).',
+              'hidden(A):t+1 := object(A), \\+ observed(A).',
+              'cand(A, O):t+1 := hidden(A):t+1, observed(O), O \\== A, pos(O):t+1 ~= _.',
+              'pick(A):t+1 ~ uniform([behind | Os]) := hidden(A):t+1, seen(A):t, findall_forward(O, cand(A, O):t+1, Os0), sort(Os0, Os), Os \\== [].',
+              'under(A, O):t+1 := pick(A):t+1 ~= O, O \\== behind.',
+              'under(A, O):t+1 := under(A, O):t, hidden(A):t+1.',
+              'observation(pos(A)):t+1 ~ val(_) := object(A).' ], F),
+    filter_new(F, 30, 1, Fi),
+    Objects = [object(a), object(b), object(c)],
+    Step = [Seen]>>( findall(X, ( member(O, Seen), ( X = observed(O) ; X = (observation(pos(O)) ~= 1.0) ) ), Obs),
+                     filter_step(Fi, Obs, Objects, _) ),
+    maplist(Step, [[a, b, c], [a, b, c], [b, c]]),
+    filter_values(Fi, U3, under(a, U3), Us3),
+    maplist(Step, [[b, c], [b, c]]),
+    filter_values(Fi, U5, under(a, U5), Us5),
+    Us5 == Us3,
+    %   30 particles over three choices: each is missed with probability (2/3)^30
+    msort(Us5, Sorted), sort(Sorted, Kinds), Kinds == [b, c, none],
+    filter_free(Fi).
+
 :- end_tests(ddc_filter).
