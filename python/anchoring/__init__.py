@@ -18,10 +18,10 @@ from anchoring.manager import (
     FrameResult,
     Rejection,
     SymbolTable,
-    Withheld,
 )
 from anchoring.matcher import DEFAULT_MODEL, Matcher, MatcherError, RbfSvm, load_default_matcher
 from anchoring.similarity import FEATURES
+from anchoring.views import Withheld
 
 __all__ = [
     "DEFAULT_MODEL",

@@ -2,45 +2,26 @@
 
 Per frame (:meth:`AnchorManager.process`):
 
-1. invalid percepts are rejected with their reason (``Percept.validate``; a colour histogram
-   whose bin count differs from the anchors'), logged as warnings, never raised;
+1. invalid percepts are rejected with their reason (:mod:`anchoring.validation`), logged as
+   warnings, never raised;
 2. anchors acquired more than ``glitch_seconds`` ago and never re-acquired are dropped as
    glitches (the original's fading rule);
 3. every (anchor, percept) pair gets its similarity vector and the learned matcher's score;
+   pairs where the percept is a merged view of two objects are refused
+   (:func:`anchoring.views.merged_views`);
 4. percepts and anchors are assigned jointly, one to one, by the Hungarian method
    (``scipy.optimize.linear_sum_assignment``): as many pairs as possible among those the
    matcher accepts (decision > 0), and among such assignments the one with the largest total
    mean similarity (monotone in every attribute; an RBF SVM's decision value is not, and it
    saturates for clear matches);
-5. matched percepts re-acquire their anchor, unmatched percepts acquire a new anchor, and the
+5. what is left unmatched may still be re-identified by appearance, when it is the only
+   look-alike of an anchor not perceived for a while (:mod:`anchoring.reidentify`; ``score`` 0);
+6. matched percepts re-acquire their anchor, unmatched percepts acquire a new anchor, and the
    anchors that were not perceived are *tracked* (their position is whatever the reasoning
    later supplies through :meth:`AnchorManager.set_position_particles`, else the last value);
-6. except that an unmatched percept that is a plausible *partial or merged view* of anchors
-   not perceived this frame is *withheld* (no symbol, reported in ``result.withheld``): its 3-D
-   box overlaps such an anchor's box placed at the anchor's last perceived position or at one
-   of its particles, and its colour is not unlike the anchor's. A mug's rim above the box in
-   front of it, the first sliver of a mug coming out from behind a box, a container half
-   revealed as its cover is lifted, two containers seen as one segment for a frame: these are
-   views of objects that already have anchors, and a new anchor for them would give the
-   object's percepts a second symbol. A percept withheld because of one anchor for longer than
-   ``withhold_seconds`` in a row is acquired after all (a new object put where a hidden one is
-   believed is not refused for ever).
-
-What the matcher and the assignment leave unmatched may still be *re-identified by
-appearance*: a percept that looks like exactly one of the anchors left over (category, colour
-and size similarities of at least ``reid_similarity``, position not asked), an anchor not
-perceived for ``reid_seconds`` that looks like no other percept left over, re-acquires it
-(``score`` 0). The learned matcher refuses an object seen again 12 cm or more from where it
-was believed (an identical-looking object elsewhere is another object); but when the camera
-was covered while a container was carried over the ball, or a cup came out from behind a
-passing container, the only black cup on the table is still the black cup. With two
-look-alikes left over, nothing is decided by appearance.
-
-A pair the matcher accepts is still refused when the percept is far larger than the anchor in
-the table plane (``merge_ratio``: its largest horizontal extent more than that many times the
-anchor's plus 2 cm), or when it holds the last positions of two anchors just perceived and is
-larger than each (:meth:`AnchorManager._merged_views`): two objects seen as one segment must
-not re-acquire one of them; such a percept is withheld.
+7. except that an unmatched percept that is a plausible *partial or merged view* of anchors
+   not perceived this frame is *withheld* (no symbol, reported in ``result.withheld``; for at
+   most ``withhold_seconds`` in a row per anchor; :mod:`anchoring.views`).
 
 Symbols are ``<category>-<k>``: the k-th anchor acquired with that best category. A symbol never
 changes during the anchor's life, even when its category estimate changes later (the anchor's
@@ -66,6 +47,9 @@ from anchoring.anchor import Anchor
 from anchoring.blas import single_threaded_blas
 from anchoring.features import pair_features
 from anchoring.matcher import Matcher, load_default_matcher
+from anchoring.reidentify import unique_lookalikes
+from anchoring.validation import histogram_bins, invalid_reason
+from anchoring.views import Withheld, merged_views, withheld_views
 from percepts import Percept, PerceptError
 
 log = logging.getLogger("anchoring")
@@ -88,15 +72,6 @@ class Assignment:
 class Rejection:
     percept_index: int
     reason: str
-
-
-@dataclass
-class Withheld:
-    """Percept ``percept_index`` was left without a symbol: it looks like a partial or merged
-    view of the anchors ``symbols`` (not perceived this frame)."""
-
-    percept_index: int
-    symbols: list[str]
 
 
 @dataclass
@@ -167,13 +142,13 @@ class AnchorManager:
         self.matcher: Matcher = matcher if matcher is not None else load_default_matcher()
         self.glitch_seconds = float(glitch_seconds)
         self.history_size = int(history_size)
-        # partial / merged views (see the module doc); withhold_seconds <= 0 switches it off
+        # partial / merged views (anchoring.views); withhold_seconds <= 0 switches it off
         self.withhold_seconds = float(withhold_seconds)
         self.view_margin = float(view_margin)
         self.view_colour = float(view_colour)
         self.merge_ratio = float(merge_ratio)
         self.merge_seconds = float(merge_seconds)
-        # re-identification of a unique look-alike (see _unique_lookalikes); <= 0: off
+        # re-identification of a unique look-alike (anchoring.reidentify); <= 0: off
         self.reid_seconds = float(reid_seconds)
         self.reid_similarity = tuple(float(v) for v in reid_similarity)
         self._withholding: dict[str, float] = {}  # anchor symbol -> since when it withholds
@@ -221,9 +196,9 @@ class AnchorManager:
         self.time = time
 
         valid: list[int] = []
-        bins = self._histogram_bins(percepts)
+        bins = histogram_bins(self._anchors.values(), percepts)
         for i, percept in enumerate(percepts):
-            reason = _invalid(percept, bins)
+            reason = invalid_reason(percept, bins)
             if reason is not None:
                 log.warning("percept %d at t=%.3f rejected: %s", i, time, reason)
                 result.rejected.append(Rejection(i, reason))
@@ -247,7 +222,8 @@ class AnchorManager:
         scores = np.zeros((len(anchors), len(frame)))
         if anchors and frame:
             scores = np.asarray(self.matcher.decision(features), dtype=float)
-            refuse, merged = self._merged_views(anchors, frame, time)
+            refuse, merged = merged_views(anchors, frame, time,
+                                          self.merge_ratio, self.merge_seconds)
             accept = (scores > 0) & ~refuse
             if accept.any():
                 # the matcher decides which pairs may match; the assignment takes as many
@@ -260,12 +236,15 @@ class AnchorManager:
                     if accept[r, c]:
                         matched_anchor[int(c)] = int(r)
 
-        for j, k in self._unique_lookalikes(anchors, features, matched_anchor, refuse,
-                                            time).items():
+        lookalikes = unique_lookalikes(anchors, features, matched_anchor, refuse, time,
+                                       self.reid_seconds, self.reid_similarity)
+        for j, k in lookalikes.items():
             matched_anchor[j] = k
             scores[k, j] = 0.0  # re-identified by appearance, not accepted by the matcher
         matched = {anchors[r].symbol for r in matched_anchor.values()}
-        views = self._views(anchors, frame, features, matched_anchor, matched, merged, time)
+        views, self._withholding = withheld_views(
+            anchors, frame, features, matched_anchor, matched, merged, time,
+            self._withholding, self.withhold_seconds, self.view_margin, self.view_colour)
         perceived: set[str] = set()
         for j, i in enumerate(valid):
             percept = percepts[i]
@@ -285,104 +264,6 @@ class AnchorManager:
                 result.assignments.append(Assignment(i, symbol, "acquire"))
         result.tracked = [a.symbol for a in anchors if a.symbol not in perceived]
         return result
-
-    def _merged_views(self, anchors: list[Anchor], frame: list[Percept], time: float
-                      ) -> tuple[np.ndarray, dict[int, list[int]]]:
-        """Two objects seen as one segment: (A, P) pairs refused, and the percepts (index in
-        ``frame``) judged merged -> the anchors (indices) merged in them.
-
-        A pair is refused when the percept is far larger in the table plane than the anchor
-        (``merge_ratio``), or when the percept's box holds the last perceived positions of two
-        or more anchors perceived within ``merge_seconds`` and is larger than each of them
-        (its largest horizontal extent over 1.2 times theirs plus 1 cm): a container lowered
-        over a ball holds the ball's position too, but is not larger than itself."""
-        a_ext = np.array([an.size.samples[0][:2].max() for an in anchors])
-        p_ext = np.array([pc.size[:2].max() for pc in frame])
-        refuse = p_ext[None, :] > self.merge_ratio * a_ext[:, None] + 0.02
-        merged: dict[int, list[int]] = {}
-        recent = [k for k, an in enumerate(anchors)
-                  if an.history and time - an.last_seen <= self.merge_seconds]
-        if len(recent) < 2:
-            return refuse, merged
-        centres = np.array([anchors[k].history[-1].position for k in recent])
-        positions = np.array([pc.position for pc in frame])
-        half = np.array([pc.size for pc in frame]) / 2
-        inside = np.all(np.abs(centres[:, None, :] - positions[None]) <= half[None], axis=2)
-        for j in np.nonzero(inside.sum(axis=0) >= 2)[0]:
-            held = [recent[r] for r in np.nonzero(inside[:, j])[0]]
-            if all(p_ext[j] > 1.2 * a_ext[k] + 0.01 for k in held):
-                refuse[held, j] = True
-                merged[int(j)] = held
-        return refuse, merged
-
-    def _unique_lookalikes(self, anchors: list[Anchor], features: np.ndarray,
-                           matched_anchor: dict[int, int], refuse: np.ndarray, time: float
-                           ) -> dict[int, int]:
-        """Re-identification by appearance for what the matcher left unmatched: percept ->
-        anchor (indices) where the percept looks like that anchor (category, colour and size
-        similarities at least ``reid_similarity``), the anchor has not been perceived for
-        ``reid_seconds`` or more, and neither has another such look-alike among the anchors
-        and percepts left over. Position is not asked: after the camera was covered, or
-        after a container was carried over something while unseen, an object may be anywhere
-        on the table; but it is still the only black cup."""
-        if self.reid_seconds <= 0 or not anchors or features.shape[1] == 0:
-            return {}
-        taken = set(matched_anchor.values())
-        free_a = np.array([k not in taken and anchors[k].confirmed
-                           and time - anchors[k].last_seen >= self.reid_seconds
-                           for k in range(len(anchors))])
-        free_p = np.array([j not in matched_anchor for j in range(features.shape[1])])
-        cat, col, size = (np.asarray(self.reid_similarity, dtype=float))
-        alike = ((features[..., 0] >= cat) & (features[..., 1] >= col)
-                 & (features[..., 3] >= size) & ~refuse)
-        # uniqueness counts every anchor and percept left over, even one too recent to take
-        left_a = np.array([k not in taken for k in range(len(anchors))])
-        alike_left = alike & left_a[:, None] & free_p[None, :]
-        out: dict[int, int] = {}
-        for j in np.nonzero(free_p)[0]:
-            ks = np.nonzero(alike_left[:, j])[0]
-            if len(ks) == 1 and free_a[ks[0]] and alike_left[ks[0]].sum() == 1:
-                out[int(j)] = int(ks[0])
-        return out
-
-    def _views(self, anchors: list[Anchor], frame: list[Percept], features: np.ndarray,
-               matched_anchor: dict[int, int], matched: set[str],
-               merged: dict[int, list[int]], time: float) -> dict[int, list[str]]:
-        """Unmatched percepts (index in ``frame``) that are partial or merged views of anchors
-        not perceived this frame -> those anchors' symbols (see the module doc)."""
-        views: dict[int, list[str]] = {}
-        if self.withhold_seconds <= 0 or not anchors:
-            self._withholding.clear()
-            return views
-        unseen = [k for k, an in enumerate(anchors) if an.symbol not in matched]
-        still: dict[str, float] = {}
-        for j, percept in enumerate(frame):
-            if j in matched_anchor:
-                continue
-            hits = []
-            for k in unseen:
-                anchor = anchors[k]
-                if k not in merged.get(j, ()):
-                    if features[k, j, 1] < self.view_colour:
-                        continue
-                    if not _boxes_overlap(anchor, percept, self.view_margin):
-                        continue
-                since = self._withholding.get(anchor.symbol, time)
-                still[anchor.symbol] = since
-                if time - since <= self.withhold_seconds:
-                    hits.append(anchor.symbol)
-            if hits:
-                views[j] = hits
-        self._withholding = still
-        return views
-
-    def _histogram_bins(self, percepts: Sequence[Percept]) -> int | None:
-        for anchor in self._anchors.values():
-            return anchor.colour.dim
-        for percept in percepts:
-            if _invalid(percept, None) is None:
-                return int(percept.colour_histogram.size)
-        return None
 
     # --- persistence ----------------------------------------------------------------------
     def to_json(self) -> dict[str, Any]:
@@ -450,29 +331,3 @@ class AnchorManager:
             raise AnchorManagerError(f"{path}: bad world file: {exc!r}") from exc
         return manager
 
-
-def _boxes_overlap(anchor: Anchor, percept: Percept, margin: float) -> bool:
-    """Whether the percept's 3-D box overlaps (within ``margin``) the anchor's box placed at its
-    last perceived position or at any of its particles of positive weight."""
-    half = (anchor.size.samples[0] + percept.size) / 2 + margin
-    centres = [anchor.history[-1].position[None, :]] if anchor.history else []
-    if anchor.position.is_probabilistic:
-        centres.append(anchor.position.samples[anchor.position.weights > 0])
-    else:
-        centres.append(anchor.position.samples)
-    for c in centres:
-        if np.any(np.all(np.abs(c - percept.position) <= half, axis=1)):
-            return True
-    return False
-
-
-def _invalid(percept: Percept, bins: int | None) -> str | None:
-    if not isinstance(percept, Percept):
-        return f"not a Percept: {type(percept).__name__}"
-    try:
-        percept.validate()
-    except PerceptError as exc:
-        return str(exc)
-    if bins is not None and percept.colour_histogram.size != bins:
-        return f"colour histogram has {percept.colour_histogram.size} bins, anchors have {bins}"
-    return None

@@ -1,0 +1,53 @@
+"""Re-identification by appearance: what the matcher left unmatched, when it is unambiguous.
+
+A percept that looks like exactly one of the anchors left over (category, colour and size
+similarities of at least ``reid_similarity``, position not asked), an anchor not perceived for
+``reid_seconds`` that looks like no other percept left over, re-acquires it (the manager
+reports ``score`` 0). Why: the learned matcher refuses an object seen again 12 cm or more from
+where it was believed (an identical-looking object elsewhere is another object); but when the
+camera was covered while a container was carried over the ball, or a cup came out from behind
+a passing container, the only black cup on the table is still the black cup. With two
+look-alikes left over, nothing is decided by appearance.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from anchoring.anchor import Anchor
+
+
+def unique_lookalikes(anchors: list[Anchor], features: np.ndarray,
+                      matched_anchor: dict[int, int], refuse: np.ndarray, time: float,
+                      reid_seconds: float, reid_similarity: tuple[float, ...]
+                      ) -> dict[int, int]:
+    """Re-identification by appearance for what the matcher left unmatched: percept ->
+    anchor (indices) where the percept looks like that anchor (category, colour and size
+    similarities at least ``reid_similarity``), the anchor has not been perceived for
+    ``reid_seconds`` or more, and neither has another such look-alike among the anchors
+    and percepts left over. Position is not asked: after the camera was covered, or
+    after a container was carried over something while unseen, an object may be anywhere
+    on the table; but it is still the only black cup.
+
+    ``features``: the frame's (A, P, 5) similarity vectors; ``matched_anchor``: percept ->
+    anchor already matched; ``refuse``: (A, P) pairs refused as merged views. ``reid_seconds``
+    <= 0 switches re-identification off."""
+    if reid_seconds <= 0 or not anchors or features.shape[1] == 0:
+        return {}
+    taken = set(matched_anchor.values())
+    free_a = np.array([k not in taken and anchors[k].confirmed
+                       and time - anchors[k].last_seen >= reid_seconds
+                       for k in range(len(anchors))])
+    free_p = np.array([j not in matched_anchor for j in range(features.shape[1])])
+    cat, col, size = (np.asarray(reid_similarity, dtype=float))
+    alike = ((features[..., 0] >= cat) & (features[..., 1] >= col)
+             & (features[..., 3] >= size) & ~refuse)
+    # uniqueness counts every anchor and percept left over, even one too recent to take
+    left_a = np.array([k not in taken for k in range(len(anchors))])
+    alike_left = alike & left_a[:, None] & free_p[None, :]
+    out: dict[int, int] = {}
+    for j in np.nonzero(free_p)[0]:
+        ks = np.nonzero(alike_left[:, j])[0]
+        if len(ks) == 1 and free_a[ks[0]] and alike_left[ks[0]].sum() == 1:
+            out[int(j)] = int(ks[0])
+    return out

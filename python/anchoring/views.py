@@ -1,0 +1,118 @@
+"""Partial and merged views: percepts that must not get a symbol of their own (yet).
+
+*Merged views* (:func:`merged_views`): a pair the matcher accepts is still refused when the
+percept is far larger than the anchor in the table plane (``merge_ratio``: its largest
+horizontal extent more than that many times the anchor's plus 2 cm), or when it holds the last
+positions of two anchors just perceived and is larger than each: two objects seen as one
+segment must not re-acquire one of them.
+
+*Withheld views* (:func:`withheld_views`): an unmatched percept that is a plausible partial or
+merged view of anchors not perceived this frame is withheld (no symbol, reported as
+:class:`Withheld`): its 3-D box overlaps such an anchor's box placed at the anchor's last
+perceived position or at one of its particles (:func:`boxes_overlap`), and its colour is not
+unlike the anchor's; a merged view is withheld on account of the anchors merged in it. A mug's
+rim above the box in front of it, the first sliver of a mug coming out from behind a box, a
+container half revealed as its cover is lifted, two containers seen as one segment for a
+frame: these are views of objects that already have anchors, and a new anchor for them would
+give the object's percepts a second symbol. A percept withheld because of one anchor for longer
+than ``withhold_seconds`` in a row is acquired after all (a new object put where a hidden one is
+believed is not refused for ever).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from anchoring.anchor import Anchor
+from percepts import Percept
+
+
+@dataclass
+class Withheld:
+    """Percept ``percept_index`` was left without a symbol: it looks like a partial or merged
+    view of the anchors ``symbols`` (not perceived this frame)."""
+
+    percept_index: int
+    symbols: list[str]
+
+
+def merged_views(anchors: list[Anchor], frame: list[Percept], time: float,
+                 merge_ratio: float, merge_seconds: float
+                 ) -> tuple[np.ndarray, dict[int, list[int]]]:
+    """Two objects seen as one segment: (A, P) pairs refused, and the percepts (index in
+    ``frame``) judged merged -> the anchors (indices) merged in them.
+
+    A pair is refused when the percept is far larger in the table plane than the anchor
+    (``merge_ratio``), or when the percept's box holds the last perceived positions of two
+    or more anchors perceived within ``merge_seconds`` and is larger than each of them
+    (its largest horizontal extent over 1.2 times theirs plus 1 cm): a container lowered
+    over a ball holds the ball's position too, but is not larger than itself."""
+    a_ext = np.array([an.size.samples[0][:2].max() for an in anchors])
+    p_ext = np.array([pc.size[:2].max() for pc in frame])
+    refuse = p_ext[None, :] > merge_ratio * a_ext[:, None] + 0.02
+    merged: dict[int, list[int]] = {}
+    recent = [k for k, an in enumerate(anchors)
+              if an.history and time - an.last_seen <= merge_seconds]
+    if len(recent) < 2:
+        return refuse, merged
+    centres = np.array([anchors[k].history[-1].position for k in recent])
+    positions = np.array([pc.position for pc in frame])
+    half = np.array([pc.size for pc in frame]) / 2
+    inside = np.all(np.abs(centres[:, None, :] - positions[None]) <= half[None], axis=2)
+    for j in np.nonzero(inside.sum(axis=0) >= 2)[0]:
+        held = [recent[r] for r in np.nonzero(inside[:, j])[0]]
+        if all(p_ext[j] > 1.2 * a_ext[k] + 0.01 for k in held):
+            refuse[held, j] = True
+            merged[int(j)] = held
+    return refuse, merged
+
+
+def withheld_views(anchors: list[Anchor], frame: list[Percept], features: np.ndarray,
+                   matched_anchor: dict[int, int], matched: set[str],
+                   merged: dict[int, list[int]], time: float, withholding: dict[str, float],
+                   withhold_seconds: float, view_margin: float, view_colour: float
+                   ) -> tuple[dict[int, list[str]], dict[str, float]]:
+    """Unmatched percepts (index in ``frame``) that are partial or merged views of anchors
+    not perceived this frame -> those anchors' symbols (see the module doc); and the new
+    ``withholding`` (anchor symbol -> since when it withholds a percept), to pass in next
+    frame. ``withhold_seconds`` <= 0 switches withholding off."""
+    views: dict[int, list[str]] = {}
+    if withhold_seconds <= 0 or not anchors:
+        return views, {}
+    unseen = [k for k, an in enumerate(anchors) if an.symbol not in matched]
+    still: dict[str, float] = {}
+    for j, percept in enumerate(frame):
+        if j in matched_anchor:
+            continue
+        hits = []
+        for k in unseen:
+            anchor = anchors[k]
+            if k not in merged.get(j, ()):
+                if features[k, j, 1] < view_colour:
+                    continue
+                if not boxes_overlap(anchor, percept, view_margin):
+                    continue
+            since = withholding.get(anchor.symbol, time)
+            still[anchor.symbol] = since
+            if time - since <= withhold_seconds:
+                hits.append(anchor.symbol)
+        if hits:
+            views[j] = hits
+    return views, still
+
+
+def boxes_overlap(anchor: Anchor, percept: Percept, margin: float) -> bool:
+    """Whether the percept's 3-D box overlaps (within ``margin``) the anchor's box placed at its
+    last perceived position or at any of its particles of positive weight."""
+    half = (anchor.size.samples[0] + percept.size) / 2 + margin
+    centres = [anchor.history[-1].position[None, :]] if anchor.history else []
+    if anchor.position.is_probabilistic:
+        centres.append(anchor.position.samples[anchor.position.weights > 0])
+    else:
+        centres.append(anchor.position.samples)
+    for c in centres:
+        if np.any(np.all(np.abs(c - percept.position) <= half, axis=1)):
+            return True
+    return False
