@@ -26,6 +26,7 @@
             logistic/3,                 % +Inputs, +Weights, -P
             linear/3,                   % +Inputs, +Weights, -Y
             filter_new/4,               % +ProgramFile, +N, +Seed, -Filter
+            filter_new/5,               % +ProgramFile, +N, +Seed, +Options, -Filter
             filter_step/4,              % +Filter, +Observations, +Actions, -LogWeights
             filter_undo/1,              % +Filter
             filter_resample/2,          % +Filter, +Indices
@@ -33,6 +34,7 @@
             filter_values/4,            % +Filter, +Template, +Goal, -Values
             filter_time/2,              % +Filter, -T
             filter_size/2,              % +Filter, -N
+            filter_statistics/2,        % +Filter, -Stats
             filter_free/1,              % +Filter
             op(700, xfx, ~),
             op(700, xfx, ~=),
@@ -79,7 +81,9 @@
     filter_step(+Filter, +Observations, +Actions, -LogWeights), filter_undo(+Filter),
     filter_resample(+Filter, +Indices), filter_holds(+Filter, +Goal, -Flags),
     filter_values(+Filter, +Template, +Goal, -Values), filter_time(+Filter, -T),
-    filter_size(+Filter, -N), filter_free(+Filter)
+    filter_size(+Filter, -N), filter_statistics(+Filter, -Stats), filter_free(+Filter);
+    filter_new(+ProgramFile, +N, +Seed, +Options, -Filter) with share(false) computes
+    every value in every particle (see "Shared values" below)
 
 ## Loading
 
@@ -1079,13 +1083,98 @@ time_code(E, _, _, _) :-
 %     first overlap_checked_worlds/1 samples of a query, the first 20
 %     particles of each filter step; a check proves the later clauses'
 %     bodies, so it is not done in every world).
+%     Shared: none, or (a particle, during a filter step or query)
+%     sh(SharedStore, ImpureKeys, _, _), the values all particles agree on
+%     (see "Shared values" below).
+%     Pure: true while the value being computed has read nothing of this
+%     world's own and drawn nothing (false outside the filter).
 
 new_world(M, Time, Frozen, Ev, W) :-
     new_world(M, Time, Frozen, Ev, true, W).
 
 new_world(M, Time, Frozen, Ev, Check, W) :-
     store_new(S),
-    W = w(S, M, Time, Frozen, Ev, 0.0, 0, 0.0, 0, 6, normal, [], [], Check).
+    W = w(S, M, Time, Frozen, Ev, 0.0, 0, 0.0, 0, 6, normal, [], [], Check, none, false).
+
+/*  Shared values.  In a filter many values are the same in every particle:
+    a value computed only from facts, observations and other shared values,
+    with a deterministic distribution (val/1), is the same wherever it is
+    computed.  Such a value is computed once per step, in whichever
+    particle needs it first, and kept in the filter's shared store instead
+    of every particle's own; other particles find it there.  A theory in
+    which a perceived object's position is a val/1 of its observation (too.pl)
+    then spends per-particle work only on what the particles disagree on.
+
+    Each computation of a key (a random variable, a memoised or
+    materialised derived atom) starts with Pure = true; reading a key from
+    the world's own store, a non-ground read, a draw from a distribution
+    other than val/1, or a likelihood weighting makes it false (the
+    observations' values are in the shared store).  A pure value goes to the shared store unless the key
+    is in ImpureKeys (some particle computed it from its own values, so
+    the particles may differ), an impure one to the world's own store and
+    ImpureKeys.  So a key is either shared or in the particles' own stores,
+    never both, and a value read from the shared store is the value every
+    particle would have computed.  A pure computation draws no random
+    number, so sharing changes neither the draws nor any value: the
+    particles are bit for bit those of computing everything in every
+    particle (tests/prolog/test_ddc_shared.pl compares the two).  The
+    weight an observation adds is shared the same way (key '$w'(X, T)), and
+    so is a whole transition clause whose keys were all shared
+    ('$swept'(Id, T), the sweep skips it).  At the end of a step, a value
+    that all particles hold on their own but that came out the same in
+    every one (an object seen again: wherever each particle had it, it is
+    now where it was seen) moves to the shared store (share_agreed/4).
+    Outside the filter (static queries) there is no shared store. */
+
+%   known(+W, +K, -V): K's value in W, from its own store (which makes the
+%   computation in progress impure) or the shared store.
+known(W, K, V) :-
+    arg(1, W, S),
+    (   store_get(S, K, V0)
+    ->  arg(16, W, P),
+        (   P == false -> true ; nb_setarg(16, W, false) ),
+        V = V0
+    ;   arg(15, W, Sh),
+        Sh \== none,
+        arg(1, Sh, SS),
+        store_get(SS, K, V)
+    ).
+
+%   shared_known(+W, +K): K is in W's shared store.
+shared_known(W, K) :-
+    arg(15, W, Sh),
+    Sh \== none,
+    arg(1, Sh, SS),
+    store_get(SS, K, _).
+
+impure(W) :-
+    arg(16, W, P),
+    (   P == false -> true ; nb_setarg(16, W, false) ).
+
+%   begin_value(+W, -P0) ... end_value(+W, +P0, +K, +V): around the
+%   computation of key K's value V; records it (shared or own, see above).
+begin_value(W, P0) :-
+    arg(16, W, P0),
+    nb_setarg(16, W, true).
+
+end_value(W, P0, K, V) :-
+    arg(15, W, Sh),
+    (   Sh == none
+    ->  arg(1, W, S),
+        store_put(S, K, V),
+        nb_setarg(16, W, false)
+    ;   arg(16, W, P),
+        arg(2, Sh, Imp),
+        (   P == true, arg(4, Sh, true), \+ store_get(Imp, K, _)
+        ->  arg(1, Sh, SS),
+            store_put(SS, K, V),
+            nb_setarg(16, W, P0)
+        ;   arg(1, W, S),
+            store_put(S, K, V),
+            (   store_get(Imp, K, _) -> true ; store_put(Imp, K, true) ),
+            nb_setarg(16, W, false)
+        )
+    ).
 
 '$live'(W, T) :-
     arg(4, W, Fz),
@@ -1106,7 +1195,12 @@ new_world(M, Time, Frozen, Ev, Check, W) :-
 
 read_key(X, T, V, W) :-
     arg(1, W, S),
-    (   store_get(S, X-T, Val)
+    (   store_get(S, X-T, Val)          % known/3, inline
+    ->  arg(16, W, P),
+        (   P == false -> true ; nb_setarg(16, W, false) ),
+        Val \== '$undef'
+    ;   arg(15, W, Sh), Sh \== none,
+        arg(1, Sh, SS), store_get(SS, X-T, Val)
     ->  Val \== '$undef'
     ;   arg(5, W, Ev),                  % not yet read: evidence, or sampled
         (   Ev \== [], memberchk((X-T)-EV, Ev)
@@ -1125,23 +1219,48 @@ match(Val, V) :-
     ).
 
 sample_key(X, T, W, Val) :-
+    arg(15, W, Sh),
+    (   Sh == none                      % outside a filter: every value is the world's own
+    ->  arg(2, W, M),
+        arg(1, W, S),
+        (   M:'$rv'(X, T, W, 0, none, Out, Tier, Id, R)
+        ->  (   R == false -> true ; check_rivals(R, M, X, T, W, Tier, Id) ),
+            draw(Out, W, Val),
+            store_put(S, X-T, Val)
+        ;   store_put(S, X-T, '$undef'),
+            fail
+        )
+    ;   sample_shared(X, T, W, Val)
+    ).
+
+sample_shared(X, T, W, Val) :-
     arg(2, W, M),
-    arg(1, W, S),
+    begin_value(W, P0),
     (   M:'$rv'(X, T, W, 0, none, Out, Tier, Id, R)
     ->  (   R == false -> true ; check_rivals(R, M, X, T, W, Tier, Id) ),
+        (   deterministic(Out) -> true ; impure(W) ),
         draw(Out, W, Val),
-        store_put(S, X-T, Val)
-    ;   store_put(S, X-T, '$undef'),
+        end_value(W, P0, X-T, Val)
+    ;   end_value(W, P0, X-T, '$undef'),
         fail
     ).
 
+deterministic(val(_)).
+deterministic('$chk'(val(_), _)).
+
+%   Checking for overlapping clauses proves the rivals' bodies; what they
+%   read does not make the value impure (it does not depend on them).
 check_rivals(false, _, _, _, _, _, _) :- !.
 check_rivals(true, M, X, T, W, Tier, Id) :-
-    (   arg(14, W, true),
-        M:'$rv'(X, T, W, Id, none, _, Tier, Id2, _)
-    ->  clause_where(M, Id2, Where2),
-        key_term(X, T, K),
-        '$clause_error'(W, Id, overlapping_clauses(K, Where2))
+    (   arg(14, W, true)
+    ->  arg(16, W, P),
+        (   M:'$rv'(X, T, W, Id, none, _, Tier, Id2, _)
+        ->  nb_setarg(16, W, P),
+            clause_where(M, Id2, Where2),
+            key_term(X, T, K),
+            '$clause_error'(W, Id, overlapping_clauses(K, Where2))
+        ;   nb_setarg(16, W, P)
+        )
     ;   true
     ).
 
@@ -1184,8 +1303,19 @@ checked(D, Id, W) :-
           '$clause_error'(W, Id, distribution(D1, Why))).
 
 %   weigh_key(X, T, Value, W, Acc): likelihood weighting of X-T = Value
-%   into the log weight at argument Acc of W (6 evidence, 8 query).
+%   into the log weight at argument Acc of W (6 evidence, 8 query).  In a
+%   filter step (Acc 6) a weight computed from shared values only is
+%   shared: kept as '$w'(X, T) -> w(LogDensity, Dim) (or none: no clause).
+%   A weighting makes the computation that needed it impure.
 weigh_key(X, T, V, W, Acc) :-
+    arg(15, W, Sh0),
+    (   Sh0 == none
+    ->  weigh_own(X, T, V, W, Acc)
+    ;   weigh_key_shared(X, T, V, W, Acc)
+    ).
+
+%   (Outside a filter.)
+weigh_own(X, T, V, W, Acc) :-
     arg(2, W, M),
     arg(1, W, S),
     arg(10, W, Acc0),
@@ -1217,6 +1347,78 @@ weigh(D, V, W, Acc) :-
     ;   value_dim(V, K), DXi is Acc+1, arg(DXi, W, DX0), DX is DX0+K, nb_setarg(DXi, W, DX)
     ).
 
+weigh_key_shared(X, T, V, W, Acc) :-
+    arg(1, W, S),
+    (   Acc == 6, arg(15, W, Sh), Sh \== none,
+        arg(1, Sh, SS), store_get(SS, '$w'(X, T), Memo)
+    ->  impure(W),
+        Memo = w(LP, K),
+        add_weight(W, Acc, LP, K)
+    ;   begin_value(W, P0),
+        (   weigh_clause(X, T, V, W, Acc, LP, K)
+        ->  Memo = w(LP, K),
+            (   shared_known(W, X-T) -> true ; store_put(S, X-T, V) )
+        ;   Memo = none,
+            (   shared_known(W, X-T) -> true ; store_put(S, X-T, '$undef') )
+        ),
+        (   Acc == 6, arg(15, W, Sh), Sh \== none
+        ->  end_weight(W, P0, Sh, '$w'(X, T), Memo)
+        ;   true
+        ),
+        impure(W),
+        Memo = w(_, _),
+        add_weight(W, Acc, LP, K)
+    ).
+
+%   end_weight(+W, +P0, +Sh, +K, +Memo): shares the weight Memo of key K if
+%   computed from shared values only (no world keeps its own copy).
+end_weight(W, P0, Sh, K, Memo) :-
+    arg(16, W, P),
+    arg(2, Sh, Imp),
+    (   P == true, arg(4, Sh, true), \+ store_get(Imp, K, _)
+    ->  arg(1, Sh, SS),
+        store_put(SS, K, Memo)
+    ;   store_get(Imp, K, _)
+    ->  true
+    ;   store_put(Imp, K, true)
+    ),
+    nb_setarg(16, W, P0).
+
+%   weigh_clause(+X, +T, +V, +W, +Acc, -LogDensity, -Dim): the density of
+%   X-T = V under its first applicable clause (Dim: the dimension of V for a
+%   density, 0 for a probability mass).
+weigh_clause(X, T, V, W, Acc, LP, K) :-
+    arg(2, W, M),
+    arg(10, W, Acc0),
+    (   Acc0 == Acc -> true ; nb_setarg(10, W, Acc) ),
+    (   M:'$rv'(X, T, W, 0, ev(V), Out, Tier, Id, R)
+    ->  (   Acc0 == Acc -> true ; nb_setarg(10, W, Acc0) ),
+        (   R == false -> true ; check_rivals(R, M, X, T, W, Tier, Id) ),
+        (   Out = '$prop'(LJ)
+        ->  LP = LJ, K = 0
+        ;   Out = '$chk'(D, Id1)
+        ->  (   fast_valid(D)
+            ->  density(D, V, LP, K)
+            ;   cheap_check(D)
+            ->  checked(D, Id1, W), density(D, V, LP, K)
+            ;   catch(density(D, V, LP, K), E, ( checked(D, Id1, W), throw(E) ))
+            )
+        ;   density(Out, V, LP, K)
+        )
+    ;   (   Acc0 == Acc -> true ; nb_setarg(10, W, Acc0) ),
+        fail
+    ).
+
+density(D, V, LP, K) :-
+    dist_log_density(D, V, LP),
+    (   dist_discrete(D) -> K = 0 ; value_dim(V, K) ).
+
+add_weight(W, Acc, LP, K) :-
+    add_logw(W, Acc, LP),
+    (   K == 0 -> true
+    ;   DXi is Acc+1, arg(DXi, W, DX0), DX is DX0+K, nb_setarg(DXi, W, DX)
+    ).
+
 %   A zero weight (log -inf) does not fail the proof: it marks the world
 %   dead, so that "no clause applies" and "weight 0" stay distinct.
 add_logw(W, Acc, LP) :-
@@ -1235,9 +1437,9 @@ value_dim(_, 1).
 %   from a val/1 clause.
 '$read_ev'(X, T, A, W) :-
     ground(X),
-    arg(1, W, S),
+    impure(W),
     arg(10, W, Acc),
-    (   store_get(S, X-T, Val)
+    (   known(W, X-T, Val)
     ->  Val \== '$undef',
         (   match(Val, A) -> true ; NInf is -inf, add_logw(W, Acc, NInf) )
     ;   weigh_key(X, T, A, W, Acc)
@@ -1248,6 +1450,7 @@ value_dim(_, 1).
 '$read_q'(X, T, V, W) :-
     (   ground(X), ground(V),
         arg(1, W, S), \+ store_get(S, X-T, _),
+        ( arg(15, W, none) -> true ; \+ shared_known(W, X-T) ),
         arg(5, W, Ev), \+ memberchk((X-T)-_, Ev)
     ->  weigh_key(X, T, V, W, 8)
     ;   '$read'(X, T, V, W)
@@ -1256,8 +1459,15 @@ value_dim(_, 1).
 %   Non-ground random variable: the recorded groundings, and (unless
 %   sweeping) those the clause bodies define.
 read_enum(X, T, V, W) :-
+    impure(W),                          % which keys a world holds is its own
     arg(1, W, S),
-    findall(X-T, ( store_match(S, X-T, Val), Val \== '$undef' ), Rec),
+    findall(X-T, ( store_match(S, X-T, Val), Val \== '$undef' ), Rec0),
+    (   arg(15, W, Sh), Sh \== none
+    ->  arg(1, Sh, SS),
+        findall(X-T, ( store_match(SS, X-T, Val), Val \== '$undef' ), Rec1),
+        append(Rec0, Rec1, Rec)
+    ;   Rec = Rec0
+    ),
     (   arg(11, W, sweep)
     ->  Keys0 = Rec
     ;   arg(2, W, M),
@@ -1297,6 +1507,8 @@ group_facts(Facts, Groups) :-
 overlap_checked_worlds(200).
 
 '$memo'(W, G, Call) :-
+    arg(15, W, none),
+    !,
     arg(1, W, S),
     arg(3, W, Tc),
     K = '$memo'(G, Tc),
@@ -1305,6 +1517,17 @@ overlap_checked_worlds(200).
     ;   arg(2, W, M),
         (   call(M:Call) -> V = true ; V = false ),
         (   store_get(S, K, _) -> true ; store_put(S, K, V) ),
+        V == true
+    ).
+'$memo'(W, G, Call) :-
+    arg(3, W, Tc),
+    K = '$memo'(G, Tc),
+    (   known(W, K, V)
+    ->  V == true
+    ;   arg(2, W, M),
+        begin_value(W, P0),
+        (   call(M:Call) -> V = true ; V = false ),
+        (   known(W, K, _) -> impure(W) ; end_value(W, P0, K, V) ),
         V == true
     ).
 
@@ -1333,16 +1556,15 @@ with_shared(Goal) :-
     call_cleanup(Goal, ( nb_setval('$ddc_shared', Old), trie_destroy(Tr) )).
 
 '$mat'(W, G, T) :-
-    arg(1, W, S),
     functor(G, N, A),
-    (   store_get(S, '$mat'(N/A, T), L)
+    (   known(W, '$mat'(N/A, T), L)
     ->  true
     ;   arg(4, W, T),                   % the last frozen time only
         arg(2, W, M),
         once(( M:'$sweep'(der, K, N/A, Sw), Sw = sw(_, lazy, _, _, T, W),
                sweep_kind(K, T) )),
         lazy_materialise(W, M, N/A, Sw, T),
-        store_get(S, '$mat'(N/A, T), L)
+        known(W, '$mat'(N/A, T), L)
     ),
     member(G, L).
 

@@ -45,26 +45,53 @@
 %   h:0 derived atoms materialised); h:t clauses stay lazy.  Filter is an
 %   atom.  The filter lives in the calling thread.
 filter_new(File, N, Seed, F) :-
+    filter_new(File, N, Seed, [], F).
+
+%!  filter_new(+ProgramFile, +N, +Seed, +Options, -Filter) is det.
+%
+%   As filter_new/4.  Option share(false) computes every value in every
+%   particle, none once for all (see "Shared values" in ddc.pl): the same
+%   particles, slower; for comparison.
+filter_new(File, N, Seed, Options, F) :-
+    must_be(list, Options),
+    option(share(Share), Options, true),
+    must_be(boolean, Share),
     must_be(positive_integer, N),
     must_be(integer, Seed),
     resolve_file(File, Abs),
     ddc_load(Abs, M),
     set_random(seed(Seed)),
     length(L, N),
-    with_shared(maplist(init_particle(M), L)),
-    Ws =.. [ws|L],
+    new_shared(Share, Sh0),
     flag(ddc_filter_id, K, K+1),
     atom_concat('$ddc_particles_', K, F),
+    atom_concat(F, '$new', FN),
+    nb_setval(FN, Sh0),
+    nb_getval(FN, Sh),                  % global: survives the query, changed in place
+    with_shared(maplist(init_particle(M, Sh), L)),
+    nb_delete(FN),
+    Ws =.. [ws|L],
     random_property(state(R)),
-    nb_setval(F, filter(M, N, 0, Ws, none, R)).
+    nb_setval(F, filter(M, N, 0, Ws, none, R, Sh)).
 
-init_particle(M, W) :-
+%   The values all particles agree on (see "Shared values" in ddc.pl) and
+%   the keys some particle holds a value of its own for.
+%   sh(Shared, Impure, RawKeys, Share): RawKeys, the untimed copies of this
+%   step's observations; Share false: only the observations are shared.
+new_shared(Share, sh(Shared, Impure, [], Share)) :-
+    store_new(Shared),
+    store_new(Impure).
+
+init_particle(M, Sh, W) :-
     new_world(M, 0, -1, [], W),
+    nb_linkarg(15, W, Sh),
     sweep(W, 0),
+    nb_setarg(15, W, none),
+    nb_setarg(16, W, false),
     nb_setarg(4, W, 0).
 
 filter_state(F, S) :-
-    (   atom(F), nb_current(F, S0), S0 = filter(_, _, _, _, _, _)
+    (   atom(F), nb_current(F, S0), S0 = filter(_, _, _, _, _, _, _)
     ->  S = S0
     ;   throw(error(ddc(unknown_filter(F), query), _))
     ).
@@ -79,11 +106,21 @@ with_rng(R, Goal, R1) :-
 
 %!  filter_time(+Filter, -T) is det.
 filter_time(F, T) :-
-    filter_state(F, filter(_, _, T, _, _, _)).
+    filter_state(F, filter(_, _, T, _, _, _, _)).
 
 %!  filter_size(+Filter, -N) is det.
 filter_size(F, N) :-
-    filter_state(F, filter(_, N, _, _, _, _)).
+    filter_state(F, filter(_, N, _, _, _, _, _)).
+
+%!  filter_statistics(+Filter, -Stats) is det.
+%
+%   Stats: [particles(N), time(T), shared(S), own(O)]: S values held once
+%   for all particles (see "Shared values" in ddc.pl), O values held by
+%   the particles themselves (summed over particles).
+filter_statistics(F, [particles(N), time(T), shared(S), own(O)]) :-
+    filter_state(F, filter(_, N, T, Ws, _, _, sh(Shared, _, _, _))),
+    store_size(Shared, S),
+    aggregate_all(sum(C), ( between(1, N, I), arg(I, Ws, W), arg(1, W, St), store_size(St, C) ), O).
 
 %!  filter_free(+Filter) is det.
 filter_free(F) :-
@@ -100,7 +137,7 @@ filter_free(F) :-
 %   error.
 filter_step(F, Obs, Acts, LogWs) :-
     filter_state(F, State),
-    State = filter(M, N, T, Ws0, _, R0),
+    State = filter(M, N, T, Ws0, _, R0, Sh0),
     must_be(list, Obs),
     must_be(list, Acts),
     forall(member(O, Obs), must_be_ground_item(O)),
@@ -111,15 +148,75 @@ filter_step(F, Obs, Acts, LogWs) :-
     append(Acts, PlainObs, Facts0),
     group_facts(Facts0, Facts),
     maplist(observation_key(Info, T1), Weighted, Keys),
-    scratch_copy(F, Ws0, Ws),
+    scratch_copy(F, Ws0-Sh0, Ws-Sh),
+    record_observations(Sh, T, Keys),
     with_rng(R0,
              with_shared(
                  findall(LW, ( between(1, N, I), arg(I, Ws, W),
                                ( I =< 20 -> Check = true ; Check = false ),
                                nb_setarg(14, W, Check),
-                               step_particle(W, T1, Facts, Keys, LW) ), LogWs)),
+                               step_particle(W, T1, Keys, Facts, Sh, LW) ), LogWs)),
              R1),
-    commit(F, State, T1, Ws, T, Ws0, R1).
+    share_agreed(Ws, N, Sh, T1),
+    commit(F, State, T1, Ws, Sh, T, Ws0, Sh0, R1).
+
+%   share_agreed(+Ws, +N, +Sh, +T): a value of time T that every particle
+%   computed from its own values but that came out the same in all of them
+%   (an object seen again is where it was seen, whatever each particle had
+%   believed) moves to the shared store, so that what is computed from it
+%   next can be shared again.
+share_agreed(Ws, N, sh(Shared, Impure, _, true), T) :-
+    !,
+    findall(K, ( store_match(Impure, K, _), own_key_at(K, T) ), Ks),
+    arg(1, Ws, W1),
+    arg(1, W1, S1),
+    forall(( member(K, Ks), store_get(S1, K, V), agreed(2, N, Ws, K, V) ),
+           (   store_put(Shared, K, V),
+               store_delete(Impure, K),
+               forall(( between(1, N, I), arg(I, Ws, W) ),
+                      ( arg(1, W, S), store_delete(S, K) ))
+           )).
+share_agreed(_, _, _, _).
+
+own_key_at(_-T, T).
+own_key_at('$mat'(_, T), T).
+own_key_at('$memo'(_, T), T).
+
+agreed(I, N, Ws, K, V) :-
+    (   I > N
+    ->  true
+    ;   arg(I, Ws, W),
+        arg(1, W, S),
+        store_get(S, K, V1),
+        V1 == V,
+        I1 is I+1,
+        agreed(I1, N, Ws, K, V)
+    ).
+
+%   record_observations(+Sh, +T, +Keys): drops the values of times before T
+%   and the previous step's observations from the shared store and records
+%   this step's: an observation's value is the same in every particle.  A
+%   timed observation is also recorded untimed, for bodies that read it
+%   raw (the original's bodies read observation(x) ~= V untimed), unless
+%   the untimed variable has a value already; both go at the next step.
+record_observations(Sh, T, Keys) :-
+    Sh = sh(Shared, Impure, Raw0, _),
+    store_prune(Shared, T, Raw0),
+    store_prune(Impure, T, []),
+    foldl(record_observation(Shared), Keys, [], Raw),
+    nb_setarg(3, Sh, Raw).
+
+record_observation(Shared, k(X, T, V, _), Raw0, Raw) :-
+    (   store_get(Shared, X-T, _)
+    ->  Raw1 = Raw0
+    ;   store_put(Shared, X-T, V),
+        ( T == u -> Raw1 = [X-u|Raw0] ; Raw1 = Raw0 )
+    ),
+    (   T == u -> Raw = Raw1
+    ;   store_get(Shared, X-u, _) -> Raw = Raw1
+    ;   store_put(Shared, X-u, V),
+        Raw = [X-u|Raw1]
+    ).
 
 %   scratch_copy(+F, +Ws0, -Ws): Ws is a copy of Ws0 held by a global
 %   variable (so that it survives the query and can be changed in place).
@@ -128,14 +225,16 @@ scratch_copy(F, Ws0, Ws) :-
     nb_setval(FN, Ws0),
     nb_getval(FN, Ws).
 
-%   commit: the filter now holds Ws at time T and keeps Ws0 (time T0) for
-%   filter_undo/1.  Both are global terms already, so they are linked,
-%   not copied again.
-commit(F, State, T, Ws, T0, Ws0, R) :-
-    nb_setarg(5, State, prev(T0, '$')),
+%   commit: the filter now holds Ws and the shared values Sh at time T and
+%   keeps Ws0, Sh0 (time T0) for filter_undo/1.  All are global terms
+%   already, so they are linked, not copied again.
+commit(F, State, T, Ws, Sh, T0, Ws0, Sh0, R) :-
+    nb_setarg(5, State, prev(T0, '$', '$')),
     arg(5, State, Prev),
     nb_linkarg(2, Prev, Ws0),
+    nb_linkarg(3, Prev, Sh0),
     nb_linkarg(4, State, Ws),
+    nb_linkarg(7, State, Sh),
     nb_setarg(3, State, T),
     nb_setarg(6, State, R),
     atom_concat(F, '$next', FN),
@@ -152,50 +251,32 @@ observation_key(Info, T1, (H ~= V), k(X, T, V, (H ~= V))) :-
     read_key_code(H, ctx(_, T1, Info, query), X, T, TG),
     call(TG).
 
-step_particle(W, T1, Facts, Keys, LW) :-
-    %   the previous step's raw observations and everything before time t
-    %   (kept until now for queries at t that look one step back) go
+step_particle(W, T1, Keys, Facts, Sh, LW) :-
+    %   everything before time t (kept until now for queries at t that look
+    %   one step back) goes
     arg(1, W, S),
-    arg(13, W, SK),
     T is T1-1,
-    store_prune(S, T, SK),
-    nb_setarg(13, W, []),
+    store_prune(S, T, []),
     nb_setarg(3, W, T1),
     nb_linkarg(12, W, Facts),           % ground, shared by all particles: no copy
+    nb_linkarg(15, W, Sh),              % (unlinked at the end: copies of W never copy Sh)
     nb_setarg(6, W, 0.0),
     nb_setarg(7, W, 0),
-    findall((X-TK)-V, member(k(X, TK, V, _), Keys), Ev),
-    nb_linkarg(5, W, Ev),               % ground
-    (   weigh_observations(Keys, W)
-    ->  arg(6, W, LW)
-    ;   LW = -inf
-    ),
-    nb_setarg(5, W, []),
+    weigh_observations(Keys, W),
+    arg(6, W, LW),
     sweep(W, T1),
     nb_setarg(4, W, T1),
+    nb_setarg(15, W, none),
+    nb_setarg(16, W, false),
     !.
 
+%   Each observation weights the particle once, by the density of its
+%   first applicable clause (whose proof sees every observation's value).
 weigh_observations([], _).
 weigh_observations([k(X, T, V, O)|Ks], W) :-
-    (   '$read'(X, T, V, W)
-    ->  record_raw(X, T, V, W),
-        weigh_observations(Ks, W)
-    ;   arg(1, W, S),
-        (   store_get(S, X-T, '$undef')
-        ->  throw(error(ddc(no_observation_clause(O), query), _))
-        ;   fail
-        )
-    ).
-
-%   The untimed copy of a timed observation, for bodies that read it raw.
-record_raw(_, u, _, _) :- !.
-record_raw(X, _, V, W) :-
-    arg(1, W, S),
-    (   store_get(S, X-u, _)
-    ->  true
-    ;   store_put(S, X-u, V),
-        arg(13, W, SK),
-        nb_linkarg(13, W, [X-u|SK])
+    (   weigh_key(X, T, V, W, 6)
+    ->  weigh_observations(Ks, W)
+    ;   throw(error(ddc(no_observation_clause(O), query), _))
     ).
 
 %   sweep(+W, +T): sample every random variable that a transition (or, at
@@ -205,27 +286,43 @@ sweep(W, T) :-
     arg(2, W, M),
     nb_setarg(11, W, sweep),
     forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T), \+ X = observation(_) ),
-           forall(sweep_candidate(M, Id, X, T, W),
-                  (   ground(X) -> ignore('$read'(X, T, _, W))
-                  ;   '$clause_error'(W, Id, non_ground_head(X))
-                  ))),
+           sweep_clause(W, M, Id, X, T)),
     forall(( M:'$sweep'(der, K, N/A, Sw), Sw = sw(_, eager, _, _, T, W), sweep_kind(K, T) ),
            materialise(W, M, N/A, Sw, T)),
     nb_setarg(11, W, normal).
 
+%   sweep_clause(+W, +M, +Id, ?X, +T): samples the keys X-T that clause Id
+%   defines.  If none of them needed anything of a particle's own (all
+%   shared, see "Shared values" in ddc.pl), that holds in every particle:
+%   marked '$swept'(Id, T) in the shared store, the clause is skipped in
+%   the particles that come after.
+sweep_clause(W, _, Id, _, T) :-
+    shared_known(W, '$swept'(Id, T)),
+    !.
+sweep_clause(W, M, Id, X, T) :-
+    begin_value(W, P0),
+    forall(sweep_candidate(M, Id, X, T, W),
+           (   ground(X) -> ignore('$read'(X, T, _, W))
+           ;   '$clause_error'(W, Id, non_ground_head(X))
+           )),
+    arg(15, W, Sh),
+    (   Sh == none -> true ; end_weight(W, P0, Sh, '$swept'(Id, T), done) ).
+
 %   materialise(+W, +M, +N/A, +Sw, +T): the instances of derived
 %   predicate N/A at T, from its transition clauses, recorded as
 %   '$mat'(N/A, T) (time T is then frozen: no longer derivable).
+materialise(W, _, N/A, _, T) :-
+    known(W, '$mat'(N/A, T), _),
+    !.
 materialise(W, M, N/A, sw(Sh, _, G, H1, T, W), T) :-
-    arg(1, W, S),
+    begin_value(W, P0),
     (   Sh == shared
     ->  findall(G, ( '$shared'('$sweep'(G):T, G, M:H1), ground(G) ), L0)
     ;   findall(G, ( M:H1, ground(G) ), L0)
     ),
     sort(L0, L),
-    (   store_get(S, '$mat'(N/A, T), _) -> true
-    ;   store_put(S, '$mat'(N/A, T), L)
-    ).
+    K = '$mat'(N/A, T),
+    (   known(W, K, _) -> impure(W) ; end_value(W, P0, K, L) ).
 
 %   A derived predicate the program never reads one step back (only at
 %   t+1) is not materialised by the sweep: the first read at the last
@@ -256,9 +353,9 @@ sweep_kind(fixed(T), T).
 %   Restores the particles and the time from before the last step (or
 %   resampling).  Only one level is kept.
 filter_undo(F) :-
-    filter_state(F, filter(M, N, _, _, Prev, R)),
-    (   Prev = prev(T0, Ws0)
-    ->  nb_setval(F, filter(M, N, T0, Ws0, none, R))
+    filter_state(F, filter(M, N, _, _, Prev, R, _)),
+    (   Prev = prev(T0, Ws0, Sh0)
+    ->  nb_setval(F, filter(M, N, T0, Ws0, none, R, Sh0))
     ;   throw(error(ddc(nothing_to_undo, query), _))
     ).
 
@@ -268,7 +365,7 @@ filter_undo(F) :-
 %   Indices[i] (0-based), as chosen by the caller.
 filter_resample(F, Is) :-
     filter_state(F, State),
-    State = filter(_, N, T, Ws0, _, R),
+    State = filter(_, N, T, Ws0, _, R, Sh),
     must_be(list(nonneg), Is),
     (   length(Is, N) -> true
     ;   throw(error(ddc(bad_indices(length_differs_from_particles(N)), query), _))
@@ -281,7 +378,7 @@ filter_resample(F, Is) :-
     %   again (it holds no variable bound outside it)
     findall(W, ( member(I, Is), I1 is I+1, arg(I1, Ws0, W) ), L),
     Ws =.. [ws|L],
-    commit(F, State, T, Ws, T, Ws0, R).
+    commit(F, State, T, Ws, Sh, T, Ws0, Sh, R).
 
 %!  filter_holds(+Filter, +Goal, -Flags) is det.
 %
@@ -309,7 +406,7 @@ filter_literal(Ctx, G, C) :-
 
 filter_query(F, Goal, Template, Values) :-
     filter_state(F, State),
-    State = filter(M, N, T, Ws, _, R0),
+    State = filter(M, N, T, Ws, _, R0, Sh),
     M:'$ddc_info'(Info),
     flag(ddc_query_id, Id, Id+1),
     copy_term(Goal-Template, G1-X1),
@@ -322,7 +419,10 @@ filter_query(F, Goal, Template, Values) :-
         with_rng(R0,
                  with_shared(
                      findall(V, ( between(1, N, I), arg(I, Ws, Wi),
-                                  (   M:'$ddc_tmp'(Id, q, Wi, X) -> V = X ; V = none ) ),
+                                  nb_linkarg(15, Wi, Sh),
+                                  (   M:'$ddc_tmp'(Id, q, Wi, X) -> V = X ; V = none ),
+                                  nb_setarg(15, Wi, none),
+                                  nb_setarg(16, Wi, false) ),
                              Values)),
                  R1),
         retractall(M:'$ddc_tmp'(Id, _, _, _))),

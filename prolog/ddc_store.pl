@@ -13,6 +13,7 @@
           [ store_new/1,            % -Store
             store_get/3,            % +Store, +Key, -Value
             store_put/3,            % +Store, +Key, +Value
+            store_delete/2,         % +Store, +Key
             store_entries/2,        % +Store, -Pairs
             store_match/3,          % +Store, ?Key, -Value   (non-ground key: scan)
             store_filter/3,         % +Store, :Keep, -NewStore
@@ -94,6 +95,40 @@ put_(T, K, V) :-
         nb_setarg(1, T, C1),
         functor(D, _, S),
         (   C1 > 2*S -> grow(T) ; true )
+    ).
+
+%!  store_delete(+Store, +Key) is det.
+%
+%   Removes Key's entry (if any), in place.  (A key X-Time stays in the
+%   index of its functor and time; store_match/3 skips it.)
+store_delete(T, K) :-
+    T = tbl(C, D),
+    (   D = [_|_]
+    ->  (   select_kv(D, K, D1)
+        ->  nb_setarg(2, T, D1),
+            C1 is C-1,
+            nb_setarg(1, T, C1)
+        ;   true
+        )
+    ;   D == []
+    ->  true
+    ;   term_hash(K, H),
+        functor(D, _, S),
+        I is H mod S + 1,
+        arg(I, D, L),
+        (   nonvar(L), select_kv(L, K, L1)
+        ->  (   L1 == [] -> nb_setarg(I, D, _) ; nb_setarg(I, D, L1) ),
+            C1 is C-1,
+            nb_setarg(1, T, C1)
+        ;   true
+        )
+    ).
+
+select_kv([K0-V|T], K, Rest) :-
+    (   K0 == K
+    ->  Rest = T
+    ;   Rest = [K0-V|Rest1],
+        select_kv(T, K, Rest1)
     ).
 
 bucket_put(B, K, V) :-
@@ -200,7 +235,8 @@ include_kv([K-V|T], Keep, Out, C0, C) :-
 %!  store_prune(+Store, +MinTime, +DropKeys) is det.
 %
 %   In place: removes the entries whose key has a time below MinTime (keys
-%   X-T, '$memo'(G, T), '$mat'(S, T) with an integer T) and the untimed
+%   X-T, '$memo'(G, T), '$mat'(S, T), '$w'(X, T), '$swept'(I, T) with an
+%   integer T) and the untimed
 %   entries whose key is in DropKeys.  The specialised form of
 %   store_retain/2 the particle filter runs at every step.
 store_prune(T, MinT, Drop) :-
@@ -246,4 +282,6 @@ prune_list([E|Es], MinT, Drop, Out, C0, C) :-
 key_time(_-T, T) :- integer(T), !.
 key_time('$memo'(_, T), T) :- integer(T), !.
 key_time('$mat'(_, T), T) :- integer(T), !.
+key_time('$w'(_, T), T) :- integer(T), !.
+key_time('$swept'(_, T), T) :- integer(T), !.
 key_time('$by'(_, T), T) :- integer(T).

@@ -192,8 +192,8 @@ parse_goal(Text, Goal) :-
     catch(term_string(Goal, Text, [module(ddc)]), E,
           ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(goal, "", Text, Msg)) )).
 
-new(Program, N, Seed, Key, Err) :-
-    guarded(( ddc:filter_new(Program, N, Seed, F), nb_setval(Key, F) ), Err).
+new(Program, N, Seed, Share, Key, Err) :-
+    guarded(( ddc:filter_new(Program, N, Seed, [share(Share)], F), nb_setval(Key, F) ), Err).
 
 step(Key, ObsTexts, ActTexts, LW, Err) :-
     guarded(( filter_of(Key, F),
@@ -295,7 +295,10 @@ class Filter:
         seed: int | None = None,
         resample_threshold: float = 0.9,
         resampling: Resampling = "systematic",
+        share: bool = True,
     ) -> None:
+        """``share=False`` computes every value in every particle (see "Shared values" in
+        ``prolog/ddc.pl``): the same particles, bit for bit, only slower; for comparison."""
         if int(particles) < 1:
             raise ValueError(f"particles must be >= 1, got {particles}")
         if not 0.0 <= float(resample_threshold) <= 1.0:
@@ -312,6 +315,7 @@ class Filter:
         self.seed = int(seed) if seed is not None else int(np.random.SeedSequence().entropy % 2**31)
         self.resample_threshold = float(resample_threshold)
         self.resampling: Resampling = resampling
+        self.share = bool(share)
         self._rng = np.random.default_rng(self.seed)
         self._log_weights = np.full(self.particles, -math.log(self.particles))
         self.log_likelihood = 0.0
@@ -325,8 +329,9 @@ class Filter:
         _ensure_engine()
         key = f"ddc_filter_{os.getpid()}_{next(_keys)}"
         result = _call(
-            "new(P, N, S, K, Err)",
-            {"P": str(self.program_path), "N": self.particles, "S": self.seed, "K": key},
+            "new(P, N, S, Sh, K, Err)",
+            {"P": str(self.program_path), "N": self.particles, "S": self.seed,
+             "Sh": "true" if self.share else "false", "K": key},
         )
         if result["Err"]:
             error = str(result["Err"])  # usually "file:line: cause" already

@@ -1,0 +1,117 @@
+/*  plunit tests of shared values in the particle filter (prolog/ddc.pl,
+    "Shared values"): a value computed only from observations, facts and
+    other shared values is computed once for all particles; the particles
+    are bit for bit those of computing everything in every particle.
+*/
+:- use_module('../../prolog/ddc').
+:- use_module(library(plunit)).
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+
+%   A perceived box (its position the filtered observation: shared) and a
+%   ball that is hidden under the box in some frames (its position sampled:
+%   the particles' own) and is then seen again where it is perceived
+%   (shared again once every particle agrees).
+program(File) :-
+    tmp_file_stream(text, File, S),
+    forall(member(L,
+        [ ':- first_applicable(pos/1).',
+          ':- first_applicable(observation/1).',
+          'pos(A):t+1 ~ val(P) := observed(A), observation(pos(A)) ~= P, \\+ pos(A):t ~= _.',
+          'pos(A):t+1 ~ val(M) := observed(A), observation(pos(A)) ~= O, pos(A):t ~= X, seen(A):t, M is X + 0.5*(O-X).',
+          'pos(A):t+1 ~ val(O) := observed(A), observation(pos(A)) ~= O.',
+          'pos(A):t+1 ~ gaussian(M, 0.01) := hidden(A):t+1, under(A, B):t+1, pos(B):t+1 ~= M.',
+          'pos(A):t+1 ~ gaussian(X, 0.04) := hidden(A):t+1, pos(A):t ~= X.',
+          'seen(A):t+1 := observed(A).',
+          'hidden(A):t+1 := object(A), \\+ observed(A).',
+          'pick(A):t+1 ~ uniform([B, none]) := hidden(A):t+1, seen(A):t, object(B), B \\== A, observed(B).',
+          'under(A, B):t+1 := pick(A):t+1 ~= B, B \\== none.',
+          'under(A, B):t+1 := under(A, B):t, hidden(A):t+1.',
+          'observation(pos(A)):t+1 ~ gaussian(X, 0.05) := pos(A):t ~= X.',
+          'observation(pos(A)):t+1 ~ val(_) := object(A), \\+ pos(A):t ~= _.'
+        ]),
+        format(S, "~w~n", [L])),
+    close(S).
+
+frames([ [box-1.0, ball-1.2], [box-1.1, ball-1.3], [box-1.2], [box-1.4], [box-1.5],
+         [box-1.6, ball-1.65], [box-1.7, ball-1.72], [box-1.8, ball-1.81] ]).
+
+step(F, Seen) :-
+    findall(X, ( member(O-P, Seen), ( X = observed(O) ; X = (observation(pos(O)) ~= P) ) ), Obs),
+    filter_step(F, Obs, [object(box), object(ball)], LW),
+    nb_setval(test_ddc_shared_lw, LW).
+
+%   run(+Share, -Trace): log weights and particle values after every step,
+%   resampling (a fixed, uneven choice) after every other one.
+run(Share, Trace) :-
+    program(File),
+    filter_new(File, 40, 11, [share(Share)], F),
+    frames(Frames),
+    findall(LW-Vs, ( nth1(K, Frames, Seen),
+                     step(F, Seen), nb_getval(test_ddc_shared_lw, LW),
+                     filter_values(F, P-U, ( pos(ball):t ~= P, ( under(ball, U):t -> true ; U = none ) ), Vs),
+                     (   K mod 2 =:= 0
+                     ->  numlist(1, 40, Is0), maplist([I, J]>>(J is (I*7) mod 13), Is0, Is),
+                         filter_resample(F, Is)
+                     ;   true
+                     ) ),
+            Trace),
+    filter_free(F).
+
+own_entries(F, O) :-
+    filter_statistics(F, Stats),
+    memberchk(own(O), Stats).
+
+:- begin_tests(ddc_shared).
+
+test(sharing_changes_no_particle) :-
+    run(true, Shared),
+    run(false, Unshared),
+    Shared == Unshared,
+    %   and the run did something: while hidden, the ball was believed under
+    %   the box in some particles and not in others
+    nth1(4, Shared, _-Vs), memberchk(_-box, Vs), memberchk(_-none, Vs).
+
+test(perceived_values_are_held_once) :-
+    program(File),
+    filter_new(File, 30, 3, [share(true)], F),
+    filter_new(File, 30, 3, [share(false)], G),
+    frames([S1, S2, S3|_]),
+    forall(member(Seen, [S1, S2]), ( step(F, Seen), step(G, Seen) )),
+    %   everything is perceived: nothing of a particle's own
+    own_entries(F, 0),
+    own_entries(G, OG), OG >= 30,
+    %   the ball vanishes: its position and pick are the particles' own
+    step(F, S3), own_entries(F, OF3), OF3 >= 30,
+    filter_free(F), filter_free(G).
+
+test(agreed_values_become_shared) :-
+    program(File),
+    filter_new(File, 30, 5, [share(true)], F),
+    frames(Frames), length(Pre, 6), append(Pre, _, Frames),
+    maplist(step(F), Pre),          % the ball is seen again in the 6th frame
+    filter_values(F, P, pos(ball):t ~= P, Ps),
+    sort(Ps, [_]),                  % where it is perceived, in every particle
+    filter_statistics(F, Stats), memberchk(shared(S), Stats), S > 0,
+    %   the ball's position at t is no particle's own any more: the next
+    %   step, everything perceived, leaves nothing in the particles
+    frames(All), nth1(7, All, S7), step(F, S7),
+    own_entries(F, 0),
+    filter_free(F).
+
+test(undo_restores_shared_values) :-
+    program(File),
+    filter_new(File, 20, 7, [share(true)], F),
+    frames([S1, S2|_]),
+    step(F, S1),
+    filter_values(F, P, pos(box):t ~= P, Before),
+    filter_statistics(F, St1),
+    step(F, S2),
+    filter_undo(F),
+    filter_statistics(F, St2),
+    St1 == St2,
+    filter_values(F, P2, pos(box):t ~= P2, After),
+    Before == After,
+    filter_free(F).
+
+:- end_tests(ddc_shared).
