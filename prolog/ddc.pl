@@ -1316,35 +1316,12 @@ weigh_key(X, T, V, W, Acc) :-
 
 %   (Outside a filter.)
 weigh_own(X, T, V, W, Acc) :-
-    arg(2, W, M),
     arg(1, W, S),
-    arg(10, W, Acc0),
-    (   Acc0 == Acc -> true ; nb_setarg(10, W, Acc) ),
-    (   M:'$rv'(X, T, W, 0, ev(V), Out, Tier, Id, R)
-    ->  (   Acc0 == Acc -> true ; nb_setarg(10, W, Acc0) ),
-        (   R == false -> true ; check_rivals(R, M, X, T, W, Tier, Id) ),
-        store_put(S, X-T, V),
-        (   Out = '$prop'(LJ)
-        ->  add_logw(W, Acc, LJ)
-        ;   Out = '$chk'(D, Id1)
-        ->  (   fast_valid(D)
-            ->  weigh(D, V, W, Acc)
-            ;   cheap_check(D)
-            ->  checked(D, Id1, W), weigh(D, V, W, Acc)
-            ;   catch(weigh(D, V, W, Acc), E, ( checked(D, Id1, W), throw(E) ))
-            )
-        ;   weigh(Out, V, W, Acc)
-        )
-    ;   (   Acc0 == Acc -> true ; nb_setarg(10, W, Acc0) ),
-        store_put(S, X-T, '$undef'),
+    (   weigh_clause(X, T, V, W, Acc, LP, K)
+    ->  store_put(S, X-T, V),
+        add_weight(W, Acc, LP, K)
+    ;   store_put(S, X-T, '$undef'),
         fail
-    ).
-
-weigh(D, V, W, Acc) :-
-    dist_log_density(D, V, LP),
-    add_logw(W, Acc, LP),
-    (   dist_discrete(D) -> true
-    ;   value_dim(V, K), DXi is Acc+1, arg(DXi, W, DX0), DX is DX0+K, nb_setarg(DXi, W, DX)
     ).
 
 weigh_key_shared(X, T, V, W, Acc) :-
