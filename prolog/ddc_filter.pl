@@ -76,9 +76,10 @@ filter_new(File, N, Seed, Options, F) :-
 
 %   The values all particles agree on (see "Shared values" in ddc.pl) and
 %   the keys some particle holds a value of its own for.
-%   sh(Shared, Impure, RawKeys, Share): RawKeys, the untimed copies of this
-%   step's observations; Share false: only the observations are shared.
-new_shared(Share, sh(Shared, Impure, [], Share)) :-
+%   sh(Shared, Impure, RawKeys, Share, Settled): RawKeys, the untimed
+%   copies of this step's observations; Share false: only the observations
+%   are shared; Settled: how many steps were settled (step_particles/8).
+new_shared(Share, sh(Shared, Impure, [], Share, 0)) :-
     store_new(Shared),
     store_new(Impure).
 
@@ -114,11 +115,12 @@ filter_size(F, N) :-
 
 %!  filter_statistics(+Filter, -Stats) is det.
 %
-%   Stats: [particles(N), time(T), shared(S), own(O)]: S values held once
-%   for all particles (see "Shared values" in ddc.pl), O values held by
-%   the particles themselves (summed over particles).
-filter_statistics(F, [particles(N), time(T), shared(S), own(O)]) :-
-    filter_state(F, filter(_, N, T, Ws, _, _, sh(Shared, _, _, _))),
+%   Stats: [particles(N), time(T), shared(S), own(O), settled_steps(K)]: S
+%   values held once for all particles (see "Shared values" in ddc.pl), O
+%   values held by the particles themselves (summed over particles), K
+%   steps in which the particles agreed on everything new (computed once).
+filter_statistics(F, [particles(N), time(T), shared(S), own(O), settled_steps(K)]) :-
+    filter_state(F, filter(_, N, T, Ws, _, _, sh(Shared, _, _, _, K))),
     store_size(Shared, S),
     aggregate_all(sum(C), ( between(1, N, I), arg(I, Ws, W), arg(1, W, St), store_size(St, C) ), O).
 
@@ -150,13 +152,7 @@ filter_step(F, Obs, Acts, LogWs) :-
     maplist(observation_key(Info, T1), Weighted, Keys),
     scratch_copy(F, Ws0-Sh0, Ws-Sh),
     record_observations(Sh, T, Keys),
-    with_rng(R0,
-             with_shared(
-                 findall(LW, ( between(1, N, I), arg(I, Ws, W),
-                               ( I =< 20 -> Check = true ; Check = false ),
-                               nb_setarg(14, W, Check),
-                               step_particle(W, T1, Keys, Facts, Sh, LW) ), LogWs)),
-             R1),
+    with_rng(R0, with_shared(step_particles(Ws, N, M, T1, Keys, Facts, Sh, LogWs)), R1),
     share_agreed(Ws, N, Sh, T1),
     commit(F, State, T1, Ws, Sh, T, Ws0, Sh0, R1).
 
@@ -165,7 +161,7 @@ filter_step(F, Obs, Acts, LogWs) :-
 %   (an object seen again is where it was seen, whatever each particle had
 %   believed) moves to the shared store, so that what is computed from it
 %   next can be shared again.
-share_agreed(Ws, N, sh(Shared, Impure, _, true), T) :-
+share_agreed(Ws, N, sh(Shared, Impure, _, true, _), T) :-
     !,
     findall(K, ( store_match(Impure, K, _), own_key_at(K, T) ), Ks),
     arg(1, Ws, W1),
@@ -193,6 +189,48 @@ agreed(I, N, Ws, K, V) :-
         agreed(I1, N, Ws, K, V)
     ).
 
+%   step_particles(+Ws, +N, +M, +T1, +Keys, +Facts, +Sh, -LogWs): steps
+%   every particle.  If the first particle's step left nothing of its own
+%   (every observation's weight, every transition clause and every derived
+%   atom of t+1 shared), every other particle's step would only find the
+%   same shared values: each gets the first one's weight and is only moved
+%   to t+1 (a frame in which the particles agree costs next to nothing).
+step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs]) :-
+    arg(1, Ws, W1),
+    nb_setarg(14, W1, true),
+    step_particle(W1, T1, Keys, Facts, Sh, LW1),
+    (   settled(M, Sh, T1, Keys)
+    ->  arg(5, Sh, K0),
+        K is K0+1,
+        nb_setarg(5, Sh, K),
+        arg(7, W1, DX),
+        findall(LW1, ( between(2, N, I), arg(I, Ws, W),
+                       settled_step(W, T1, Facts, LW1, DX) ), LWs)
+    ;   findall(LW, ( between(2, N, I), arg(I, Ws, W),
+                      ( I =< 20 -> Check = true ; Check = false ),
+                      nb_setarg(14, W, Check),
+                      step_particle(W, T1, Keys, Facts, Sh, LW) ), LWs)
+    ).
+
+settled(M, sh(Shared, _, _, true, _), T1, Keys) :-
+    forall(member(k(X, T, _, _), Keys),
+           store_get(Shared, '$w'(X, T), w(_, _))),
+    forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T1), \+ X = observation(_) ),
+           store_get(Shared, '$swept'(Id, T1), _)),
+    forall(( M:'$sweep'(der, K, N/A, Sw), Sw = sw(_, eager, _, _, T1, _), sweep_kind(K, T1) ),
+           store_get(Shared, '$mat'(N/A, T1), _)).
+
+%   What step_particle/6 would do to a particle once settled/4 holds.
+settled_step(W, T1, Facts, LW, DX) :-
+    arg(1, W, S),
+    T is T1-1,
+    store_prune(S, T, []),
+    nb_setarg(3, W, T1),
+    nb_linkarg(12, W, Facts),
+    nb_setarg(6, W, LW),
+    nb_setarg(7, W, DX),
+    nb_setarg(4, W, T1).
+
 %   record_observations(+Sh, +T, +Keys): drops the values of times before T
 %   and the previous step's observations from the shared store and records
 %   this step's: an observation's value is the same in every particle.  A
@@ -200,7 +238,7 @@ agreed(I, N, Ws, K, V) :-
 %   raw (the original's bodies read observation(x) ~= V untimed), unless
 %   the untimed variable has a value already; both go at the next step.
 record_observations(Sh, T, Keys) :-
-    Sh = sh(Shared, Impure, Raw0, _),
+    Sh = sh(Shared, Impure, Raw0, _, _),
     store_prune(Shared, T, Raw0),
     store_prune(Impure, T, []),
     foldl(record_observation(Shared), Keys, [], Raw),

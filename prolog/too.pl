@@ -104,7 +104,7 @@ pick_occluder(A):t+1 ~ uniform(Os) :=
     hidden(A):t+1, \+ occluded_by(A, _):t, \+ seen(A):t, \+ lost_anywhere(A):t,
     findall_forward(O, lowered_over(O, A):t+1, Os0), sort(Os0, Os), Os \== [].
 
-occluded_by(A, O):t+1 := pick_occluder(A):t+1 ~= O, O \== behind.
+occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
 % The occlusion lasts while the object is hidden and its occluder is perceived and still
 % covers it.
 occluded_by(A, O):t+1 := occluded_by(A, O):t, hidden(A):t+1, observed(O), covers(O, A):t+1.

@@ -25,7 +25,7 @@ program(File) :-
           'seen(A):t+1 := observed(A).',
           'hidden(A):t+1 := object(A), \\+ observed(A).',
           'pick(A):t+1 ~ uniform([B, none]) := hidden(A):t+1, seen(A):t, object(B), B \\== A, observed(B).',
-          'under(A, B):t+1 := pick(A):t+1 ~= B, B \\== none.',
+          'under(A, B):t+1 := hidden(A):t+1, pick(A):t+1 ~= B, B \\== none.',
           'under(A, B):t+1 := under(A, B):t, hidden(A):t+1.',
           'observation(pos(A)):t+1 ~ gaussian(X, 0.05) := pos(A):t ~= X.',
           'observation(pos(A)):t+1 ~ val(_) := object(A), \\+ pos(A):t ~= _.'
@@ -71,6 +71,18 @@ test(sharing_changes_no_particle) :-
     %   and the run did something: while hidden, the ball was believed under
     %   the box in some particles and not in others
     nth1(4, Shared, _-Vs), memberchk(_-box, Vs), memberchk(_-none, Vs).
+
+test(a_frame_the_particles_agree_on_is_computed_once) :-
+    program(File),
+    filter_new(File, 30, 3, [share(true)], F),
+    frames([S1, S2, S3|_]),
+    step(F, S1), step(F, S2),
+    filter_statistics(F, St2), memberchk(settled_steps(K2), St2),
+    K2 =:= 2,
+    step(F, S3),                    % the ball vanishes: particles disagree
+    filter_statistics(F, St3), memberchk(settled_steps(K3), St3),
+    K3 =:= 2,
+    filter_free(F).
 
 test(perceived_values_are_held_once) :-
     program(File),
