@@ -316,3 +316,26 @@ def test_record_for_frame_from_a_percept_frame():
     frame.truth = {"objects": {"ball_1": {"visible": True}}}
     with pytest.raises(RecordError, match="frame 7: truth object 'ball_1': no position"):
         record_for_frame(frame, hyps, matches)
+
+
+def test_an_object_split_into_two_percepts_is_judged_by_its_main_view():
+    """A mug whose handle is segmented on its own for a frame: the handle's new anchor is a
+    phantom, the mug keeps the symbol of its body (the larger percept), whichever comes first."""
+    from evaluation import record_for_frame
+    from percepts import Percept, PerceptFrame
+
+    body = Percept(0.5, [0.35, 0.06, 0.05], [0.08, 0.08, 0.1], [1.0], {"mug": 1.0},
+                   truth_id="mug_4", bbox=(247, 91, 279, 126))
+    handle = Percept(0.5, [0.41, 0.06, 0.04], [0.02, 0.02, 0.08], [1.0], {"cup": 1.0},
+                     truth_id="mug_4", bbox=(274, 103, 284, 116))
+    frame = PerceptFrame(218, 0.5, [body, handle],
+                         truth={"objects": {"mug_4": {"position": [0.36, 0.06, 0.05],
+                                                      "visible": True}}})
+    hyps = {"mug-4": Hypothesis(np.array([0.35, 0.06, 0.05]), True),
+            "cup-1": Hypothesis(np.array([0.41, 0.06, 0.04]), True)}
+    for matches in ([(body, "mug-4"), (handle, "cup-1")], [(handle, "cup-1"), (body, "mug-4")]):
+        assert record_for_frame(frame, hyps, matches).assignments == {"mug_4": "mug-4"}
+    # without boxes, the 3-D size decides
+    body.bbox = handle.bbox = (0, 0, 0, 0)
+    assert record_for_frame(frame, hyps, [(body, "mug-4"), (handle, "cup-1")]).assignments == {
+        "mug_4": "mug-4"}

@@ -87,8 +87,11 @@ class TrackingRecord:
       ones included (at their true positions), so that keeping a hidden object is credited.
     - ``hypotheses``: anchor symbol -> :class:`Hypothesis`, for every anchor the system holds.
     - ``assignments``: ground-truth id of a percept (``Percept.truth_id``) -> the symbol the
-      system gave that percept in this frame. Only perceived objects appear here. (Should the
-      perception split one object into several percepts, record the symbol of one of them.)
+      system gave that percept in this frame. Only perceived objects appear here. Should the
+      perception split one object into several percepts (a mug's handle segmented on its own
+      for a frame), the symbol of its main view, the largest of them, stands for the object: a
+      fragment given a symbol of its own is a phantom anchor (a false positive for the
+      position metrics), not the object changing its identity.
     - ``timings``: where the time of this frame went.
     - ``rejected_percepts``: percepts of this frame dropped as bad input (NaN, empty histogram).
     """
@@ -200,11 +203,16 @@ def record_for_frame(
     defaults to ``len(frame.rejected)``.
     """
     skip = set(ignore)
-    assignments = {
-        str(p.truth_id): str(sym)
-        for p, sym in matches
-        if getattr(p, "truth_id", None) is not None and p.truth_id not in skip
-    }
+    assignments: dict[str, str] = {}
+    largest: dict[str, float] = {}
+    for p, sym in matches:
+        tid = getattr(p, "truth_id", None)
+        if tid is None or tid in skip:
+            continue
+        area = view_area(p)
+        if str(tid) not in assignments or area > largest[str(tid)]:
+            assignments[str(tid)] = str(sym)
+            largest[str(tid)] = area
     try:
         truth = truth_from_dict(frame.truth or {}, skip)
     except RecordError as exc:
@@ -218,6 +226,21 @@ def record_for_frame(
         timings=timings if timings is not None else FrameTimings(),
         rejected_percepts=len(frame.rejected) if rejected_percepts is None else rejected_percepts,
     )
+
+
+def view_area(percept: Any) -> float:
+    """How much of its object a percept shows: its bounding box's area in pixels, or without
+    one the area of its 3-D size's largest face."""
+    bbox = getattr(percept, "bbox", None)
+    if bbox is not None and len(bbox) == 4:
+        area = float(max(bbox[2] - bbox[0], 0) * max(bbox[3] - bbox[1], 0))
+        if area > 0:
+            return area
+    size = getattr(percept, "size", None)
+    if size is None:
+        return 0.0
+    a, b, c = (float(v) for v in size)
+    return max(a * b, a * c, b * c)
 
 
 def point_estimate(
