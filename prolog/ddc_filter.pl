@@ -20,11 +20,15 @@
     A step t -> t+1 for each particle:
       1. the facts of t+1 (actions, plain observations such as
          observed(b1)) replace those of t;
-      2. each observation h ~= v is weighted by the density of h's first
-         applicable clause at t+1 (h:t+1 clauses, else h:t clauses, else
-         untimed ones); the proofs sample lazily whatever transitions they
-         need; v is then recorded both as h:t+1 and as the untimed h (the
-         original's bodies read observation(x) ~= V untimed);
+      2. every observation h ~= v is recorded, once for all particles, as
+         h:t+1 and as the untimed h (the original's bodies read
+         observation(x) ~= V untimed; an untimed h that already has a value
+         keeps it); then each observation weights the particle once, by
+         the density of h's first applicable clause at t+1 (h:t+1 clauses,
+         else h:t clauses, else untimed ones), whose proof sees every
+         observation's value and samples lazily whatever transitions it
+         needs (the original weighted an observation when a proof first
+         read it, and recorded it after);
       3. the transition clauses (h:t+1 heads) are swept: every ground head
          their bodies produce (non-ground reads in those bodies see only
          the values recorded) is sampled, every derived h:t+1 atom is
@@ -33,8 +37,10 @@
       4. time t is no longer derivable (frozen): queries at t+1 may still
          read h:t; the values of t-1 and the raw observations of t are
          dropped at the start of the next step.
-    Step and resample keep the previous particles for one filter_undo/1.
-    A step either completes for all particles or changes nothing.
+    Values the particles agree on are computed once (see "Shared values"
+    in ddc.pl).  Step and resample keep the previous particles for one
+    filter_undo/1.  A step either completes for all particles or changes
+    nothing.
 */
 
 %!  filter_new(+ProgramFile, +N, +Seed, -Filter) is det.
