@@ -1072,7 +1072,7 @@ time_code(E, _, _, _) :-
 
 %   A world:
 %   w(Store, Module, Time, Frozen, Evidence, LogW, DX, QLogW, QDX, Acc,
-%     Mode, Facts, StepKeys)
+%     Mode, Facts, Check, Shared, Pure)
 %     Frozen: times =< Frozen are no longer derivable from earlier ones
 %     (the filter's past); -1 for static queries.
 %     Acc: argument index (6 or 8) of the log weight that likelihood
@@ -1094,7 +1094,7 @@ new_world(M, Time, Frozen, Ev, W) :-
 
 new_world(M, Time, Frozen, Ev, Check, W) :-
     store_new(S),
-    W = w(S, M, Time, Frozen, Ev, 0.0, 0, 0.0, 0, 6, normal, [], [], Check, none, false).
+    W = w(S, M, Time, Frozen, Ev, 0.0, 0, 0.0, 0, 6, normal, [], Check, none, false).
 
 /*  Shared values.  In a filter many values are the same in every particle:
     a value computed only from facts, observations and other shared values,
@@ -1109,10 +1109,10 @@ new_world(M, Time, Frozen, Ev, Check, W) :-
     materialised derived atom) starts with Pure = true; reading a key from
     the world's own store, a non-ground read, a draw from a distribution
     other than val/1, or a likelihood weighting makes it false (the
-    observations' values are in the shared store).  A pure value goes to the shared store unless the key
-    is in ImpureKeys (some particle computed it from its own values, so
-    the particles may differ), an impure one to the world's own store and
-    ImpureKeys.  So a key is either shared or in the particles' own stores,
+    observations' values are in the shared store).  A pure value goes to
+    the shared store unless the key is in ImpureKeys (some particle
+    computed it from its own values, so the particles may differ), an
+    impure one to the world's own store and ImpureKeys.  So a key is either shared or in the particles' own stores,
     never both, and a value read from the shared store is the value every
     particle would have computed.  A pure computation draws no random
     number, so sharing changes neither the draws nor any value: the
@@ -1131,10 +1131,10 @@ new_world(M, Time, Frozen, Ev, Check, W) :-
 known(W, K, V) :-
     arg(1, W, S),
     (   store_get(S, K, V0)
-    ->  arg(16, W, P),
-        (   P == false -> true ; nb_setarg(16, W, false) ),
+    ->  arg(15, W, P),
+        (   P == false -> true ; nb_setarg(15, W, false) ),
         V = V0
-    ;   arg(15, W, Sh),
+    ;   arg(14, W, Sh),
         Sh \== none,
         arg(1, Sh, SS),
         store_get(SS, K, V)
@@ -1142,37 +1142,37 @@ known(W, K, V) :-
 
 %   shared_known(+W, +K): K is in W's shared store.
 shared_known(W, K) :-
-    arg(15, W, Sh),
+    arg(14, W, Sh),
     Sh \== none,
     arg(1, Sh, SS),
     store_get(SS, K, _).
 
 impure(W) :-
-    arg(16, W, P),
-    (   P == false -> true ; nb_setarg(16, W, false) ).
+    arg(15, W, P),
+    (   P == false -> true ; nb_setarg(15, W, false) ).
 
 %   begin_value(+W, -P0) ... end_value(+W, +P0, +K, +V): around the
 %   computation of key K's value V; records it (shared or own, see above).
 begin_value(W, P0) :-
-    arg(16, W, P0),
-    nb_setarg(16, W, true).
+    arg(15, W, P0),
+    nb_setarg(15, W, true).
 
 end_value(W, P0, K, V) :-
-    arg(15, W, Sh),
+    arg(14, W, Sh),
     (   Sh == none
     ->  arg(1, W, S),
         store_put(S, K, V),
-        nb_setarg(16, W, false)
-    ;   arg(16, W, P),
+        nb_setarg(15, W, false)
+    ;   arg(15, W, P),
         arg(2, Sh, Imp),
         (   P == true, arg(4, Sh, true), \+ store_get(Imp, K, _)
         ->  arg(1, Sh, SS),
             store_put(SS, K, V),
-            nb_setarg(16, W, P0)
+            nb_setarg(15, W, P0)
         ;   arg(1, W, S),
             store_put(S, K, V),
             (   store_get(Imp, K, _) -> true ; store_put(Imp, K, true) ),
-            nb_setarg(16, W, false)
+            nb_setarg(15, W, false)
         )
     ).
 
@@ -1196,10 +1196,10 @@ end_value(W, P0, K, V) :-
 read_key(X, T, V, W) :-
     arg(1, W, S),
     (   store_get(S, X-T, Val)          % known/3, inline
-    ->  arg(16, W, P),
-        (   P == false -> true ; nb_setarg(16, W, false) ),
+    ->  arg(15, W, P),
+        (   P == false -> true ; nb_setarg(15, W, false) ),
         Val \== '$undef'
-    ;   arg(15, W, Sh), Sh \== none,
+    ;   arg(14, W, Sh), Sh \== none,
         arg(1, Sh, SS), store_get(SS, X-T, Val)
     ->  Val \== '$undef'
     ;   arg(5, W, Ev),                  % not yet read: evidence, or sampled
@@ -1219,7 +1219,7 @@ match(Val, V) :-
     ).
 
 sample_key(X, T, W, Val) :-
-    arg(15, W, Sh),
+    arg(14, W, Sh),
     (   Sh == none                      % outside a filter: every value is the world's own
     ->  arg(2, W, M),
         arg(1, W, S),
@@ -1252,14 +1252,14 @@ deterministic('$chk'(val(_), _)).
 %   read does not make the value impure (it does not depend on them).
 check_rivals(false, _, _, _, _, _, _) :- !.
 check_rivals(true, M, X, T, W, Tier, Id) :-
-    (   arg(14, W, true)
-    ->  arg(16, W, P),
+    (   arg(13, W, true)
+    ->  arg(15, W, P),
         (   M:'$rv'(X, T, W, Id, none, _, Tier, Id2, _)
-        ->  nb_setarg(16, W, P),
+        ->  nb_setarg(15, W, P),
             clause_where(M, Id2, Where2),
             key_term(X, T, K),
             '$clause_error'(W, Id, overlapping_clauses(K, Where2))
-        ;   nb_setarg(16, W, P)
+        ;   nb_setarg(15, W, P)
         )
     ;   true
     ).
@@ -1308,10 +1308,10 @@ checked(D, Id, W) :-
 %   shared: kept as '$w'(X, T) -> w(LogDensity, Dim) (or none: no clause).
 %   A weighting makes the computation that needed it impure.
 weigh_key(X, T, V, W, Acc) :-
-    arg(15, W, Sh0),
-    (   Sh0 == none
+    arg(14, W, Sh),
+    (   Sh == none
     ->  weigh_own(X, T, V, W, Acc)
-    ;   weigh_key_shared(X, T, V, W, Acc)
+    ;   weigh_key_shared(X, T, V, W, Acc, Sh)
     ).
 
 %   (Outside a filter.)
@@ -1324,10 +1324,9 @@ weigh_own(X, T, V, W, Acc) :-
         fail
     ).
 
-weigh_key_shared(X, T, V, W, Acc) :-
+weigh_key_shared(X, T, V, W, Acc, Sh) :-
     arg(1, W, S),
-    (   Acc == 6, arg(15, W, Sh), Sh \== none,
-        arg(1, Sh, SS), store_get(SS, '$w'(X, T), Memo)
+    (   Acc == 6, arg(1, Sh, SS), store_get(SS, '$w'(X, T), Memo)
     ->  impure(W),
         Memo = w(LP, K),
         add_weight(W, Acc, LP, K)
@@ -1338,19 +1337,17 @@ weigh_key_shared(X, T, V, W, Acc) :-
         ;   Memo = none,
             (   shared_known(W, X-T) -> true ; store_put(S, X-T, '$undef') )
         ),
-        (   Acc == 6, arg(15, W, Sh), Sh \== none
-        ->  end_weight(W, P0, Sh, '$w'(X, T), Memo)
-        ;   true
-        ),
+        (   Acc == 6 -> end_memo(W, P0, Sh, '$w'(X, T), Memo) ; true ),
         impure(W),
         Memo = w(_, _),
         add_weight(W, Acc, LP, K)
     ).
 
-%   end_weight(+W, +P0, +Sh, +K, +Memo): shares the weight Memo of key K if
-%   computed from shared values only (no world keeps its own copy).
-end_weight(W, P0, Sh, K, Memo) :-
-    arg(16, W, P),
+%   end_memo(+W, +P0, +Sh, +K, +Memo): shares Memo (an observation's
+%   weight, a sweep's done marker) under key K if computed from shared
+%   values only; no world keeps a copy of its own.
+end_memo(W, P0, Sh, K, Memo) :-
+    arg(15, W, P),
     arg(2, Sh, Imp),
     (   P == true, arg(4, Sh, true), \+ store_get(Imp, K, _)
     ->  arg(1, Sh, SS),
@@ -1359,7 +1356,7 @@ end_weight(W, P0, Sh, K, Memo) :-
     ->  true
     ;   store_put(Imp, K, true)
     ),
-    nb_setarg(16, W, P0).
+    nb_setarg(15, W, P0).
 
 %   weigh_clause(+X, +T, +V, +W, +Acc, -LogDensity, -Dim): the density of
 %   X-T = V under its first applicable clause (Dim: the dimension of V for a
@@ -1426,8 +1423,7 @@ value_dim(_, 1).
 %   sampled, it is weighted instead of sampled.
 '$read_q'(X, T, V, W) :-
     (   ground(X), ground(V),
-        arg(1, W, S), \+ store_get(S, X-T, _),
-        ( arg(15, W, none) -> true ; \+ shared_known(W, X-T) ),
+        arg(1, W, S), \+ store_get(S, X-T, _), \+ shared_known(W, X-T),
         arg(5, W, Ev), \+ memberchk((X-T)-_, Ev)
     ->  weigh_key(X, T, V, W, 8)
     ;   '$read'(X, T, V, W)
@@ -1439,7 +1435,7 @@ read_enum(X, T, V, W) :-
     impure(W),                          % which keys a world holds is its own
     arg(1, W, S),
     findall(X-T, ( store_match(S, X-T, Val), Val \== '$undef' ), Rec0),
-    (   arg(15, W, Sh), Sh \== none
+    (   arg(14, W, Sh), Sh \== none
     ->  arg(1, Sh, SS),
         findall(X-T, ( store_match(SS, X-T, Val), Val \== '$undef' ), Rec1),
         append(Rec0, Rec1, Rec)
@@ -1483,19 +1479,6 @@ group_facts(Facts, Groups) :-
 %   query (and in the first 20 particles of every filter step).
 overlap_checked_worlds(200).
 
-'$memo'(W, G, Call) :-
-    arg(15, W, none),
-    !,
-    arg(1, W, S),
-    arg(3, W, Tc),
-    K = '$memo'(G, Tc),
-    (   store_get(S, K, V)
-    ->  V == true
-    ;   arg(2, W, M),
-        (   call(M:Call) -> V = true ; V = false ),
-        (   store_get(S, K, _) -> true ; store_put(S, K, V) ),
-        V == true
-    ).
 '$memo'(W, G, Call) :-
     arg(3, W, Tc),
     K = '$memo'(G, Tc),

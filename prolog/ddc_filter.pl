@@ -91,10 +91,10 @@ new_shared(Share, sh(Shared, Impure, [], Share, 0)) :-
 
 init_particle(M, Sh, W) :-
     new_world(M, 0, -1, [], W),
-    nb_linkarg(15, W, Sh),
+    nb_linkarg(14, W, Sh),
     sweep(W, 0),
-    nb_setarg(15, W, none),
-    nb_setarg(16, W, false),
+    nb_setarg(14, W, none),
+    nb_setarg(15, W, false),
     nb_setarg(4, W, 0).
 
 filter_state(F, S) :-
@@ -203,7 +203,7 @@ agreed(I, N, Ws, K, V) :-
 %   to t+1 (a frame in which the particles agree costs next to nothing).
 step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs]) :-
     arg(1, Ws, W1),
-    nb_setarg(14, W1, true),
+    nb_setarg(13, W1, true),
     step_particle(W1, T1, Keys, Facts, Sh, LW1),
     (   settled(M, Sh, T1, Keys)
     ->  arg(5, Sh, K0),
@@ -214,7 +214,7 @@ step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs]) :-
                        settled_step(W, T1, Facts, LW1, DX) ), LWs)
     ;   findall(LW, ( between(2, N, I), arg(I, Ws, W),
                       ( I =< 20 -> Check = true ; Check = false ),
-                      nb_setarg(14, W, Check),
+                      nb_setarg(13, W, Check),
                       step_particle(W, T1, Keys, Facts, Sh, LW) ), LWs)
     ).
 
@@ -303,15 +303,15 @@ step_particle(W, T1, Keys, Facts, Sh, LW) :-
     store_prune(S, T, []),
     nb_setarg(3, W, T1),
     nb_linkarg(12, W, Facts),           % ground, shared by all particles: no copy
-    nb_linkarg(15, W, Sh),              % (unlinked at the end: copies of W never copy Sh)
+    nb_linkarg(14, W, Sh),              % (unlinked at the end: copies of W never copy Sh)
     nb_setarg(6, W, 0.0),
     nb_setarg(7, W, 0),
     weigh_observations(Keys, W),
     arg(6, W, LW),
     sweep(W, T1),
     nb_setarg(4, W, T1),
-    nb_setarg(15, W, none),
-    nb_setarg(16, W, false),
+    nb_setarg(14, W, none),
+    nb_setarg(15, W, false),
     !.
 
 %   Each observation weights the particle once, by the density of its
@@ -349,8 +349,8 @@ sweep_clause(W, M, Id, X, T) :-
            (   ground(X) -> ignore('$read'(X, T, _, W))
            ;   '$clause_error'(W, Id, non_ground_head(X))
            )),
-    arg(15, W, Sh),
-    (   Sh == none -> true ; end_weight(W, P0, Sh, '$swept'(Id, T), done) ).
+    arg(14, W, Sh),
+    (   Sh == none -> true ; end_memo(W, P0, Sh, '$swept'(Id, T), done) ).
 
 %   materialise(+W, +M, +N/A, +Sw, +T): the instances of derived
 %   predicate N/A at T, from its transition clauses, recorded as
@@ -463,10 +463,10 @@ filter_query(F, Goal, Template, Values) :-
         with_rng(R0,
                  with_shared(
                      findall(V, ( between(1, N, I), arg(I, Ws, Wi),
-                                  nb_linkarg(15, Wi, Sh),
+                                  nb_linkarg(14, Wi, Sh),
                                   (   M:'$ddc_tmp'(Id, q, Wi, X) -> V = X ; V = none ),
-                                  nb_setarg(15, Wi, none),
-                                  nb_setarg(16, Wi, false) ),
+                                  nb_setarg(14, Wi, none),
+                                  nb_setarg(15, Wi, false) ),
                              Values)),
                  R1),
         retractall(M:'$ddc_tmp'(Id, _, _, _))),
