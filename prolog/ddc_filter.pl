@@ -349,8 +349,8 @@ sweep_clause(W, M, Id, X, T) :-
            (   ground(X) -> ignore('$read'(X, T, _, W))
            ;   '$clause_error'(W, Id, non_ground_head(X))
            )),
-    arg(14, W, Sh),
-    (   Sh == none -> true ; end_memo(W, P0, Sh, '$swept'(Id, T), done) ).
+    arg(14, W, Sh),                     % (a particle sweeps only in a step)
+    end_memo(W, P0, Sh, '$swept'(Id, T), done).
 
 %   materialise(+W, +M, +N/A, +Sw, +T): the instances of derived
 %   predicate N/A at T, from its transition clauses, recorded as

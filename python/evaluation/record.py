@@ -203,16 +203,15 @@ def record_for_frame(
     defaults to ``len(frame.rejected)``.
     """
     skip = set(ignore)
-    assignments: dict[str, str] = {}
-    largest: dict[str, float] = {}
+    main_view: dict[str, tuple[float, str]] = {}  # truth id -> (view area, symbol)
     for p, sym in matches:
         tid = getattr(p, "truth_id", None)
         if tid is None or tid in skip:
             continue
         area = view_area(p)
-        if str(tid) not in assignments or area > largest[str(tid)]:
-            assignments[str(tid)] = str(sym)
-            largest[str(tid)] = area
+        if str(tid) not in main_view or area > main_view[str(tid)][0]:
+            main_view[str(tid)] = (area, str(sym))
+    assignments = {tid: sym for tid, (_, sym) in main_view.items()}
     try:
         truth = truth_from_dict(frame.truth or {}, skip)
     except RecordError as exc:
