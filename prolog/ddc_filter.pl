@@ -41,6 +41,16 @@
     in ddc.pl).  Step and resample keep the previous particles for one
     filter_undo/1.  A step either completes for all particles or changes
     nothing.
+
+    Threads (filter_new/5 option threads(K)): the first particle is stepped
+    alone (it finds the values every particle shares, and a step in which
+    nothing else is left is settled at once); the others are split into K
+    contiguous groups, the first stepped by the calling thread, each other
+    one by a thread of its own on a copy of its particles and of the shared
+    values, drawing from a random stream seeded (after the first particle)
+    from the filter's.  The copies come back into the filter's particles
+    and their newly shared values join its own (step_groups/9).  K is part
+    of the seed: the same K gives the same particles on any machine.
 */
 
 %!  filter_new(+ProgramFile, +N, +Seed, -Filter) is det.
@@ -55,22 +65,31 @@ filter_new(File, N, Seed, F) :-
 
 %!  filter_new(+ProgramFile, +N, +Seed, +Options, -Filter) is det.
 %
-%   As filter_new/4.  Option share(false) computes every value in every
-%   particle, none once for all (see "Shared values" in ddc.pl): the same
-%   particles, slower; for comparison.
+%   As filter_new/4.  Options:
+%     - share(false): compute every value in every particle, none once for
+%       all (see "Shared values" in ddc.pl): the same particles, slower; for
+%       comparison.
+%     - threads(K) (default 1): a step's particles after the first are
+%       split into K groups, stepped at the same time by K threads (the
+%       calling one and K-1 others), each drawing from its own random
+%       stream seeded from the filter's.  The particles depend on Seed and
+%       K, not on the machine; K = 1 steps them one after the other in the
+%       calling thread.
 filter_new(File, N, Seed, Options, F) :-
     must_be(list, Options),
     option(share(Share), Options, true),
     must_be(boolean, Share),
+    option(threads(K), Options, 1),
+    must_be(positive_integer, K),
     must_be(positive_integer, N),
     must_be(integer, Seed),
     resolve_file(File, Abs),
     ddc_load(Abs, M),
     set_random(seed(Seed)),
     length(L, N),
-    new_shared(Share, Sh0),
-    flag(ddc_filter_id, K, K+1),
-    atom_concat('$ddc_particles_', K, F),
+    new_shared(Share, K, Sh0),
+    flag(ddc_filter_id, Id, Id+1),
+    atom_concat('$ddc_particles_', Id, F),
     atom_concat(F, '$new', FN),
     nb_setval(FN, Sh0),
     nb_getval(FN, Sh),                  % global: survives the query, changed in place
@@ -82,10 +101,11 @@ filter_new(File, N, Seed, Options, F) :-
 
 %   The values all particles agree on (see "Shared values" in ddc.pl) and
 %   the keys some particle holds a value of its own for.
-%   sh(Shared, Impure, RawKeys, Share, Settled): RawKeys, the untimed
-%   copies of this step's observations; Share false: only the observations
-%   are shared; Settled: how many steps were settled (step_particles/8).
-new_shared(Share, sh(Shared, Impure, [], Share, 0)) :-
+%   sh(Shared, Impure, RawKeys, Share, Settled, Threads): RawKeys, the
+%   untimed copies of this step's observations; Share false: only the
+%   observations are shared; Settled: how many steps were settled
+%   (step_particles/8); Threads: the groups a step is split into.
+new_shared(Share, K, sh(Shared, Impure, [], Share, 0, K)) :-
     store_new(Shared),
     store_new(Impure).
 
@@ -126,7 +146,7 @@ filter_size(F, N) :-
 %   values held by the particles themselves (summed over particles), K
 %   steps in which the particles agreed on everything new (computed once).
 filter_statistics(F, [particles(N), time(T), shared(S), own(O), settled_steps(K)]) :-
-    filter_state(F, filter(_, N, T, Ws, _, _, sh(Shared, _, _, _, K))),
+    filter_state(F, filter(_, N, T, Ws, _, _, sh(Shared, _, _, _, K, _))),
     store_size(Shared, S),
     aggregate_all(sum(C), ( between(1, N, I), arg(I, Ws, W), arg(1, W, St), store_size(St, C) ), O).
 
@@ -167,7 +187,7 @@ filter_step(F, Obs, Acts, LogWs) :-
 %   (an object seen again is where it was seen, whatever each particle had
 %   believed) moves to the shared store, so that what is computed from it
 %   next can be shared again.
-share_agreed(Ws, N, sh(Shared, Impure, _, true, _), T) :-
+share_agreed(Ws, N, sh(Shared, Impure, _, true, _, _), T) :-
     !,
     findall(K, ( store_match(Impure, K, _), own_key_at(K, T) ), Ks),
     arg(1, Ws, W1),
@@ -201,24 +221,144 @@ agreed(I, N, Ws, K, V) :-
 %   atom of t+1 shared), every other particle's step would only find the
 %   same shared values: each gets the first one's weight and is only moved
 %   to t+1 (a frame in which the particles agree costs next to nothing).
+%   Else the others are stepped in groups (step_groups/9).
 step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs]) :-
     arg(1, Ws, W1),
     nb_setarg(13, W1, true),
     step_particle(W1, T1, Keys, Facts, Sh, LW1),
-    (   settled(M, Sh, T1, Keys)
-    ->  arg(5, Sh, K0),
-        K is K0+1,
-        nb_setarg(5, Sh, K),
+    arg(6, Sh, K),
+    group_seeds(K, Seeds),              % drawn in any case: the draws after
+    (   settled(M, Sh, T1, Keys)        % do not depend on settling
+    ->  arg(5, Sh, S0),
+        S is S0+1,
+        nb_setarg(5, Sh, S),
         arg(7, W1, DX),
         findall(LW1, ( between(2, N, I), arg(I, Ws, W),
                        settled_step(W, T1, Facts, LW1, DX) ), LWs)
-    ;   findall(LW, ( between(2, N, I), arg(I, Ws, W),
-                      ( I =< 20 -> Check = true ; Check = false ),
-                      nb_setarg(13, W, Check),
-                      step_particle(W, T1, Keys, Facts, Sh, LW) ), LWs)
+    ;   step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs)
     ).
 
-settled(M, sh(Shared, _, _, true, _), T1, Keys) :-
+%   group_seeds(+K, -Seeds): a seed for each group but the first (which
+%   goes on with the filter's own random stream).
+group_seeds(K, Seeds) :-
+    K1 is K-1,
+    length(Seeds, K1),
+    maplist(random_seed, Seeds).
+
+random_seed(S) :-
+    random_between(0, 0x3fffffffffffffff, S).
+
+%   step_groups(+Seeds, +Ws, +N, +M, +T1, +Keys, +Facts, +Sh, -LogWs):
+%   particles 2..N in 1 + length(Seeds) contiguous groups.  The first
+%   group is stepped here, each other one by a thread of its own on a copy
+%   of its particles and of the shared values, from its seed; then their
+%   particles replace the copies' originals and their shared values join
+%   this thread's (merge_shared/4).  An error in any group is raised here
+%   after all threads have ended; the step then changes nothing.
+step_groups([], Ws, N, M, T1, Keys, Facts, Sh, LWs) :-
+    !,
+    step_range(2, N, Ws, M, T1, Keys, Facts, Sh, LWs).
+step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs) :-
+    length(Seeds, K1),
+    K is K1+1,
+    group_bounds(2, N, K, [Lo-Hi|Others]),
+    message_queue_create(Q),
+    setup_call_cleanup(
+        maplist(start_group(Q, Ws, T1, Keys, Facts, Sh), Seeds, Others, Ids),
+        (   catch(step_range(Lo, Hi, Ws, M, T1, Keys, Facts, Sh, LWs0), E, true),
+            maplist(group_result(Q), Ids, Results)
+        ),
+        (   maplist(thread_join, Ids),
+            message_queue_destroy(Q)
+        )),
+    (   nonvar(E) -> throw(E) ; true ),
+    maplist(join_group(Ws, Sh), Others, Results, GLWss),
+    append([LWs0|GLWss], LWs).
+
+%   group_bounds(+From, +To, +K, -Bounds): From..To in K contiguous groups
+%   Lo-Hi of sizes differing by at most one (empty ones left out).
+group_bounds(From, To, K, Bounds) :-
+    Size is To-From+1,
+    findall(Lo-Hi,
+            ( between(0, K, G0), G0 < K,
+              Lo is From + (Size*G0) // K,
+              Hi is From + (Size*(G0+1)) // K - 1,
+              Hi >= Lo ),
+            Bounds).
+
+start_group(Q, Ws, T1, Keys, Facts, Sh, Seed, Lo-Hi, Id) :-
+    findall(W, ( between(Lo, Hi, I), arg(I, Ws, W) ), L),
+    GWs =.. [ws|L],
+    thread_create(group_worker(Q, Seed, Lo, GWs, T1, Keys, Facts, Sh), Id, []).
+
+%   In its own thread: steps a copy of particles Lo.. (GWs) and sends back
+%   the stepped particles, their log weights and the shared values.
+group_worker(Q, Seed, Lo, GWs, T1, Keys, Facts, Sh) :-
+    thread_self(Me),
+    functor(GWs, _, Len),
+    catch(( set_random(seed(Seed)),
+            with_shared(step_range_at(1, Len, Lo, GWs, T1, Keys, Facts, Sh, LWs)),
+            Out = done(GWs, Sh, LWs)
+          ), E, Out = error(E)),
+    thread_send_message(Q, Me-Out).
+
+group_result(Q, Id, Out) :-
+    thread_get_message(Q, Id-Out).
+
+join_group(Ws, Sh, Lo-_, done(GWs, GSh, GLWs), GLWs) :-
+    !,
+    functor(GWs, _, Len),
+    forall(between(1, Len, J),
+           ( I is Lo+J-1, arg(J, GWs, W), nb_linkarg(I, Ws, W) )),
+    merge_shared(Sh, GSh, Ws, Lo-Len).
+join_group(_, _, _, error(E), _) :-
+    throw(E).
+
+%   merge_shared(+Sh, +GSh, +Ws, +Lo-Len): the values a group computed
+%   once for its particles join Sh, and the keys it holds per particle
+%   join Sh's impure keys.  A value one side shared and the other computed
+%   per particle (possible only when the particles' own values differed in
+%   which keys they hold) goes, on the sharing side, into every particle's
+%   own store, and stays out of the shared store.
+merge_shared(Sh, GSh, Ws, Lo-Len) :-
+    Sh = sh(Shared, Impure, _, _, _, _),
+    GSh = sh(GShared, GImpure, _, _, _, _),
+    Hi is Lo+Len-1,
+    forall(( store_match(GShared, K, V), \+ store_get(Shared, K, _) ),
+           (   store_get(Impure, K, _)
+           ->  own_copies(Ws, Lo, Hi, K, V)
+           ;   store_put(Shared, K, V)
+           )),
+    forall(( store_match(GImpure, K, _), \+ store_get(Impure, K, _) ),
+           (   store_get(Shared, K, V)
+           ->  store_delete(Shared, K),
+               functor(Ws, _, N),
+               forall(( between(1, N, I), ( I < Lo ; I > Hi ) ), own_copy(Ws, I, K, V)),
+               store_put(Impure, K, true)
+           ;   store_put(Impure, K, true)
+           )).
+
+own_copies(Ws, Lo, Hi, K, V) :-
+    forall(between(Lo, Hi, I), own_copy(Ws, I, K, V)).
+
+own_copy(Ws, I, K, V) :-
+    arg(I, Ws, W),
+    arg(1, W, S),
+    (   store_get(S, K, _) -> true ; store_put(S, K, V) ).
+
+%   step_range(+Lo, +Hi, +Ws, ...): steps particles Lo..Hi of Ws; the first
+%   20 particles of the filter check for overlapping clauses.
+step_range(Lo, Hi, Ws, _, T1, Keys, Facts, Sh, LWs) :-
+    step_range_at(Lo, Hi, 1, Ws, T1, Keys, Facts, Sh, LWs).
+
+%   (First: the filter's index of Ws's particle 1.)
+step_range_at(Lo, Hi, First, Ws, T1, Keys, Facts, Sh, LWs) :-
+    findall(LW, ( between(Lo, Hi, I), arg(I, Ws, W),
+                  ( I+First =< 21 -> Check = true ; Check = false ),
+                  nb_setarg(13, W, Check),
+                  step_particle(W, T1, Keys, Facts, Sh, LW) ), LWs).
+
+settled(M, sh(Shared, _, _, true, _, _), T1, Keys) :-
     forall(member(k(X, T, _, _), Keys),
            store_get(Shared, '$w'(X, T), w(_, _))),
     forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T1), \+ X = observation(_) ),
@@ -244,7 +384,7 @@ settled_step(W, T1, Facts, LW, DX) :-
 %   raw (the original's bodies read observation(x) ~= V untimed), unless
 %   the untimed variable has a value already; both go at the next step.
 record_observations(Sh, T, Keys) :-
-    Sh = sh(Shared, Impure, Raw0, _, _),
+    Sh = sh(Shared, Impure, Raw0, _, _, _),
     store_prune(Shared, T, Raw0),
     store_prune(Impure, T, []),
     foldl(record_observation(Shared), Keys, [], Raw),

@@ -37,8 +37,9 @@ def test_filter_table_prints_the_queried_probability_per_step(
     assert "1 steps, 800 particles" in err
 
 
+@pytest.mark.parametrize("threads", ["1", "3"])
 def test_filter_json_lines_with_structured_observations(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], threads: str
 ) -> None:
     frames = tmp_path / "pits.jsonl"
     lines = [
@@ -51,6 +52,7 @@ def test_filter_json_lines_with_structured_observations(
     ]
     frames.write_text("\n".join(json.dumps(line) for line in lines) + "\n\n")
     status = main(["filter", str(PIT_WORLD), str(frames), "--particles", "1000", "--seed", "1",
+                   "--threads", threads,
                    "--query", "maze(1,1):t ~= free", "--distribution", "maze(2,0):t", "--json"])
     out, err = capsys.readouterr()
     assert status == 0, err

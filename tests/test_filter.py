@@ -95,14 +95,15 @@ def kalman(ys: list[float], m: float = 0.0, p: float = 1.0, q: float = 0.5, r: f
     return out
 
 
-def test_random_walk_matches_the_kalman_filter_for_20_steps() -> None:
+@pytest.mark.parametrize("threads", [1, 2])
+def test_random_walk_matches_the_kalman_filter_for_20_steps(threads: int) -> None:
     rng = np.random.default_rng(2024)
     x, ys = rng.normal(0.0, 1.0), []
     for _ in range(20):
         x += rng.normal(0.0, math.sqrt(0.5))
         ys.append(float(x + rng.normal(0.0, 1.0)))
     n = 1000
-    with Filter(RANDOM_WALK, particles=n, seed=3) as f:
+    with Filter(RANDOM_WALK, particles=n, seed=3, threads=threads) as f:
         for step, (y, (m, p)) in enumerate(zip(ys, kalman(ys), strict=True), start=1):
             result = f.step([terms.observation("y", y)])
             mean, var = f.mean("x:t")
@@ -168,20 +169,37 @@ OFFSET_GOAL = ("pos(ball_1):t ~= (X,Y,Z), pos(box_1):t ~= (A,B,C), "
 # determinism, zero-weight frames, bad input
 
 
-def run_random_walk(seed: int) -> tuple[np.ndarray, np.ndarray, float]:
-    with Filter(RANDOM_WALK, particles=300, seed=seed) as f:
+def run_random_walk(seed: int, threads: int = 2) -> tuple[np.ndarray, np.ndarray, float]:
+    with Filter(RANDOM_WALK, particles=300, seed=seed, threads=threads) as f:
         for y in [0.3, -0.2, 1.1, 0.7, 2.0]:
             f.step([f"observation(y) ~= {y}"])
         values, weights = f.samples("x:t")
         return values, weights, f.log_likelihood
 
 
-def test_same_seed_same_particles_bit_for_bit() -> None:
-    a, b, c = run_random_walk(17), run_random_walk(17), run_random_walk(18)
+@pytest.mark.parametrize("threads", [1, 2, 3])
+def test_same_seed_same_particles_bit_for_bit(threads: int) -> None:
+    a, b = run_random_walk(17, threads), run_random_walk(17, threads)
+    c = run_random_walk(18, threads)
     assert a[0].tobytes() == b[0].tobytes()
     assert a[1].tobytes() == b[1].tobytes()
     assert a[2] == b[2]
     assert a[0].tobytes() != c[0].tobytes()
+    # the groups draw from streams of their own: another thread count, other particles
+    other = run_random_walk(17, threads % 3 + 1)
+    assert a[0].tobytes() != other[0].tobytes()
+
+
+def test_a_value_none_is_not_a_missing_value(tmp_path: Path) -> None:
+    program = tmp_path / "none.pl"
+    program.write_text("x:0 ~ uniform([none, some]) := true.\n"
+                       "y:0 ~ val(1) := x:0 ~= some.\n")
+    with Filter(program, particles=200, seed=5) as f:
+        dist = dict((v, p) for p, v in f.distribution("x:t"))
+        assert set(dist) == {"none", "some"} and sum(dist.values()) == pytest.approx(1.0)
+        xs = f.values("X", "x:t ~= X")
+        ys = f.values("Y", "y:t ~= Y")
+        assert [y is None for y in ys] == [x == "none" for x in xs]
 
 
 def test_every_particle_weight_zero_keeps_the_pre_step_particles() -> None:

@@ -31,10 +31,11 @@ def test_ddc_program_and_numpy_filter_agree_on_the_occluder_choice(tmp_path: Pat
         ess = f.last_step.ess
         ref_w = np.exp(reference.log_weights)
         ref_ess = 1 / float(ref_w @ ref_w)
-        # o2 hides under the box o1, or under o3 when o3 happens to be above it in that particle
+        # o2 hides under the box o1, or under o3 when o3 happens to be above it in that particle,
+        # or (rarely: where o2 drifted above both) under nothing
         dist = {v: p for p, v in f.distribution("hidden_under(o2):t")}
-        assert set(dist) <= {"o1", "o3"} and math.isclose(sum(dist.values()), 1.0)
-        for h, name in [(0, "o1"), (2, "o3")]:
+        assert set(dist) <= {"o1", "o3", "none"} and math.isclose(sum(dist.values()), 1.0)
+        for h, name in [(0, "o1"), (2, "o3"), (-1, "none")]:
             p_ref = reference.occluded_by(1, h)
             p = dist.get(name, 0.0)
             var = max(p_ref * (1 - p_ref), 1e-3)

@@ -19,7 +19,8 @@ text is parsed on the Prolog side with ``term_string/3`` in the operator context
 ``ddc`` and must be ground. Values read back from particles (``values``, ``distribution``,
 ``samples``, ``mean``) map Prolog -> Python as: numbers -> ``int``/``float``; atoms and strings
 -> ``str``; comma terms ``(A,B,C)`` -> ``tuple``; lists -> ``list``; any other compound -> its
-text (``"pos(ball_1)"``); a particle in which the goal has no solution -> ``None``.
+text (``"pos(ball_1)"``); a particle in which the goal has no solution -> ``None`` (the atom
+``none`` is the string ``"none"``, a value like any other).
 
 Zero-weight frames: if every particle's weight becomes 0 (log weight -inf or NaN) the filter does
 not die. It warns (:class:`ZeroWeightWarning` and ``logging``), counts the event in
@@ -192,8 +193,9 @@ parse_goal(Text, Goal) :-
     catch(term_string(Goal, Text, [module(ddc)]), E,
           ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(goal, "", Text, Msg)) )).
 
-new(Program, N, Seed, Share, Key, Err) :-
-    guarded(( ddc:filter_new(Program, N, Seed, [share(Share)], F), nb_setval(Key, F) ), Err).
+new(Program, N, Seed, Share, Threads, Key, Err) :-
+    guarded(( ddc:filter_new(Program, N, Seed, [share(Share), threads(Threads)], F),
+              nb_setval(Key, F) ), Err).
 
 step(Key, ObsTexts, ActTexts, LW, Err) :-
     guarded(( filter_of(Key, F),
@@ -216,14 +218,18 @@ holds(Key, GoalText, Flags, Err) :-
             Err),
     ( var(Flags) -> Flags = [] ; true ).
 
+%   (The template is wrapped: filter_values/4 gives the atom none for a
+%   particle without a solution, which must not be taken for a value none.)
 values(Key, PairText, Values, Err) :-
     guarded(( filter_of(Key, F), parse_goal(PairText, ddc_bridge_pair(Template, Goal)),
-              ddc:filter_values(F, Template, Goal, Values0),
-              maplist(py_value, Values0, Values) ), Err),
+              ddc:filter_values(F, value(Template), Goal, Values0),
+              maplist(py_solution, Values0, Values) ), Err),
     ( var(Values) -> Values = [] ; true ).
 
+py_solution(none, @(none)).
+py_solution(value(V), P) :- py_value(V, P).
+
 py_value(V, "_") :- var(V), !.
-py_value(none, @(none)) :- !.
 py_value(V, V) :- number(V), !.
 py_value(V, V) :- atom(V), !.
 py_value(V, V) :- string(V), !.
@@ -296,11 +302,19 @@ class Filter:
         resample_threshold: float = 0.9,
         resampling: Resampling = "systematic",
         share: bool = True,
+        threads: int = 2,
     ) -> None:
         """``share=False`` computes every value in every particle (see "Shared values" in
-        ``prolog/ddc.pl``): the same particles, bit for bit, only slower; for comparison."""
+        ``prolog/ddc.pl``): the same particles, bit for bit, only slower; for comparison.
+
+        ``threads``: a step's particles (after the first) are split into that many groups,
+        stepped at the same time by Prolog threads, each with its own random stream seeded from
+        the filter's (``filter_new/5``'s ``threads`` option). The particles depend on ``seed``
+        and ``threads``, not on the machine; ``threads=1`` steps them one after the other."""
         if int(particles) < 1:
             raise ValueError(f"particles must be >= 1, got {particles}")
+        if int(threads) < 1:
+            raise ValueError(f"threads must be >= 1, got {threads}")
         if not 0.0 <= float(resample_threshold) <= 1.0:
             raise ValueError(f"resample_threshold must be in [0, 1], got {resample_threshold}")
         if resampling not in RESAMPLERS:
@@ -316,6 +330,7 @@ class Filter:
         self.resample_threshold = float(resample_threshold)
         self.resampling: Resampling = resampling
         self.share = bool(share)
+        self.threads = int(threads)
         self._rng = np.random.default_rng(self.seed)
         self._log_weights = np.full(self.particles, -math.log(self.particles))
         self.log_likelihood = 0.0
@@ -329,9 +344,9 @@ class Filter:
         _ensure_engine()
         key = f"ddc_filter_{os.getpid()}_{next(_keys)}"
         result = _call(
-            "new(P, N, S, Sh, K, Err)",
+            "new(P, N, S, Sh, Th, K, Err)",
             {"P": str(self.program_path), "N": self.particles, "S": self.seed,
-             "Sh": "true" if self.share else "false", "K": key},
+             "Sh": "true" if self.share else "false", "Th": self.threads, "K": key},
         )
         if result["Err"]:
             error = str(result["Err"])  # usually "file:line: cause" already

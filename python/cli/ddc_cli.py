@@ -216,7 +216,8 @@ def run_filter(args: argparse.Namespace) -> int:
     frames = list(read_frames(observations))  # a bad line fails before any work is done
     try:
         f = Filter(program, particles=args.particles, seed=args.seed,
-                   resample_threshold=args.threshold, resampling=args.resampling)
+                   resample_threshold=args.threshold, resampling=args.resampling,
+                   threads=args.threads)
     except FilterError as exc:
         raise CliError(str(exc)) from None
     printer: _JsonPrinter | _TablePrinter = (
@@ -318,6 +319,9 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("observations", help="JSON Lines, one step per line")
     f.add_argument("--particles", type=_positive_int, default=1000)
     f.add_argument("--seed", type=int, default=0)
+    f.add_argument("--threads", type=_positive_int, default=2,
+                   help="Prolog threads that step the particles (default 2; the particles "
+                        "depend on the seed and this number)")
     f.add_argument("--query", action="append", default=[], metavar="GOAL",
                    help="a goal whose probability is printed after each step (repeatable)")
     f.add_argument("--distribution", action="append", default=[], metavar="TERM",

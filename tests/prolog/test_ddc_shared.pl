@@ -41,11 +41,11 @@ step(F, Seen) :-
     filter_step(F, Obs, [object(box), object(ball)], LW),
     nb_setval(test_ddc_shared_lw, LW).
 
-%   run(+Share, -Trace): log weights and particle values after every step,
+%   run(+Options, -Trace): log weights and particle values after every step,
 %   resampling (a fixed, uneven choice) after every other one.
-run(Share, Trace) :-
+run(Options, Trace) :-
     program(File),
-    filter_new(File, 40, 11, [share(Share)], F),
+    filter_new(File, 40, 11, Options, F),
     frames(Frames),
     findall(LW-Vs, ( nth1(K, Frames, Seen),
                      step(F, Seen), nb_getval(test_ddc_shared_lw, LW),
@@ -65,8 +65,8 @@ own_entries(F, O) :-
 :- begin_tests(ddc_shared).
 
 test(sharing_changes_no_particle) :-
-    run(true, Shared),
-    run(false, Unshared),
+    run([share(true)], Shared),
+    run([share(false)], Unshared),
     Shared == Unshared,
     %   and the run did something: while hidden, the ball was believed under
     %   the box in some particles and not in others
@@ -124,6 +124,68 @@ test(undo_restores_shared_values) :-
     St1 == St2,
     filter_values(F, P2, pos(box):t ~= P2, After),
     Before == After,
+    filter_free(F).
+
+%   Threads: particles 2..N split into groups stepped by threads of their
+%   own, each with its own random stream; their particles and shared values
+%   are joined back.
+test(sharing_changes_no_particle_in_threads) :-
+    run([share(true), threads(3)], Shared),
+    run([share(false), threads(3)], Unshared),
+    Shared == Unshared,
+    nth1(4, Shared, _-Vs), memberchk(_-box, Vs), memberchk(_-none, Vs).
+
+test(threads_are_deterministic) :-
+    run([threads(2)], A),
+    run([threads(2)], B),
+    A == B.
+
+test(every_group_steps_its_particles) :-
+    run([threads(3)], Trace),
+    run([threads(1)], Trace1),
+    Trace \== Trace1,              % other random streams
+    nth1(4, Trace, LW-Vs),          % the ball hidden: a value in every particle
+    length(LW, 40), length(Vs, 40),
+    forall(member(P-_, Vs), number(P)),
+    %   the groups (2..14, 15..27, 28..40) drew from different streams
+    nth1(3, Vs, P3-_), nth1(16, Vs, P16-_), nth1(29, Vs, P29-_),
+    P3 =\= P16, P16 =\= P29, P3 =\= P29.
+
+%   An error in a group stops the step and the filter is as before it.  The
+%   observation has no clause where pick is b; with this seed the first 20
+%   particles (the first and the calling thread's group) all have a, so the
+%   error is raised in the other thread's group (particles 21..40).
+test(an_error_in_another_thread_changes_nothing) :-
+    tmp_file_stream(text, File, S),
+    forall(member(L, [ 'pick:0 ~ finite([0.97:a, 0.03:b]) := true.',
+                       'pick:t+1 ~ val(P) := pick:t ~= P.',
+                       'observation(x):t+1 ~ gaussian(0, 1) := pick:t ~= a.' ]),
+           format(S, "~w~n", [L])),
+    close(S),
+    filter_new(File, 40, 2, [threads(2)], F),
+    filter_values(F, P, pick:t ~= P, Before),
+    length(First, 20), append(First, Others, Before),
+    forall(member(X, First), X == a), memberchk(b, Others),
+    catch(filter_step(F, [observation(x) ~= 0.5], [], _), E, true),
+    nonvar(E), E = error(ddc(no_observation_clause(_), _), _),
+    filter_time(F, 0),
+    filter_values(F, P2, pick:t ~= P2, After),
+    Before == After,
+    filter_step(F, [], [], _),      % and it goes on
+    filter_time(F, 1),
+    filter_free(F).
+
+test(grouped_shared_values_are_joined) :-
+    program(File),
+    filter_new(File, 30, 3, [threads(2)], F),
+    frames([S1, S2, S3|_]),
+    step(F, S1), step(F, S2),
+    own_entries(F, 0),              % settled: nothing split
+    step(F, S3),                    % the ball vanishes: split into groups
+    filter_statistics(F, Stats), memberchk(shared(Sh), Stats), Sh > 0,
+    own_entries(F, O), O >= 30,
+    filter_values(F, P, pos(box):t ~= P, Ps),
+    sort(Ps, [_]),                  % the box, shared, the same in every group
     filter_free(F).
 
 :- end_tests(ddc_shared).
