@@ -92,16 +92,18 @@ lowered_over(O, A):t+1 :=
     ).
 
 % Each particle picks uniformly among the choices (the paper's sample_occluder, plus
-% `behind`).
+% `behind`).  (In these bodies and in pos/1's, the goals every particle agrees on, such as
+% seen(A):t, come before those a particle holds on its own, such as occluded_by(A, _):t:
+% the same answers, fewer proofs per particle.)
 pick_occluder(A):t+1 ~ uniform(Os) :=
-    hidden(A):t+1, \+ occluded_by(A, _):t, lost_anywhere(A):t,
+    hidden(A):t+1, lost_anywhere(A):t, \+ occluded_by(A, _):t,
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
 pick_occluder(A):t+1 ~ uniform(Os) :=
-    hidden(A):t+1, \+ occluded_by(A, _):t, seen(A):t,
+    hidden(A):t+1, seen(A):t, \+ occluded_by(A, _):t,
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \== [],
     Os = [behind | Os1].
 pick_occluder(A):t+1 ~ uniform(Os) :=
-    hidden(A):t+1, \+ occluded_by(A, _):t, \+ seen(A):t, \+ lost_anywhere(A):t,
+    hidden(A):t+1, \+ seen(A):t, \+ lost_anywhere(A):t, \+ occluded_by(A, _):t,
     findall_forward(O, lowered_over(O, A):t+1, Os0), sort(Os0, Os), Os \== [].
 
 occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
@@ -146,11 +148,6 @@ pos(A):t+1 ~ val((MX, MY, MZ)) :=
 % agree again).
 pos(A):t+1 ~ val((X, Y, Z)) :=
     observed(A), \+ seen(A):t, pos(A):t ~= _, observation(pos(A)) ~= (X, Y, Z).
-% Hidden under an occluder that has just been picked: under it, at the object's own height.
-pos(A):t+1 ~ gaussian([XO, YO, Z], C) :=
-    hidden(A):t+1, occluded_by(A, O):t+1, \+ occluded_by(A, O):t,
-    pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (_, _, Z),
-    follow_var(V), diagonal(V, C).
 % Hidden under the same occluder as before: moves with it (in the table plane; a carrier
 % such as a hand also lifts it).  Its offset from the occluder's centre is kept with
 % follow_keep and jittered with follow_var, so the belief settles within the occluder's
@@ -158,11 +155,16 @@ pos(A):t+1 ~ gaussian([XO, YO, Z], C) :=
 % further off frame after frame; its height hardly jitters (an object under a container stays
 % on the table).
 pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
-    hidden(A):t+1, occluded_by(A, O):t+1, occluded_by(A, O):t,
+    hidden(A):t+1, occluded_by(A, O):t, occluded_by(A, O):t+1,
     pos(O):t ~= (X0, Y0, Z0), pos(O):t+1 ~= (X1, Y1, Z1), pos(A):t ~= (X, Y, Z),
     follow_keep(K), MX is X1 + K*(X - X0), MY is Y1 + K*(Y - Y0),
     (   category(O, CO), carrier(CO) -> MZ is Z + Z1 - Z0 ; MZ = Z ),
     follow_var(V), VZ is V / 100.
+% Hidden under an occluder that has just been picked: under it, at the object's own height.
+pos(A):t+1 ~ gaussian([XO, YO, Z], C) :=
+    hidden(A):t+1, occluded_by(A, O):t+1, \+ occluded_by(A, O):t,
+    pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (_, _, Z),
+    follow_var(V), diagonal(V, C).
 % Hidden under nothing (behind something, or left on the table): it may be moved while unseen
 % (a mug carried behind a box, a container swapped while merged with another in the image).
 % It coasts on with the velocity it had when it vanished, slowing down (coast_keep per frame,
