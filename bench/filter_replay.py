@@ -57,10 +57,11 @@ def kind(frame: Frame) -> str:
     return "all perceived" if observed == objects else "some hidden"
 
 
-def replay(frames: list[Frame], particles: int, seed: int,
-           share: bool) -> tuple[list[float], float]:
+def replay(frames: list[Frame], particles: int, seed: int, share: bool,
+           threads: int) -> tuple[list[float], float]:
     """Prolog milliseconds per step, and the final log-likelihood."""
-    with Filter(DEFAULT_THEORY, particles=particles, seed=seed, share=share) as f:
+    with Filter(DEFAULT_THEORY, particles=particles, seed=seed, share=share,
+                threads=threads) as f:
         for observations, facts in frames:
             f.step(observations, actions=facts)
         return [1000 * s for s in f.step_prolog_seconds], f.log_likelihood
@@ -72,15 +73,18 @@ def main(argv: list[str] | None = None) -> int:
                         default=HERE.parent / "scenarios" / "shell_game.yaml")
     parser.add_argument("--particles", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--threads", type=int, default=2,
+                        help="Prolog threads stepping the particles (default 2, as bridge.Filter)")
     args = parser.parse_args(argv)
 
     frames = record_frames(args.scenario, args.seed)
     kinds = [kind(frame) for frame in frames]
     print(f"{args.scenario.name}: {len(frames)} frames "
           + ", ".join(f"{k} {kinds.count(k)}" for k in sorted(set(kinds))), flush=True)
-    shared, shared_ll = replay(frames, args.particles, args.seed, share=True)
-    unshared, unshared_ll = replay(frames, args.particles, args.seed, share=False)
-    print(f"N = {args.particles}: ms per step   {'shared':>8} {'unshared':>9} {'ratio':>6}")
+    shared, shared_ll = replay(frames, args.particles, args.seed, True, args.threads)
+    unshared, unshared_ll = replay(frames, args.particles, args.seed, False, args.threads)
+    print(f"N = {args.particles}, {args.threads} thread(s): ms per step"
+          f"   {'shared':>8} {'unshared':>9} {'ratio':>6}")
     rows = [("all frames", list(range(len(frames))))]
     rows += [(k, [i for i, x in enumerate(kinds) if x == k]) for k in sorted(set(kinds))]
     for label, index in rows:

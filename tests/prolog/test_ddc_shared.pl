@@ -188,4 +188,35 @@ test(grouped_shared_values_are_joined) :-
     sort(Ps, [_]),                  % the box, shared, the same in every group
     filter_free(F).
 
+%   Joining a group's shared values (ddc:merge_shared/4): new shared values
+%   join, new per-particle keys join the impure keys, and a value one side
+%   shared while the other held it per particle ends up in every particle of
+%   the sharing side instead (a defensive case: with both sides starting from
+%   the same shared values it should not arise).
+test(joining_a_group_keeps_each_value_where_it_is_read) :-
+    maplist(ddc_store:store_new, [Sh1, Im1, Sh2, Im2]),
+    ddc_store:store_put(Sh1, a-1, 1.0),          % shared here, per particle there
+    ddc_store:store_put(Im1, b-1, true),         % per particle here, shared there
+    ddc_store:store_put(Sh2, b-1, 2.0),
+    ddc_store:store_put(Im2, a-1, true),
+    ddc_store:store_put(Sh2, c-1, 3.0),          % new, shared there
+    ddc_store:store_put(Im2, d-1, true),         % new, per particle there
+    findall(w(S), ( between(1, 4, _), ddc_store:store_new(S) ), L),
+    Ws =.. [ws|L],
+    arg(1, Ws, w(S1)), ddc_store:store_put(S1, b-1, 9.0),
+    arg(4, Ws, w(S4)), ddc_store:store_put(S4, a-1, 7.0),
+    Sh = sh(Sh1, Im1, [], true, 0, 2),
+    ddc:merge_shared(Sh, sh(Sh2, Im2, [], true, 0, 2), Ws, 3-2),
+    ddc_store:store_get(Sh1, c-1, 3.0),
+    \+ ddc_store:store_get(Sh1, a-1, _), ddc_store:store_get(Im1, a-1, _),
+    \+ ddc_store:store_get(Sh1, b-1, _),
+    ddc_store:store_get(Im1, d-1, _),
+    %   a: shared on this side (particles 1, 2), now their own; particle 4
+    %   keeps its own value
+    findall(V, ( between(1, 4, I), arg(I, Ws, w(S)),
+                 ( ddc_store:store_get(S, a-1, V) -> true ; V = none ) ), [1.0, 1.0, none, 7.0]),
+    %   b: shared by the group (particles 3, 4), now their own
+    findall(V, ( between(1, 4, I), arg(I, Ws, w(S)),
+                 ( ddc_store:store_get(S, b-1, V) -> true ; V = none ) ), [9.0, none, 2.0, 2.0]).
+
 :- end_tests(ddc_shared).
