@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import yaml
@@ -44,11 +45,11 @@ def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypat
 
     calls: list[tuple[str, int]] = []
 
-    def fake_unit(label, scenario, seed, methods, particles, cache):
+    def fake_unit(label, scenario, seed, methods, particles, cache, threads):
         calls.append((scenario.stem, seed))
         kept = seed % 2 == 0
         return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": m,
-                 "particles": particles,
+                 "particles": particles, "threads": threads,
                  "summary": {"objects": [{"id": "ball_1", "symbols": ["ball-1"],
                                           "identity_kept": kept}],
                              "id_switches": 0, "idf1": 1.0}}
@@ -72,3 +73,17 @@ def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypat
     options.particles = 100                # another particle count: everything runs again
     experiment.run_experiment(options)
     assert calls == [("transitive", 0), ("transitive", 1), ("transitive", 2)]
+
+    calls.clear()
+    options.threads = 1                    # another thread count (other random streams): too
+    experiment.run_experiment(options)
+    assert calls == [("transitive", 0), ("transitive", 1), ("transitive", 2)]
+
+    # lines recorded before the thread count was (no "threads") were made with one thread
+    log = tmp_path / "summaries.jsonl"
+    lines = experiment.read_summaries(log)
+    log.write_text("".join(json.dumps({k: v for k, v in line.items() if k != "threads"}) + "\n"
+                           for line in lines if line.get("threads") == 1))
+    calls.clear()
+    experiment.run_experiment(options)
+    assert calls == []

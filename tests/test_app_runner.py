@@ -83,6 +83,7 @@ def test_outputs_summary_pictures_gif_and_world(reasoning_run) -> None:
         assert key in summary
     assert set(summary["ms_per_frame"]) >= {"perception", "anchoring", "filter", "total"}
     assert summary["frames"] == len(reasoning_run.records)
+    assert (summary["particles"], summary["threads"]) == (60, 2)  # the filter's, as run
     assert reasoning_run.gif is not None and reasoning_run.gif.stat().st_size > 0
     assert len(list((out / "frames").glob("*.png"))) == len(reasoning_run.pictures) > 0
     # the world file answers questions in swipl through prolog/world.pl

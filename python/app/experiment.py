@@ -39,6 +39,7 @@ class ExperimentOptions:
     scenarios: Sequence[str] = SHIPPED
     first_game_seed: int = 0
     jobs: int = 1
+    threads: int = 2  # Prolog threads per filter (part of the seed: the particles depend on it)
 
 
 def game_scenarios(out: Path, games: int, first_seed: int = 0) -> list[Path]:
@@ -71,22 +72,25 @@ def percept_stream(scenario: Path, seed: int, cache: Path) -> Path:
     return path
 
 
-def run_method(method: str, stream: Path, particles: int, seed: int) -> dict[str, Any]:
+def run_method(method: str, stream: Path, particles: int, seed: int,
+               threads: int = 2) -> dict[str, Any]:
     """One method on one percept stream -> its summary."""
     if method in ("reasoning", "no-reasoning"):
         output = run(RunOptions(percepts=stream, particles=particles, seed=seed,
-                                reasoning=method == "reasoning", progress=False))
+                                reasoning=method == "reasoning", progress=False,
+                                threads=threads))
         return output.summary
     records = run_baseline(method, list(read_percepts(stream)))
     return make_summary(records, evaluate(records), extra={"method": method})
 
 
 def run_unit(label: str, scenario: Path, seed: int, methods: Sequence[str], particles: int,
-             cache: Path) -> list[dict[str, Any]]:
+             cache: Path, threads: int = 2) -> list[dict[str, Any]]:
     """Every method on one (scenario, seed): the lines of ``summaries.jsonl``."""
     stream = percept_stream(scenario, seed, cache)
     return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": method,
-             "particles": particles, "summary": run_method(method, stream, particles, seed)}
+             "particles": particles, "threads": threads,
+             "summary": run_method(method, stream, particles, seed, threads)}
             for method in methods]
 
 
@@ -102,8 +106,9 @@ def run_experiment(options: ExperimentOptions,
                    progress: Callable[[str], None] | None = None) -> str:
     """Run everything, write ``OUT/summaries.jsonl`` and ``OUT/results.md``; return the table.
 
-    Units already complete in ``OUT/summaries.jsonl`` with the same particle count are kept,
-    not run again; the table covers exactly the units of ``options``."""
+    Units already complete in ``OUT/summaries.jsonl`` with the same particle and thread counts
+    are kept, not run again (lines without a thread count were made with one thread); the table
+    covers exactly the units of ``options``."""
     out = options.out
     out.mkdir(parents=True, exist_ok=True)
     units: list[tuple[str, Path, int]] = []
@@ -118,6 +123,7 @@ def run_experiment(options: ExperimentOptions,
         (line["scenario"], line["seed"], line["method"]): line
         for line in read_summaries(log_path)
         if line.get("particles", options.particles) == options.particles
+        and line.get("threads", 1) == options.threads
     }
     todo = [unit for unit in units
             if any((unit[1].stem, unit[2], m) not in done for m in options.methods)]
@@ -132,7 +138,7 @@ def run_experiment(options: ExperimentOptions,
                          f"({len(done)} runs recorded)")
 
         args = [(label, scenario, seed, list(options.methods), options.particles,
-                 out / "percepts") for label, scenario, seed in todo]
+                 out / "percepts", options.threads) for label, scenario, seed in todo]
         if options.jobs > 1 and len(args) > 1:
             with ProcessPoolExecutor(max_workers=options.jobs) as pool:
                 for lines in pool.map(run_unit, *zip(*args, strict=True)):

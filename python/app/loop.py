@@ -30,6 +30,9 @@ class LoopConfig:
     # no longer drift. (With positions sampled per particle, resampling ran nearly every frame
     # for the perceived objects' own noise and randomly thinned the hidden ball's modes.)
     resample_threshold: float = 0.9
+    # Prolog threads that step the particles (bridge.Filter's ``threads``): the particles
+    # depend on the seed and this number, not on the machine.
+    threads: int = 2
     # Anchoring may re-identify a percept by appearance alone when it looks like exactly one
     # anchor left over (AnchorManager.reid_seconds); False switches that off, so that only
     # the matcher (and, with reasoning, the particles of hidden anchors) re-acquires.
@@ -55,7 +58,8 @@ class AnchoringLoop:
                                    else AnchorManager(reid_seconds=0))
         self.reasoner = (
             OcclusionReasoner(config.theory, particles=config.particles, seed=config.seed,
-                              resample_threshold=config.resample_threshold)
+                              resample_threshold=config.resample_threshold,
+                              threads=config.threads)
             if config.reasoning else None
         )
         self.rejected_percepts = 0

@@ -37,10 +37,10 @@ class OcclusionReasoner:
     """A particle filter over the theory of occlusion, fed with anchors frame by frame."""
 
     def __init__(self, theory: str | Path = DEFAULT_THEORY, particles: int = 1000,
-                 seed: int = 0, resample_threshold: float = 0.9) -> None:
+                 seed: int = 0, resample_threshold: float = 0.9, threads: int = 2) -> None:
         self.theory = Path(theory)
         self.filter = Filter(self.theory, particles=particles, seed=seed,
-                             resample_threshold=resample_threshold)
+                             resample_threshold=resample_threshold, threads=threads)
         self._symbols: dict[str, str] = {}  # atom -> symbol
 
     @property

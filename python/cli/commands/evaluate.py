@@ -16,6 +16,9 @@ def register(sub: Any) -> None:
     parser.add_argument("--seeds", type=int, default=20, help="seeds per shipped scenario")
     parser.add_argument("--games", type=int, default=50, help="random shell games")
     parser.add_argument("--particles", type=int, default=1000)
+    parser.add_argument("--threads", type=int, default=2,
+                        help="Prolog threads per filter (default 2; the particles depend on the "
+                             "seed and this number)")
     parser.add_argument("--methods", default=None,
                         help="comma-separated subset of reasoning,no-reasoning,sort,bytetrack,"
                              "ocsort (default all)")
@@ -38,7 +41,7 @@ def main(args: argparse.Namespace) -> int:
     table = run_experiment(
         ExperimentOptions(out=args.out, seeds=args.seeds, games=args.games,
                           particles=args.particles, methods=methods, scenarios=scenarios,
-                          jobs=args.jobs),
+                          jobs=args.jobs, threads=args.threads),
         progress=lambda msg: print(msg, flush=True),
     )
     print(table)

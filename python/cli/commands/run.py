@@ -16,6 +16,9 @@ def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> N
     parser.add_argument("--theory", type=Path, default=DEFAULT_THEORY,
                         help="theory of occlusion, a DDC program (default prolog/too.pl)")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    parser.add_argument("--threads", type=int, default=2,
+                        help="Prolog threads that step the particles (default 2; the particles "
+                             "depend on the seed and this number)")
     parser.add_argument("--resample-threshold", type=float, default=0.9,
                         help="resample when ESS < this fraction of the particles (default 0.9)")
     parser.add_argument("--out", type=Path, default=None,
@@ -48,6 +51,7 @@ def main(args: argparse.Namespace) -> int:
         scenario=args.scenario, percepts=args.percepts, particles=args.particles,
         theory=args.theory, seed=args.seed, reasoning=not args.no_reasoning,
         resample_threshold=args.resample_threshold, reidentify=not args.no_reid, out=args.out,
+        threads=args.threads,
         picture_every=args.every, progress=not args.quiet,
     ))
     print(format_summary(output.summary))
