@@ -921,7 +921,14 @@ der_dispatch_t(M, N, A, Impure, C) :-
     derived_name(N, dt1, DN1), H1 =.. [DN1|HArgs],
     derived_name(N, dt2, DN2), H2 =.. [DN2|HArgs],
     (   memberchk(t/N/A, Impure)
-    ->  (   C = (Head :- ( ground(G) -> ddc:'$memo'(W, G:T, H0) ; H0 ))
+    ->  (   %   (at a frozen time the materialised atoms are read directly: a
+            %   memo of that read would only add its own bookkeeping)
+            C = (Head :- (   ddc:'$frozen_at'(W, T)
+                         ->  ( ground(G) -> once(H0) ; H0 )
+                         ;   ground(G)
+                         ->  ddc:'$memo'(W, G:T, H0)
+                         ;   H0
+                         ))
         ;   C = (H0 :- ( ddc:'$frozen_at'(W, T) -> ddc:'$mat'(W, G, T) ; H1 ))
         ;   C = (H0 :- H2)
         ;   C = (H0 :- ddc:'$fact'(W, G:T))
