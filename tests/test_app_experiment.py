@@ -44,9 +44,11 @@ def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypat
     import app.experiment as experiment
 
     calls: list[tuple[str, int]] = []
+    methods_run: list[tuple[str, int, list[str]]] = []
 
     def fake_unit(label, scenario, seed, methods, particles, cache, threads):
         calls.append((scenario.stem, seed))
+        methods_run.append((scenario.stem, seed, list(methods)))
         kept = seed % 2 == 0
         return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": m,
                  "particles": particles, "threads": threads,
@@ -87,3 +89,12 @@ def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypat
     calls.clear()
     experiment.run_experiment(options)
     assert calls == []
+
+    # the thread count matters for reasoning only: another one reruns only the reasoning
+    options.methods = ("reasoning", "no-reasoning")
+    experiment.run_experiment(options)
+    assert [m for _, _, ms in methods_run for m in ms][-3:] == ["no-reasoning"] * 3
+    methods_run.clear()
+    options.threads = 2
+    experiment.run_experiment(options)
+    assert methods_run == [("transitive", s, ["reasoning"]) for s in range(3)]

@@ -106,9 +106,9 @@ def run_experiment(options: ExperimentOptions,
                    progress: Callable[[str], None] | None = None) -> str:
     """Run everything, write ``OUT/summaries.jsonl`` and ``OUT/results.md``; return the table.
 
-    Units already complete in ``OUT/summaries.jsonl`` with the same particle and thread counts
-    are kept, not run again (lines without a thread count were made with one thread); the table
-    covers exactly the units of ``options``."""
+    Runs already in ``OUT/summaries.jsonl`` with the same particle count (and, with reasoning,
+    the same thread count: lines without one were made with one thread) are kept, not run
+    again; the table covers exactly the units of ``options``."""
     out = options.out
     out.mkdir(parents=True, exist_ok=True)
     units: list[tuple[str, Path, int]] = []
@@ -123,10 +123,12 @@ def run_experiment(options: ExperimentOptions,
         (line["scenario"], line["seed"], line["method"]): line
         for line in read_summaries(log_path)
         if line.get("particles", options.particles) == options.particles
-        and line.get("threads", 1) == options.threads
+        and (line["method"] != "reasoning" or line.get("threads", 1) == options.threads)
     }
-    todo = [unit for unit in units
-            if any((unit[1].stem, unit[2], m) not in done for m in options.methods)]
+    todo = [(label, scenario, seed,
+             [m for m in options.methods if (scenario.stem, seed, m) not in done])
+            for label, scenario, seed in units]
+    todo = [unit for unit in todo if unit[3]]
     with open(log_path, "a", encoding="utf-8") as log:
         def record(lines: list[dict[str, Any]]) -> None:
             for line in lines:
@@ -137,8 +139,8 @@ def run_experiment(options: ExperimentOptions,
                 progress(f"{lines[0]['scenario']} seed {lines[0]['seed']}: done "
                          f"({len(done)} runs recorded)")
 
-        args = [(label, scenario, seed, list(options.methods), options.particles,
-                 out / "percepts", options.threads) for label, scenario, seed in todo]
+        args = [(label, scenario, seed, methods, options.particles, out / "percepts",
+                 options.threads) for label, scenario, seed, methods in todo]
         if options.jobs > 1 and len(args) > 1:
             with ProcessPoolExecutor(max_workers=options.jobs) as pool:
                 for lines in pool.map(run_unit, *zip(*args, strict=True)):
