@@ -176,7 +176,7 @@ filter_step(F, Obs, Acts, LogWs) :-
     append(Acts, PlainObs, Facts0),
     group_facts(Facts0, Facts),
     maplist(observation_key(Info, T1), Weighted, Keys),
-    scratch_copy(F, Ws0-Sh0, Ws-Sh),
+    scratch_copy(F, Ws0, Sh0, Ws, Sh),
     record_observations(Sh, T, Keys),
     with_rng(R0, with_shared(step_particles(Ws, N, M, T1, Keys, Facts, Sh, LogWs)), R1),
     share_agreed(Ws, N, Sh, T1),
@@ -223,7 +223,7 @@ agreed(I, N, Ws, K, V) :-
 %   to t+1 (a frame in which the particles agree costs next to nothing).
 %   Else the others are stepped in groups (step_groups/9).
 step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs]) :-
-    arg(1, Ws, W1),
+    own_particle(Ws, 1, W1),
     nb_setarg(13, W1, true),
     step_particle(W1, T1, Keys, Facts, Sh, LW1),
     arg(6, Sh, K),
@@ -233,7 +233,7 @@ step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs]) :-
         S is S0+1,
         nb_setarg(5, Sh, S),
         arg(7, W1, DX),
-        findall(LW1, ( between(2, N, I), arg(I, Ws, W),
+        findall(LW1, ( between(2, N, I), own_particle(Ws, I, W),
                        settled_step(W, T1, Facts, LW1, DX) ), LWs)
     ;   step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs)
     ).
@@ -250,11 +250,11 @@ random_seed(S) :-
 
 %   step_groups(+Seeds, +Ws, +N, +M, +T1, +Keys, +Facts, +Sh, -LogWs):
 %   particles 2..N in 1 + length(Seeds) contiguous groups.  The first
-%   group is stepped here, each other one by a thread of its own on a copy
-%   of its particles and of the shared values, from its seed; then their
+%   group is stepped here, each other one by a worker thread on a copy of
+%   its particles and of the shared values, from its seed; then their
 %   particles replace the copies' originals and their shared values join
 %   this thread's (merge_shared/4).  An error in any group is raised here
-%   after all threads have ended; the step then changes nothing.
+%   after every group has been stepped; the step then changes nothing.
 step_groups([], Ws, N, M, T1, Keys, Facts, Sh, LWs) :-
     !,
     step_range(2, N, Ws, M, T1, Keys, Facts, Sh, LWs).
@@ -262,17 +262,19 @@ step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs) :-
     length(Seeds, K1),
     K is K1+1,
     group_bounds(2, N, K, [Lo-Hi|Others]),
+    length(Others, KO),
+    numlist(1, KO, Tags),
     message_queue_create(Q),
     setup_call_cleanup(
-        maplist(start_group(Q, Ws, T1, Keys, Facts, Sh), Seeds, Others, Ids),
+        maplist(start_group(Q, Ws, T1, Keys, Facts, Sh), Tags, Seeds, Others),
         (   catch(step_range(Lo, Hi, Ws, M, T1, Keys, Facts, Sh, LWs0), E, true),
-            maplist(group_result(Q), Ids, Results)
+            maplist(group_result(Q), Tags, Results)
         ),
-        (   maplist(thread_join, Ids),
-            message_queue_destroy(Q)
-        )),
+        message_queue_destroy(Q)),      % (a worker still busy after an abort
+                                        % finds the queue gone, and goes on)
     (   nonvar(E) -> throw(E) ; true ),
-    maplist(join_group(Ws, Sh), Others, Results, GLWss),
+    maplist(join_particles(Ws), Others, Results, GLWss),
+    maplist(join_shared(Ws, Sh), Others, Results),
     append([LWs0|GLWss], LWs).
 
 %   group_bounds(+From, +To, +K, -Bounds): From..To in K contiguous groups
@@ -286,33 +288,68 @@ group_bounds(From, To, K, Bounds) :-
               Hi >= Lo ),
             Bounds).
 
-start_group(Q, Ws, T1, Keys, Facts, Sh, Seed, Lo-Hi, Id) :-
-    findall(W, ( between(Lo, Hi, I), arg(I, Ws, W) ), L),
+%   start_group(+Q, +Ws, ..., +Tag, +Seed, +Lo-Hi): sends group Tag's
+%   particles (copied by the message) to worker thread Tag, which answers
+%   on Q.
+start_group(Q, Ws, T1, Keys, Facts, Sh, Tag, Seed, Lo-Hi) :-
+    sub_vector(Lo, Hi, Ws, L),
     GWs =.. [ws|L],
-    thread_create(group_worker(Q, Seed, Lo, GWs, T1, Keys, Facts, Sh), Id, []).
+    group_thread(Tag, Thread),
+    thread_send_message(Thread, group_job(Q, Tag, Seed, Lo, GWs, T1, Keys, Facts, Sh)).
 
-%   In its own thread: steps a copy of particles Lo.. (GWs) and sends back
-%   the stepped particles, their log weights and the shared values.
-group_worker(Q, Seed, Lo, GWs, T1, Keys, Facts, Sh) :-
-    thread_self(Me),
-    functor(GWs, _, Len),
-    catch(( set_random(seed(Seed)),
-            with_shared(step_range_at(1, Len, Lo, GWs, T1, Keys, Facts, Sh, LWs)),
-            Out = done(GWs, Sh, LWs)
-          ), E, Out = error(E)),
-    thread_send_message(Q, Me-Out).
+sub_vector(I, Hi, Ws, L) :-
+    (   I > Hi
+    ->  L = []
+    ;   arg(I, Ws, W),
+        L = [W|L1],
+        I1 is I+1,
+        sub_vector(I1, Hi, Ws, L1)
+    ).
 
-group_result(Q, Id, Out) :-
-    thread_get_message(Q, Id-Out).
+%   group_thread(+Tag, -Thread): the worker thread for groups Tag.  Workers
+%   are kept for the life of the process (a new thread for every step would
+%   grow its stacks from nothing each time) and shared by all filters: a
+%   worker steps one group at a time.
+group_thread(Tag, Alias) :-
+    atom_concat('$ddc_group_worker_', Tag, Alias),
+    with_mutex('$ddc_group_workers',
+               (   catch(thread_property(Alias, status(running)), _, fail)
+               ->  true
+               ;   thread_create(group_loop, _, [alias(Alias), detached(true)])
+               )).
 
-join_group(Ws, Sh, Lo-_, done(GWs, GSh, GLWs), GLWs) :-
+%   A worker: steps the groups it is sent, one after the other, and sends
+%   back the stepped particles, their log weights and the shared values
+%   (or the error).
+group_loop :-
+    thread_get_message(Job),
+    (   Job = group_job(Q, Tag, Seed, Lo, GWs, T1, Keys, Facts, Sh)
+    ->  functor(GWs, _, Len),
+        catch(( set_random(seed(Seed)),
+                with_shared(step_range_at(1, Len, Lo, held, GWs, T1, Keys, Facts, Sh, LWs)),
+                Out = done(GWs, Sh, LWs)
+              ), E, Out = error(E)),
+        catch(thread_send_message(Q, Tag-Out), _, true)
+    ;   true
+    ),
+    group_loop.
+
+group_result(Q, Tag, Out) :-
+    thread_get_message(Q, Tag-Out).
+
+%   The particles a worker stepped replace their originals in Ws (all
+%   groups first: joining shared values may add to any group's particles).
+join_particles(Ws, Lo-_, done(GWs, _, GLWs), GLWs) :-
     !,
     functor(GWs, _, Len),
     forall(between(1, Len, J),
-           ( I is Lo+J-1, arg(J, GWs, W), nb_linkarg(I, Ws, W) )),
-    merge_shared(Sh, GSh, Ws, Lo-Len).
-join_group(_, _, _, error(E), _) :-
+           ( I is Lo+J-1, arg(J, GWs, W), nb_linkarg(I, Ws, W) )).
+join_particles(_, _, error(E), _) :-
     throw(E).
+
+join_shared(Ws, Sh, Lo-_, done(GWs, GSh, _)) :-
+    functor(GWs, _, Len),
+    merge_shared(Sh, GSh, Ws, Lo-Len).
 
 %   merge_shared(+Sh, +GSh, +Ws, +Lo-Len): the values a group computed
 %   once for its particles join Sh, and the keys it holds per particle
@@ -346,14 +383,17 @@ own_copy(Ws, I, K, V) :-
     arg(1, W, S),
     (   store_get(S, K, _) -> true ; store_put(S, K, V) ).
 
-%   step_range(+Lo, +Hi, +Ws, ...): steps particles Lo..Hi of Ws; the first
-%   20 particles of the filter check for overlapping clauses.
+%   step_range(+Lo, +Hi, +Ws, ...): steps particles Lo..Hi of the step's
+%   scratch vector Ws (each copied from the filter's before it changes);
+%   the first 20 particles of the filter check for overlapping clauses.
 step_range(Lo, Hi, Ws, _, T1, Keys, Facts, Sh, LWs) :-
-    step_range_at(Lo, Hi, 1, Ws, T1, Keys, Facts, Sh, LWs).
+    step_range_at(Lo, Hi, 1, own, Ws, T1, Keys, Facts, Sh, LWs).
 
-%   (First: the filter's index of Ws's particle 1.)
-step_range_at(Lo, Hi, First, Ws, T1, Keys, Facts, Sh, LWs) :-
-    findall(LW, ( between(Lo, Hi, I), arg(I, Ws, W),
+%   (First: the filter's index of Ws's particle 1; Copy: own to copy each
+%   particle first, held if Ws holds copies already.)
+step_range_at(Lo, Hi, First, Copy, Ws, T1, Keys, Facts, Sh, LWs) :-
+    findall(LW, ( between(Lo, Hi, I),
+                  ( Copy == own -> own_particle(Ws, I, W) ; arg(I, Ws, W) ),
                   ( I+First =< 21 -> Check = true ; Check = false ),
                   nb_setarg(13, W, Check),
                   step_particle(W, T1, Keys, Facts, Sh, LW) ), LWs).
@@ -402,12 +442,28 @@ record_observation(Shared, k(X, T, V, _), Raw0, Raw) :-
         Raw = [X-u|Raw1]
     ).
 
-%   scratch_copy(+F, +Ws0, -Ws): Ws is a copy of Ws0 held by a global
-%   variable (so that it survives the query and can be changed in place).
-scratch_copy(F, Ws0, Ws) :-
+%   scratch_copy(+F, +Ws0, +Sh0, -Ws, -Sh): Sh is a copy of Sh0 and Ws a
+%   vector of Ws0's particles, both held by a global variable (so that
+%   they survive the query and can be changed in place).  Ws's arguments
+%   are Ws0's particles themselves, not copies: a particle is copied when
+%   this thread first changes it (own_particle/3), and one that a worker
+%   steps is copied by the message that takes it there, so none is copied
+%   twice and Ws0 stays as it was (for filter_undo/1, and for an error in
+%   the middle of the step).
+scratch_copy(F, Ws0, Sh0, Ws, Sh) :-
     atom_concat(F, '$next', FN),
-    nb_setval(FN, Ws0),
-    nb_getval(FN, Ws).
+    functor(Ws0, Name, N),
+    functor(Ws1, Name, N),
+    nb_setval(FN, Ws1-Sh0),
+    nb_getval(FN, Ws-Sh),
+    forall(between(1, N, I), ( arg(I, Ws0, W0), nb_linkarg(I, Ws, W0) )).
+
+%   own_particle(+Ws, +I, -W): particle I of the scratch vector, copied
+%   first if it is still the filter's own.
+own_particle(Ws, I, W) :-
+    arg(I, Ws, W0),
+    nb_setarg(I, Ws, W0),
+    arg(I, Ws, W).
 
 %   commit: the filter now holds Ws and the shared values Sh at time T and
 %   keeps Ws0, Sh0 (time T0) for filter_undo/1.  All are global terms

@@ -151,28 +151,43 @@ test(every_group_steps_its_particles) :-
     nth1(3, Vs, P3-_), nth1(16, Vs, P16-_), nth1(29, Vs, P29-_),
     P3 =\= P16, P16 =\= P29, P3 =\= P29.
 
-%   An error in a group stops the step and the filter is as before it.  The
-%   observation has no clause where pick is b; with this seed the first 20
-%   particles (the first and the calling thread's group) all have a, so the
-%   error is raised in the other thread's group (particles 21..40).
+%   An error in a group stops the step and the filter is as before it: the
+%   particles, and what they hold of the step before (x:t-1, a random draw,
+%   would be drawn anew if a particle had lost it).  The observation has no
+%   clause where pick is b; with this seed the first 20 particles (the first
+%   and the calling thread's group) all have a, so the error is raised in
+%   the other thread's group (particles 21..40).
 test(an_error_in_another_thread_changes_nothing) :-
+    error_midway_changes_nothing(2).
+
+%   The same error in one thread: particles 1..28 have been stepped (each
+%   copied first) when particle 29 raises it.
+test(an_error_midway_changes_nothing) :-
+    error_midway_changes_nothing(1).
+
+error_midway_changes_nothing(Threads) :-
     tmp_file_stream(text, File, S),
     forall(member(L, [ 'pick:0 ~ finite([0.97:a, 0.03:b]) := true.',
                        'pick:t+1 ~ val(P) := pick:t ~= P.',
+                       'x:0 ~ uniform([1, 2, 3, 4, 5, 6, 7, 8, 9]) := true.',
+                       'x:t+1 ~ val(X) := x:t ~= X.',
                        'observation(x):t+1 ~ gaussian(0, 1) := pick:t ~= a.' ]),
            format(S, "~w~n", [L])),
     close(S),
-    filter_new(File, 40, 2, [threads(2)], F),
-    filter_values(F, P, pick:t ~= P, Before),
-    length(First, 20), append(First, Others, Before),
+    filter_new(File, 40, 3, [threads(Threads)], F),
+    filter_values(F, P, pick:t ~= P, Picks),
+    length(First, 20), append(First, Others, Picks),
     forall(member(X, First), X == a), memberchk(b, Others),
+    filter_step(F, [], [], _),
+    Query = ( pick:t ~= P1, (x:t-1) ~= X1 ),   % the step before is still readable
+    filter_values(F, P1-X1, Query, Before),
     catch(filter_step(F, [observation(x) ~= 0.5], [], _), E, true),
     nonvar(E), E = error(ddc(no_observation_clause(_), _), _),
-    filter_time(F, 0),
-    filter_values(F, P2, pick:t ~= P2, After),
+    filter_time(F, 1),
+    filter_values(F, P1-X1, Query, After),
     Before == After,
     filter_step(F, [], [], _),      % and it goes on
-    filter_time(F, 1),
+    filter_time(F, 2),
     filter_free(F).
 
 test(grouped_shared_values_are_joined) :-
