@@ -202,6 +202,28 @@ def test_a_value_none_is_not_a_missing_value(tmp_path: Path) -> None:
         assert [y is None for y in ys] == [x == "none" for x in xs]
 
 
+def test_samples_are_float_rows_with_nan_where_undefined(tmp_path: Path) -> None:
+    program = tmp_path / "rows.pl"
+    program.write_text("x:0 ~ uniform([none, some]) := true.\n"
+                       "y:0 ~ val(1) := x:0 ~= some.\n"
+                       "z:0 ~ val((1, 2.5, -3)) := x:0 ~= some.\n")
+    with Filter(program, particles=50, seed=5) as f:
+        undefined = np.array([x == "none" for x in f.values("X", "x:t ~= X")])
+        assert 0 < undefined.sum() < 50
+        y, weights = f.samples("y:t")
+        assert y.shape == (50,) and weights.shape == (50,)
+        np.testing.assert_array_equal(np.isnan(y), undefined)
+        assert (y[~undefined] == 1.0).all()
+        z, _ = f.samples("z:t")
+        assert z.shape == (50, 3)
+        np.testing.assert_array_equal(np.isnan(z).all(axis=1), undefined)
+        assert (z[~undefined] == [1.0, 2.5, -3.0]).all()
+        pairs, _ = f.samples("(A, B)", "z:t ~= (A, _, B)")   # a template over a goal
+        assert pairs.shape == (50, 2) and (pairs[~undefined] == [1.0, -3.0]).all()
+        names, _ = f.samples("x:t")                          # not numbers: the values as objects
+        assert names.dtype == object and set(names) == {"none", "some"}
+
+
 def test_every_particle_weight_zero_keeps_the_pre_step_particles() -> None:
     n = 200
     with Filter(PIT_WORLD, particles=n, seed=2) as f:

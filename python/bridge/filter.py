@@ -226,6 +226,37 @@ values(Key, PairText, Values, Err) :-
               maplist(py_solution, Values0, Values) ), Err),
     ( var(Values) -> Values = [] ; true ).
 
+%   numeric_rows(Key, PairText, Width, Floats, Err): as values/4, flattened
+%   to N rows of Width floats (NaN where the goal has no solution) when every
+%   value is a number or a tuple of Width numbers; Width 0 otherwise.
+numeric_rows(Key, PairText, Width, Floats, Err) :-
+    guarded(( filter_of(Key, F), parse_goal(PairText, ddc_bridge_pair(Template, Goal)),
+              ddc:filter_values(F, value(Template), Goal, Values0),
+              (   rows_width(Values0, Width), Width > 0,
+                  phrase(numeric_rows(Values0, Width), Floats)
+              ->  true
+              ;   Width = 0, Floats = []
+              ) ), Err),
+    ( var(Width) -> Width = 0, Floats = [] ; true ).
+
+rows_width([], 0).
+rows_width([none|Vs], W) :- !, rows_width(Vs, W).
+rows_width([value(V)|_], W) :- numeric_width(V, W).
+
+numeric_width(V, 1) :- number(V), !.
+numeric_width((A, B), W) :- number(A), numeric_width(B, W0), W is W0+1.
+
+numeric_rows([], _) --> [].
+numeric_rows([none|Vs], W) --> !, nan_row(W), numeric_rows(Vs, W).
+numeric_rows([value(V)|Vs], W) --> numeric_row(V, W), numeric_rows(Vs, W).
+
+nan_row(0) --> !.
+nan_row(W) --> [nan], { W1 is W-1 }, nan_row(W1).
+
+numeric_row(V, 1) --> { number(V) }, !, [X], { X is float(V) }.
+numeric_row((A, B), W) --> { number(A), W > 1 }, [X], { X is float(A), W1 is W-1 },
+    numeric_row(B, W1).
+
 py_solution(none, @(none)).
 py_solution(value(V), P) :- py_value(V, P).
 
@@ -549,7 +580,31 @@ class Filter:
 
     def samples(self, term: Any, goal: Any | None = None) -> tuple[np.ndarray, np.ndarray]:
         """(values, weights): N rows of values (float, NaN where undefined, when numeric)."""
-        return _as_array(self._term_values(term, goal)), self.weights
+        if goal is None:
+            template, goal = _TEMPLATE_VAR, f"({_as_term_text(term)}) ~= {_TEMPLATE_VAR}"
+        else:
+            template = term
+        rows = self._numeric_rows(template, goal)
+        if rows is not None:
+            return rows, self.weights
+        return _as_array(self.values(template, goal)), self.weights
+
+    def _numeric_rows(self, template: Any, goal: Any) -> np.ndarray | None:
+        """The values as an (N,) or (N, k) float array, flattened in Prolog (no per-particle
+        Python work), or None when they are not all numbers or k-tuples of numbers."""
+        template_text = _as_term_text(template)
+        goal_text = _as_term_text(goal)
+        result = _call(
+            "numeric_rows(K, P, W, V, Err)",
+            {"K": self._handle(), "P": f"ddc_bridge_pair(({template_text}),({goal_text}))"},
+        )
+        if result["Err"]:
+            raise FilterError(f"query {template_text!r} for {goal_text!r}: {result['Err']}")
+        width = int(result["W"])
+        if width == 0:
+            return None
+        flat = np.asarray(result["V"], dtype=float)
+        return flat if width == 1 else flat.reshape(self.particles, width)
 
     def mean(self, term: Any, goal: Any | None = None) -> tuple[Any, Any]:
         """Weighted (mean, covariance) of a numeric or tuple variable over the particles where
