@@ -46,11 +46,12 @@
     alone (it finds the values every particle shares, and a step in which
     nothing else is left is settled at once); the others are split into K
     contiguous groups, the first stepped by the calling thread, each other
-    one by a thread of its own on a copy of its particles and of the shared
-    values, drawing from a random stream seeded (after the first particle)
-    from the filter's.  The copies come back into the filter's particles
-    and their newly shared values join its own (step_groups/9).  K is part
-    of the seed: the same K gives the same particles on any machine.
+    one by a worker thread (kept for the process) on a copy of its particles
+    and of the shared values, drawing from a random stream seeded (after
+    the first particle) from the filter's.  The copies come back into the
+    filter's particles and their newly shared values join its own
+    (step_groups/9).  K is part of the seed: the same K gives the same
+    particles on any machine.
 */
 
 %!  filter_new(+ProgramFile, +N, +Seed, -Filter) is det.
@@ -458,8 +459,9 @@ scratch_copy(F, Ws0, Sh0, Ws, Sh) :-
     nb_getval(FN, Ws-Sh),
     forall(between(1, N, I), ( arg(I, Ws0, W0), nb_linkarg(I, Ws, W0) )).
 
-%   own_particle(+Ws, +I, -W): particle I of the scratch vector, copied
-%   first if it is still the filter's own.
+%   own_particle(+Ws, +I, -W): particle I of the scratch vector, first
+%   copied from the filter's (called once per particle and step, before
+%   this thread changes it).
 own_particle(Ws, I, W) :-
     arg(I, Ws, W0),
     nb_setarg(I, Ws, W0),

@@ -251,7 +251,7 @@ numeric_rows([none|Vs], W) --> !, nan_row(W), numeric_rows(Vs, W).
 numeric_rows([value(V)|Vs], W) --> numeric_row(V, W), numeric_rows(Vs, W).
 
 nan_row(0) --> !.
-nan_row(W) --> [nan], { W1 is W-1 }, nan_row(W1).
+nan_row(W) --> { X is nan, W1 is W-1 }, [X], nan_row(W1).
 
 numeric_row(V, 1) --> { number(V) }, !, [X], { X is float(V) }.
 numeric_row((A, B), W) --> { number(A), W > 1 }, [X], { X is float(A), W1 is W-1 },
