@@ -341,7 +341,11 @@ class Filter:
         ``threads``: a step's particles (after the first) are split into that many groups,
         stepped at the same time by Prolog threads, each with its own random stream seeded from
         the filter's (``filter_new/5``'s ``threads`` option). The particles depend on ``seed``
-        and ``threads``, not on the machine; ``threads=1`` steps them one after the other."""
+        and ``threads``, not on the machine; ``threads=1`` steps them one after the other.
+        The worker threads stay for the life of the process, and SWI-Prolog does not survive a
+        ``fork`` of a process with Prolog threads: after stepping with ``threads > 1``, start
+        subprocesses with multiprocessing's ``"spawn"`` or ``"forkserver"`` method (a forked
+        child hangs in its first Prolog call)."""
         if int(particles) < 1:
             raise ValueError(f"particles must be >= 1, got {particles}")
         if int(threads) < 1:
