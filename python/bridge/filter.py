@@ -226,18 +226,20 @@ values(Key, PairText, Values, Err) :-
               maplist(py_solution, Values0, Values) ), Err),
     ( var(Values) -> Values = [] ; true ).
 
-%   numeric_rows(Key, PairText, Width, Floats, Err): as values/4, flattened
-%   to N rows of Width floats (NaN where the goal has no solution) when every
-%   value is a number or a tuple of Width numbers; Width 0 otherwise.
-numeric_rows(Key, PairText, Width, Floats, Err) :-
+%   numeric_rows(Key, PairText, Width, Floats, Values, Err): the values of
+%   values/4 flattened to N rows of Width floats (NaN where the goal has no
+%   solution) when every value is a number or a tuple of Width numbers
+%   (Values []); else Width 0 and the Values of values/4.
+numeric_rows(Key, PairText, Width, Floats, Values, Err) :-
     guarded(( filter_of(Key, F), parse_goal(PairText, ddc_bridge_pair(Template, Goal)),
               ddc:filter_values(F, value(Template), Goal, Values0),
               (   rows_width(Values0, Width), Width > 0,
                   phrase(numeric_rows(Values0, Width), Floats)
-              ->  true
-              ;   Width = 0, Floats = []
+              ->  Values = []
+              ;   Width = 0, Floats = [],
+                  maplist(py_solution, Values0, Values)
               ) ), Err),
-    ( var(Width) -> Width = 0, Floats = [] ; true ).
+    ( var(Width) -> Width = 0, Floats = [], Values = [] ; true ).
 
 rows_width([], 0).
 rows_width([none|Vs], W) :- !, rows_width(Vs, W).
@@ -544,20 +546,30 @@ class Filter:
 
     def values(self, template: Any, goal: Any) -> list[Any]:
         """Per particle, ``template`` at the first solution of ``goal`` (None: no solution)."""
+        return list(self._query("values(K, P, V, Err)", template, goal)["V"])
+
+    def _query(self, call: str, template: Any, goal: Any) -> dict[str, Any]:
+        """One bridge query over the particles: ``template`` at the first solution of
+        ``goal`` (bound to ``P`` as a pair), the filter as ``K``; ``Err`` raised."""
         template_text = _as_term_text(template)
         goal_text = _as_term_text(goal)
         result = _call(
-            "values(K, P, V, Err)",
+            call,
             {"K": self._handle(), "P": f"ddc_bridge_pair(({template_text}),({goal_text}))"},
         )
         if result["Err"]:
             raise FilterError(f"query {template_text!r} for {goal_text!r}: {result['Err']}")
-        return list(result["V"])
+        return result
+
+    @staticmethod
+    def _template_goal(term: Any, goal: Any | None) -> tuple[Any, Any]:
+        """A random variable's values (``goal`` None) or a template over a goal."""
+        if goal is None:
+            return _TEMPLATE_VAR, f"({_as_term_text(term)}) ~= {_TEMPLATE_VAR}"
+        return term, goal
 
     def _term_values(self, term: Any, goal: Any | None) -> list[Any]:
-        if goal is None:
-            return self.values(_TEMPLATE_VAR, f"({_as_term_text(term)}) ~= {_TEMPLATE_VAR}")
-        return self.values(term, goal)
+        return self.values(*self._template_goal(term, goal))
 
     def distribution(self, term: Any, goal: Any | None = None) -> list[tuple[float, Any]]:
         """``[(p, value), ...]`` most probable first.
@@ -584,31 +596,14 @@ class Filter:
 
     def samples(self, term: Any, goal: Any | None = None) -> tuple[np.ndarray, np.ndarray]:
         """(values, weights): N rows of values (float, NaN where undefined, when numeric)."""
-        if goal is None:
-            template, goal = _TEMPLATE_VAR, f"({_as_term_text(term)}) ~= {_TEMPLATE_VAR}"
-        else:
-            template = term
-        rows = self._numeric_rows(template, goal)
-        if rows is not None:
-            return rows, self.weights
-        return _as_array(self.values(template, goal)), self.weights
-
-    def _numeric_rows(self, template: Any, goal: Any) -> np.ndarray | None:
-        """The values as an (N,) or (N, k) float array, flattened in Prolog (no per-particle
-        Python work), or None when they are not all numbers or k-tuples of numbers."""
-        template_text = _as_term_text(template)
-        goal_text = _as_term_text(goal)
-        result = _call(
-            "numeric_rows(K, P, W, V, Err)",
-            {"K": self._handle(), "P": f"ddc_bridge_pair(({template_text}),({goal_text}))"},
-        )
-        if result["Err"]:
-            raise FilterError(f"query {template_text!r} for {goal_text!r}: {result['Err']}")
+        # numbers or k-tuples of numbers come flattened from Prolog (no per-particle Python
+        # work); other values as values() gives them
+        result = self._query("numeric_rows(K, P, W, F, V, Err)", *self._template_goal(term, goal))
         width = int(result["W"])
         if width == 0:
-            return None
-        flat = np.asarray(result["V"], dtype=float)
-        return flat if width == 1 else flat.reshape(self.particles, width)
+            return _as_array(result["V"]), self.weights
+        flat = np.asarray(result["F"], dtype=float)
+        return (flat if width == 1 else flat.reshape(self.particles, width)), self.weights
 
     def mean(self, term: Any, goal: Any | None = None) -> tuple[Any, Any]:
         """Weighted (mean, covariance) of a numeric or tuple variable over the particles where
