@@ -136,3 +136,13 @@ def test_installed_console_script_runs_a_filter() -> None:
     assert out.returncode == 0, out.stderr
     last = json.loads(out.stdout.strip().splitlines()[-1])
     assert last["time"] == 1 and 0.6 < last["probabilities"][QUERY_WALL] < 1.0
+
+
+def test_the_commands_default_to_the_bridge_thread_count() -> None:
+    from bridge import DEFAULT_THREADS
+    from cli.anchoring_cli import build_parser as anchoring_parser
+    from cli.ddc_cli import build_parser
+
+    assert build_parser().parse_args(["filter", "p.pl", "o.jsonl"]).threads == DEFAULT_THREADS
+    for command in (["run", "s.yaml"], ["evaluate"]):
+        assert anchoring_parser().parse_args(command).threads == DEFAULT_THREADS

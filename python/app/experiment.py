@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from app.reasoning import DEFAULT_THREADS
 from app.runner import RunOptions, run
 from evaluation import evaluate, make_summary, results_table
 from evaluation.baselines import BASELINES, run_baseline
@@ -39,7 +40,7 @@ class ExperimentOptions:
     scenarios: Sequence[str] = SHIPPED
     first_game_seed: int = 0
     jobs: int = 1
-    threads: int = 2  # Prolog threads per filter (part of the seed: the particles depend on it)
+    threads: int = DEFAULT_THREADS  # Prolog threads per filter (the particles depend on it)
 
 
 def game_scenarios(out: Path, games: int, first_seed: int = 0) -> list[Path]:
@@ -73,7 +74,7 @@ def percept_stream(scenario: Path, seed: int, cache: Path) -> Path:
 
 
 def run_method(method: str, stream: Path, particles: int, seed: int,
-               threads: int = 2) -> dict[str, Any]:
+               threads: int = DEFAULT_THREADS) -> dict[str, Any]:
     """One method on one percept stream -> its summary."""
     if method in ("reasoning", "no-reasoning"):
         output = run(RunOptions(percepts=stream, particles=particles, seed=seed,
@@ -85,7 +86,7 @@ def run_method(method: str, stream: Path, particles: int, seed: int,
 
 
 def run_unit(label: str, scenario: Path, seed: int, methods: Sequence[str], particles: int,
-             cache: Path, threads: int = 2) -> list[dict[str, Any]]:
+             cache: Path, threads: int = DEFAULT_THREADS) -> list[dict[str, Any]]:
     """Every method on one (scenario, seed): the lines of ``summaries.jsonl``."""
     stream = percept_stream(scenario, seed, cache)
     return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": method,

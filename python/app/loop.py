@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from anchoring import AnchorManager, FrameResult
-from app.reasoning import DEFAULT_THEORY, AnchorState, OcclusionReasoner
+from app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS, AnchorState, OcclusionReasoner
 from app.sources import SourceFrame
 from evaluation import FrameTimings, Hypothesis, TrackingRecord, point_estimate, record_for_frame
 
@@ -32,7 +32,7 @@ class LoopConfig:
     resample_threshold: float = 0.9
     # Prolog threads that step the particles (bridge.Filter's ``threads``): the particles
     # depend on the seed and this number, not on the machine.
-    threads: int = 2
+    threads: int = DEFAULT_THREADS
     # Anchoring may re-identify a percept by appearance alone when it looks like exactly one
     # anchor left over (AnchorManager.reid_seconds); False switches that off, so that only
     # the matcher (and, with reasoning, the particles of hidden anchors) re-acquires.

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from app.naming import category_atom, symbol_atom
-from bridge import Filter, terms
+from bridge import DEFAULT_THREADS, Filter, terms
 
 DEFAULT_THEORY = Path(__file__).resolve().parents[2] / "prolog" / "too.pl"
 
@@ -37,7 +37,8 @@ class OcclusionReasoner:
     """A particle filter over the theory of occlusion, fed with anchors frame by frame."""
 
     def __init__(self, theory: str | Path = DEFAULT_THEORY, particles: int = 1000,
-                 seed: int = 0, resample_threshold: float = 0.9, threads: int = 2) -> None:
+                 seed: int = 0, resample_threshold: float = 0.9,
+                 threads: int = DEFAULT_THREADS) -> None:
         self.theory = Path(theory)
         self.filter = Filter(self.theory, particles=particles, seed=seed,
                              resample_threshold=resample_threshold, threads=threads)

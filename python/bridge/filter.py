@@ -58,6 +58,8 @@ from bridge.terms import Compound, Text, item_text, to_term
 logger = logging.getLogger(__name__)
 
 Resampling = Literal["systematic", "multinomial", "residual"]
+#: Prolog threads that step the particles unless told otherwise (the 2-core machine's cores)
+DEFAULT_THREADS = 2
 _TEMPLATE_VAR = "DdcBridgeValue__"
 
 
@@ -335,7 +337,7 @@ class Filter:
         resample_threshold: float = 0.9,
         resampling: Resampling = "systematic",
         share: bool = True,
-        threads: int = 2,
+        threads: int = DEFAULT_THREADS,
     ) -> None:
         """``share=False`` computes every value in every particle (see "Shared values" in
         ``prolog/ddc.pl``): the same particles, bit for bit, only slower; for comparison.

@@ -319,6 +319,7 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("observations", help="JSON Lines, one step per line")
     f.add_argument("--particles", type=_positive_int, default=1000)
     f.add_argument("--seed", type=int, default=0)
+    # (bridge.DEFAULT_THREADS, not imported here: importing the bridge starts Prolog)
     f.add_argument("--threads", type=_positive_int, default=2,
                    help="Prolog threads that step the particles (default 2; the particles "
                         "depend on the seed and this number)")

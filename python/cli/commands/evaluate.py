@@ -16,6 +16,7 @@ def register(sub: Any) -> None:
     parser.add_argument("--seeds", type=int, default=20, help="seeds per shipped scenario")
     parser.add_argument("--games", type=int, default=50, help="random shell games")
     parser.add_argument("--particles", type=int, default=1000)
+    # (bridge.DEFAULT_THREADS, not imported here: importing the bridge starts Prolog)
     parser.add_argument("--threads", type=int, default=2,
                         help="Prolog threads per filter (default 2; the particles depend on the "
                              "seed and this number)")

@@ -7,7 +7,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from app.reasoning import DEFAULT_THEORY
+from app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS
 
 
 def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> None:
@@ -16,9 +16,9 @@ def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> N
     parser.add_argument("--theory", type=Path, default=DEFAULT_THEORY,
                         help="theory of occlusion, a DDC program (default prolog/too.pl)")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
-    parser.add_argument("--threads", type=int, default=2,
-                        help="Prolog threads that step the particles (default 2; the particles "
-                             "depend on the seed and this number)")
+    parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
+                        help=f"Prolog threads that step the particles (default "
+                             f"{DEFAULT_THREADS}; the particles depend on the seed and it)")
     parser.add_argument("--resample-threshold", type=float, default=0.9,
                         help="resample when ESS < this fraction of the particles (default 0.9)")
     parser.add_argument("--out", type=Path, default=None,
