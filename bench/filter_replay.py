@@ -26,7 +26,7 @@ sys.path.insert(0, str(HERE.parent / "python"))
 
 from app.reasoning import DEFAULT_THEORY  # noqa: E402
 from app.runner import RunOptions, run  # noqa: E402
-from bridge import Filter  # noqa: E402
+from bridge import DEFAULT_THREADS, Filter  # noqa: E402
 
 Frame = tuple[list[str], list[str]]
 
@@ -73,8 +73,8 @@ def main(argv: list[str] | None = None) -> int:
                         default=HERE.parent / "scenarios" / "shell_game.yaml")
     parser.add_argument("--particles", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--threads", type=int, default=2,
-                        help="Prolog threads stepping the particles (default 2, as bridge.Filter)")
+    parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
+                        help="Prolog threads stepping the particles (default: bridge.Filter's)")
     args = parser.parse_args(argv)
 
     frames = record_frames(args.scenario, args.seed)

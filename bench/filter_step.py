@@ -39,7 +39,7 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "python"))
 
 import filter_numpy_reference as model  # noqa: E402
-from bridge import Filter, FilterError  # noqa: E402
+from bridge import DEFAULT_THREADS, Filter, FilterError  # noqa: E402
 
 TARGET_MS = 33.0
 
@@ -94,8 +94,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--objects", type=int, help="one configuration: M objects")
     parser.add_argument("--steps", type=int, default=10, help="filter steps timed (default 10)")
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--threads", type=int, default=2,
-                        help="Prolog threads stepping the particles (default 2, as bridge.Filter)")
+    parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
+                        help="Prolog threads stepping the particles (default: bridge.Filter's)")
     parser.add_argument("--json", action="store_true", help="end with a JSON line")
     args = parser.parse_args(argv)
     if (args.particles is None) != (args.objects is None):
