@@ -11,6 +11,7 @@
 
 :- module(ddc_store,
           [ store_new/1,            % -Store
+            store_new/2,            % -Store, +Indexed
             store_get/3,            % +Store, +Key, -Value
             store_put/3,            % +Store, +Key, +Value
             store_delete/2,         % +Store, +Key
@@ -24,9 +25,10 @@
 
 /** <module> Non-backtrackable hash table for DDC worlds
 
-Store = tbl(Count, Data); Data is a list of Key-Value while Count =< 8,
-else Buckets = b(L1, ..., Ln), each Li unbound (empty) or a list of
-Key-Value.  Keys must be ground.
+Store = tbl(Count, Data, Indexed); Data is a list of Key-Value while
+Count =< 8, else Buckets = b(L1, ..., Ln), each Li unbound (empty) or a
+list of Key-Value.  Keys must be ground.  Indexed (true or false): whether
+keys X-Time are also indexed by functor and time (store_put/3).
 */
 
 %   Arithmetic compiled inline (local to this file; see ddc.pl).
@@ -42,10 +44,22 @@ Key-Value.  Keys must be ground.
 %   larger ones a bucket term b(L1, ..., Ln).
 
 %!  store_new(-Store) is det.
-store_new(tbl(0, [])).
+%
+%   An empty indexed store (store_new(Store, true)).
+store_new(S) :-
+    store_new(S, true).
+
+%!  store_new(-Store, +Indexed) is det.
+%
+%   An empty store; Indexed true: keys X-Time are indexed by X's functor
+%   and the time (see store_put/3), which pays in a store that non-ground
+%   reads search and costs an index entry per insertion in one that they
+%   do not (a small store is scanned as fast).
+store_new(tbl(0, [], Ix), Ix) :-
+    must_be(boolean, Ix).
 
 %!  store_get(+Store, +Key, -Value) is semidet.
-store_get(tbl(_, D), K, V) :-
+store_get(tbl(_, D, _), K, V) :-
     (   D = [_|_]
     ->  memberchk(K-V0, D)
     ;   D \== [],
@@ -61,12 +75,13 @@ store_get(tbl(_, D), K, V) :-
 %!  store_put(+Store, +Key, +Value) is det.
 %
 %   Adds Key-Value (Key must not be present; the engine checks first).
-%   Keys X-Time with a compound X and an integer Time are also indexed by X's functor and the
-%   time (entry '$by'(Name/Arity, Time) -> ix(Xs)), so that store_match/3
-%   with a partly bound X reads only those keys instead of the whole table.
+%   In an indexed store, keys X-Time with a compound X and an integer Time
+%   are also indexed by X's functor and the time (entry '$by'(Name/Arity,
+%   Time) -> ix(Xs)), so that store_match/3 with a partly bound X reads
+%   only those keys instead of the whole table.
 store_put(T, K, V) :-
     put_(T, K, V),
-    (   K = X-Tm, compound(X), integer(Tm)
+    (   arg(3, T, true), K = X-Tm, compound(X), integer(Tm)
     ->  functor(X, N, A),
         (   store_get(T, '$by'(N/A, Tm), Cell)
         ->  arg(1, Cell, Xs),
@@ -77,7 +92,7 @@ store_put(T, K, V) :-
     ).
 
 put_(T, K, V) :-
-    T = tbl(C, D),
+    T = tbl(C, D, _),
     (   D = [_|_]
     ->  (   C >= 8
         ->  functor(B, b, 16),
@@ -102,7 +117,7 @@ put_(T, K, V) :-
 %   Removes Key's entry (if any), in place.  (A key X-Time stays in the
 %   index of its functor and time; store_match/3 skips it.)
 store_delete(T, K) :-
-    T = tbl(C, D),
+    T = tbl(C, D, _),
     (   D = [_|_]
     ->  (   select_kv(D, K, D1)
         ->  nb_setarg(2, T, D1),
@@ -149,7 +164,7 @@ set_entries(I, T, [KV|Rest]) :-
     nb_linkarg(I, T, [E|Rest]).
 
 grow(T) :-
-    T = tbl(_, B),
+    T = tbl(_, B, _),
     functor(B, _, S),
     S2 is S*4,
     functor(B2, b, S2),
@@ -166,12 +181,12 @@ store_entries(T, Pairs) :-
 %   for a key X-Time with a compound X and an integer time, else a scan; the
 %   index entries themselves are never enumerated).
 store_match(T, K, V) :-
-    nonvar(K), K = X-Tm, compound(X), integer(Tm), !,
+    arg(3, T, true), nonvar(K), K = X-Tm, compound(X), integer(Tm), !,
     functor(X, N, A),
     store_get(T, '$by'(N/A, Tm), ix(Xs)),
     member(X, Xs),
     store_get(T, X-Tm, V).
-store_match(tbl(_, D), K, V) :-
+store_match(tbl(_, D, _), K, V) :-
     (   D = [_|_]
     ->  member(K-V, D)
     ;   compound(D),
@@ -189,14 +204,15 @@ store_size(T, C) :-
 %
 %   New holds the entries K-V of Store for which call(Keep, K, V) succeeds.
 store_filter(T, Keep, New) :-
-    store_new(New),   % (store_match/3 leaves the index out: store_put/3 rebuilds it)
+    arg(3, T, Ix),
+    store_new(New, Ix),   % (store_match/3 leaves the index out: store_put/3 rebuilds it)
     forall(( store_match(T, K, V), call(Keep, K, V) ), store_put(New, K, V)).
 
 %!  store_retain(+Store, :Keep) is det.
 %
 %   Removes, in place, the entries K-V for which call(Keep, K, V) fails.
 store_retain(T, Keep) :-
-    T = tbl(_, D),
+    T = tbl(_, D, _),
     (   D == []
     ->  true
     ;   D = [_|_]
@@ -240,7 +256,7 @@ include_kv([K-V|T], Keep, Out, C0, C) :-
 %   entries whose key is in DropKeys.  The specialised form of
 %   store_retain/2 the particle filter runs at every step.
 store_prune(T, MinT, Drop) :-
-    T = tbl(_, D),
+    T = tbl(_, D, _),
     (   D == []
     ->  true
     ;   D = [_|_]

@@ -234,4 +234,44 @@ test(joining_a_group_keeps_each_value_where_it_is_read) :-
     findall(V, ( between(1, 4, I), arg(I, Ws, w(S)),
                  ( ddc_store:store_get(S, b-1, V) -> true ; V = none ) ), [9.0, none, 2.0, 2.0]).
 
+%   A query that is a single read `h ~= V` of a ground variable answers from
+%   the stores (ddc:stored_read/6, stored_values/8); the answers are those of
+%   proving it (the same read in a conjunction goes the general way), for a
+%   value of the particle's own, a shared one, one undefined in some
+%   particles (pick/1 once the ball is seen), and a key no particle holds
+%   yet (pos(cup): proved, which records it as undefined).
+test(stored_reads_answer_as_proofs_do) :-
+    program(File),
+    filter_new(File, 30, 5, [threads(2)], F),
+    frames(Frames),
+    forall(member(Seen, Frames),
+           (   step(F, Seen),
+               ddc:filter_state(F, filter(_, N, T, Ws, _, _, Sh)),
+               \+ ddc:stored_values(1, N, Ws, Sh, pos(cup)-T, _, _, _),
+               forall(member(X, [pos(ball), pos(box), pick(ball), pos(cup)]),
+                      (   filter_values(F, v(V), X:t ~= V, Stored),
+                          filter_values(F, v(V1), (X:t ~= V1, true), Proved),
+                          Stored == Proved
+                      ))
+           )),
+    filter_values(F, v(V2), pos(cup):t ~= V2, Cup), maplist(==(none), Cup),
+    filter_values(F, v(V3), pos(ball):t ~= V3, Ball), \+ memberchk(none, Ball),
+    %   the stored path did answer for the ball
+    ddc:filter_state(F, filter(_, N1, T1, Ws1, _, _, Sh1)),
+    ddc:stored_values(1, N1, Ws1, Sh1, pos(ball)-T1, V4, v(V4), Ball),
+    filter_free(F).
+
+%   A particle's own store is not indexed: a read with a partly bound key
+%   scans it and finds what an indexed store finds through its index.
+test(unindexed_store_finds_what_an_index_finds) :-
+    ddc_store:store_new(I, true), ddc_store:store_new(U, false),
+    forall(member(K-V, [pos(a)-3-1.0, pos(b)-3-2.0, pos(a)-2-0.5, vel(a)-3-0.1, x-u-7]),
+           ( ddc_store:store_put(I, K, V), ddc_store:store_put(U, K, V) )),
+    findall(X-V, ddc_store:store_match(I, pos(X)-3, V), FromIndex),
+    findall(X-V, ddc_store:store_match(U, pos(X)-3, V), FromScan),
+    msort(FromIndex, L), msort(FromScan, L), L == [a-1.0, b-2.0],
+    ddc_store:store_size(I, 5), ddc_store:store_size(U, 5),
+    \+ ddc_store:store_get(U, '$by'(pos/1, 3), _),
+    ddc_store:store_get(I, '$by'(pos/1, 3), _).
+
 :- end_tests(ddc_shared).
