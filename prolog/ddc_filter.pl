@@ -248,7 +248,8 @@ step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs]) :-
         arg(7, W1, DX),
         findall(LW1, ( between(2, N, I), own_particle(Ws, I, W),
                        settled_step(W, T1, Facts, LW1, DX) ), LWs)
-    ;   step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs)
+    ;   plan_sweep(M, Sh, T1),
+        step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs)
     ).
 
 %   group_seeds(+K, -Seeds): a seed for each group but the first (which
@@ -539,11 +540,42 @@ weigh_observations([k(X, T, V, O)|Ks], W) :-
 sweep(W, T) :-
     arg(2, W, M),
     nb_setarg(11, W, sweep),
-    forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T), \+ X = observation(_) ),
-           sweep_clause(W, M, Id, X, T)),
-    forall(( M:'$sweep'(der, K, N/A, Sw), Sw = sw(_, eager, _, _, T, W), sweep_kind(K, T) ),
-           materialise(W, M, N/A, Sw, T)),
+    (   sweep_plan(W, T, plan(Ids, Ders))
+    ->  forall(( member(Id, Ids), M:'$sweep'(rv, _, X, Id) ),
+               sweep_clause(W, M, Id, X, T)),
+        forall(( member(K-NA, Ders), M:'$sweep'(der, K, NA, Sw), Sw = sw(_, eager, _, _, T, W) ),
+               materialise(W, M, NA, Sw, T))
+    ;   forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T), \+ X = observation(_) ),
+               sweep_clause(W, M, Id, X, T)),
+        forall(( M:'$sweep'(der, K, N/A, Sw), Sw = sw(_, eager, _, _, T, W), sweep_kind(K, T) ),
+               materialise(W, M, N/A, Sw, T))
+    ),
     nb_setarg(11, W, normal).
+
+%   The sweep plan of a step.  Once the first particle has swept, each
+%   transition clause and each eager derived predicate is either shared
+%   (its keys found by every particle in the shared store: skipped) or
+%   known to be some particle's own (in the impure keys: no particle can
+%   share it any more), so which ones the other particles sweep, and in
+%   which order, is fixed: plan(ClauseIds, Kind-Name/Arity pairs), kept
+%   in the shared store under '$plan'(T) (plan_sweep/3) and followed by
+%   every other particle instead of trying every clause (the same calls,
+%   in the same order).
+sweep_plan(W, T, Plan) :-
+    arg(14, W, Sh),
+    Sh \== none,
+    arg(1, Sh, SS),
+    store_get(SS, '$plan'(T), Plan).
+
+%   plan_sweep(+M, +Sh, +T): records the plan of step T, after the first
+%   particle's sweep.
+plan_sweep(M, Sh, T) :-
+    arg(1, Sh, SS),
+    findall(Id, ( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T), \+ X = observation(_),
+                  \+ store_get(SS, '$swept'(Id, T), _) ), Ids),
+    findall(K-N/A, ( M:'$sweep'(der, K, N/A, Sw), Sw = sw(_, eager, _, _, T, _),
+                     sweep_kind(K, T), \+ store_get(SS, '$mat'(N/A, T), _) ), Ders),
+    store_put(SS, '$plan'(T), plan(Ids, Ders)).
 
 %   sweep_clause(+W, +M, +Id, ?X, +T): samples the keys X-T that clause Id
 %   defines.  If none of them needed anything of a particle's own (all

@@ -300,4 +300,5 @@ key_time('$memo'(_, T), T) :- integer(T), !.
 key_time('$mat'(_, T), T) :- integer(T), !.
 key_time('$w'(_, T), T) :- integer(T), !.
 key_time('$swept'(_, T), T) :- integer(T), !.
+key_time('$plan'(T), T) :- integer(T), !.
 key_time('$by'(_, T), T) :- integer(T).

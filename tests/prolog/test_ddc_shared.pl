@@ -274,4 +274,21 @@ test(unindexed_store_finds_what_an_index_finds) :-
     \+ ddc_store:store_get(U, '$by'(pos/1, 3), _),
     ddc_store:store_get(I, '$by'(pos/1, 3), _).
 
+%   The sweep plan (ddc:plan_sweep/3): after the first particle, the other
+%   particles sweep exactly the transition clauses that are some particle's
+%   own (their '$swept' marks among the impure keys), and skip the shared
+%   ones.
+test(the_sweep_plan_lists_the_clauses_particles_sweep_on_their_own) :-
+    program(File),
+    filter_new(File, 20, 3, [], F),
+    frames([S1, S2, S3|_]),
+    step(F, S1), step(F, S2), step(F, S3),     % the ball vanishes in S3
+    ddc:filter_state(F, filter(_, _, T, _, _, _, sh(Shared, Impure, _, _, _, _))),
+    ddc_store:store_get(Shared, '$plan'(T), plan(Ids, _)),
+    Ids \== [],
+    findall(Id, ddc_store:store_match(Impure, '$swept'(Id, T), _), Own0),
+    msort(Own0, Own), msort(Ids, Own),
+    \+ ( member(Id, Ids), ddc_store:store_get(Shared, '$swept'(Id, T), _) ),
+    filter_free(F).
+
 :- end_tests(ddc_shared).
