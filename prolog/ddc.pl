@@ -32,6 +32,7 @@
             filter_resample/2,          % +Filter, +Indices
             filter_holds/3,             % +Filter, +Goal, -Flags
             filter_values/4,            % +Filter, +Template, +Goal, -Values
+            filter_rows/6,              % +Filter, +Template, +Goal, -Width, -Floats, -Values
             filter_time/2,              % +Filter, -T
             filter_size/2,              % +Filter, -N
             filter_statistics/2,        % +Filter, -Stats

@@ -687,6 +687,91 @@ solution_flag(S, B) :-
 filter_values(F, Template, Goal, Values) :-
     filter_query(F, Goal, Template, Values).
 
+%!  filter_rows(+Filter, +Template, +Goal, -Width, -Floats, -Values) is det.
+%
+%   The values of filter_values/4 as numbers: if Template, at the first
+%   solution of Goal in each particle, is a number or a tuple (A, B, ...)
+%   of numbers of the same length Width in every particle that has a
+%   solution, Floats is one flat list of N*Width floats, particle by
+%   particle (a row of NaNs where Goal has no solution) and Values = [];
+%   else Width = 0, Floats = [] and Values is what filter_values(Filter,
+%   value(Template), Goal, Values) gives (none where Goal has no solution,
+%   value(T) else).  A goal `h ~= V` with template V and ground h (a random
+%   variable's values) is read straight from the particles' stores, without
+%   building the values, when every particle holds one.
+filter_rows(F, Template, Goal, Width, Floats, Values) :-
+    filter_state(F, filter(M, N, T, Ws, _, _, Sh)),
+    M:'$ddc_info'(Info),
+    (   stored_read(Goal, Template, ctx(_, T, Info, query), Key, V, Tmpl),
+        Tmpl == V,
+        (   Sh == none -> SS = none ; arg(1, Sh, SS) ),
+        first_row_width(1, N, Ws, SS, Key, Width0),
+        stored_rows(1, N, Ws, SS, Key, Width0, Floats0)
+    ->  Width = Width0, Floats = Floats0, Values = []
+    ;   filter_values(F, value(Template), Goal, Values0),
+        (   once(member(value(V1), Values0)),
+            row_width(V1, Width1),
+            value_rows(Values0, Width1, Floats1)
+        ->  Width = Width1, Floats = Floats1, Values = []
+        ;   Width = 0, Floats = [], Values = Values0
+        )
+    ).
+
+value_rows([], _, []).
+value_rows([V|Vs], W, Fs) :-
+    (   V = value(X)
+    ->  float_row(X, W, Fs, Fs1)
+    ;   nan_row(W, Fs, Fs1)
+    ),
+    value_rows(Vs, W, Fs1).
+
+%   (Each particle's own value first, then the shared one, as read_key/4.)
+stored_value(I, Ws, SS, Key, Val) :-
+    arg(I, Ws, W),
+    arg(1, W, S),
+    (   store_get(S, Key, Val0) -> Val = Val0
+    ;   SS \== none, store_get(SS, Key, Val)
+    ).
+
+first_row_width(I, N, Ws, SS, Key, Width) :-
+    I =< N,
+    stored_value(I, Ws, SS, Key, Val),
+    (   Val == '$undef'
+    ->  I1 is I+1,
+        first_row_width(I1, N, Ws, SS, Key, Width)
+    ;   row_width(Val, Width)
+    ).
+
+row_width(V, 1) :- number(V), !.
+row_width((A, B), W) :- number(A), row_width(B, W0), W is W0+1.
+
+stored_rows(I, N, Ws, SS, Key, Width, Fs) :-
+    (   I > N
+    ->  Fs = []
+    ;   stored_value(I, Ws, SS, Key, Val),
+        (   Val == '$undef'
+        ->  nan_row(Width, Fs, Fs1)
+        ;   float_row(Val, Width, Fs, Fs1)
+        ),
+        I1 is I+1,
+        stored_rows(I1, N, Ws, SS, Key, Width, Fs1)
+    ).
+
+nan_row(0, Fs, Fs) :- !.
+nan_row(W, [X|Fs], Fs1) :-
+    X is nan,
+    W1 is W-1,
+    nan_row(W1, Fs, Fs1).
+
+float_row(V, 1, [X|Fs], Fs) :-
+    number(V), !,
+    X is float(V).
+float_row((A, B), W, [X|Fs], Fs1) :-
+    W > 1, number(A),
+    X is float(A),
+    W1 is W-1,
+    float_row(B, W1, Fs, Fs1).
+
 filter_literal(Ctx, G, C) :-
     cb(G, Ctx, C).
 

@@ -229,37 +229,14 @@ values(Key, PairText, Values, Err) :-
     ( var(Values) -> Values = [] ; true ).
 
 %   numeric_rows(Key, PairText, Width, Floats, Values, Err): the values of
-%   values/4 flattened to N rows of Width floats (NaN where the goal has no
-%   solution) when every value is a number or a tuple of Width numbers
-%   (Values []); else Width 0 and the Values of values/4.
+%   values/4 as N rows of Width floats (NaN where the goal has no solution)
+%   when every value is a number or a tuple of Width numbers (Values []);
+%   else Width 0 and the Values of values/4 (ddc:filter_rows/6).
 numeric_rows(Key, PairText, Width, Floats, Values, Err) :-
     guarded(( filter_of(Key, F), parse_goal(PairText, ddc_bridge_pair(Template, Goal)),
-              ddc:filter_values(F, value(Template), Goal, Values0),
-              (   rows_width(Values0, Width), Width > 0,
-                  phrase(numeric_rows(Values0, Width), Floats)
-              ->  Values = []
-              ;   Width = 0, Floats = [],
-                  maplist(py_solution, Values0, Values)
-              ) ), Err),
+              ddc:filter_rows(F, Template, Goal, Width, Floats, Values0),
+              maplist(py_solution, Values0, Values) ), Err),
     ( var(Width) -> Width = 0, Floats = [], Values = [] ; true ).
-
-rows_width([], 0).
-rows_width([none|Vs], W) :- !, rows_width(Vs, W).
-rows_width([value(V)|_], W) :- numeric_width(V, W).
-
-numeric_width(V, 1) :- number(V), !.
-numeric_width((A, B), W) :- number(A), numeric_width(B, W0), W is W0+1.
-
-numeric_rows([], _) --> [].
-numeric_rows([none|Vs], W) --> !, nan_row(W), numeric_rows(Vs, W).
-numeric_rows([value(V)|Vs], W) --> numeric_row(V, W), numeric_rows(Vs, W).
-
-nan_row(0) --> !.
-nan_row(W) --> { X is nan, W1 is W-1 }, [X], nan_row(W1).
-
-numeric_row(V, 1) --> { number(V) }, !, [X], { X is float(V) }.
-numeric_row((A, B), W) --> { number(A), W > 1 }, [X], { X is float(A), W1 is W-1 },
-    numeric_row(B, W1).
 
 py_solution(none, @(none)).
 py_solution(value(V), P) :- py_value(V, P).

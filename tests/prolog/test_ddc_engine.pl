@@ -379,4 +379,27 @@ test(uniform_over_a_list_built_in_the_head) :-
     msort(Us5, Sorted), sort(Sorted, Kinds), Kinds == [b, c, none],
     filter_free(Fi).
 
+%   filter_rows/6: a variable's values as rows of floats, read from the
+%   stores (x:t ~= V) or proved (the same read in a conjunction), NaN rows
+%   where it is undefined (x exists only where c is a); tuples give wider
+%   rows; atoms give no rows but the values.
+test(rows_of_floats) :-
+    program([ 'c:0 ~ uniform([a, b]).', 'c:t+1 ~ val(C) := c:t ~= C.',
+              'x:t+1 ~ gaussian(0.0, 1.0) := c:t+1 ~= a.',
+              'p:t+1 ~ val((X, 2)) := x:t+1 ~= X.' ], F),
+    filter_new(F, 40, 3, Fi),
+    filter_step(Fi, [], [], _),
+    filter_rows(Fi, X, x:t ~= X, 1, Stored, []),
+    filter_rows(Fi, X1, (x:t ~= X1, true), 1, Proved, []),
+    Stored == Proved, length(Stored, 40),
+    ddc:filter_state(Fi, filter(_, N, T, Ws, _, _, sh(SS, _, _, _, _, _))),
+    ddc:stored_rows(1, N, Ws, SS, x-T, 1, Stored),     % (read from the stores)
+    filter_values(Fi, C, c:t ~= C, Cs),
+    maplist([Ci, Xi]>>( Ci == a -> Xi =:= Xi ; Xi =\= Xi ), Cs, Stored),
+    memberchk(a, Cs), memberchk(b, Cs),
+    filter_rows(Fi, P, p:t ~= P, 2, Pairs, []), length(Pairs, 80),
+    filter_rows(Fi, C1, c:t ~= C1, W, Fl, Vs), W == 0, Fl == [],
+    maplist([Ci, value(Ci)]>>true, Cs, Vs),
+    filter_free(Fi).
+
 :- end_tests(ddc_filter).
