@@ -191,27 +191,71 @@ filter_step(F, Obs, Acts, LogWs) :-
     maplist(observation_key(Info, T1), Weighted, Keys),
     scratch_copy(F, Ws0, Sh0, Ws, Sh),
     record_observations(Sh, T, Keys),
-    with_rng(R0, with_shared(step_particles(Ws, N, M, T1, Keys, Facts, Sh, LogWs)), R1),
-    share_agreed(Ws, N, Sh, T1),
+    with_rng(R0, with_shared(step_particles(Ws, N, M, T1, Keys, Facts, Sh, LogWs, Agreed)), R1),
+    share_agreed(Ws, N, Sh, T1, Agreed),
     commit(F, State, T1, Ws, Sh, T, Ws0, Sh0, R1).
 
-%   share_agreed(+Ws, +N, +Sh, +T): a value of time T that every particle
-%   computed from its own values but that came out the same in all of them
-%   (an object seen again is where it was seen, whatever each particle had
-%   believed) moves to the shared store, so that what is computed from it
-%   next can be shared again.
-share_agreed(Ws, N, sh(Shared, Impure, _, true, _, _), T) :-
+%   share_agreed(+Ws, +N, +Sh, +T, +Agreed): a value of time T that every
+%   particle computed from its own values but that came out the same in all
+%   of them (an object seen again is where it was seen, whatever each
+%   particle had believed; a variable undefined in every particle) moves to
+%   the shared store, so that what is computed from it next can be shared
+%   again.  Agreed: for each group of particles 2..N, the keys of time T
+%   its particles agree on, with their value (group_agreement/6, found by
+%   the thread that stepped the group), or none (then checked here).  The
+%   particles' own copies (the same value) are dropped when each particle
+%   next steps (moved_keys/3), by the thread that steps it; until then a
+%   query finds the same value in either place.
+share_agreed(Ws, N, sh(Shared, Impure, _, true, _, _), T, Agreed) :-
     !,
     findall(K, ( store_match(Impure, K, _), own_key_at(K, T) ), Ks),
     arg(1, Ws, W1),
     arg(1, W1, S1),
-    forall(( member(K, Ks), store_get(S1, K, V), agreed(2, N, Ws, K, V) ),
+    findall(K-V, ( member(K, Ks), store_get(S1, K, V),
+                   (   Agreed == none
+                   ->  agreed(2, N, Ws, K, V)
+                   ;   forall(member(GA, Agreed), group_agrees(GA, K, V))
+                   ) ),
+            Moved),
+    forall(member(K-V, Moved),
            (   store_put(Shared, K, V),
-               store_delete(Impure, K),
-               forall(( between(1, N, I), arg(I, Ws, W) ),
-                      ( arg(1, W, S), store_delete(S, K) ))
-           )).
-share_agreed(_, _, _, _).
+               store_delete(Impure, K)
+           )),
+    (   Moved == []
+    ->  true
+    ;   pairs_keys(Moved, MovedKeys),
+        store_put(Shared, '$moved'(T), MovedKeys)
+    ).
+share_agreed(_, _, _, _, _).
+
+group_agrees(any, _, _).
+group_agrees(agreed(KVs), K, V) :-
+    memberchk(K-V1, KVs),
+    V1 == V.
+
+%   group_agreement(+Ws, +Lo, +Hi, +Sh, +T, -Agreed): the keys of time T
+%   that particles Lo..Hi of Ws hold as their own, each with the same value
+%   in all of them, as agreed([K-V, ...]) (any for no particles, agreed([])
+%   when nothing is shared).
+group_agreement(Ws, Lo, Hi, Sh, T, Agreed) :-
+    (   Lo > Hi
+    ->  Agreed = any
+    ;   Sh = sh(_, Impure, _, true, _, _)
+    ->  arg(Lo, Ws, W),
+        arg(1, W, S),
+        Lo1 is Lo+1,
+        findall(K-V, ( store_match(Impure, K, _), own_key_at(K, T),
+                       store_get(S, K, V), agreed(Lo1, Hi, Ws, K, V) ),
+                KVs),
+        Agreed = agreed(KVs)
+    ;   Agreed = agreed([])
+    ).
+
+%   moved_keys(+Sh, +T, -Keys): the keys of time T that moved to the shared
+%   store after the step to T (share_agreed/5).
+moved_keys(Sh, T, Keys) :-
+    arg(1, Sh, Shared),
+    (   store_get(Shared, '$moved'(T), Keys0) -> Keys = Keys0 ; Keys = [] ).
 
 own_key_at(_-T, T).
 own_key_at('$mat'(_, T), T).
@@ -234,8 +278,9 @@ agreed(I, N, Ws, K, V) :-
 %   atom of t+1 shared), every other particle's step would only find the
 %   same shared values: each gets the first one's weight and is only moved
 %   to t+1 (a frame in which the particles agree costs next to nothing).
-%   Else the others are stepped in groups (step_groups/9).
-step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs]) :-
+%   Else the others are stepped in groups (step_groups/10).  Agreed: see
+%   share_agreed/5.
+step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs], Agreed) :-
     own_particle(Ws, 1, W1),
     nb_setarg(13, W1, true),
     step_particle(W1, T1, Keys, Facts, Sh, LW1),
@@ -246,10 +291,13 @@ step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs]) :-
         S is S0+1,
         nb_setarg(5, Sh, S),
         arg(7, W1, DX),
+        T is T1-1,
+        moved_keys(Sh, T, Moved),
         findall(LW1, ( between(2, N, I), own_particle(Ws, I, W),
-                       settled_step(W, T1, Facts, LW1, DX) ), LWs)
+                       settled_step(W, T1, Facts, LW1, DX, Moved) ), LWs),
+        Agreed = none
     ;   plan_sweep(M, Sh, T1),
-        step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs)
+        step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs, Agreed)
     ).
 
 %   group_seeds(+K, -Seeds): a seed for each group but the first (which
@@ -262,17 +310,18 @@ group_seeds(K, Seeds) :-
 random_seed(S) :-
     random_between(0, 0x3fffffffffffffff, S).
 
-%   step_groups(+Seeds, +Ws, +N, +M, +T1, +Keys, +Facts, +Sh, -LogWs):
-%   particles 2..N in 1 + length(Seeds) contiguous groups.  The first
+%   step_groups(+Seeds, +Ws, +N, +M, +T1, +Keys, +Facts, +Sh, -LogWs,
+%   -Agreed): particles 2..N in 1 + length(Seeds) contiguous groups.  The first
 %   group is stepped here, each other one by a worker thread on a copy of
 %   its particles and of the shared values, from its seed; then their
 %   particles replace the copies' originals and their shared values join
 %   this thread's (merge_shared/4).  An error in any group is raised here
 %   after every group has been stepped; the step then changes nothing.
-step_groups([], Ws, N, M, T1, Keys, Facts, Sh, LWs) :-
+step_groups([], Ws, N, M, T1, Keys, Facts, Sh, LWs, [Agreed]) :-
     !,
-    step_range(2, N, Ws, M, T1, Keys, Facts, Sh, LWs).
-step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs) :-
+    step_range(2, N, Ws, M, T1, Keys, Facts, Sh, LWs),
+    group_agreement(Ws, 2, N, Sh, T1, Agreed).
+step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs, [Agreed0|GAgreed]) :-
     length(Seeds, K1),
     K is K1+1,
     group_bounds(2, N, K, [Lo-Hi|Others]),
@@ -281,7 +330,8 @@ step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs) :-
     message_queue_create(Q),
     setup_call_cleanup(
         maplist(start_group(Q, Ws, T1, Keys, Facts, Sh), Tags, Seeds, Others),
-        (   catch(step_range(Lo, Hi, Ws, M, T1, Keys, Facts, Sh, LWs0), E, true),
+        (   catch(( step_range(Lo, Hi, Ws, M, T1, Keys, Facts, Sh, LWs0),
+                     group_agreement(Ws, Lo, Hi, Sh, T1, Agreed0) ), E, true),
             maplist(group_result(Q), Tags, Results)
         ),
         message_queue_destroy(Q)),      % (a worker still busy after an abort
@@ -289,7 +339,10 @@ step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs) :-
     (   nonvar(E) -> throw(E) ; true ),
     maplist(join_particles(Ws), Others, Results, GLWss),
     maplist(join_shared(Ws, Sh), Others, Results),
+    maplist(result_agreement, Results, GAgreed),
     append([LWs0|GLWss], LWs).
+
+result_agreement(done(_, _, _, Agreed), Agreed).
 
 %   group_bounds(+From, +To, +K, -Bounds): From..To in K contiguous groups
 %   Lo-Hi of sizes differing by at most one (empty ones left out).
@@ -341,7 +394,8 @@ group_loop :-
     ->  functor(GWs, _, Len),
         catch(( set_random(seed(Seed)),
                 with_shared(step_range_at(1, Len, Lo, held, GWs, T1, Keys, Facts, Sh, LWs)),
-                Out = done(GWs, Sh, LWs)
+                group_agreement(GWs, 1, Len, Sh, T1, Agreed),
+                Out = done(GWs, Sh, LWs, Agreed)
               ), E, Out = error(E)),
         catch(thread_send_message(Q, Tag-Out), _, true)
     ;   true
@@ -353,7 +407,7 @@ group_result(Q, Tag, Out) :-
 
 %   The particles a worker stepped replace their originals in Ws (all
 %   groups first: joining shared values may add to any group's particles).
-join_particles(Ws, Lo-_, done(GWs, _, GLWs), GLWs) :-
+join_particles(Ws, Lo-_, done(GWs, _, GLWs, _), GLWs) :-
     !,
     functor(GWs, _, Len),
     forall(between(1, Len, J),
@@ -361,7 +415,7 @@ join_particles(Ws, Lo-_, done(GWs, _, GLWs), GLWs) :-
 join_particles(_, _, error(E), _) :-
     throw(E).
 
-join_shared(Ws, Sh, Lo-_, done(GWs, GSh, _)) :-
+join_shared(Ws, Sh, Lo-_, done(GWs, GSh, _, _)) :-
     functor(GWs, _, Len),
     merge_shared(Sh, GSh, Ws, Lo-Len).
 
@@ -421,10 +475,10 @@ settled(M, sh(Shared, _, _, true, _, _), T1, Keys) :-
            store_get(Shared, '$mat'(N/A, T1), _)).
 
 %   What step_particle/6 would do to a particle once settled/4 holds.
-settled_step(W, T1, Facts, LW, DX) :-
+settled_step(W, T1, Facts, LW, DX, Moved) :-
     arg(1, W, S),
     T is T1-1,
-    store_prune(S, T, []),
+    store_prune(S, T, Moved),
     nb_setarg(3, W, T1),
     nb_linkarg(12, W, Facts),
     nb_setarg(6, W, LW),
@@ -508,10 +562,11 @@ observation_key(Info, T1, (H ~= V), k(X, T, V, (H ~= V))) :-
 
 step_particle(W, T1, Keys, Facts, Sh, LW) :-
     %   everything before time t (kept until now for queries at t that look
-    %   one step back) goes
+    %   one step back) goes, and so do the values of t now shared
     arg(1, W, S),
     T is T1-1,
-    store_prune(S, T, []),
+    moved_keys(Sh, T, Moved),
+    store_prune(S, T, Moved),
     nb_setarg(3, W, T1),
     nb_linkarg(12, W, Facts),           % ground, shared by all particles: no copy
     nb_linkarg(14, W, Sh),              % (unlinked at the end: copies of W never copy Sh)

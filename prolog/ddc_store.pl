@@ -252,9 +252,8 @@ include_kv([K-V|T], Keep, Out, C0, C) :-
 %
 %   In place: removes the entries whose key has a time below MinTime (keys
 %   X-T, '$memo'(G, T), '$mat'(S, T), '$w'(X, T), '$swept'(I, T) with an
-%   integer T) and the untimed
-%   entries whose key is in DropKeys.  The specialised form of
-%   store_retain/2 the particle filter runs at every step.
+%   integer T) and those whose key is in DropKeys.  The specialised form
+%   of store_retain/2 the particle filter runs at every step.
 store_prune(T, MinT, Drop) :-
     T = tbl(_, D, _),
     (   D == []
@@ -287,8 +286,8 @@ prune_buckets(I, S, B, MinT, Drop, C0, C) :-
 prune_list([], _, _, [], C, C).
 prune_list([E|Es], MinT, Drop, Out, C0, C) :-
     E = K-_,
-    (   key_time(K, T)
-    ->  (   T >= MinT -> Out = [E|Out1], C1 is C0+1 ; Out = Out1, C1 = C0 )
+    (   key_time(K, T), T < MinT
+    ->  Out = Out1, C1 = C0
     ;   Drop \== [], memberchk(K, Drop)
     ->  Out = Out1, C1 = C0
     ;   Out = [E|Out1], C1 is C0+1
@@ -301,4 +300,5 @@ key_time('$mat'(_, T), T) :- integer(T), !.
 key_time('$w'(_, T), T) :- integer(T), !.
 key_time('$swept'(_, T), T) :- integer(T), !.
 key_time('$plan'(T), T) :- integer(T), !.
+key_time('$moved'(T), T) :- integer(T), !.
 key_time('$by'(_, T), T) :- integer(T).

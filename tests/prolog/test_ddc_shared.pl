@@ -291,4 +291,26 @@ test(the_sweep_plan_lists_the_clauses_particles_sweep_on_their_own) :-
     \+ ( member(Id, Ids), ddc_store:store_get(Shared, '$swept'(Id, T), _) ),
     filter_free(F).
 
+%   Agreement is found by the thread that steps each group of particles
+%   (ddc:group_agreement/6) and combined after the step: with 1, 2 or 3
+%   threads the ball's position, seen again, moves to the shared store;
+%   the particles' own copies (the same value) stay until each particle
+%   next steps, and are dropped then.
+test(agreed_values_move_with_any_number_of_threads, [forall(member(K, [1, 2, 3]))]) :-
+    program(File),
+    filter_new(File, 30, 5, [threads(K)], F),
+    frames(Frames), length(Pre, 6), append(Pre, [S7|_], Frames),
+    maplist(step(F), Pre),          % the ball is seen again in the 6th frame
+    ddc:filter_state(F, filter(_, N, T, Ws, _, _, sh(Shared, Impure, _, _, _, _))),
+    ddc_store:store_get(Shared, pos(ball)-T, V),
+    \+ ddc_store:store_get(Impure, pos(ball)-T, _),
+    ddc_store:store_get(Shared, '$moved'(T), Moved), memberchk(pos(ball)-T, Moved),
+    forall(( between(1, N, I), arg(I, Ws, W), arg(1, W, S) ),
+           ( ddc_store:store_get(S, pos(ball)-T, V1), V1 == V )),
+    step(F, S7),
+    ddc:filter_state(F, filter(_, _, _, Ws7, _, _, _)),
+    forall(( between(1, N, I), arg(I, Ws7, W), arg(1, W, S) ),
+           \+ ddc_store:store_get(S, pos(ball)-T, _)),
+    filter_free(F).
+
 :- end_tests(ddc_shared).
