@@ -5,6 +5,7 @@ from __future__ import annotations
 import logging
 import time
 from collections.abc import Callable, Iterable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -12,7 +13,7 @@ import numpy as np
 
 from anchoring import AnchorManager, FrameResult
 from app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS, AnchorState, OcclusionReasoner
-from app.sources import SourceFrame
+from app.sources import PendingFrame, SourceFrame
 from evaluation import FrameTimings, Hypothesis, TrackingRecord, point_estimate, record_for_frame
 
 logger = logging.getLogger(__name__)
@@ -37,6 +38,17 @@ class LoopConfig:
     # anchor left over (AnchorManager.reid_seconds); False switches that off, so that only
     # the matcher (and, with reasoning, the particles of hidden anchors) re-acquires.
     reidentify: bool = True
+
+
+@dataclass
+class FrameStep:
+    """What anchoring and reasoning made of one frame, before its record is written."""
+
+    source: SourceFrame
+    result: FrameResult
+    hidden: dict[str, tuple[np.ndarray, np.ndarray]]
+    timings: FrameTimings
+    rejected: int
 
 
 @dataclass
@@ -69,6 +81,11 @@ class AnchoringLoop:
             self.reasoner.close()
 
     def process(self, source: SourceFrame) -> FrameOutcome:
+        """One frame: anchoring and reasoning (:meth:`advance`), then its record."""
+        return self.finish(self.advance(source))
+
+    def advance(self, source: SourceFrame) -> FrameStep:
+        """Anchoring and reasoning on one frame's percepts (the timed work of the loop)."""
         frame = source.percepts
         started = time.perf_counter()
         result = self.manager.process(frame.time, frame.percepts)
@@ -99,16 +116,23 @@ class AnchoringLoop:
                                                         belief.weights)
                     hidden[symbol] = (belief.positions, belief.weights)
             filter_ms = (time.perf_counter() - started) * 1000
+        return FrameStep(source, result, hidden,
+                         FrameTimings(perception=source.perception_ms, anchoring=anchoring_ms,
+                                      filter=filter_ms),
+                         rejected)
 
+    def finish(self, step: FrameStep) -> FrameOutcome:
+        """The frame's tracking record (hypotheses and matches for the evaluation), from the
+        anchors as :meth:`advance` left them."""
+        frame, result = step.source.percepts, step.result
         record = record_for_frame(
             frame,
             self.hypotheses(result),
             [(frame.percepts[a.percept_index], a.symbol) for a in result.assignments],
-            FrameTimings(perception=source.perception_ms, anchoring=anchoring_ms,
-                         filter=filter_ms),
-            rejected_percepts=rejected,
+            step.timings,
+            rejected_percepts=step.rejected,
         )
-        return FrameOutcome(source, result, record, hidden)
+        return FrameOutcome(step.source, result, record, step.hidden)
 
     def hypotheses(self, result: FrameResult) -> dict[str, Hypothesis]:
         perceived = {a.symbol for a in result.assignments}
@@ -124,14 +148,48 @@ class AnchoringLoop:
         return out
 
 
-def run_frames(frames: Iterable[SourceFrame], loop: AnchoringLoop,
+def run_frames(frames: Iterable[PendingFrame], loop: AnchoringLoop,
                on_frame: Callable[[FrameOutcome, AnchoringLoop], None] | None = None,
-               ) -> list[TrackingRecord]:
-    """Play frames through ``loop``; ``on_frame`` sees each outcome (pictures, progress)."""
+               overlap: bool = True) -> list[TrackingRecord]:
+    """Play frames through ``loop``; ``on_frame`` sees each outcome (pictures, progress).
+
+    With ``overlap``, the next frame is perceived (in a second Python thread) while the loop
+    anchors and reasons about the current one: perception needs nothing of the anchors, and
+    the filter's Prolog threads leave the machine's cores partly idle (the first particle,
+    the copies to and from the worker thread, the belief reads).  Each record's
+    ``timings.total`` is then the wall-clock time of its stage: from the moment the camera's
+    next frame is there to the moment both that frame's percepts and this frame's anchors and
+    beliefs are (the first frame's stage also counts its own perception, which nothing
+    overlaps).  The frame rate is 1000 / the mean total; the parts (perception, anchoring,
+    filter) are each timed on their own, so with ``overlap`` they add up to more than the
+    total.  Without ``overlap`` each frame is perceived just before it is processed and the
+    total is the sum of the parts.  Rendering (the simulator), the records (bookkeeping for
+    the evaluation) and ``on_frame`` (pictures) are outside every stage.
+    """
     records: list[TrackingRecord] = []
-    for source in frames:
-        outcome = loop.process(source)
-        records.append(outcome.record)
-        if on_frame is not None:
-            on_frame(outcome, loop)
+    pending = iter(frames)
+    first = next(pending, None)
+    if first is None:
+        return records
+    started = time.perf_counter()
+    current: SourceFrame | None = first()
+    lead_ms = (time.perf_counter() - started) * 1000
+    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="perception") as perception:
+        while current is not None:
+            upcoming = next(pending, None)          # the camera's next frame (rendered)
+            started = time.perf_counter()
+            future = (perception.submit(upcoming)
+                      if overlap and upcoming is not None else None)
+            step = loop.advance(current)
+            if future is not None:
+                following: SourceFrame | None = future.result()
+                step.timings.total = (time.perf_counter() - started) * 1000 + lead_ms
+                lead_ms = 0.0
+            else:                                   # total: the sum of the parts
+                following = upcoming() if upcoming is not None else None
+            outcome = loop.finish(step)
+            records.append(outcome.record)
+            if on_frame is not None:
+                on_frame(outcome, loop)
+            current = following
     return records

@@ -31,6 +31,8 @@ class RunOptions(LoopConfig):
     progress: bool = True
     width: int | None = None
     height: int | None = None
+    # perceive the next frame while the current one is reasoned about (run_frames)
+    overlap: bool = True
 
 
 @dataclass
@@ -79,7 +81,7 @@ def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
         bar.update(1)
 
     try:
-        records = run_frames(frames, loop, on_frame)
+        records = run_frames(frames, loop, on_frame, overlap=options.overlap)
     finally:
         bar.close()
     evaluation = evaluate(records)

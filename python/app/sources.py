@@ -1,11 +1,19 @@
 """Where frames come from: a simulated scenario (rendered and perceived here) or a recorded
-percept stream (JSON Lines, no images)."""
+percept stream (JSON Lines, no images).
+
+A source yields one *pending frame* per camera frame: the camera's image is there (the
+simulator has rendered it), and calling the pending frame runs perception on it (timed) and
+gives the :class:`SourceFrame`.  The loop can so perceive the next frame while it reasons
+about the current one (:func:`app.loop.run_frames`); rendering, the simulator's stand-in for a
+camera, is never timed nor overlapped.
+"""
 
 from __future__ import annotations
 
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -21,9 +29,14 @@ class SourceFrame:
     camera_pose: Any = None  # 4x4 world-from-camera (OpenCV axes)
 
 
+PendingFrame = Callable[[], SourceFrame]
+
+
 def scenario_frames(path: str | Path, seed: int = 0, width: int | None = None,
-                    height: int | None = None, fps: float | None = None) -> Iterator[SourceFrame]:
-    """Render every frame of a scenario and run the perception pipeline on it."""
+                    height: int | None = None, fps: float | None = None
+                    ) -> Iterator[PendingFrame]:
+    """Render every frame of a scenario; each pending frame runs the perception pipeline on
+    it (the pipeline's frames must be perceived in order, one at a time)."""
     from perception import Pipeline
     from tabletop import Simulation, load_scenario
 
@@ -31,10 +44,14 @@ def scenario_frames(path: str | Path, seed: int = 0, width: int | None = None,
     pipeline = Pipeline()
     with Simulation(scenario, width=width, height=height, fps=fps, seed=seed) as sim:
         for frame in sim:
-            started = time.perf_counter()
-            percepts = pipeline.percept_frame(frame)
-            ms = (time.perf_counter() - started) * 1000
-            yield SourceFrame(percepts, ms, frame.rgb, frame.intrinsics, frame.camera_pose)
+            yield partial(_perceive, pipeline, frame)
+
+
+def _perceive(pipeline: Any, frame: Any) -> SourceFrame:
+    started = time.perf_counter()
+    percepts = pipeline.percept_frame(frame)
+    ms = (time.perf_counter() - started) * 1000
+    return SourceFrame(percepts, ms, frame.rgb, frame.intrinsics, frame.camera_pose)
 
 
 def scenario_length(path: str | Path, fps: float | None = None) -> int | None:
@@ -49,7 +66,7 @@ def scenario_length(path: str | Path, fps: float | None = None) -> int | None:
         return None
 
 
-def stream_frames(path: str | Path) -> Iterator[SourceFrame]:
+def stream_frames(path: str | Path) -> Iterator[PendingFrame]:
     """A recorded percept stream: no images, perception time 0."""
     for frame in read_percepts(path):
-        yield SourceFrame(frame, 0.0)
+        yield partial(SourceFrame, frame, 0.0)

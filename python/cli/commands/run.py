@@ -26,6 +26,10 @@ def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> N
     parser.add_argument("--every", type=int, default=1,
                         help="write a picture every N frames (default 1)")
     parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.add_argument("--sequential", action="store_true",
+                        help="perceive each frame only after the previous one is processed "
+                             "(by default the next frame is perceived while the current one "
+                             "is reasoned about; the results are the same)")
 
 
 def register(sub: Any) -> None:
@@ -51,7 +55,7 @@ def main(args: argparse.Namespace) -> int:
         scenario=args.scenario, percepts=args.percepts, particles=args.particles,
         theory=args.theory, seed=args.seed, reasoning=not args.no_reasoning,
         resample_threshold=args.resample_threshold, reidentify=not args.no_reid, out=args.out,
-        threads=args.threads,
+        threads=args.threads, overlap=not args.sequential,
         picture_every=args.every, progress=not args.quiet,
     ))
     print(format_summary(output.summary))
