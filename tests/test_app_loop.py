@@ -15,7 +15,8 @@ from app.loop import run_frames
 from app.runner import RunOptions, run
 from app.sources import SourceFrame
 from evaluation import FrameTimings
-from percepts import Percept, PerceptFrame, write_percepts
+from percept_helpers import ball_percept
+from percepts import PerceptFrame, write_percepts
 
 FRAMES = 5
 
@@ -88,14 +89,8 @@ def test_a_perception_error_stops_the_run() -> None:
 
 
 def _ball_stream(path: Path) -> Path:
-    def ball(t: float, x: float) -> Percept:
-        hist = np.zeros(8)
-        hist[0] = 1.0
-        return Percept(time=t, position=np.array([x, 0.0, 0.03]), size=np.full(3, 0.06),
-                       colour_histogram=hist, category={"ball": 0.9, "cup": 0.1})
-
     # a ball that vanishes for three frames and comes back a little further on
-    frames = [PerceptFrame(k, k / 5, [] if 3 <= k < 6 else [ball(k / 5, 0.02 * k)])
+    frames = [PerceptFrame(k, k / 5, [] if 3 <= k < 6 else [ball_percept(k / 5, 0.02 * k)])
               for k in range(9)]
     write_percepts(path, frames)
     return path

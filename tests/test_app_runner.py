@@ -117,15 +117,8 @@ def test_a_theory_with_an_error_stops_the_run_before_the_first_frame(
 
 
 def test_a_percept_with_nan_is_dropped_counted_and_the_run_goes_on(tmp_path: Path) -> None:
-    import numpy as np
-
-    from percepts import Percept, PerceptFrame, write_percepts
-
-    def ball(t: float, x: float) -> Percept:
-        hist = np.zeros(8)
-        hist[0] = 1.0
-        return Percept(time=t, position=np.array([x, 0.0, 0.03]), size=np.full(3, 0.06),
-                       colour_histogram=hist, category={"ball": 0.9, "cup": 0.1})
+    from percept_helpers import ball_percept as ball
+    from percepts import PerceptFrame, write_percepts
 
     frames = []
     for k in range(6):
