@@ -759,7 +759,7 @@ filter_rows(F, Template, Goal, Width, Floats, Values) :-
     M:'$ddc_info'(Info),
     (   stored_read(Goal, Template, ctx(_, T, Info, query), Key, V, Tmpl),
         Tmpl == V,
-        (   Sh == none -> SS = none ; arg(1, Sh, SS) ),
+        shared_store(Sh, SS),
         first_row_width(1, N, Ws, SS, Key, Width0),
         stored_rows(1, N, Ws, SS, Key, Width0, Floats0)
     ->  Width = Width0, Floats = Floats0, Values = []
@@ -780,7 +780,12 @@ value_rows([V|Vs], W, Fs) :-
     ),
     value_rows(Vs, W, Fs1).
 
-%   (Each particle's own value first, then the shared one, as read_key/4.)
+shared_store(Sh, SS) :-
+    (   Sh == none -> SS = none ; arg(1, Sh, SS) ).
+
+%   stored_value(+I, +Ws, +SS, +Key, -Val): particle I's value of Key, its
+%   own first, then the shared one (in store SS, or none), as read_key/4
+%   finds it; fails if neither holds one.
 stored_value(I, Ws, SS, Key, Val) :-
     arg(I, Ws, W),
     arg(1, W, S),
@@ -835,7 +840,8 @@ filter_query(F, Goal, Template, Values) :-
     State = filter(M, N, T, Ws, _, R0, Sh),
     M:'$ddc_info'(Info),
     (   stored_read(Goal, Template, ctx(_, T, Info, query), Key, V, Tmpl),
-        stored_values(1, N, Ws, Sh, Key, V, Tmpl, Values)
+        shared_store(Sh, SS),
+        stored_values(1, N, Ws, SS, Key, V, Tmpl, Values)
     ->  true
     ;   proved_values(State, M, N, T, Ws, R0, Sh, Info, Goal, Template, Values)
     ).
@@ -852,24 +858,20 @@ stored_read(Goal, Template, Ctx, X-T, V, Tmpl) :-
     catch(read_key_code(H, Ctx, X, T, TG), _, fail),
     ground(X), call(TG), integer(T).
 
-%   stored_values(+I, +N, +Ws, +Sh, +Key, +V, +Tmpl, -Values): fails if a
+%   stored_values(+I, +N, +Ws, +SS, +Key, +V, +Tmpl, -Values): fails if a
 %   particle holds no value of Key (it would be sampled or weighed: the
 %   goal is then proved as any other).
-stored_values(I, N, Ws, Sh, Key, V, Tmpl, Values) :-
+stored_values(I, N, Ws, SS, Key, V, Tmpl, Values) :-
     (   I > N
     ->  Values = []
-    ;   arg(I, Ws, W),
-        arg(1, W, S),
-        (   store_get(S, Key, Val) -> true
-        ;   Sh \== none, arg(1, Sh, SS), store_get(SS, Key, Val)
-        ),
+    ;   stored_value(I, Ws, SS, Key, Val),
         (   Val == '$undef'
         ->  Value = none
         ;   copy_term(V-Tmpl, Val-Value)
         ),
         Values = [Value|Values1],
         I1 is I+1,
-        stored_values(I1, N, Ws, Sh, Key, V, Tmpl, Values1)
+        stored_values(I1, N, Ws, SS, Key, V, Tmpl, Values1)
     ).
 
 proved_values(State, M, N, T, Ws, R0, Sh, Info, Goal, Template, Values) :-

@@ -246,8 +246,8 @@ test(stored_reads_answer_as_proofs_do) :-
     frames(Frames),
     forall(member(Seen, Frames),
            (   step(F, Seen),
-               ddc:filter_state(F, filter(_, N, T, Ws, _, _, Sh)),
-               \+ ddc:stored_values(1, N, Ws, Sh, pos(cup)-T, _, _, _),
+               ddc:filter_state(F, filter(_, N, T, Ws, _, _, sh(SS, _, _, _, _, _))),
+               \+ ddc:stored_values(1, N, Ws, SS, pos(cup)-T, _, _, _),
                forall(member(X, [pos(ball), pos(box), pick(ball), pos(cup)]),
                       (   filter_values(F, v(V), X:t ~= V, Stored),
                           filter_values(F, v(V1), (X:t ~= V1, true), Proved),
@@ -257,8 +257,8 @@ test(stored_reads_answer_as_proofs_do) :-
     filter_values(F, v(V2), pos(cup):t ~= V2, Cup), maplist(==(none), Cup),
     filter_values(F, v(V3), pos(ball):t ~= V3, Ball), \+ memberchk(none, Ball),
     %   the stored path did answer for the ball
-    ddc:filter_state(F, filter(_, N1, T1, Ws1, _, _, Sh1)),
-    ddc:stored_values(1, N1, Ws1, Sh1, pos(ball)-T1, V4, v(V4), Ball),
+    ddc:filter_state(F, filter(_, N1, T1, Ws1, _, _, sh(SS1, _, _, _, _, _))),
+    ddc:stored_values(1, N1, Ws1, SS1, pos(ball)-T1, V4, v(V4), Ball),
     filter_free(F).
 
 %   A particle's own store is not indexed: a read with a partly bound key
