@@ -83,7 +83,8 @@ else
     tar -xf "$tarball" -C "$work/src" --strip-components=1
     # PGO: SWI-Prolog's profile-guided build (an instrumented build runs its benchmark suite,
     # then the final build uses the profile); the filter steps about 5 % faster than with
-    # Release (bench/filter_replay.py, measured).  Release if that build fails.
+    # Release (measured on the shell game's recorded filter frames, one and two threads).
+    # Release if that build fails.
     build_swipl() {
       rm -rf "$work/build"
       cmake -S "$work/src" -B "$work/build" -G Ninja \
