@@ -595,17 +595,20 @@ weigh_observations([k(X, T, V, O)|Ks], W) :-
 sweep(W, T) :-
     arg(2, W, M),
     nb_setarg(11, W, sweep),
-    (   sweep_plan(W, T, plan(Ids, Ders))
-    ->  forall(( member(Id, Ids), M:'$sweep'(rv, _, X, Id) ),
-               sweep_clause(W, M, Id, X, T)),
-        forall(( member(K-NA, Ders), M:'$sweep'(der, K, NA, Sw), Sw = sw(_, eager, _, _, T, W) ),
-               materialise(W, M, NA, Sw, T))
-    ;   forall(( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T), \+ X = observation(_) ),
-               sweep_clause(W, M, Id, X, T)),
-        forall(( M:'$sweep'(der, K, N/A, Sw), Sw = sw(_, eager, _, _, T, W), sweep_kind(K, T) ),
-               materialise(W, M, N/A, Sw, T))
-    ),
+    (   sweep_plan(W, T, plan(Ids, Ders)) -> true ; sweep_items(M, T, Ids, Ders) ),
+    forall(( member(Id, Ids), M:'$sweep'(rv, _, X, Id) ),
+           sweep_clause(W, M, Id, X, T)),
+    forall(( member(K-NA, Ders), M:'$sweep'(der, K, NA, Sw), Sw = sw(_, eager, _, _, T, W) ),
+           materialise(W, M, NA, Sw, T)),
     nb_setarg(11, W, normal).
+
+%   sweep_items(+M, +T, -Ids, -Ders): what a sweep at T goes through, in
+%   order: the transition (or prior) clauses that define random variables
+%   (not observations) and the eager derived predicates, as Kind-Name/Arity.
+sweep_items(M, T, Ids, Ders) :-
+    findall(Id, ( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T), \+ X = observation(_) ), Ids),
+    findall(K-N/A, ( M:'$sweep'(der, K, N/A, sw(_, eager, _, _, _, _)), sweep_kind(K, T) ),
+            Ders).
 
 %   The sweep plan of a step.  Once the first particle has swept, each
 %   transition clause and each eager derived predicate is either shared
@@ -626,11 +629,16 @@ sweep_plan(W, T, Plan) :-
 %   particle's sweep.
 plan_sweep(M, Sh, T) :-
     arg(1, Sh, SS),
-    findall(Id, ( M:'$sweep'(rv, K, X, Id), sweep_kind(K, T), \+ X = observation(_),
-                  \+ store_get(SS, '$swept'(Id, T), _) ), Ids),
-    findall(K-N/A, ( M:'$sweep'(der, K, N/A, Sw), Sw = sw(_, eager, _, _, T, _),
-                     sweep_kind(K, T), \+ store_get(SS, '$mat'(N/A, T), _) ), Ders),
+    sweep_items(M, T, Ids0, Ders0),
+    exclude(swept_shared(SS, T), Ids0, Ids),
+    exclude(materialised_shared(SS, T), Ders0, Ders),
     store_put(SS, '$plan'(T), plan(Ids, Ders)).
+
+swept_shared(SS, T, Id) :-
+    store_get(SS, '$swept'(Id, T), _).
+
+materialised_shared(SS, T, _-NA) :-
+    store_get(SS, '$mat'(NA, T), _).
 
 %   sweep_clause(+W, +M, +Id, ?X, +T): samples the keys X-T that clause Id
 %   defines.  If none of them needed anything of a particle's own (all
