@@ -1,0 +1,590 @@
+/*  ddc_belief.pl -- the particle filter's belief, weighted, for swipl users.
+
+    The filter predicates of ddc.pl (filter_new/5, filter_step/4, ...) hold
+    the particles and return each step's log weights; the weights, the
+    effective sample size, the resampling and the running log-likelihood
+    are kept by the caller (in the Python bridge, by bridge.Filter).  This
+    module keeps them in Prolog, with the same rules as bridge.Filter, so
+    that a program can be filtered and its belief queried from swipl:
+
+        swipl prolog/ddc_belief.pl
+        ?- belief_new('prolog/examples/filter/pit_world.pl',
+                      [particles(2000), seed(5)], B),
+           belief_run(B, 'prolog/examples/filter/pit_world.jsonl'),
+           belief_probability(B, maze(1,1):t ~= free, P),
+           belief_distribution(B, maze(2,0):t, D).
+
+    (The random draws differ from bridge.Filter's, which resamples with
+    numpy: the same seed gives the same answers within Prolog, bit for bit,
+    not the same answers as the Python side.)
+*/
+
+:- module(ddc_belief,
+          [ belief_new/3,                % +ProgramFile, +Options, -Belief
+            belief_step/3,               % +Belief, +Observations, +Actions
+            belief_step/4,               % +Belief, +Observations, +Actions, -Step
+            belief_run/2,                % +Belief, +FramesFile
+            belief_run/3,                % +Belief, +FramesFile, :OnStep
+            belief_probability/3,        % +Belief, +Goal, -P
+            belief_distribution/3,       % +Belief, +Term, -Dist
+            belief_distribution/4,       % +Belief, +Template, +Goal, -Dist
+            belief_mean/4,               % +Belief, +Term, -Mean, -Cov
+            belief_samples/3,            % +Belief, +Term, -Samples
+            belief_weights/2,            % +Belief, -Weights
+            belief_ess/2,                % +Belief, -ESS
+            belief_time/2,               % +Belief, -T
+            belief_log_likelihood/2,     % +Belief, -LogLikelihood
+            belief_zero_weight_events/2, % +Belief, -Count
+            belief_filter/2,             % +Belief, -Filter
+            belief_free/1,               % +Belief
+            resample_indices/4           % +Scheme, +Weights, +Uniforms, -Indices
+          ]).
+:- reexport(ddc).
+
+:- use_module(library(apply)).
+:- use_module(library(lists)).
+:- use_module(library(option)).
+:- use_module(library(error)).
+:- use_module(library(pairs)).
+:- use_module(library(readutil)).
+:- use_module(library(http/json)).
+
+:- meta_predicate belief_run(+, +, 1).
+
+/** <module> Weighted particle belief over a DDC filter
+
+A Belief is belief(Key); its state (the filter, the normalised log
+weights, the running log-likelihood, the zero-weight events, the
+resampling options and random stream) is a global variable of the calling
+thread named Key, like the filter's own particles, and goes with
+belief_free/1.  A step or query that raises an error leaves the belief as
+it was.
+*/
+
+%!  belief_new(+ProgramFile, +Options, -Belief) is det.
+%
+%   Loads ProgramFile and makes a filter of its prior.  Options:
+%     - particles(N): number of particles (default 1000)
+%     - seed(S): the seed of the particles and of the resampling (default 0)
+%     - threads(K): Prolog threads that step the particles (default 1)
+%     - resample_threshold(F): resample when the effective sample size
+%       falls below F*N (default 0.9)
+%     - resampling(Scheme): systematic (default), multinomial or residual
+%     - share(Bool): compute the values the particles agree on once
+%       (default true; see filter_new/5)
+belief_new(File, Options, belief(Key)) :-
+    option(particles(N), Options, 1000),
+    option(seed(Seed), Options, 0),
+    option(threads(K), Options, 1),
+    option(resample_threshold(Th), Options, 0.9),
+    option(resampling(Scheme), Options, systematic),
+    option(share(Share), Options, true),
+    must_be(positive_integer, N),
+    must_be(integer, Seed),
+    must_be(between(0.0, 1.0), Th),
+    must_be(oneof([systematic, multinomial, residual]), Scheme),
+    filter_new(File, N, Seed, [threads(K), share(Share)], F),
+    uniform_log_weights(N, LWs),
+    resampling_stream(Seed, R),
+    gensym('$ddc_belief_', Key),
+    nb_setval(Key, belief(F, N, LWs, 0.0, 0, Th, Scheme, R, 0)).
+
+%   The resampling draws come from a stream of their own, seeded from Seed
+%   but not equal to the particles' stream.
+resampling_stream(Seed, R) :-
+    term_hash(resampling(Seed), S),
+    with_stream(_, set_random(seed(S)), R).
+
+%   with_stream(+R0, :Goal, -R): runs Goal with the random stream in state
+%   R0 (fresh if unbound), R the state after; the caller's stream is kept.
+with_stream(R0, Goal, R) :-
+    random_property(state(Saved)),
+    (   var(R0) -> true ; set_random(state(R0)) ),
+    call_cleanup(( call(Goal), random_property(state(R)) ),
+                 set_random(state(Saved))).
+
+state(belief(Key), S) :-
+    (   atom(Key), nb_current(Key, S0), S0 = belief(_, _, _, _, _, _, _, _, _)
+    ->  S = S0
+    ;   throw(error(existence_error(belief, belief(Key)), _))
+    ).
+
+%!  belief_free(+Belief) is det.
+%
+%   Frees the belief's filter and state.
+belief_free(B) :-
+    state(B, belief(F, _, _, _, _, _, _, _, _)),
+    filter_free(F),
+    B = belief(Key),
+    nb_delete(Key).
+
+%!  belief_step(+Belief, +Observations, +Actions) is det.
+%!  belief_step(+Belief, +Observations, +Actions, -Step) is det.
+%
+%   One filter step (filter_step/4) with the observations (`h ~= v` and
+%   plain facts) and actions of time t+1, then, as bridge.Filter: the
+%   log weights become the normalised sum of the old ones and the step's
+%   (NaN counts as -inf); the log of their weighted mean likelihood is
+%   added to the log-likelihood; if the effective sample size falls below
+%   the threshold the particles are resampled and the weights made
+%   uniform.  If every particle gets weight 0, the step is undone, the
+%   weights are made uniform, a warning is printed and the zero-weight
+%   count goes up: the time does not advance.  Step is a dict step{time,
+%   frame, ess, resampled, log_likelihood, zero_weight} (log_likelihood:
+%   this step's increment, -inf for a zero-weight step).
+belief_step(B, Obs, Acts) :-
+    belief_step(B, Obs, Acts, _).
+
+belief_step(B, Obs, Acts, Step) :-
+    state(B, belief(F, N, LWs0, LL0, Z0, Th, Scheme, R0, Fr0)),
+    filter_step(F, Obs, Acts, StepLWs),
+    Fr is Fr0 + 1,
+    maplist(combined_log_weight, LWs0, StepLWs, Comb0),
+    (   member(C, Comb0), C =:= inf
+    ->  print_message(warning, ddc_belief(infinite_likelihood(Fr))),
+        maplist(keep_infinite, Comb0, Comb)
+    ;   Comb = Comb0
+    ),
+    log_sum_exp(Comb, Inc),
+    B = belief(Key),
+    (   Inc =:= -inf
+    ->  filter_undo(F),
+        Z is Z0 + 1,
+        uniform_log_weights(N, LWs),
+        filter_time(F, T),
+        print_message(warning, ddc_belief(zero_weight(Fr, N, Z))),
+        nb_setval(Key, belief(F, N, LWs, LL0, Z, Th, Scheme, R0, Fr)),
+        Step = step{time: T, frame: Fr, ess: 0.0, resampled: false,
+                    log_likelihood: Inc, zero_weight: true}
+    ;   LL is LL0 + Inc,
+        maplist(minus(Inc), Comb, LWs1),
+        ess(LWs1, ESS),
+        (   ESS < Th * N
+        ->  maplist(exp_weight, LWs1, Ws),
+            length(Us, N),
+            with_stream(R0, maplist(random_float_, Us), R),
+            resample_indices(Scheme, Ws, Us, Is),
+            filter_resample(F, Is),
+            uniform_log_weights(N, LWs),
+            Resampled = true
+        ;   LWs = LWs1, R = R0, Resampled = false
+        ),
+        filter_time(F, T),
+        nb_setval(Key, belief(F, N, LWs, LL, Z0, Th, Scheme, R, Fr)),
+        Step = step{time: T, frame: Fr, ess: ESS, resampled: Resampled,
+                    log_likelihood: Inc, zero_weight: false}
+    ).
+
+random_float_(U) :-
+    U is random_float.
+
+%   (Arithmetic that yields an infinity raises float_overflow: the
+%   infinities are handled before they reach it.)
+combined_log_weight(L0, L, C) :-
+    (   L =:= L, L > -inf, L0 > -inf    % (L =:= L: not NaN)
+    ->  (   L =:= inf -> C = L ; C is L0 + L )
+    ;   C is -inf
+    ).
+
+keep_infinite(C, K) :-
+    (   C =:= inf -> K = 0.0 ; K is -inf ).
+
+minus(A, X, Y) :-
+    (   X =:= -inf -> Y = X ; Y is X - A ).
+
+exp_weight(L, W) :-
+    (   L =:= -inf -> W = 0.0 ; W is exp(L) ).
+
+uniform_log_weights(N, LWs) :-
+    L is -log(N),
+    length(LWs, N),
+    maplist(=(L), LWs).
+
+%   log_sum_exp(+Ls, -S): log(sum exp(L)), -inf for an empty sum.
+log_sum_exp([L|Ls], S) :-
+    foldl(larger, Ls, L, M),            % (max/2 of two infinities overflows)
+    (   M =:= -inf
+    ->  S = M
+    ;   foldl(add_exp(M), Ls, 0.0, Sum),
+        S is M + log(Sum)
+    ).
+
+larger(X, M0, M) :-
+    (   X > M0 -> M = X ; M = M0 ).
+
+add_exp(M, L, S0, S) :-
+    (   L =:= -inf -> S = S0 ; S is S0 + exp(L - M) ).
+
+ess(LWs, ESS) :-
+    foldl(add_square, LWs, 0.0, S),
+    ESS is 1 / S.
+
+add_square(L, S0, S) :-
+    exp_weight(L, W),
+    S is S0 + W*W.
+
+%!  resample_indices(+Scheme, +Weights, +Uniforms, -Indices) is det.
+%
+%   N ancestor indices (0-based, ascending) for normalised Weights (N
+%   floats), from N uniform numbers in [0, 1) (only the first is used by
+%   systematic), as bridge.filter's resamplers: systematic (one offset,
+%   stride 1/N: particle i is copied floor(N w_i) or ceil(N w_i) times),
+%   multinomial (N independent draws), residual (floor(N w_i) copies of
+%   each, the rest drawn from the remainders).
+resample_indices(systematic, Ws, [U|_], Is) :-
+    length(Ws, N),
+    numlist_(0, N, Ks),
+    maplist(systematic_position(U, N), Ks, Ps),
+    walk(Ws, Ps, Is).
+resample_indices(multinomial, Ws, Us, Is) :-
+    msort(Us, Ps),
+    walk(Ws, Ps, Is).
+resample_indices(residual, Ws, Us, Is) :-
+    length(Ws, N),
+    maplist(residual_copies(N), Ws, Copies),
+    sum_list(Copies, Kept),
+    Rest is N - Kept,
+    numlist_(0, N, Ids),
+    foldl(repeat_index, Ids, Copies, Det, []),
+    (   Rest =:= 0
+    ->  Is = Det
+    ;   maplist(residual_weight(N), Ws, Copies, Rs0),
+        sum_list(Rs0, RSum),
+        maplist(divide(RSum), Rs0, Rs),
+        length(Draws, Rest),
+        append(Draws, _, Us),
+        msort(Draws, Ps),
+        walk(Rs, Ps, Extra),
+        append(Det, Extra, All),
+        msort(All, Is)
+    ).
+
+systematic_position(U, N, K, P) :-
+    P is (U + K) / N.
+
+residual_copies(N, W, C) :-
+    C is floor(N * W).
+
+residual_weight(N, W, C, R) :-
+    R is N * W - C.
+
+divide(D, X, Y) :-
+    Y is X / D.
+
+repeat_index(I, C, L0, L) :-
+    length(Is, C),
+    maplist(=(I), Is),
+    append(Is, L, L0).
+
+numlist_(Lo, Hi, L) :-
+    (   Lo >= Hi -> L = [] ; L = [Lo|T], Lo1 is Lo + 1, numlist_(Lo1, Hi, T) ).
+
+%   walk(+Weights, +SortedPositions, -Indices): for each position the first
+%   index whose cumulative weight exceeds it (the last cumulative weight
+%   counts as 1, so a position never falls off the end).
+walk(Ws, Ps, Is) :-
+    length(Ws, N),
+    Last is N - 1,
+    walk(Ws, 0, 0.0, Last, Ps, Is).
+
+walk(_, _, _, _, [], []) :- !.
+walk(Ws, I, C0, Last, [P|Ps], Is) :-
+    Ws = [W|Ws1],
+    (   I == Last -> C = 1.0 ; C is C0 + W ),
+    (   C > P
+    ->  Is = [I|Is1],
+        walk(Ws, I, C0, Last, Ps, Is1)
+    ;   I1 is I + 1,
+        walk(Ws1, I1, C, Last, [P|Ps], Is)
+    ).
+
+		 /*******************************
+		 *            QUERIES           *
+		 *******************************/
+
+%!  belief_weights(+Belief, -Weights) is det.
+%
+%   The normalised weights of the particles (they sum to 1).
+belief_weights(B, Ws) :-
+    state(B, belief(_, _, LWs, _, _, _, _, _, _)),
+    maplist(exp_weight, LWs, Ws).
+
+%!  belief_ess(+Belief, -ESS) is det.
+%
+%   The effective sample size of the current weights (N after resampling).
+belief_ess(B, ESS) :-
+    state(B, belief(_, _, LWs, _, _, _, _, _, _)),
+    ess(LWs, ESS).
+
+%!  belief_time(+Belief, -T) is det.
+belief_time(B, T) :-
+    state(B, belief(F, _, _, _, _, _, _, _, _)),
+    filter_time(F, T).
+
+%!  belief_log_likelihood(+Belief, -LL) is det.
+%
+%   The sum over the steps of the log of the weighted mean likelihood of
+%   their observations (zero-weight steps left out).
+belief_log_likelihood(B, LL) :-
+    state(B, belief(_, _, _, LL, _, _, _, _, _)).
+
+%!  belief_zero_weight_events(+Belief, -Count) is det.
+belief_zero_weight_events(B, Z) :-
+    state(B, belief(_, _, _, _, Z, _, _, _, _)).
+
+%!  belief_filter(+Belief, -Filter) is det.
+%
+%   The underlying filter, for filter_holds/3, filter_values/4, ...
+belief_filter(B, F) :-
+    state(B, belief(F, _, _, _, _, _, _, _, _)).
+
+%!  belief_probability(+Belief, +Goal, -P) is det.
+%
+%   The weighted fraction of particles in which Goal holds at the current
+%   time (`t` in Goal is the current time; filter_holds/3).
+belief_probability(B, Goal, P) :-
+    belief_filter(B, F),
+    filter_holds(F, Goal, Flags),
+    belief_weights(B, Ws),
+    foldl(add_flagged, Flags, Ws, 0.0, P).
+
+add_flagged(Flag, W, P0, P) :-
+    (   Flag =:= 1 -> P is P0 + W ; P = P0 ).
+
+%!  belief_distribution(+Belief, +Term, -Dist) is det.
+%!  belief_distribution(+Belief, +Template, +Goal, -Dist) is det.
+%
+%   Dist = [P:Value, ...], most probable first (ties in the standard order
+%   of the values): the weighted distribution of random variable Term
+%   (e.g. maze(0,1):t), or of Template at the first solution of Goal.
+%   Particles where it has no value count for no value, so the P then sum
+%   to less than 1.
+belief_distribution(B, Term, Dist) :-
+    belief_distribution(B, V, Term ~= V, Dist).
+
+belief_distribution(B, Template, Goal, Dist) :-
+    defined_samples(B, Template, Goal, Samples),
+    transpose_pairs(Samples, ByValue),          % Value-Weight, sorted by value
+    group_pairs_by_key(ByValue, Groups),
+    findall(NegP-(P:V), ( member(V-Ws, Groups), sum_list(Ws, P), NegP is -P ), Keyed),
+    keysort(Keyed, Sorted),
+    pairs_values(Sorted, Dist).
+
+%!  belief_samples(+Belief, +Term, -Samples) is det.
+%
+%   Samples = [Weight-Value, ...]: random variable Term's value and weight
+%   in each particle where it has one, in particle order.
+belief_samples(B, Term, Samples) :-
+    defined_samples(B, V, Term ~= V, Samples).
+
+defined_samples(B, Template, Goal, Samples) :-
+    belief_filter(B, F),
+    filter_values(F, some(Template), Goal, Values),
+    belief_weights(B, Ws),
+    foldl(defined_sample, Values, Ws, Samples, []).
+
+defined_sample(Value, W, S0, S) :-
+    (   Value = some(V) -> S0 = [W-V|S] ; S0 = S ).
+
+%!  belief_mean(+Belief, +Term, -Mean, -Cov) is det.
+%
+%   The weighted mean and covariance of a numeric or tuple random variable
+%   Term over the particles where it has a value: floats for a number; a
+%   tuple (M1, ..., Mk) and a list of k rows for a k-tuple.  Raises an
+%   error if the values are not numeric or Term has no value anywhere.
+belief_mean(B, Term, Mean, Cov) :-
+    belief_filter(B, F),
+    filter_rows(F, V, Term ~= V, Width, Floats, _),
+    (   Width =:= 0
+    ->  throw(error(ddc_belief(not_numeric(Term)), _))
+    ;   true
+    ),
+    belief_weights(B, Ws),
+    rows(Floats, Width, Rows),
+    foldl(defined_row, Rows, Ws, Kept, []),
+    pairs_keys_values(Kept, KWs, KRows),
+    sum_list(KWs, Total),
+    (   Kept \== [], Total > 0
+    ->  true
+    ;   throw(error(ddc_belief(undefined_everywhere(Term)), _))
+    ),
+    maplist(divide(Total), KWs, Ns),
+    weighted_mean(Ns, KRows, Width, M),
+    weighted_cov(Ns, KRows, M, C),
+    (   Width =:= 1
+    ->  M = [Mean], C = [[Cov]]
+    ;   list_tuple(M, Mean), Cov = C
+    ).
+
+rows([], _, []) :- !.
+rows(Fs, W, [R|Rs]) :-
+    length(R, W),
+    append(R, Fs1, Fs),
+    rows(Fs1, W, Rs).
+
+defined_row(Row, W, K0, K) :-
+    (   maplist(not_nan, Row) -> K0 = [W-Row|K] ; K0 = K ).
+
+not_nan(X) :-
+    X =:= X.
+
+weighted_mean(Ws, Rows, Width, M) :-
+    length(Zero, Width),
+    maplist(=(0.0), Zero),
+    foldl(add_weighted_row, Ws, Rows, Zero, M).
+
+add_weighted_row(W, Row, S0, S) :-
+    maplist(add_weighted(W), Row, S0, S).
+
+add_weighted(W, X, S0, S) :-
+    S is S0 + W*X.
+
+weighted_cov(Ws, Rows, M, C) :-
+    findall(CRow,
+            ( nth0(I, M, MI),
+              findall(CIJ,
+                      ( nth0(J, M, MJ),
+                        foldl(cov_term(I, J, MI, MJ), Ws, Rows, 0.0, CIJ) ),
+                      CRow) ),
+            C).
+
+cov_term(I, J, MI, MJ, W, Row, S0, S) :-
+    nth0(I, Row, XI),
+    nth0(J, Row, XJ),
+    S is S0 + W*(XI - MI)*(XJ - MJ).
+
+list_tuple([X], X) :- !.
+list_tuple([X|Xs], (X, T)) :-
+    list_tuple(Xs, T).
+
+		 /*******************************
+		 *          FRAME FILES         *
+		 *******************************/
+
+%!  belief_run(+Belief, +File) is det.
+%!  belief_run(+Belief, +File, :OnStep) is det.
+%
+%   Steps the belief once per frame of File, a JSONL file in the format of
+%   `ddc filter` (README, "`ddc filter` and the JSONL frame format"): one
+%   JSON object per line with optional "observations" and "actions" lists
+%   (term text, or {"observation": TERM, "value": V} for `observation(TERM)
+%   ~= V`, a JSON array as a tuple), blank lines skipped.  call(OnStep,
+%   Step) after each step (belief_step/4's dict).  A bad line or a step
+%   the filter refuses raises error(ddc_belief(frame(File, Line, Cause)),
+%   _); the steps before it stay done, the belief is as after them.
+belief_run(B, File) :-
+    belief_run(B, File, ignore_step).
+
+ignore_step(_).
+
+belief_run(B, File, OnStep) :-
+    setup_call_cleanup(open(File, read, In, [encoding(utf8)]),
+                       run_lines(In, File, 1, B, OnStep),
+                       close(In)).
+
+run_lines(In, File, Line, B, OnStep) :-
+    read_line_to_string(In, Text),
+    (   Text == end_of_file
+    ->  true
+    ;   (   normalize_space(string(""), Text)
+        ->  true
+        ;   catch(frame_terms(Text, Obs, Acts), E,
+                  frame_error(File, Line, E)),
+            catch(belief_step(B, Obs, Acts, Step), E,
+                  frame_error(File, Line, E)),
+            call(OnStep, Step)
+        ),
+        Line1 is Line + 1,
+        run_lines(In, File, Line1, B, OnStep)
+    ).
+
+frame_error(File, Line, E) :-
+    (   E = error(_, _)
+    ->  throw(error(ddc_belief(frame(File, Line, E)), _))
+    ;   throw(E)
+    ).
+
+frame_terms(Text, Obs, Acts) :-
+    catch(atom_json_dict(Text, D, [value_string_as(string)]), _,
+          throw(error(frame_syntax(invalid_json), _))),
+    (   is_dict(D) -> true ; throw(error(frame_syntax(not_an_object), _)) ),
+    dict_keys(D, Keys),
+    (   member(K, Keys), \+ memberchk(K, [observations, actions, comment])
+    ->  throw(error(frame_syntax(unknown_key(K)), _))
+    ;   true
+    ),
+    get_dict_default(observations, D, ObsItems),
+    get_dict_default(actions, D, ActItems),
+    maplist(observation_term, ObsItems, Obs),
+    maplist(text_term, ActItems, Acts).
+
+dict_keys(D, Keys) :-
+    dict_pairs(D, _, Pairs),
+    pairs_keys(Pairs, Keys).
+
+get_dict_default(K, D, L) :-
+    (   get_dict(K, D, L0)
+    ->  (   is_list(L0) -> L = L0 ; throw(error(frame_syntax(not_a_list(K)), _)) )
+    ;   L = []
+    ).
+
+observation_term(Item, T) :-
+    (   string(Item)
+    ->  text_term(Item, T)
+    ;   is_dict(Item), dict_keys(Item, Ks), msort(Ks, [observation, value]),
+        string(Item.observation)
+    ->  text_term(Item.observation, X),
+        json_value(Item.value, V),
+        T = (observation(X) ~= V)
+    ;   throw(error(frame_syntax(bad_observation(Item)), _))
+    ).
+
+text_term(Text, T) :-
+    (   string(Text) -> true ; throw(error(frame_syntax(not_term_text(Text)), _)) ),
+    catch(term_string(T, Text, [module(ddc)]), E,
+          throw(error(frame_syntax(term(Text, E)), _))),
+    (   ground(T) -> true ; throw(error(frame_syntax(not_ground(Text)), _)) ).
+
+json_value(V, V) :- number(V), !.
+json_value(S, A) :- string(S), !, atom_string(A, S).
+json_value(B, B) :- ( B == true ; B == false ), !.
+json_value([X|Xs], T) :- !,
+    maplist(json_value, [X|Xs], Vs),
+    list_tuple(Vs, T).
+json_value(V, _) :-
+    throw(error(frame_syntax(bad_value(V)), _)).
+
+		 /*******************************
+		 *           MESSAGES           *
+		 *******************************/
+
+:- multifile prolog:message//1.
+
+prolog:message(ddc_belief(zero_weight(Frame, N, Z))) -->
+    [ 'step ~w: every particle got weight 0; kept the ~w pre-step particles with uniform weights (event ~w)'-[Frame, N, Z] ].
+prolog:message(ddc_belief(infinite_likelihood(Frame))) -->
+    [ 'step ~w: infinite likelihoods; keeping only those particles'-[Frame] ].
+prolog:message(error(ddc_belief(frame(File, Line, Cause)), _)) -->
+    [ '~w:~w: '-[File, Line] ],
+    frame_cause(Cause).
+prolog:message(error(ddc_belief(not_numeric(Term)), _)) -->
+    [ 'mean of ~q: the values are not numeric'-[Term] ].
+prolog:message(error(ddc_belief(undefined_everywhere(Term)), _)) -->
+    [ 'mean of ~q: undefined in every particle'-[Term] ].
+
+frame_cause(error(frame_syntax(C), _)) --> !,
+    frame_syntax(C).
+frame_cause(E) -->
+    '$messages':translate_message(E).
+
+frame_syntax(invalid_json) --> !, [ 'invalid JSON' ].
+frame_syntax(not_an_object) --> !, [ 'a line must be a JSON object' ].
+frame_syntax(unknown_key(K)) --> !,
+    [ 'unknown key ~q; use observations, actions, comment'-[K] ].
+frame_syntax(not_a_list(K)) --> !, [ '~w must be a list'-[K] ].
+frame_syntax(bad_observation(I)) --> !,
+    [ 'an observation is term text or {"observation": TERM, "value": V}, not ~q'-[I] ].
+frame_syntax(not_term_text(X)) --> !, [ 'not term text: ~q'-[X] ].
+frame_syntax(term(Text, _)) --> !, [ 'syntax error in ~q'-[Text] ].
+frame_syntax(not_ground(Text)) --> !, [ 'not ground: ~q'-[Text] ].
+frame_syntax(bad_value(V)) --> [ 'cannot use ~q as an observed value'-[V] ].
