@@ -205,7 +205,7 @@ log_sum_exp([L|Ls], S) :-
     foldl(larger, Ls, L, M),            % (max/2 of two infinities overflows)
     (   M =:= -inf
     ->  S = M
-    ;   foldl(add_exp(M), Ls, 0.0, Sum),
+    ;   foldl(add_exp(M), [L|Ls], 0.0, Sum),
         S is M + log(Sum)
     ).
 
@@ -233,7 +233,8 @@ add_square(L, S0, S) :-
 %   each, the rest drawn from the remainders).
 resample_indices(systematic, Ws, [U|_], Is) :-
     length(Ws, N),
-    numlist_(0, N, Ks),
+    N1 is N - 1,
+    numlist(0, N1, Ks),
     maplist(systematic_position(U, N), Ks, Ps),
     walk(Ws, Ps, Is).
 resample_indices(multinomial, Ws, Us, Is) :-
@@ -244,7 +245,8 @@ resample_indices(residual, Ws, Us, Is) :-
     maplist(residual_copies(N), Ws, Copies),
     sum_list(Copies, Kept),
     Rest is N - Kept,
-    numlist_(0, N, Ids),
+    N1 is N - 1,
+    numlist(0, N1, Ids),
     foldl(repeat_index, Ids, Copies, Det, []),
     (   Rest =:= 0
     ->  Is = Det
@@ -275,9 +277,6 @@ repeat_index(I, C, L0, L) :-
     length(Is, C),
     maplist(=(I), Is),
     append(Is, L, L0).
-
-numlist_(Lo, Hi, L) :-
-    (   Lo >= Hi -> L = [] ; L = [Lo|T], Lo1 is Lo + 1, numlist_(Lo1, Hi, T) ).
 
 %   walk(+Weights, +SortedPositions, -Indices): for each position the first
 %   index whose cumulative weight exceeds it (the last cumulative weight

@@ -132,6 +132,9 @@ test(weights_without_resampling_and_the_log_likelihood) :-
     foldl(unresampled_step(B, N), Ys, Ms, 0.0, InvESS),
     belief_ess(B, ESS),
     assertion(ESS < 0.9 * N),
+    belief_weights(B, Ws),
+    sum_list(Ws, SumW),
+    assertion(abs(SumW - 1) < 1.0e-9),
     belief_log_likelihood(B, LL),
     assertion(abs(LL - Exact) < 5 * sqrt(InvESS)),
     belief_free(B).
