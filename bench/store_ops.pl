@@ -6,7 +6,7 @@
     term with one argument per particle).  This prints nanoseconds per
     operation on this machine for both, in one run:
 
-        .deps/swipl/bin/swipl -O bench/store_ops.pl
+        .venv/bin/swipl -O bench/store_ops.pl
 
     store: a particle's table of 30 keys pos(oI)-5 (as a bench particle
     holds), each read in turn: a hit, a miss, term_hash/2 alone; column:
