@@ -19,6 +19,10 @@ SWI-Prolog can cost, and prints the engine's ratio to it.
 The engine steps the particles in ``--threads`` Prolog threads (default 2, as
 ``bridge.Filter``); the floor is one thread's.
 
+``--calls K`` (with one configuration) also steps it once more in one thread under SWI-Prolog's
+profiler and prints the K most-called predicates per particle and step, and the lookups in the
+value tables (``store_get``) per particle, step and object: where the engine's time goes.
+
 Target (issue 4): N = 1000, M = 10 in at most 33 ms per step (30 Hz).
 """
 
@@ -40,6 +44,7 @@ sys.path.insert(0, str(HERE.parent / "python"))
 
 import filter_numpy_reference as model  # noqa: E402
 from bridge import DEFAULT_THREADS, Filter, FilterError  # noqa: E402
+from bridge import prolog as bridge_prolog  # noqa: E402
 
 TARGET_MS = 33.0
 
@@ -67,6 +72,46 @@ def time_ddc(particles: int, objects: int, steps: int, seed: int,
                 "zero_weight_events": f.zero_weight_events,
                 "prolog_share": sum(prolog_ms) / sum(step_ms),
             }
+
+
+_CALL_COUNTS = (  # (janus returns every named variable but _-prefixed ones: only Counts)
+    "profile_data(_D), get_dict(nodes, _D, _Nodes), "
+    "findall(_C-_P, ( member(_Node, _Nodes), get_dict(call, _Node, _C), "
+    "get_dict(predicate, _Node, _P0), format(string(_P), '~w', [_P0]) ), Counts)"
+)
+
+
+def call_counts(particles: int, objects: int, steps: int, seed: int) -> dict[str, int]:
+    """Calls per predicate over ``steps`` steps in one thread, by SWI-Prolog's profiler
+    (switched on around the steps only)."""
+    frames = model.scenario(objects, steps, seed=seed)
+    names = model.object_names(objects)
+    with tempfile.TemporaryDirectory() as tmp:
+        program = Path(tmp) / f"occlusion_{objects}.pl"
+        program.write_text(model.ddc_program(objects))
+        with Filter(program, particles=particles, seed=seed, threads=1) as f:
+            bridge_prolog.query_once("use_module(library(statistics)), reset_profiler, "
+                                     "profiler(_, cputime)")
+            try:
+                for frame in frames:
+                    f.step(frame.terms(names))
+            finally:
+                bridge_prolog.query_once("profiler(_, false)")
+            counts = bridge_prolog.query_once(_CALL_COUNTS)["Counts"]
+    return {str(name): int(calls) for calls, name in counts}
+
+
+def print_call_counts(particles: int, objects: int, steps: int, seed: int, top: int) -> None:
+    counts = call_counts(particles, objects, steps, seed)
+    per_step = particles * steps
+    print(f"most-called predicates per particle and step (N={particles}, M={objects}, "
+          f"one thread, {steps} steps):")
+    for name, calls in sorted(counts.items(), key=lambda kv: -kv[1])[:top]:
+        print(f"  {calls / per_step:>8.1f}  {name}")
+    lookups = sum(calls for name, calls in counts.items()
+                  if name.startswith("ddc_store:store_get/"))
+    print(f"  value-table lookups (store_get) per particle, step and object: "
+          f"{lookups / per_step / objects:.1f}")
 
 
 def time_floor(particles: int, objects: int) -> float | None:
@@ -97,9 +142,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
                         help="Prolog threads stepping the particles (default: bridge.Filter's)")
     parser.add_argument("--json", action="store_true", help="end with a JSON line")
+    parser.add_argument("--calls", type=int, default=0, metavar="K",
+                        help="with one configuration: also print the K most-called predicates "
+                             "(one thread, profiled)")
     args = parser.parse_args(argv)
     if (args.particles is None) != (args.objects is None):
         parser.error("give both --particles and --objects, or neither (the full grid)")
+    if args.calls and args.particles is None:
+        parser.error("--calls needs one configuration (--particles and --objects)")
     if args.particles is not None:
         configs = [(args.particles, args.objects)]
     else:
@@ -133,6 +183,8 @@ def main(argv: list[str] | None = None) -> int:
                   f"{TARGET_MS:.0f} ms target", flush=True)
         last = {"ms_per_step": ddc["ms_per_step"], "numpy_ms_per_step": numpy_ms,
                 "floor_ms_per_step": floor}
+    if args.calls and not failed:
+        print_call_counts(args.particles, args.objects, args.steps, args.seed, args.calls)
     if args.json and last is not None:
         print(json.dumps(last))
     return 1 if failed else 0
