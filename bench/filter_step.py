@@ -19,6 +19,10 @@ SWI-Prolog can cost, and prints the engine's ratio to it.
 The engine steps the particles in ``--threads`` Prolog threads (default 2, as
 ``bridge.Filter``); the floor is one thread's.
 
+``--batched`` also runs bench/filter_batched_prototype.pl on the same program and frames (one
+thread): a prototype of clauses evaluated over all particles at once (docs/batched-filter.md),
+to compare with the engine and the floor.
+
 ``--calls K`` (with one configuration) also steps it once more in one thread under SWI-Prolog's
 profiler and prints the K most-called predicates per particle and step, and the lookups in the
 value tables (``store_get``) per particle, step and object: where the engine's time goes.
@@ -124,6 +128,26 @@ def time_floor(particles: int, objects: int) -> float | None:
     return float(json.loads(out.strip().splitlines()[-1])["floor_ms_per_step"])
 
 
+def time_batched(particles: int, objects: int, steps: int, seed: int) -> dict[str, float] | None:
+    """bench/filter_batched_prototype.pl on the bench's program and frames: ms per step (one
+    thread) and the log-likelihood of the run; None without swipl."""
+    swipl = shutil.which("swipl", path=str(Path(sys.executable).parent)) or shutil.which("swipl")
+    if swipl is None:
+        return None
+    frames = model.scenario(objects, steps, seed=seed)
+    names = model.object_names(objects)
+    with tempfile.TemporaryDirectory() as tmp:
+        program = Path(tmp) / f"occlusion_{objects}.pl"
+        program.write_text(model.ddc_program(objects))
+        frames_file = Path(tmp) / "frames.pl"
+        frames_file.write_text("".join(f"frame([{', '.join(frame.terms(names))}]).\n"
+                                       for frame in frames))
+        out = subprocess.run([swipl, "-O", str(HERE / "filter_batched_prototype.pl"), "--",
+                              str(program), str(frames_file), str(particles)],
+                             capture_output=True, text=True, check=True).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
 def time_numpy(particles: int, objects: int, steps: int, seed: int) -> float:
     frames = model.scenario(objects, steps, seed=seed)
     f = model.NumpyOcclusionFilter(objects, particles, seed=seed)
@@ -142,6 +166,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
                         help="Prolog threads stepping the particles (default: bridge.Filter's)")
     parser.add_argument("--json", action="store_true", help="end with a JSON line")
+    parser.add_argument("--batched", action="store_true",
+                        help="also time bench/filter_batched_prototype.pl (one thread)")
     parser.add_argument("--calls", type=int, default=0, metavar="K",
                         help="with one configuration: also print the K most-called predicates "
                              "(one thread, profiled)")
@@ -177,6 +203,13 @@ def main(argv: list[str] | None = None) -> int:
               f"{1000 * ddc['ms_per_step'] / n:>12.1f} {ddc['prolog_share']:>9.0%} "
               f"{ddc['new_ms']:>9.0f} "
               f"{ddc['resamplings']:>6}/{args.steps}", flush=True)
+        if args.batched:
+            batched = time_batched(n, m, args.steps, args.seed)
+            if batched is not None:
+                ms = batched["batched_ms_per_step"]
+                print(f"{'':>12} batched prototype (one thread): {ms:.1f} ms/step, "
+                      f"{ms / ddc['ms_per_step']:.2f} of the engine's"
+                      + (f", {ms / floor:.1f}x the floor" if floor else ""), flush=True)
         if (n, m) == (1000, 10):
             verdict = "meets" if ddc["ms_per_step"] <= TARGET_MS else "misses"
             print(f"  N=1000 M=10: {ddc['ms_per_step']:.1f} ms/step {verdict} the "

@@ -1,14 +1,17 @@
-"""bench/filter_step.py --calls: the profiler's call counts of the engine's predicates come back
-through the bridge (a profile of a few particles and steps)."""
+"""The measuring tools of bench/filter_step.py: the profiler's call counts (``--calls``) and the
+batched prototype (``--batched``, bench/filter_batched_prototype.pl) on the bench's model."""
 
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
 
+import filter_numpy_reference as model  # noqa: E402
 import filter_step  # noqa: E402
+from bridge import Filter  # noqa: E402
 
 
 def test_call_counts_count_the_engine_predicates_of_the_steps() -> None:
@@ -19,3 +22,22 @@ def test_call_counts_count_the_engine_predicates_of_the_steps() -> None:
     # the steps' work grows with the particles: the counts are of those steps, not of a
     # fixed overhead (e.g. loading the program)
     assert more[lookups] > 2 * few[lookups]
+
+
+def test_batched_prototype_agrees_with_the_engine_on_the_log_likelihood(tmp_path: Path) -> None:
+    # 3 objects (a box and two small ones), 4 steps: the first small object is hidden under
+    # the box from step 3 on, so the occluder choice and the follow clause run
+    n, m, steps, seed = 1000, 3, 4, 2
+    batched = filter_step.time_batched(n, m, steps, seed)
+    assert batched is not None and batched["batched_ms_per_step"] > 0
+    program = tmp_path / "occlusion.pl"
+    program.write_text(model.ddc_program(m))
+    names = model.object_names(m)
+    inverse_ess = 0.0
+    with Filter(program, particles=n, seed=seed) as f:
+        for frame in model.scenario(m, steps, seed=seed):
+            inverse_ess += 1 / f.step(frame.terms(names)).ess
+        engine = f.log_likelihood
+    # each run's log-likelihood estimate has a standard error of about sqrt(sum 1/ESS)
+    tolerance = 5 * math.sqrt(2 * inverse_ess)
+    assert abs(batched["log_likelihood"] - engine) < tolerance, (batched, engine, tolerance)
