@@ -34,7 +34,7 @@
     draws come in another order than the engine's, so the particles differ;
     the log-likelihood agrees within Monte Carlo error (tests/test_bench_calls.py).
 */
-:- use_module('../prolog/ddc').
+:- use_module('../prolog/ddc_belief').   % (re-exports ../prolog/ddc)
 :- use_module('../prolog/ddc_dist').
 :- use_module(library(apply)).
 :- use_module(library(lists)).
@@ -390,7 +390,7 @@ run_step(N, Obs, s(T1, Cols, LWs0, LL0, R0), s(T2, Cols2, LWs, LL, R)) :-
     T0 is T1 - 1,
     ct_filter(Cols, keep_time(T0), Cols1),
     (   1/Sq < 0.9*N
-    ->  systematic(LWs1, N, Is),
+    ->  systematic(LWs1, Is),
         ct_new(Cols2),
         forall(( ct_match(Cols1, K, C), K = _-_ ),
                ( resampled(C, Is, C1), ct_put(Cols2, K, C1) )),
@@ -404,23 +404,14 @@ plus_f(A, B, C) :- C is A + B.
 minus_f(A, X, Y) :- Y is X - A.
 add_exp(M, X, S0, S) :- S is S0 + exp(X - M).
 add_sq(X, S0, S) :- S is S0 + exp(2*X).
-position(U, N, K, P) :- P is (U + K - 1)/N.
 exp_f(L, W) :- W is exp(L).
 
-systematic(LWs, N, Is) :-
+%   Systematic resampling as bridge.Filter and ddc_belief (1-based indices).
+systematic(LWs, Is) :-
     U is random_float,
-    numlist(1, N, Ks),
-    maplist(position(U, N), Ks, Ps),
     maplist(exp_f, LWs, Ws),
-    walk(Ws, 1, 0.0, N, Ps, Is).
-
-walk(_, _, _, _, [], []) :- !.
-walk([W|Ws], I, C0, N, [P|Ps], Is) :-
-    (   I =:= N -> C = 1.0 ; C is C0 + W ),
-    (   C > P
-    ->  Is = [I|Is1], walk([W|Ws], I, C0, N, Ps, Is1)
-    ;   I1 is I + 1, walk(Ws, I1, C, N, [P|Ps], Is)
-    ).
+    resample_indices(systematic, Ws, [U], Is0),
+    maplist(succ, Is0, Is).
 
 resampled(C, Is, C1) :-
     maplist(arg_of(C), Is, Vs),
