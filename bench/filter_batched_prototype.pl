@@ -41,7 +41,7 @@
 :- use_module(library(pairs)).
 :- initialization(main, main).
 
-:- dynamic rv/4, der/3, static/1, sfact/1.
+:- dynamic rv/4, der/3, static/1, sfact/1, step_fact/1.
 %   rv(Head, Time, Dist, Body)   Time: 0 or next
 %   der(Head, Time, Body)
 
@@ -92,6 +92,7 @@ ct_match(T, K, V) :-
 ct_filter(T, Keep, T1) :-
     ct_new(T1),
     forall(( ct_match(T, K, V), call(Keep, K, V) ), ct_put(T1, K, V)).
+
 col(Cols, N, K, C) :-
     (   ct_get(Cols, K, C) -> true
     ;   functor(C0, c, N), fill(N, C0, '$u'), ct_put(Cols, K, C0), ct_get(Cols, K, C)
@@ -224,8 +225,6 @@ beval(G, _, Ps0, Ps) :-                          % static
     call_static(G1).
 
 call_static(G) :- ( sfact(G) ; step_fact(G) ).
-:- dynamic step_fact/1.
-
 
 %   split(+T, +Ps0, -T1, -Ps): T with its column references replaced by
 %   values, for each group of particles that share them.
@@ -239,9 +238,9 @@ split(T, Ps0, T1, Ps) :-
     ;   T1 = T, Ps = Ps0
     ).
 
-%   unify_col(?P, +C, +Ps0, -Ps): pattern P against column C's values.
-%   unify_read: as unify_col/4, for a complete column without undefined
-%   values: no filtering, and a tuple's projections made once per column.
+%   unify_read(?P, +E, +Key, +C, +Ps0, -Ps): as unify_col/4, and for a
+%   complete column: one value if all agree; else, without undefined values,
+%   no filtering, and a tuple's projections made once per column.
 unify_read(P, env(Cols, N, _), K, C, Ps0, Ps) :-
     (   ct_get(Cols, '$complete'(K), same(V))
     ->  V \== '$undef',
@@ -265,6 +264,8 @@ unify_read(P, env(Cols, N, _), K, C, Ps0, Ps) :-
     ;   unify_col(P, C, Ps0, Ps)
     ).
 
+%   unify_col(?P, +C, +Ps0, -Ps): pattern P against column C's values, for
+%   the particles Ps0 (Ps: those where they unify).
 unify_col(P, C, Ps0, Ps) :-
     (   var(P)
     ->  P = '$c'(C), exclude(undef_at(C), Ps0, Ps)
