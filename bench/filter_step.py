@@ -53,13 +53,24 @@ from bridge import prolog as bridge_prolog  # noqa: E402
 TARGET_MS = 33.0
 
 
+def write_program(directory: str, objects: int) -> Path:
+    """The bench's DDC program for ``objects`` objects, written into ``directory``."""
+    program = Path(directory) / f"occlusion_{objects}.pl"
+    program.write_text(model.ddc_program(objects))
+    return program
+
+
+def find_swipl() -> str | None:
+    """The swipl next to this Python (the set-up's link), else the one on PATH."""
+    return shutil.which("swipl", path=str(Path(sys.executable).parent)) or shutil.which("swipl")
+
+
 def time_ddc(particles: int, objects: int, steps: int, seed: int,
              threads: int) -> dict[str, float]:
     frames = model.scenario(objects, steps, seed=seed)
     names = model.object_names(objects)
     with tempfile.TemporaryDirectory() as tmp:
-        program = Path(tmp) / f"occlusion_{objects}.pl"
-        program.write_text(model.ddc_program(objects))
+        program = write_program(tmp, objects)
         started = time.perf_counter()
         f = Filter(program, particles=particles, seed=seed, threads=threads)
         new_ms = 1000 * (time.perf_counter() - started)
@@ -91,8 +102,7 @@ def call_counts(particles: int, objects: int, steps: int, seed: int) -> dict[str
     frames = model.scenario(objects, steps, seed=seed)
     names = model.object_names(objects)
     with tempfile.TemporaryDirectory() as tmp:
-        program = Path(tmp) / f"occlusion_{objects}.pl"
-        program.write_text(model.ddc_program(objects))
+        program = write_program(tmp, objects)
         with Filter(program, particles=particles, seed=seed, threads=1) as f:
             bridge_prolog.query_once("use_module(library(statistics)), reset_profiler, "
                                      "profiler(_, cputime)")
@@ -120,7 +130,7 @@ def print_call_counts(particles: int, objects: int, steps: int, seed: int, top: 
 
 def time_floor(particles: int, objects: int) -> float | None:
     """ms per step of bench/filter_floor.pl: per-particle Prolog arithmetic alone, no engine."""
-    swipl = shutil.which("swipl", path=str(Path(sys.executable).parent)) or shutil.which("swipl")
+    swipl = find_swipl()
     if swipl is None:
         return None
     out = subprocess.run([swipl, "-O", str(HERE / "filter_floor.pl"), str(particles),
@@ -131,14 +141,13 @@ def time_floor(particles: int, objects: int) -> float | None:
 def time_batched(particles: int, objects: int, steps: int, seed: int) -> dict[str, float] | None:
     """bench/filter_batched_prototype.pl on the bench's program and frames: ms per step (one
     thread) and the log-likelihood of the run; None without swipl."""
-    swipl = shutil.which("swipl", path=str(Path(sys.executable).parent)) or shutil.which("swipl")
+    swipl = find_swipl()
     if swipl is None:
         return None
     frames = model.scenario(objects, steps, seed=seed)
     names = model.object_names(objects)
     with tempfile.TemporaryDirectory() as tmp:
-        program = Path(tmp) / f"occlusion_{objects}.pl"
-        program.write_text(model.ddc_program(objects))
+        program = write_program(tmp, objects)
         frames_file = Path(tmp) / "frames.pl"
         frames_file.write_text("".join(f"frame([{', '.join(frame.terms(names))}]).\n"
                                        for frame in frames))

@@ -30,8 +30,7 @@ def test_batched_prototype_agrees_with_the_engine_on_the_log_likelihood(tmp_path
     n, m, steps, seed = 1000, 3, 4, 2
     batched = filter_step.time_batched(n, m, steps, seed)
     assert batched is not None and batched["batched_ms_per_step"] > 0
-    program = tmp_path / "occlusion.pl"
-    program.write_text(model.ddc_program(m))
+    program = filter_step.write_program(str(tmp_path), m)
     names = model.object_names(m)
     inverse_ess = 0.0
     with Filter(program, particles=n, seed=seed) as f:
