@@ -24,9 +24,10 @@
     the engine).  A column whose values all agree is read as one value.
 
     Fragment and limits (an engine would need all of these): static facts
-    `p(..) := true` and the step's observed/1 facts; random variables h:0 and
-    h:t+1 (val, gaussian, uniform, any distribution of ddc_dist); derived h:t+1
-    atoms; bodies of conjunctions of static calls, \+, reads h:t ~= P and
+    `p(..) := true` and the step's facts (plain observations such as
+    observed/1; a predicate given in no step so far is not known as one);
+    random variables h:0 and h:t+1 (val, gaussian, uniform, any distribution
+    of ddc_dist); derived h:t+1 atoms; bodies of conjunctions of static calls, \+, reads h:t ~= P and
     h:t+1 ~= P, is/2, comparisons, ==, \==, findall_forward/3 and derived
     calls.  No if-then-else, no h:t clauses, no error messages with clause
     positions, no overlap checks, no threads, no shared store; systematic
@@ -41,12 +42,13 @@
 :- use_module(library(pairs)).
 :- initialization(main, main).
 
-:- dynamic rv/4, der/3, static/1, sfact/1, step_fact/1.
+:- dynamic rv/4, der/3, static/1, sfact/1, step_fact/1, step_pred/1.
 %   rv(Head, Time, Dist, Body)   Time: 0 or next
 %   der(Head, Time, Body)
 
 load(File) :-
     retractall(rv(_,_,_,_)), retractall(der(_,_,_)), retractall(static(_)), retractall(sfact(_)),
+    retractall(step_pred(_)),
     setup_call_cleanup(open(File, read, S),
                        read_all(S),
                        close(S)).
@@ -66,8 +68,7 @@ head_time(X:0, X, 0) :- !.
 head_time(X:t+1, X, next) :- !.
 head_time(X:t, X, now).
 
-static_goal(G) :- callable(G), G \= _:_, \+ G = (_ ~= _), ( static(G) -> true ; step_fact_pred(G) ).
-step_fact_pred(observed(_)).
+static_goal(G) :- callable(G), G \= _:_, \+ G = (_ ~= _), ( static(G) -> true ; step_pred(G) ).
 
 %   ---------------------------------------------------------------- columns
 %   Cols: a table Key-Time -> c(V1..VN); '$u' not computed.  A fixed number
@@ -310,6 +311,9 @@ arith_col(Ex, Ps, C) :-
 step(Cols, N, T1, Obs, LWs) :-
     retractall(step_fact(_)),
     forall(member(O, Obs), ( O = (_ ~= _) -> true ; assertz(step_fact(O)) )),
+    %   a predicate given as a fact of some step is a static goal in every step
+    forall(( step_fact(F), functor(F, Na, Ar), functor(P, Na, Ar), \+ step_pred(P) ),
+           assertz(step_pred(P))),
     E = env(Cols, N, T1),
     numlist(1, N, All),
     %   observations: density of the first applicable clause
