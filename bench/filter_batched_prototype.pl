@@ -356,7 +356,7 @@ prior(Cols, N) :-
     numlist(1, N, All),
     forall(( rv(H, 0, _, B), candidates(H, B, X) ), value(E, X, 0, All, _)).
 
-main(Argv) :- Argv \= [_, _, _], !, format(user_error, "usage: filter_batched_prototype.pl PROGRAM FRAMES N (got ~q)~n", [Argv]), halt(2).
+main(Argv) :- Argv \= [_, _, _], !, format(user_error, "usage: swipl -O bench/filter_batched_prototype.pl -- PROGRAM FRAMES N (got ~q)~n", [Argv]), halt(2).
 main([Prog, FramesFile, NA]) :-
     atom_number(NA, N),
     load(Prog),
