@@ -52,6 +52,7 @@
 :- use_module(library(pairs)).
 :- use_module(ddc_dist).
 :- use_module(ddc_store).
+:- use_module(ddc_batch).
 
 :- op(700, xfx, ~).
 :- op(700, xfx, ~=).
@@ -201,6 +202,15 @@ resolve_file(Spec, File) :-
 %   The program loaded last.
 ddc_program(M) :-
     current_program_(M), !.
+
+%   program_items(+File, -Items): the classified items of File's program
+%   (with the clauses its persistent/1 directives add), as the batched
+%   filter reads them (ddc_batch.pl).
+program_items(File, Items) :-
+    read_program(File, Items0),
+    classify_items(Items0, File, 1, Items1, Dirs),
+    directives_options(Dirs, File, _, Opts, _),
+    add_persistence(Opts, Items1, Items).
 
 %   read_program(+File, -Items): Items is a list of t(Term, Line).
 read_program(File, Items) :-
@@ -1952,6 +1962,8 @@ cause(not_a_number(X)) --> !, [ 'the expectation needs a number, got ~p'-[X] ].
 cause(unknown_filter(F)) --> !, [ 'no filter ~p (freed, or never created)'-[F] ].
 cause(bad_indices(Why)) --> !, [ 'bad resampling indices: ~w'-[Why] ].
 cause(nothing_to_undo) --> !, [ 'no step to undo' ].
+cause(batched_unsupported(What)) --> !,
+    [ 'outside what the batched filter evaluates (use engine per_particle): ~p'-[What] ].
 cause(not_ground(X)) --> !, [ 'not ground: ~p'-[X] ].
 cause(bad_time(E)) --> !, [ 'bad time expression ~p (use t, t+K, t-K or an integer)'-[E] ].
 cause(unbound_random_variable) --> !, [ 'a random variable term is unbound' ].

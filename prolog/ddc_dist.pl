@@ -23,12 +23,16 @@
             dist_log_density/3,         % +Dist, +Value, -LogP
             dist_discrete/1,            % +Dist
             dist_support/2,             % +Dist, -Pairs
-            dist_mean/2                 % +Dist, -Mean
+            dist_mean/2,                % +Dist, -Mean
+            dist_prepare/2,             % +Dist, -Prepared
+            dist_sample_prepared/2,     % +Prepared, -Value
+            dist_log_density_prepared/3 % +Prepared, +Value, -LogP
           ]).
 %   Arithmetic compiled inline (local to this file; see ddc.pl).
 :- set_prolog_flag(optimise, true).
 
 :- use_module(library(lists)).
+:- use_module(library(apply)).
 
 /** <module> Distributions of the DDC engine
 
@@ -609,6 +613,79 @@ blocks_sample([(M, C)|Bs], Xs) :-
         append(Ys, Xs1, Xs)
     ),
     blocks_sample(Bs, Xs1).
+
+		 /*******************************
+		 *     PREPARED DISTRIBUTIONS   *
+		 *******************************/
+
+%!  dist_prepare(+Dist, -Prepared) is det.
+%
+%   Prepared is Dist with what does not depend on its mean worked out once:
+%   for many draws or densities of distributions that differ only in the
+%   mean (the batched filter: one distribution term for a batch of
+%   particles, the mean bound per particle).  The mean of a gaussian may
+%   hold unbound variables, shared with Prepared: bind them, then call
+%   dist_sample_prepared/2 or dist_log_density_prepared/3 (which give what
+%   dist_sample/2 and dist_log_density/3 give for the bound Dist, with the
+%   same random draws).  A 1-D gaussian with a numeric variance and a 3-D
+%   one with a ground covariance are prepared (the variance's root, the
+%   covariance's Cholesky factor and the log normaliser are computed here,
+%   once, after dist_check/1 on the covariance); any other Dist is kept as
+%   it is and checked at each use.
+dist_prepare(gaussian(M, V), gauss1(M, V, SD, LogNorm)) :-
+    \+ is_list(M), (var(M) ; number(M)), number(V), !,
+    dist_check(gaussian(0.0, V)),
+    SD is sqrt(V),
+    LogNorm is -0.5*(log(V) + 1.8378770664093453).
+dist_prepare(gaussian(Ms, Cs), gauss3(M1, M2, M3, Cs, L11, L21, L22, L31, L32, L33, LogNorm)) :-
+    is_list(Ms), Ms = [M1, M2, M3], ground(Cs), is_list(Cs),
+    maplist(mean_slot, Ms), !,
+    dist_check(gaussian([0.0, 0.0, 0.0], Cs)),
+    Cs = [C11, _, _, C21, C22, _, C31, C32, C33],
+    chol3(C11, C21, C22, C31, C32, C33, L11, L21, L22, L31, L32, L33),
+    LogNorm is -log(L11*L22*L33) - 1.5*1.8378770664093453.
+dist_prepare(D, any(D)).
+
+mean_slot(M) :- ( var(M) -> true ; number(M) ).
+
+%!  dist_sample_prepared(+Prepared, -Value) is det.
+%
+%   A draw from the distribution dist_prepare/2 prepared (its mean
+%   variables bound): the draw dist_sample/2 makes from the same state of
+%   the random generator.  Throws dist_check/1's errors for a Dist kept as
+%   it was.
+dist_sample_prepared(gauss3(M1, M2, M3, _, L11, L21, L22, L31, L32, L33, _), (X1, X2, X3)) :-
+    std_normals(3, [Z1, Z2, Z3]),
+    X1 is M1 + L11*Z1,
+    X2 is M2 + L21*Z1 + L22*Z2,
+    X3 is M3 + L31*Z1 + L32*Z2 + L33*Z3.
+dist_sample_prepared(gauss1(M, _, SD, _), X) :-
+    std_normal(Z),
+    X is M + SD*Z.
+dist_sample_prepared(any(D), X) :-
+    dist_check(D),
+    dist_sample(D, X).
+
+%!  dist_log_density_prepared(+Prepared, +Value, -LogP) is det.
+%
+%   dist_log_density/3 of the distribution dist_prepare/2 prepared.
+dist_log_density_prepared(gauss3(M1, M2, M3, Cs, L11, L21, L22, L31, L32, L33, LN), X, LP) :-
+    (   X = (X1, X2, X3), number(X1), number(X2), number(X3)
+    ->  Y1 is (X1 - M1)/L11,
+        Y2 is (X2 - M2 - L21*Y1)/L22,
+        Y3 is (X3 - M3 - L31*Y1 - L32*Y2)/L33,
+        LP is -0.5*(Y1*Y1 + Y2*Y2 + Y3*Y3) + LN
+    ;   dist_log_density(gaussian([M1, M2, M3], Cs), X, LP)
+    ).
+dist_log_density_prepared(gauss1(M, V, SD, LN), X, LP) :-
+    (   number(X)
+    ->  Y is (X - M)/SD,
+        LP is -0.5*Y*Y + LN
+    ;   dist_log_density(gaussian(M, V), X, LP)
+    ).
+dist_log_density_prepared(any(D), X, LP) :-
+    dist_check(D),
+    dist_log_density(D, X, LP).
 
 		 /*******************************
 		 *        LINEAR ALGEBRA        *

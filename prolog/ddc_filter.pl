@@ -76,21 +76,56 @@ filter_new(File, N, Seed, F) :-
 %       stream seeded from the filter's.  The particles depend on Seed and
 %       K, not on the machine; K = 1 steps them one after the other in the
 %       calling thread.
+%     - engine(E): per_particle (the default), batched (ddc_batch.pl:
+%       each clause evaluated once for a batch of particles; a program
+%       outside its fragment is an error naming the clause), or auto
+%       (batched if the program is in the fragment, else per_particle).
+%       The batched engine gives other particles from the same seed (its
+%       draws come clause by clause) and ignores share and threads.
 filter_new(File, N, Seed, Options, F) :-
     must_be(list, Options),
     option(share(Share), Options, true),
     must_be(boolean, Share),
     option(threads(K), Options, 1),
     must_be(positive_integer, K),
+    option(engine(Engine), Options, per_particle),
+    must_be(oneof([per_particle, batched, auto]), Engine),
     must_be(positive_integer, N),
     must_be(integer, Seed),
     resolve_file(File, Abs),
     ddc_load(Abs, M),
+    (   Engine \== per_particle,
+        program_items(Abs, Items),
+        (   Engine == batched
+        ->  true
+        ;   catch(batch_check_program(Items, Abs), error(ddc(batched_unsupported(_), _), _), fail)
+        )
+    ->  batch_new(M, Items, Abs, N, Seed, BS),
+        new_filter_name(F),
+        nb_setval(F, bfilter(none, none)),
+        nb_getval(F, Holder),
+        nb_linkarg(1, Holder, BS)
+    ;   particle_filter_new(M, N, Seed, Share, K, F)
+    ).
+
+new_filter_name(F) :-
+    flag(ddc_filter_id, Id, Id+1),
+    atom_concat('$ddc_particles_', Id, F).
+
+%   batch_filter(+F, -Holder): F is a batched filter, Holder its
+%   bfilter(State, Previous) (updated in place).
+batch_filter(F, H) :-
+    atom(F), nb_current(F, H), H = bfilter(_, _).
+
+batch_commit(H, S0, S) :-
+    nb_linkarg(2, H, S0),
+    nb_linkarg(1, H, S).
+
+particle_filter_new(M, N, Seed, Share, K, F) :-
     set_random(seed(Seed)),
     length(L, N),
     new_shared(Share, K, Sh0),
-    flag(ddc_filter_id, Id, Id+1),
-    atom_concat('$ddc_particles_', Id, F),
+    new_filter_name(F),
     atom_concat(F, '$new', FN),
     nb_setval(FN, Sh0),
     nb_getval(FN, Sh),                  % global: survives the query, changed in place
@@ -146,9 +181,15 @@ with_rng(R, Goal, R1) :-
 
 %!  filter_time(+Filter, -T) is det.
 filter_time(F, T) :-
+    batch_filter(F, bfilter(S, _)), !,
+    batch_time(S, T).
+filter_time(F, T) :-
     filter_state(F, filter(_, _, T, _, _, _, _)).
 
 %!  filter_size(+Filter, -N) is det.
+filter_size(F, N) :-
+    batch_filter(F, bfilter(S, _)), !,
+    batch_size(S, N).
 filter_size(F, N) :-
     filter_state(F, filter(_, N, _, _, _, _, _)).
 
@@ -158,6 +199,11 @@ filter_size(F, N) :-
 %   values held once for all particles (see "Shared values" in ddc.pl), O
 %   values held by the particles themselves (summed over particles), K
 %   steps in which the particles agreed on everything new (computed once).
+%   A batched filter: [particles(N), time(T), engine(batched)].
+filter_statistics(F, [particles(N), time(T), engine(batched)]) :-
+    batch_filter(F, bfilter(S, _)), !,
+    batch_size(S, N),
+    batch_time(S, T).
 filter_statistics(F, [particles(N), time(T), shared(S), own(O), settled_steps(K)]) :-
     filter_state(F, filter(_, N, T, Ws, _, _, sh(Shared, _, _, _, K, _))),
     store_size(Shared, S),
@@ -176,6 +222,17 @@ filter_free(F) :-
 %   error(ddc(no_observation_clause(Obs), ...)) if no clause defines an
 %   observation in some particle, and leaves the filter unchanged on any
 %   error.
+filter_step(F, Obs, Acts, LogWs) :-
+    batch_filter(F, H), !,
+    must_be(list, Obs),
+    must_be(list, Acts),
+    forall(member(O, Obs), must_be_ground_item(O)),
+    forall(member(A, Acts), must_be_ground_item(A)),
+    partition(weighted_observation, Obs, Weighted, PlainObs),
+    append(Acts, PlainObs, Facts),
+    arg(1, H, S0),
+    batch_step(S0, Weighted, Facts, step(S, LogWs)),
+    batch_commit(H, S0, S).
 filter_step(F, Obs, Acts, LogWs) :-
     filter_state(F, State),
     State = filter(M, N, T, Ws0, _, R0, Sh0),
@@ -702,6 +759,13 @@ sweep_kind(fixed(T), T).
 %   Restores the particles and the time from before the last step (or
 %   resampling).  Only one level is kept.
 filter_undo(F) :-
+    batch_filter(F, H), !,
+    (   H = bfilter(_, S0), S0 \== none
+    ->  nb_linkarg(1, H, S0),
+        nb_setarg(2, H, none)
+    ;   throw(error(ddc(nothing_to_undo, query), _))
+    ).
+filter_undo(F) :-
     filter_state(F, filter(M, N, _, _, Prev, R, _)),
     (   Prev = prev(T0, Ws0, Sh0)
     ->  nb_setval(F, filter(M, N, T0, Ws0, none, R, Sh0))
@@ -713,21 +777,31 @@ filter_undo(F) :-
 %   Particle i (1-based position in Indices) becomes a copy of particle
 %   Indices[i] (0-based), as chosen by the caller.
 filter_resample(F, Is) :-
+    batch_filter(F, H), !,
+    arg(1, H, S0),
+    batch_size(S0, N),
+    must_be_indices(Is, N),
+    batch_resample(S0, Is, S),
+    batch_commit(H, S0, S).
+filter_resample(F, Is) :-
     filter_state(F, State),
     State = filter(_, N, T, Ws0, _, R, Sh),
-    must_be(list(nonneg), Is),
-    (   length(Is, N) -> true
-    ;   throw(error(ddc(bad_indices(length_differs_from_particles(N)), query), _))
-    ),
-    (   forall(member(I, Is), I < N) -> true
-    ;   throw(error(ddc(bad_indices(index_out_of_range(N)), query), _))
-    ),
+    must_be_indices(Is, N),
     %   findall/3 copies each chosen particle on its own: copies of one
     %   particle are independent worlds; the new set is linked, not copied
     %   again (it holds no variable bound outside it)
     findall(W, ( member(I, Is), I1 is I+1, arg(I1, Ws0, W) ), L),
     Ws =.. [ws|L],
     commit(F, State, T, Ws, Sh, T, Ws0, Sh, R).
+
+must_be_indices(Is, N) :-
+    must_be(list(nonneg), Is),
+    (   length(Is, N) -> true
+    ;   throw(error(ddc(bad_indices(length_differs_from_particles(N)), query), _))
+    ),
+    (   forall(member(I, Is), I < N) -> true
+    ;   throw(error(ddc(bad_indices(index_out_of_range(N)), query), _))
+    ).
 
 %!  filter_holds(+Filter, +Goal, -Flags) is det.
 %
@@ -736,6 +810,10 @@ filter_resample(F, Is) :-
 %   untimed `h ~= V` or derived atom that the program only defines with a
 %   time index means h at the current time.  Random variables the proof
 %   needs and the particle lacks are sampled and kept in the particle.
+filter_holds(F, Goal, Flags) :-
+    batch_filter(F, bfilter(S, _)), !,
+    batch_query_goal(S, Goal, G),
+    batch_holds(S, G, Flags).
 filter_holds(F, Goal, Flags) :-
     filter_query(F, Goal, true, Sols),
     maplist(solution_flag, Sols, Flags).
@@ -748,7 +826,40 @@ solution_flag(S, B) :-
 %   Values: for each particle Template instantiated by the first solution
 %   of Goal, or the atom none.
 filter_values(F, Template, Goal, Values) :-
+    batch_filter(F, bfilter(S, _)), !,
+    batch_query_goal(S, Goal, G),
+    batch_values(S, Template, G, Values).
+filter_values(F, Template, Goal, Values) :-
     filter_query(F, Goal, Template, Values).
+
+%   batch_query_goal(+State, +Goal, -G): Goal with each untimed read or
+%   derived atom that the program only defines with a time index read at
+%   the current time t (as filter_holds/3 documents).
+batch_query_goal(S, Goal, G) :-
+    arg(1, S, M),
+    M:'$ddc_info'(info(_, DerT, RvU, RvT, _, _, _)),
+    current_time_goal(Goal, DerT, RvU, RvT, G).     % (sharing Goal's variables)
+
+current_time_goal(V, _, _, _, V) :- var(V), !.
+current_time_goal((A, B), D, U, R, (A1, B1)) :- !,
+    current_time_goal(A, D, U, R, A1), current_time_goal(B, D, U, R, B1).
+current_time_goal((A ; B), D, U, R, (A1 ; B1)) :- !,
+    current_time_goal(A, D, U, R, A1), current_time_goal(B, D, U, R, B1).
+current_time_goal((A -> B), D, U, R, (A1 -> B1)) :- !,
+    current_time_goal(A, D, U, R, A1), current_time_goal(B, D, U, R, B1).
+current_time_goal(\+ A, D, U, R, \+ A1) :- !,
+    current_time_goal(A, D, U, R, A1).
+current_time_goal(findall(T, A, L), D, U, R, findall(T, A1, L)) :- !,
+    current_time_goal(A, D, U, R, A1).
+current_time_goal(findall_forward(T, A, L), D, U, R, findall_forward(T, A1, L)) :- !,
+    current_time_goal(A, D, U, R, A1).
+current_time_goal(X ~= V, _, U, R, G) :-
+    callable(X), X \= _:_, functor(X, N, A),
+    memberchk(N/A, R), \+ memberchk(N/A, U), !,
+    G = (X:t ~= V).
+current_time_goal(X, D, _, _, X:t) :-
+    callable(X), X \= _:_, X \= (_ ~= _), functor(X, N, A), memberchk(N/A, D), !.
+current_time_goal(G, _, _, _, G).
 
 %!  filter_rows(+Filter, +Template, +Goal, -Width, -Floats, -Values) is det.
 %
@@ -762,6 +873,15 @@ filter_values(F, Template, Goal, Values) :-
 %   value(T) else).  A goal `h ~= V` with template V and ground h (a random
 %   variable's values) is read straight from the particles' stores, without
 %   building the values, when every particle holds one.
+filter_rows(F, Template, Goal, Width, Floats, Values) :-
+    batch_filter(F, _), !,
+    filter_values(F, value(Template), Goal, Values0),
+    (   once(member(value(V1), Values0)),
+        row_width(V1, Width1),
+        value_rows(Values0, Width1, Floats1)
+    ->  Width = Width1, Floats = Floats1, Values = []
+    ;   Width = 0, Floats = [], Values = Values0
+    ).
 filter_rows(F, Template, Goal, Width, Floats, Values) :-
     filter_state(F, filter(M, N, T, Ws, _, _, Sh)),
     M:'$ddc_info'(Info),

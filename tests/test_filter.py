@@ -21,6 +21,10 @@ PIT_WORLD = EXAMPLES / "pit_world.pl"
 RANDOM_WALK = EXAMPLES / "random_walk.pl"
 OCCLUDER = EXAMPLES / "follow_the_occluder.pl"
 
+#: Both engines answer the conformance tests (prolog/ddc_filter.pl particle by particle,
+#: prolog/ddc_batch.pl clause by clause over batches of particles).
+ENGINES = pytest.mark.parametrize("engine", ["per_particle", "batched"])
+
 PIT_FRAMES = [("null", "false"), ("up", "true"), ("down", "false"), ("right", "true")]
 
 
@@ -36,9 +40,10 @@ def pit_world_step(f: Filter, move: str, breeze: str) -> None:
 # conformance: the original system's filter examples
 
 
-def test_wumpus_maze_step_gives_p_wall_0_857143() -> None:
+@ENGINES
+def test_wumpus_maze_step_gives_p_wall_0_857143(engine: str) -> None:
     n = 1500
-    with Filter(WUMPUS, particles=n, seed=11) as f:
+    with Filter(WUMPUS, particles=n, seed=11, engine=engine) as f:
         assert f.time == 0
         result = f.step(["observation(up) ~= wall", terms.observation("right", "free")],
                         actions=["action(null)"])
@@ -55,9 +60,10 @@ def test_wumpus_maze_step_gives_p_wall_0_857143() -> None:
         assert dist["wall"] == pytest.approx(p) and sum(dist.values()) == pytest.approx(1.0)
 
 
-def test_pit_world_four_steps_joint_and_marginals() -> None:
+@ENGINES
+def test_pit_world_four_steps_joint_and_marginals(engine: str) -> None:
     n = 2000
-    with Filter(PIT_WORLD, particles=n, seed=5) as f:
+    with Filter(PIT_WORLD, particles=n, seed=5, engine=engine) as f:
         smallest_ess = float(n)
         for move, breeze in PIT_FRAMES:
             pit_world_step(f, move, breeze)
@@ -95,15 +101,16 @@ def kalman(ys: list[float], m: float = 0.0, p: float = 1.0, q: float = 0.5, r: f
     return out
 
 
-@pytest.mark.parametrize("threads", [1, 2])
-def test_random_walk_matches_the_kalman_filter_for_20_steps(threads: int) -> None:
+@pytest.mark.parametrize(("threads", "engine"),
+                         [(1, "per_particle"), (2, "per_particle"), (1, "batched")])
+def test_random_walk_matches_the_kalman_filter_for_20_steps(threads: int, engine: str) -> None:
     rng = np.random.default_rng(2024)
     x, ys = rng.normal(0.0, 1.0), []
     for _ in range(20):
         x += rng.normal(0.0, math.sqrt(0.5))
         ys.append(float(x + rng.normal(0.0, 1.0)))
     n = 1000
-    with Filter(RANDOM_WALK, particles=n, seed=3, threads=threads) as f:
+    with Filter(RANDOM_WALK, particles=n, seed=3, threads=threads, engine=engine) as f:
         for step, (y, (m, p)) in enumerate(zip(ys, kalman(ys), strict=True), start=1):
             result = f.step([terms.observation("y", y)])
             mean, var = f.mean("x:t")
@@ -129,10 +136,11 @@ def occluder_frame(ball: tuple[float, float, float] | None, box: tuple[float, fl
     return obs
 
 
-def test_hidden_ball_follows_the_box() -> None:
+@ENGINES
+def test_hidden_ball_follows_the_box(engine: str) -> None:
     n = 400
     ball, box = (0.0, 0.0, 0.02), (0.05, 0.0, 0.12)
-    with Filter(OCCLUDER, particles=n, seed=9) as f:
+    with Filter(OCCLUDER, particles=n, seed=9, engine=engine) as f:
         for _ in range(3):
             f.step(occluder_frame(ball, box))
         assert f.probability("occluded_by(ball_1, _):t") == 0.0
@@ -169,8 +177,9 @@ OFFSET_GOAL = ("pos(ball_1):t ~= (X,Y,Z), pos(box_1):t ~= (A,B,C), "
 # determinism, zero-weight frames, bad input
 
 
-def run_random_walk(seed: int, threads: int = 2) -> tuple[np.ndarray, np.ndarray, float]:
-    with Filter(RANDOM_WALK, particles=300, seed=seed, threads=threads) as f:
+def run_random_walk(seed: int, threads: int = 2,
+                    engine: str = "per_particle") -> tuple[np.ndarray, np.ndarray, float]:
+    with Filter(RANDOM_WALK, particles=300, seed=seed, threads=threads, engine=engine) as f:
         for y in [0.3, -0.2, 1.1, 0.7, 2.0]:
             f.step([f"observation(y) ~= {y}"])
         values, weights = f.samples("x:t")
@@ -190,11 +199,20 @@ def test_same_seed_same_particles_bit_for_bit(threads: int) -> None:
     assert a[0].tobytes() != other[0].tobytes()
 
 
-def test_a_value_none_is_not_a_missing_value(tmp_path: Path) -> None:
+def test_the_batched_engine_same_seed_same_particles_bit_for_bit() -> None:
+    a, b = run_random_walk(17, 1, "batched"), run_random_walk(17, 1, "batched")
+    c = run_random_walk(18, 1, "batched")
+    assert a[0].tobytes() == b[0].tobytes() and a[1].tobytes() == b[1].tobytes()
+    assert a[2] == b[2]
+    assert a[0].tobytes() != c[0].tobytes()
+
+
+@ENGINES
+def test_a_value_none_is_not_a_missing_value(tmp_path: Path, engine: str) -> None:
     program = tmp_path / "none.pl"
     program.write_text("x:0 ~ uniform([none, some]) := true.\n"
                        "y:0 ~ val(1) := x:0 ~= some.\n")
-    with Filter(program, particles=200, seed=5) as f:
+    with Filter(program, particles=200, seed=5, engine=engine) as f:
         dist = dict((v, p) for p, v in f.distribution("x:t"))
         assert set(dist) == {"none", "some"} and sum(dist.values()) == pytest.approx(1.0)
         xs = f.values("X", "x:t ~= X")
@@ -202,12 +220,13 @@ def test_a_value_none_is_not_a_missing_value(tmp_path: Path) -> None:
         assert [y is None for y in ys] == [x == "none" for x in xs]
 
 
-def test_samples_are_float_rows_with_nan_where_undefined(tmp_path: Path) -> None:
+@ENGINES
+def test_samples_are_float_rows_with_nan_where_undefined(tmp_path: Path, engine: str) -> None:
     program = tmp_path / "rows.pl"
     program.write_text("x:0 ~ uniform([none, some]) := true.\n"
                        "y:0 ~ val(1) := x:0 ~= some.\n"
                        "z:0 ~ val((1, 2.5, -3)) := x:0 ~= some.\n")
-    with Filter(program, particles=50, seed=5) as f:
+    with Filter(program, particles=50, seed=5, engine=engine) as f:
         undefined = np.array([x == "none" for x in f.values("X", "x:t ~= X")])
         assert 0 < undefined.sum() < 50
         y, weights = f.samples("y:t")
@@ -224,9 +243,10 @@ def test_samples_are_float_rows_with_nan_where_undefined(tmp_path: Path) -> None
         assert names.dtype == object and set(names) == {"none", "some"}
 
 
-def test_every_particle_weight_zero_keeps_the_pre_step_particles() -> None:
+@ENGINES
+def test_every_particle_weight_zero_keeps_the_pre_step_particles(engine: str) -> None:
     n = 200
-    with Filter(PIT_WORLD, particles=n, seed=2) as f:
+    with Filter(PIT_WORLD, particles=n, seed=2, engine=engine) as f:
         pit_world_step(f, "null", "false")
         before = f.values("(A,B)", "maze(1,0):t ~= A, maze(0,1):t ~= B")
         loglik = f.log_likelihood
@@ -243,8 +263,9 @@ def test_every_particle_weight_zero_keeps_the_pre_step_particles() -> None:
         assert f.probability("maze(1,1):t ~= free") < 0.5
 
 
-def test_bad_observations_raise_and_leave_the_filter_usable() -> None:
-    with Filter(PIT_WORLD, particles=300, seed=4) as f:
+@ENGINES
+def test_bad_observations_raise_and_leave_the_filter_usable(engine: str) -> None:
+    with Filter(PIT_WORLD, particles=300, seed=4, engine=engine) as f:
         pit_world_step(f, "null", "false")
         held = f.values("V", "maze(2,0):t ~= V")
         with pytest.raises(FilterError, match=r"observation 1 .*[Ss]yntax"):

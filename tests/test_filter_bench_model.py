@@ -8,6 +8,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
 
@@ -15,7 +16,9 @@ import filter_numpy_reference as model  # noqa: E402
 from bridge import Filter  # noqa: E402
 
 
-def test_ddc_program_and_numpy_filter_agree_on_the_occluder_choice(tmp_path: Path) -> None:
+@pytest.mark.parametrize("engine", ["per_particle", "batched"])
+def test_ddc_program_and_numpy_filter_agree_on_the_occluder_choice(tmp_path: Path,
+                                                                   engine: str) -> None:
     m, steps = 3, 3  # a box o1 and two small objects; o2 disappears at step 3
     frames = model.scenario(m, steps, seed=4)
     names = model.object_names(m)
@@ -23,7 +26,7 @@ def test_ddc_program_and_numpy_filter_agree_on_the_occluder_choice(tmp_path: Pat
     program = tmp_path / "occlusion.pl"
     program.write_text(model.ddc_program(m))
     reference = model.NumpyOcclusionFilter(m, 40000, seed=4)
-    with Filter(program, particles=1000, seed=4) as f:
+    with Filter(program, particles=1000, seed=4, engine=engine) as f:
         inverse_ess = 0.0
         for frame in frames:
             inverse_ess += 1 / f.step(frame.terms(names)).ess

@@ -58,6 +58,8 @@ from bridge.terms import Compound, Text, item_text, to_term
 logger = logging.getLogger(__name__)
 
 Resampling = Literal["systematic", "multinomial", "residual"]
+Engine = Literal["per_particle", "batched", "auto"]
+ENGINES: tuple[Engine, ...] = ("per_particle", "batched", "auto")
 #: Prolog threads that step the particles unless told otherwise (the 2-core machine's cores)
 DEFAULT_THREADS = 2
 _TEMPLATE_VAR = "DdcBridgeValue__"
@@ -195,8 +197,8 @@ parse_goal(Text, Goal) :-
     catch(term_string(Goal, Text, [module(ddc)]), E,
           ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(goal, "", Text, Msg)) )).
 
-new(Program, N, Seed, Share, Threads, Key, Err) :-
-    guarded(( ddc:filter_new(Program, N, Seed, [share(Share), threads(Threads)], F),
+new(Program, N, Seed, Share, Threads, Engine, Key, Err) :-
+    guarded(( ddc:filter_new(Program, N, Seed, [share(Share), threads(Threads), engine(Engine)], F),
               nb_setval(Key, F) ), Err).
 
 step(Key, ObsTexts, ActTexts, LW, Err) :-
@@ -315,6 +317,7 @@ class Filter:
         resampling: Resampling = "systematic",
         share: bool = True,
         threads: int = DEFAULT_THREADS,
+        engine: Engine = "per_particle",
     ) -> None:
         """``share=False`` computes every value in every particle (see "Shared values" in
         ``prolog/ddc.pl``): the same particles, bit for bit, only slower; for comparison.
@@ -326,13 +329,22 @@ class Filter:
         The worker threads stay for the life of the process, and SWI-Prolog does not survive a
         ``fork`` of a process with Prolog threads: after stepping with ``threads > 1``, start
         subprocesses with multiprocessing's ``"spawn"`` or ``"forkserver"`` method (a forked
-        child hangs in its first Prolog call)."""
+        child hangs in its first Prolog call).
+
+        ``engine``: ``"per_particle"`` proves each particle's clauses one particle at a time;
+        ``"batched"`` evaluates each clause once for a batch of particles (``prolog/ddc_batch.pl``;
+        a program outside its fragment raises :class:`FilterError` naming the clause);
+        ``"auto"`` takes the batched engine when the program is in its fragment. The two give
+        other particles from the same seed (the draws come in another order); the batched one
+        ignores ``share`` and ``threads``."""
         if int(particles) < 1:
             raise ValueError(f"particles must be >= 1, got {particles}")
         if int(threads) < 1:
             raise ValueError(f"threads must be >= 1, got {threads}")
         if not 0.0 <= float(resample_threshold) <= 1.0:
             raise ValueError(f"resample_threshold must be in [0, 1], got {resample_threshold}")
+        if engine not in ENGINES:
+            raise ValueError(f"unknown engine {engine!r}; use one of {list(ENGINES)}")
         if resampling not in RESAMPLERS:
             raise ValueError(
                 f"unknown resampling scheme {resampling!r}; use one of {sorted(RESAMPLERS)}"
@@ -347,6 +359,7 @@ class Filter:
         self.resampling: Resampling = resampling
         self.share = bool(share)
         self.threads = int(threads)
+        self.engine: Engine = engine
         self._rng = np.random.default_rng(self.seed)
         self._log_weights = np.full(self.particles, -math.log(self.particles))
         self.log_likelihood = 0.0
@@ -360,9 +373,10 @@ class Filter:
         _ensure_engine()
         key = f"ddc_filter_{os.getpid()}_{next(_keys)}"
         result = _call(
-            "new(P, N, S, Sh, Th, K, Err)",
+            "new(P, N, S, Sh, Th, E, K, Err)",
             {"P": str(self.program_path), "N": self.particles, "S": self.seed,
-             "Sh": "true" if self.share else "false", "Th": self.threads, "K": key},
+             "Sh": "true" if self.share else "false", "Th": self.threads, "E": engine,
+             "K": key},
         )
         if result["Err"]:
             error = str(result["Err"])  # usually "file:line: cause" already
