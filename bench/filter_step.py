@@ -17,15 +17,13 @@ store, no occluder choice), the least any engine that samples particles one by o
 SWI-Prolog can cost, and prints the engine's ratio to it.
 
 The engine steps the particles in ``--threads`` Prolog threads (default 2, as
-``bridge.Filter``); the floor is one thread's.
-
-``--batched`` also runs bench/filter_batched_prototype.pl on the same program and frames (one
-thread): a prototype of clauses evaluated over all particles at once (docs/batched-filter.md),
-to compare with the engine and the floor.
+``bridge.Filter``); the floor is one thread's. ``--engine`` picks it as ``bridge.Filter`` does:
+``auto`` (the default: the batched engine, prolog/ddc_batch.pl, for this model),
+``batched`` or ``per_particle`` (prolog/ddc_filter.pl, one particle at a time).
 
 ``--calls K`` (with one configuration) also steps it once more in one thread under SWI-Prolog's
-profiler and prints the K most-called predicates per particle and step, and the lookups in the
-value tables (``store_get``) per particle, step and object: where the engine's time goes.
+profiler and prints the K most-called predicates per particle and step; with the per-particle
+engine also the lookups in the value tables (``store_get``) per particle, step and object.
 
 Target (issue 4): N = 1000, M = 10 in at most 33 ms per step (30 Hz).
 """
@@ -66,13 +64,13 @@ def find_swipl() -> str | None:
 
 
 def time_ddc(particles: int, objects: int, steps: int, seed: int,
-             threads: int) -> dict[str, float]:
+             threads: int, engine: str = "auto") -> dict[str, float]:
     frames = model.scenario(objects, steps, seed=seed)
     names = model.object_names(objects)
     with tempfile.TemporaryDirectory() as tmp:
         program = write_program(tmp, objects)
         started = time.perf_counter()
-        f = Filter(program, particles=particles, seed=seed, threads=threads)
+        f = Filter(program, particles=particles, seed=seed, threads=threads, engine=engine)
         new_ms = 1000 * (time.perf_counter() - started)
         with f:
             for frame in frames:
@@ -96,14 +94,15 @@ _CALL_COUNTS = (  # (janus returns every named variable but _-prefixed ones: onl
 )
 
 
-def call_counts(particles: int, objects: int, steps: int, seed: int) -> dict[str, int]:
+def call_counts(particles: int, objects: int, steps: int, seed: int,
+                engine: str = "auto") -> dict[str, int]:
     """Calls per predicate over ``steps`` steps in one thread, by SWI-Prolog's profiler
     (switched on around the steps only)."""
     frames = model.scenario(objects, steps, seed=seed)
     names = model.object_names(objects)
     with tempfile.TemporaryDirectory() as tmp:
         program = write_program(tmp, objects)
-        with Filter(program, particles=particles, seed=seed, threads=1) as f:
+        with Filter(program, particles=particles, seed=seed, threads=1, engine=engine) as f:
             bridge_prolog.query_once("use_module(library(statistics)), reset_profiler, "
                                      "profiler(_, cputime)")
             try:
@@ -115,8 +114,9 @@ def call_counts(particles: int, objects: int, steps: int, seed: int) -> dict[str
     return {str(name): int(calls) for calls, name in counts}
 
 
-def print_call_counts(particles: int, objects: int, steps: int, seed: int, top: int) -> None:
-    counts = call_counts(particles, objects, steps, seed)
+def print_call_counts(particles: int, objects: int, steps: int, seed: int, top: int,
+                      engine: str) -> None:
+    counts = call_counts(particles, objects, steps, seed, engine)
     per_step = particles * steps
     print(f"most-called predicates per particle and step (N={particles}, M={objects}, "
           f"one thread, {steps} steps):")
@@ -124,8 +124,9 @@ def print_call_counts(particles: int, objects: int, steps: int, seed: int, top: 
         print(f"  {calls / per_step:>8.1f}  {name}")
     lookups = sum(calls for name, calls in counts.items()
                   if name.startswith("ddc_store:store_get/"))
-    print(f"  value-table lookups (store_get) per particle, step and object: "
-          f"{lookups / per_step / objects:.1f}")
+    if lookups:
+        print(f"  value-table lookups (store_get) per particle, step and object: "
+              f"{lookups / per_step / objects:.1f}")
 
 
 def time_floor(particles: int, objects: int) -> float | None:
@@ -136,25 +137,6 @@ def time_floor(particles: int, objects: int) -> float | None:
     out = subprocess.run([swipl, "-O", str(HERE / "filter_floor.pl"), str(particles),
                           str(objects)], capture_output=True, text=True, check=True).stdout
     return float(json.loads(out.strip().splitlines()[-1])["floor_ms_per_step"])
-
-
-def time_batched(particles: int, objects: int, steps: int, seed: int) -> dict[str, float] | None:
-    """bench/filter_batched_prototype.pl on the bench's program and frames: ms per step (one
-    thread) and the log-likelihood of the run; None without swipl."""
-    swipl = find_swipl()
-    if swipl is None:
-        return None
-    frames = model.scenario(objects, steps, seed=seed)
-    names = model.object_names(objects)
-    with tempfile.TemporaryDirectory() as tmp:
-        program = write_program(tmp, objects)
-        frames_file = Path(tmp) / "frames.pl"
-        frames_file.write_text("".join(f"frame([{', '.join(frame.terms(names))}]).\n"
-                                       for frame in frames))
-        out = subprocess.run([swipl, "-O", str(HERE / "filter_batched_prototype.pl"), "--",
-                              str(program), str(frames_file), str(particles)],
-                             capture_output=True, text=True, check=True).stdout
-    return json.loads(out.strip().splitlines()[-1])
 
 
 def time_numpy(particles: int, objects: int, steps: int, seed: int) -> float:
@@ -175,8 +157,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
                         help="Prolog threads stepping the particles (default: bridge.Filter's)")
     parser.add_argument("--json", action="store_true", help="end with a JSON line")
-    parser.add_argument("--batched", action="store_true",
-                        help="also time bench/filter_batched_prototype.pl (one thread)")
+    parser.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
+                        help="the filter engine, as bridge.Filter's engine (default auto)")
     parser.add_argument("--calls", type=int, default=0, metavar="K",
                         help="with one configuration: also print the K most-called predicates "
                              "(one thread, profiled)")
@@ -189,6 +171,7 @@ def main(argv: list[str] | None = None) -> int:
         configs = [(args.particles, args.objects)]
     else:
         configs = [(n, m) for m in (3, 10, 20) for n in (100, 1000, 5000)]
+    print(f"engine: {args.engine}, {args.threads} thread(s)")
     print(f"{'N':>6} {'M':>4} {'ddc ms/step':>12} {'numpy ms/step':>14} {'ratio':>8} "
           f"{'floor ms':>9} {'/floor':>7} "
           f"{'us/particle':>12} {'in Prolog':>9} {'new ms':>9} {'resampled':>9}", flush=True)
@@ -197,7 +180,7 @@ def main(argv: list[str] | None = None) -> int:
     for n, m in configs:
         numpy_ms = time_numpy(n, m, args.steps, args.seed)
         try:
-            ddc = time_ddc(n, m, args.steps, args.seed, args.threads)
+            ddc = time_ddc(n, m, args.steps, args.seed, args.threads, args.engine)
         except FilterError as exc:  # e.g. the engine ran out of stack: report, go on
             first_line = str(exc).splitlines()[0]
             print(f"{n:>6} {m:>4} {'failed':>12} {numpy_ms:>14.2f}   {first_line}", flush=True)
@@ -212,13 +195,6 @@ def main(argv: list[str] | None = None) -> int:
               f"{1000 * ddc['ms_per_step'] / n:>12.1f} {ddc['prolog_share']:>9.0%} "
               f"{ddc['new_ms']:>9.0f} "
               f"{ddc['resamplings']:>6}/{args.steps}", flush=True)
-        if args.batched:
-            batched = time_batched(n, m, args.steps, args.seed)
-            if batched is not None:
-                ms = batched["batched_ms_per_step"]
-                print(f"{'':>12} batched prototype (one thread): {ms:.1f} ms/step, "
-                      f"{ms / ddc['ms_per_step']:.2f} of the engine's"
-                      + (f", {ms / floor:.1f}x the floor" if floor else ""), flush=True)
         if (n, m) == (1000, 10):
             verdict = "meets" if ddc["ms_per_step"] <= TARGET_MS else "misses"
             print(f"  N=1000 M=10: {ddc['ms_per_step']:.1f} ms/step {verdict} the "
@@ -226,7 +202,8 @@ def main(argv: list[str] | None = None) -> int:
         last = {"ms_per_step": ddc["ms_per_step"], "numpy_ms_per_step": numpy_ms,
                 "floor_ms_per_step": floor}
     if args.calls and not failed:
-        print_call_counts(args.particles, args.objects, args.steps, args.seed, args.calls)
+        print_call_counts(args.particles, args.objects, args.steps, args.seed, args.calls,
+                          args.engine)
     if args.json and last is not None:
         print(json.dumps(last))
     return 1 if failed else 0

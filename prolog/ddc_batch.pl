@@ -41,13 +41,15 @@
 
 :- module(ddc_batch,
           [ batch_check_program/2,      % +Items, +File
-            batch_new/6,                % +Module, +Items, +File, +N, +Seed, -State
+            batch_new/7,                % +Module, +Items, +File, +N, +Seed, +Threads, -State
             batch_step/4,               % +State0, +Observations, +Facts, -Result
             batch_resample/3,           % +State0, +Indices, -State
             batch_holds/3,              % +State, +Goal, -Flags
             batch_values/4,             % +State, +Template, +Goal, -Values
             batch_time/2,               % +State, -T
-            batch_size/2                % +State, -N
+            batch_size/2,               % +State, -N
+            batch_keep/2,               % +State, -Kept
+            batch_module/2              % +State, -Module
           ]).
 
 :- use_module(library(apply)).
@@ -209,6 +211,13 @@ tab_put(T, K, E) :-
     duplicate_term(K-E, KE),        % (a term made by unification may be undone)
     (   var(L) -> nb_linkarg(I, T, [KE]) ; nb_linkarg(I, T, [KE|L]) ).
 
+%   tab_link(+T, +K, +E): as tab_put/3 for an entry made by construction
+%   (no binding to undo): linked, not copied.
+tab_link(T, K, E) :-
+    term_hash(K, H), I is H mod 1024 + 1,
+    arg(I, T, L),
+    (   var(L) -> nb_linkarg(I, T, [K-E]) ; nb_linkarg(I, T, [K-E|L]) ).
+
 tab_match(T, K, E) :-
     arg(_, T, L), nonvar(L), member(K-E, L).
 
@@ -228,15 +237,22 @@ fill(I, C, V) :- arg(I, C, V), I1 is I-1, fill(I1, C, V).
 %   (T1 the latest: values of T0 are only read, a value T0 lacks is
 %   undefined, as in the per-particle filter's frozen time); Facts the
 %   facts of the latest time; Obs its observations H-V.
-env_time_table(env(_, _, _, t(T0, Tab0, T1, Tab1), _, _), T, Tab) :-
+env_time_table(env(_, _, _, Tabs, _, _), T, Tab) :-
+    Tabs = t(T0, Tab0, T1, Tab1),
     (   T == T1 -> Tab = Tab1
-    ;   T == T0 -> Tab = Tab0
+    ;   T == T0, Tab0 \== none
+    ->  (   Tab0 = pending(_, _)
+        ->  real_table(Tab0, Tab),          % (kept for the next query)
+            nb_linkarg(2, Tabs, Tab)
+        ;   Tab = Tab0
+        )
     ).
 
 env_now(env(M, N, _, Tabs, Fs, Os), Now, env(M, N, Now, Tabs, Fs, Os)).
 
 read_time(t, env(_, _, Now, _, _, _), Now) :- !.
 read_time(T0+1, env(_, _, Now, _, _, _), T) :- T0 == t, !, T is Now+1.
+read_time(T0-1, env(_, _, Now, _, _, _), T) :- T0 == t, !, T is Now-1.
 read_time(0, _, 0).
 
                  /*******************************
@@ -249,11 +265,18 @@ read_time(0, _, 0).
 %   (Pattern = V for a plain read; a tuple of fresh variables, one of
 %   them V, for a read such as pos(O):t ~= (X, Y, Z), whose three
 %   references share the one Pattern: one unification per particle binds
-%   all three).
+%   all three), or to a deferred expression '$x'(Expr): `V is Expr` over
+%   columns is not computed into a column of its own but evaluated in the
+%   loop of each goal that reads V (a comparison, a draw, a head's value),
+%   so that X1 is X + DX, Y1 is ..., then val((X1, Y1, Z1)) costs one loop
+%   over the batch, not four.  A goal that needs V's value as a term (a
+%   split) gets it computed into a column first (materialise/3).
 
 %   plan(+T, -Tmpl, -Binds): Tmpl is T with each '$c'(C, Pattern, V)
-%   replaced by V, Binds the C-Pattern pairs (each once): bind/2 makes Tmpl
-%   a particle's instance.
+%   replaced by V and each '$x'(Expr) by a variable W, Binds the C-Pattern
+%   pairs and '$e'(W, ExprTmpl, '$x'(Expr)) evaluations (each once, an
+%   evaluation after the bindings it reads): bind/2 makes Tmpl a
+%   particle's instance.
 plan(T, Tmpl, Binds) :-
     plan(T, Tmpl, [], Binds0),
     reverse(Binds0, Binds).
@@ -261,6 +284,13 @@ plan(T, Tmpl, Binds) :-
 plan(T, T, Bs, Bs) :- var(T), !.
 plan('$c'(C, P, V), V, Bs0, Bs) :- !,
     (   member(C0-P0, Bs0), C0 == C, P0 == P -> Bs = Bs0 ; Bs = [C-P|Bs0] ).
+plan(X, W, Bs0, Bs) :-
+    X = '$x'(Ex), !,
+    (   member('$e'(W0, _, X0), Bs0), X0 == X
+    ->  W = W0, Bs = Bs0
+    ;   plan(Ex, ExT, Bs0, Bs1),
+        Bs = ['$e'(W, ExT, X)|Bs1]
+    ).
 plan(T, T, Bs, Bs) :- atomic(T), !.
 plan(T, T1, Bs0, Bs) :-
     compound_name_arguments(T, F, As),
@@ -273,11 +303,51 @@ plan_list([A|As], [A1|As1], Bs0, Bs) :-
     plan_list(As, As1, Bs1, Bs).
 
 bind([], _).
-bind([C-P|Bs], I) :- arg(I, C, P), bind(Bs, I).
+bind([B|Bs], I) :- bind_one(B, I), bind(Bs, I).
+
+bind_one(C-P, I) :- arg(I, C, P).
+bind_one('$e'(W, Ex, _), _) :- W is Ex.
 
 col_ref(C, V, '$c'(C, V, V)).
 
-has_col(T) :- compound(T), ( T = '$c'(_, _, _) -> true ; arg(_, T, A), has_col(A) ), !.
+has_col(T) :-
+    compound(T),
+    (   T = '$c'(_, _, _) -> true ; T = '$x'(_) -> true ; arg(_, T, A), has_col(A) ), !.
+
+%   materialise(+T, -T1): T with each deferred expression computed into a
+%   column (for all the particles of the column it reads).
+materialise(T, T1) :-
+    (   compound(T), sub_term(X, T), compound(X), X = '$x'(Ex)
+    ->  once(sub_term('$c'(C0, _, _), Ex)),
+        functor(C0, _, N),
+        numlist(1, N, All),
+        plan(X, W, Bs),
+        functor(C, c, N),
+        defined_at_all(All, Bs, Ps),
+        arith_loop(Ps, Bs, W, C),
+        col_ref(C, _, Ref),
+        replace_eq(T, X, Ref, T2),
+        materialise(T2, T1)
+    ;   T1 = T
+    ).
+
+%   (the particles where every column the expression reads has a value)
+defined_at_all(All, Bs, Ps) :-
+    include(bindable(Bs), All, Ps).
+
+bindable(Bs, I) :- \+ \+ catch(bind(Bs, I), _, fail).
+
+replace_eq(T, X, Y, T1) :-
+    (   T == X -> T1 = Y
+    ;   var(T) -> T1 = T
+    ;   compound(T), T \= '$c'(_, _, _)
+    ->  compound_name_arguments(T, F, As),
+        maplist(replace_in(X, Y), As, As1),
+        compound_name_arguments(T1, F, As1)
+    ;   T1 = T
+    ).
+
+replace_in(X, Y, A, A1) :- replace_eq(A, X, Y, A1).
 
 %   beval(+Body, +Env, +Ps0, -Ps): the body for the particles Ps0 (a sorted
 %   list of indices, not empty); nondeterministic over branches (solutions
@@ -318,13 +388,9 @@ beval(G:TE, E, Ps0, Ps) :- !,                     % a derived atom at a time
     read_time(TE, E, T),
     split(G, Ps0, G1, Ps1),
     derived(G1, T, E, Ps1, Ps).
-beval(V is Ex, E, Ps0, Ps) :- !,
+beval(V is Ex, _, Ps0, Ps) :- !,
     (   has_col(Ex), var(V)
-    ->  E = env(_, N, _, _, _, _),
-        plan(Ex, Tmpl, Bs),
-        functor(C, c, N),
-        arith_loop(Ps0, Bs, Tmpl, C),
-        col_ref(C, _, V),
+    ->  V = '$x'(Ex),
         Ps = Ps0
     ;   ( has_col(V) ; has_col(Ex) )
     ->  test_loop(V =:= Ex, Ps0, Ps)
@@ -377,16 +443,17 @@ call_static(G, env(M, _, _, _, Facts, _)) :-
 %   the particles' values, for each group of particles that share them.
 %   (Only the columns' values are grouped: T's own unbound variables stay
 %   T1's, for the goals after it.)
-split(T, Ps0, T1, Ps) :-
-    (   has_col(T)
-    ->  plan(T, Tmpl, Bs),
+split(T0, Ps0, T1, Ps) :-
+    (   has_col(T0)
+    ->  materialise(T0, T),
+        plan(T, Tmpl, Bs),
         pairs_keys_values(Bs, Cs, Pats),
         split_pairs(Ps0, Cs, Pairs),
         keysort(Pairs, Sorted),
         group_pairs_by_key(Sorted, Groups),
         member(Pats-Ps, Groups),
         T1 = Tmpl
-    ;   T1 = T, Ps = Ps0
+    ;   T1 = T0, Ps = Ps0
     ).
 
 split_pairs([], _, []).
@@ -484,11 +551,19 @@ unify_column(P, C, Arity, Ps0, Ps) :-
 
 element_ref(C, Pat, V, PV) :- V = '$c'(C, Pat, PV).
 
-with_arity([], _, _, []).
-with_arity([I|Is], C, K, Ps) :-
+with_arity(Ps0, C, K, Ps) :-
+    tuple_shape(K, Shape),
+    with_shape(Ps0, C, Shape, Ps).
+
+with_shape([], _, _, []).
+with_shape([I|Is], C, Shape, Ps) :-
     arg(I, C, V),
-    (   tuple_arity(V, K) -> Ps = [I|Ps1] ; Ps = Ps1 ),
-    with_arity(Is, C, K, Ps1).
+    (   subsumes_term(Shape, V), V \== '$undef', V \== '$u' -> Ps = [I|Ps1] ; Ps = Ps1 ),
+    with_shape(Is, C, Shape, Ps1).
+
+%   tuple_shape(+K, -Shape): (_, ..., _) of K elements (the last any term).
+tuple_shape(1, _) :- !.
+tuple_shape(K, (_, S)) :- K1 is K-1, tuple_shape(K1, S).
 
 with_value([], _, _, []).
 with_value([I|Is], C, P, Ps) :-
@@ -574,10 +649,14 @@ entry_arity(Entry, Arity) :-
     ;   arg(1, Entry, C),
         arg(1, C, V1),
         value_arity(V1, 1, K),
-        (   K > 1, \+ ( arg(_, C, V), \+ tuple_arity(V, K) ) -> A = K ; A = none ),
+        (   K > 1, functor(C, _, N), with_arity_all(N, C, K) -> A = K ; A = none ),
         nb_setarg(3, Entry, A),
         Arity = A
     ).
+
+with_arity_all(N, C, K) :-
+    tuple_shape(K, Shape),
+    forall(between(1, N, I), ( arg(I, C, V), subsumes_term(Shape, V) )).
 
 value_arity(V, K0, K) :-
     (   nonvar(V), V = (_, B) -> K1 is K0+1, value_arity(B, K1, K) ; K = K0 ).
@@ -713,57 +792,116 @@ derived(G, T, E, Ps0, Ps) :-
                  *            FILTER            *
                  *******************************/
 
-%!  batch_new(+Module, +Items, +File, +N, +Seed, -State) is det.
+%!  batch_new(+Module, +Items, +File, +N, +Seed, +Threads, -State) is det.
 %
 %   N particles at time 0 of the program Items (ddc.pl's classified
 %   clauses, already loaded into Module): every h:0 clause's ground heads
 %   drawn.  Throws batch_check_program/2's error outside the fragment.
-batch_new(M, Items, File, N, Seed, State) :-
+%   Threads > 1: the particles are split into that many contiguous groups
+%   (sizes differing by at most one), each with a random stream of its own
+%   (the first seeded with Seed, the others with seeds drawn from it), whose
+%   steps run at the same time in as many threads (see "Groups" below).
+%   The particles depend on Seed and Threads, not on the machine.
+batch_new(M, Items, File, N, Seed, K, State) :-
     batch_check_program(Items, File),
     compile(M, Items),
+    (   K =:= 1
+    ->  new_group(M, N, Seed, State)
+    ;   random_property(state(Saved)),
+        call_cleanup(( set_random(seed(Seed)),
+                       K1 is K-1, length(Seeds, K1),
+                       maplist(random_between(0, 0x3fffffffffffffff), Seeds) ),
+                     set_random(state(Saved))),
+        group_sizes(N, K, Sizes),
+        maplist(new_group(M), Sizes, [Seed|Seeds], Gs),
+        State = groups(Gs)
+    ).
+
+group_sizes(N, K, Sizes) :-
+    findall(S, ( between(1, K, G), S is (N*G)//K - (N*(G-1))//K ), Sizes).
+
+new_group(M, N, Seed, State) :-
     random_property(state(Saved)),
     call_cleanup(
         ( set_random(seed(Seed)),
           tab_new(Tab0), tab_new(Tab),
           E = env(M, N, -1, t(-1, Tab0, 0, Tab), [], []),
           numlist(1, N, All),
-          forall(sweep_key(M, zero, E, X), value(E, X, 0, All, _)),
+          sweep(M, zero, E, 0, All),
           random_property(state(R)) ),
         set_random(state(Saved))),
     State = bs(M, N, 0, t(-1, Tab0, 0, Tab), [], R).
 
-%   sweep_key(+M, +Kind, +E, -X): a ground head of a Kind clause, from the
-%   static goals its body starts with.
-sweep_key(M, K, E, X) :-
-    findall(X0, ( M:'$b_rv'(H, K, _, B, _), H \= observation(_),
-                  copy_term(H-B, X0-B1),
-                  static_prefix(B1, M, P),
-                  prefix_solutions(P, E),
-                  ground(X0) ), Xs0),
-    sort(Xs0, Xs),
-    member(X, Xs).
+%   sweep(+M, +Kind, +E, +T, +All): every ground head of a Kind clause
+%   drawn at T for the particles that have it.  The heads come from the
+%   goals the clause's body starts with that draw nothing: static goals,
+%   and reads at t, whose keys are those held (so a value held at t that a
+%   persistence clause such as h:t+1 ~ val(V) := h:t ~= V carries on is
+%   carried on in the particles that hold it, as the per-particle filter's
+%   sweep does).
+sweep(M, K, E, T, All) :-
+    findall(X-Ps, sweep_head(M, K, E, All, X, Ps), Pairs0),
+    keysort(Pairs0, Pairs),
+    group_pairs_by_key(Pairs, Groups),
+    forall(member(X-Pss, Groups),
+           (   memberchk(all, Pss) -> value(E, X, T, All, _)
+           ;   ord_union(Pss, Ps), value(E, X, T, Ps, _)
+           )).
 
-static_prefix((A, B), M, P) :- !,
-    (   static_goal(A, M) -> P = (A, P1), static_prefix(B, M, P1) ; P = true ).
-static_prefix(A, M, P) :-
-    (   static_goal(A, M) -> P = A ; P = true ).
+%   (Ps is all when the prefix is static: every particle.)
+sweep_head(M, K, E, All, X, Ps) :-
+    M:'$b_rv'(H, K, _, B, _), H \= observation(_),
+    copy_term(H-B, X-B1),
+    sweep_prefix(B1, M, P),
+    (   static_conj(P, M)
+    ->  prefix_solutions(P, E), Ps = all
+    ;   beval(P, E, All, Ps)
+    ),
+    ground(X).
 
-static_goal(G, M) :-
-    callable(G), G \= _:_, G \= (_ ~= _), G \= (_, _), G \= (_ ; _), G \= (_ -> _),
-    G \= (\+ _), G \= findall(_, _, _), G \= findall_forward(_, _, _),
-    (   M:'$b_static_pred'(G, _) -> true
-    ;   \+ predicate_property(M:G, visible)          % a fact of the step
-    ).
+static_conj(true, _) :- !.
+static_conj((A, B), M) :- !, static_goal(A, M), static_conj(B, M).
+static_conj(A, M) :- static_goal(A, M).
 
 prefix_solutions(true, _) :- !.
 prefix_solutions((A, B), E) :- !, call_static(A, E), prefix_solutions(B, E).
 prefix_solutions(A, E) :- call_static(A, E).
+
+sweep_prefix((A, B), M, P) :- !,
+    (   sweep_goal(A, M) -> P = (A, P1), sweep_prefix(B, M, P1) ; P = true ).
+sweep_prefix(A, M, P) :-
+    (   sweep_goal(A, M) -> P = A ; P = true ).
+
+sweep_goal(G, M) :-
+    (   nonvar(G), G = (_:TE ~= _) -> TE == t ; static_goal(G, M) ).
+
+static_goal(G, M) :-
+    callable(G), G \= _:_, G \= (_ ~= _), G \= (_, _), G \= (_ ; _), G \= (_ -> _),
+    G \= (\+ _), G \= findall(_, _, _), G \= findall_forward(_, _, _),
+    G \= (_ is _), \+ test_goal(G),
+    (   M:'$b_static_pred'(G, _) -> true
+    ;   \+ predicate_property(M:G, visible)          % a fact of the step
+    ).
 
 %!  batch_step(+State0, +Observations, +Facts, -Result) is det.
 %
 %   Result = step(State, LogWeights): every particle advanced from t to
 %   t+1 with the Facts (actions and plain observations) of t+1 and
 %   weighted by the Observations (terms H ~= V).  State0 is not changed.
+batch_step(groups([G1|Gs]), Obs, Facts, step(groups([S1|Ss]), LWs)) :- !,
+    length(Gs, K1),
+    numlist(1, K1, Tags),
+    message_queue_create(Q),
+    setup_call_cleanup(
+        maplist(start_step(Q, Obs, Facts), Tags, Gs),
+        (   catch(batch_step(G1, Obs, Facts, step(S10, LWs1)), E, true),
+            maplist(step_result(Q), Tags, Results)
+        ),
+        message_queue_destroy(Q)),
+    (   nonvar(E) -> throw(E) ; true ),
+    maplist(group_done(Facts), Gs, Results, Ss, LWss),
+    S1 = S10,
+    append([LWs1|LWss], LWs).
 batch_step(State0, Obs, Facts, step(State, LWs)) :-
     State0 = bs(M, N, T, t(_, _, _, Tab), _, R0),
     T1 is T+1,
@@ -776,7 +914,7 @@ batch_step(State0, Obs, Facts, step(State, LWs)) :-
         ( set_random(state(R0)),
           new_column(N, 0.0, LW),
           forall(member(H-V, HVs), weigh_observation(E, H, V, All, LW)),
-          forall(sweep_key(M, next, E, X), value(E, X, T1, All, _)),
+          sweep(M, next, E, T1, All),
           random_property(state(R)) ),
         set_random(state(Saved))),
     LW =.. [_|LWs],
@@ -826,48 +964,163 @@ minus_infinity(X) :- float(X), X < -1.0e308.
 %!  batch_resample(+State0, +Indices, -State) is det.
 %
 %   Particle i (1-based position in Indices) becomes a copy of particle
-%   Indices[i] (0-based) in both times held.
-%   (The new state is made after its tables: a filter keeps it linked, not
-%   copied, so it must hold no binding made after it.)
+%   Indices[i] (0-based).  The latest time's columns are resampled now,
+%   the previous time's when a query first reads them (pending/2).  Each
+%   group keeps its random stream.
 batch_resample(S0, Is0, S) :-
-    S0 = bs(M, N, T, t(T0, Tab0, T1, Tab1), Fs, R),
-    length(Is0, N),
-    maplist(succ, Is0, Is),
-    resample_table(Tab0, Is, New0),
-    resample_table(Tab1, Is, New1),
-    S = bs(M, N, T, t(T0, New0, T1, New1), Fs, R).
+    state_groups(S0, Gs0),
+    maplist(batch_size, Gs0, Sizes),
+    maplist(latest_table, Gs0, Src1),
+    maplist(older_table, Gs0, Src0),
+    sources(Is0, Sizes, Pairs),
+    maplist(resampled_group(Src0, Src1), Gs0, Pairs, Gs),
+    (   S0 = groups(_) -> S = groups(Gs) ; Gs = [S] ).
 
-resample_table(Tab, Is, New) :-
+state_groups(groups(Gs), Gs) :- !.
+state_groups(S, [S]).
+
+latest_table(bs(_, _, _, t(_, _, _, Tab), _, _), Tab).
+older_table(bs(_, _, _, t(_, Tab, _, _), _, _), Tab).
+
+%   sources(+Indices, +Sizes, -Pairs): for each group (of Sizes), its
+%   particles' ancestors as Group-Index pairs (1-based).
+sources(Is, Sizes, Pairs) :-
+    maplist(source(Sizes), Is, All),
+    split_by(Sizes, All, Pairs).
+
+source(Sizes, J, G-L) :- source(Sizes, 1, J, G, L).
+source([Size|Sizes], G0, J, G, L) :-
+    (   J < Size -> G = G0, L is J+1
+    ;   J1 is J-Size, G1 is G0+1, source(Sizes, G1, J1, G, L)
+    ).
+
+split_by([], [], []).
+split_by([Size|Sizes], All, [P|Ps]) :-
+    length(P, Size),
+    append(P, Rest, All),
+    split_by(Sizes, Rest, Ps).
+
+resampled_group(Src0, Src1, bs(M, Size, T, t(T0, _, T1, _), Fs, R), Pairs,
+                bs(M, Size, T, t(T0, pending(Src0, Pairs), T1, New1), Fs, R)) :-
+    resample_tables(Src1, Pairs, New1).
+
+%   resample_tables(+Sources, +Pairs, -New): a table of the particles Pairs
+%   (Group-Index) of the tables Sources (one per group; a key a group lacks
+%   is '$u' there: never drawn in those particles).
+resample_tables(Srcs0, Pairs, New) :-
+    maplist(real_table, Srcs0, Srcs),
     tab_new(New),
-    forall(tab_match(Tab, K, e(C, S, A)),
-           (   S = same(_)
-           ->  tab_put(New, K, e(C, S, A))
-           ;   args_of(Is, C, Vs),
-               C1 =.. [c|Vs],
-               ( S == defined -> S1 = defined ; S1 = open ),
-               tab_put(New, K, e(C1, S1, A)),
-               ( S1 == open -> tab_get(New, K, E1), settle(E1) ; true )
+    findall(K, ( member(Tab, Srcs), Tab \== none, tab_match(Tab, K, _) ), Ks0),
+    sort(Ks0, Ks),
+    length(Pairs, N),
+    forall(member(K, Ks),
+           (   maplist(source_entry(K), Srcs, Es),
+               resampled_entry(Es, Pairs, N, E),
+               tab_link(New, K, E)
            )).
 
-args_of([], _, []).
-args_of([I|Is], C, [V|Vs]) :- arg(I, C, V), args_of(Is, C, Vs).
+source_entry(K, Tab, E) :-
+    (   Tab \== none, tab_get(Tab, K, E0) -> E = E0 ; E = none ).
+
+resampled_entry(Es, Pairs, N, E) :-
+    (   Es = [e(_, same(V), A)|_], forall(member(E1, Es), same_entry(E1, V))
+    ->  functor(C, c, N), fill(N, C, V), duplicate_term(C, C1),
+        E = e(C1, same(V), A)
+    ;   maplist(entry_column, Es, Cs),
+        Src =.. [s|Cs],
+        pair_values(Pairs, Src, Vs),
+        C =.. [c|Vs],
+        (   forall(member(E1, Es), arg(2, E1, defined))
+        ->  common_arity(Es, A),
+            E = e(C, defined, A)
+        ;   E0 = e(C, open, unknown),
+            duplicate_term(E0, E),
+            settle(E)
+        )
+    ).
+
+same_entry(E, V) :- nonvar(E), E = e(_, same(V1), _), V1 == V.
+
+entry_column(none, '$none') :- !.
+entry_column(e(C, _, _), C).
+
+pair_values([], _, []).
+pair_values([G-L|Ps], Src, [V|Vs]) :-
+    arg(G, Src, C),
+    (   C == '$none' -> V = '$u' ; arg(L, C, V) ),
+    pair_values(Ps, Src, Vs).
+
+common_arity([e(_, _, A)|Es], Arity) :-
+    (   forall(member(e(_, _, A1), Es), A1 == A) -> Arity = A ; Arity = unknown ).
+
+%   real_table(+Tab0, -Tab): a pending table resampled.
+real_table(pending(Srcs, Pairs), Tab) :- !,
+    resample_tables(Srcs, Pairs, Tab).
+real_table(Tab, Tab).
+
+%!  batch_keep(+State, -Kept) is det.
+%
+%   Kept is State's skeleton assembled anew by non-backtrackable
+%   assignment (nb_linkarg/3), sharing State's tables, facts and streams:
+%   a term a filter may keep linked in a global variable across queries.
+%   (A state is made by unification; a binding made while a choice point
+%   was newer than the variable is undone by backtracking to it, even
+%   after the term is linked, e.g. when the query that made it ends.  The
+%   tables and columns are made by non-backtrackable assignment already.)
+batch_keep(groups(Gs), Kept) :- !,
+    maplist(batch_keep, Gs, Ks),
+    kept_list(Ks, L),
+    functor(Kept, groups, 1),
+    nb_linkarg(1, Kept, L).
+batch_keep(bs(M, N, T, t(T0, Tab0, T1, Tab1), Fs, R), Kept) :-
+    functor(TT, t, 4),
+    nb_setarg(1, TT, T0), nb_linkarg(2, TT, Tab0),
+    nb_setarg(3, TT, T1), nb_linkarg(4, TT, Tab1),
+    functor(Kept, bs, 6),
+    nb_setarg(1, Kept, M), nb_setarg(2, Kept, N), nb_setarg(3, Kept, T),
+    nb_linkarg(4, Kept, TT), nb_linkarg(5, Kept, Fs), nb_linkarg(6, Kept, R).
+
+kept_list([], []).
+kept_list([X|Xs], L) :-
+    kept_list(Xs, L1),
+    functor(L, '[|]', 2),
+    nb_linkarg(1, L, X),
+    nb_linkarg(2, L, L1).
+
+%!  batch_module(+State, -Module) is det.
+%
+%   The module the state's program is loaded into.
+batch_module(groups([G|_]), M) :- !, batch_module(G, M).
+batch_module(bs(M, _, _, _, _, _), M).
 
 %!  batch_time(+State, -T) is det.
+batch_time(groups([G|_]), T) :- !, batch_time(G, T).
 batch_time(bs(_, _, T, _, _, _), T).
 
 %!  batch_size(+State, -N) is det.
+batch_size(groups(Gs), N) :- !, foldl(add_size, Gs, 0, N).
 batch_size(bs(_, N, _, _, _, _), N).
+
+add_size(G, N0, N) :- batch_size(G, K), N is N0+K.
 
 %!  batch_holds(+State, +Goal, -Flags) is det.
 %
 %   Flags: for each particle 1 if Goal holds at the current time (t is the
 %   current time), else 0.  Values the goal needs and a particle lacks are
 %   drawn and kept (the state's columns are updated in place).
+batch_holds(groups(Gs), Goal, Flags) :- !,
+    maplist(group_holds(Goal), Gs, Fss),
+    append(Fss, Flags).
 batch_holds(S, Goal, Flags) :-
-    query_env(S, E, All, R0),
-    with_state(R0, branch_union(Goal, E, All, Ps)),
+    query_env(S, E, All),
+    with_state(S, branch_union(Goal, E, All, Ps)),
     S = bs(_, N, _, _, _, _),
     flags(1, N, Ps, Flags).
+
+%   (Each group's query on a copy of the goal: its bindings are its own.)
+group_holds(Goal, G, Flags) :-
+    copy_term(Goal, Goal1),
+    batch_holds(G, Goal1, Flags).
 
 flags(I, N, _, []) :- I > N, !.
 flags(I, N, [I|Ps], [1|Fs]) :- !, I1 is I+1, flags(I1, N, Ps, Fs).
@@ -877,14 +1130,21 @@ flags(I, N, Ps, [0|Fs]) :- I1 is I+1, flags(I1, N, Ps, Fs).
 %
 %   Values: for each particle Template at Goal's first solution of its own,
 %   or the atom none.
+batch_values(groups(Gs), Template, Goal, Values) :- !,
+    maplist(group_values(Template-Goal), Gs, Vss),
+    append(Vss, Values).
 batch_values(S, Template, Goal, Values) :-
-    query_env(S, E, All, R0),
+    query_env(S, E, All),
     S = bs(_, N, _, _, _, _),
     new_column(N, none, VC),
     new_column(N, '$u', Done),
-    with_state(R0, forall(beval(Goal, E, All, Ps),
-                          ( plan(Template, Tmpl, Bs), value_each(Ps, Bs, Tmpl, Done, VC) ))),
+    with_state(S, forall(beval(Goal, E, All, Ps),
+                         ( plan(Template, Tmpl, Bs), value_each(Ps, Bs, Tmpl, Done, VC) ))),
     VC =.. [_|Values].
+
+group_values(TG, G, Values) :-
+    copy_term(TG, Template-Goal),
+    batch_values(G, Template, Goal, Values).
 
 value_each([], _, _, _, _).
 value_each([I|Is], Bs, Tmpl, Done, VC) :-
@@ -895,11 +1155,66 @@ value_each([I|Is], Bs, Tmpl, Done, VC) :-
     ),
     value_each(Is, Bs, Tmpl, Done, VC).
 
-query_env(bs(M, N, T, Tabs, Fs, R), env(M, N, T, Tabs, Fs, []), All, R) :-
+query_env(bs(M, N, T, Tabs, Fs, _), env(M, N, T, Tabs, Fs, []), All) :-
     numlist(1, N, All).
 
-%   Queries draw from the state's generator without advancing it for the
-%   next step (a query does not change the particles a step will draw).
-with_state(R, Goal) :-
+%   with_state(+State, :Goal): Goal (a query) draws what it needs from
+%   State's random stream, which goes on from there (in place: State is
+%   the filter's own term).
+with_state(S, Goal) :-
+    arg(6, S, R0),
     random_property(state(Saved)),
-    call_cleanup(( set_random(state(R)), Goal ), set_random(state(Saved))).
+    call_cleanup(( set_random(state(R0)), Goal, random_property(state(R1)) ),
+                 set_random(state(Saved))),
+    nb_setarg(6, S, R1).
+
+                 /*******************************
+                 *            GROUPS            *
+                 *******************************/
+
+%   A filter of K > 1 groups is groups([S1, ..., SK]), each Si a filter
+%   state of its own particles (contiguous: S1's first, ...).  A step
+%   steps S1 in the calling thread and each other group in a worker thread
+%   (kept for the life of the process, shared by all filters), which gets a
+%   copy of the group's latest table only (a step reads no older one) and
+%   sends back the stepped group.  Resampling joins the groups into one
+%   state, resamples it and splits it again (each group keeps its stream);
+%   queries ask each group in turn.
+
+start_step(Q, Obs, Facts, Tag, G) :-
+    G = bs(M, N, T, t(_, _, T, Tab), Fs, R),
+    batch_worker(Tag, Thread),
+    thread_send_message(Thread, step_job(Q, Tag, bs(M, N, T, t(none, none, T, Tab), Fs, R),
+                                         Obs, Facts)).
+
+step_result(Q, Tag, Out) :-
+    thread_get_message(Q, Tag-Out).
+
+%   A worker sends back only what is new: the table of t+1, the weights
+%   and its stream; the group's table of t is the one this thread holds.
+group_done(Facts, G, done(T1, Tab1, R, LWs), S, LWs) :- !,
+    G = bs(M, N, T, t(_, _, _, Tab), _, _),
+    duplicate_term(Facts, Facts1),
+    S = bs(M, N, T1, t(T, Tab, T1, Tab1), Facts1, R).
+group_done(_, _, error(E), _, _) :- throw(E).
+
+%   batch_worker(+Tag, -Alias): the worker thread for groups Tag.
+batch_worker(Tag, Alias) :-
+    atom_concat('$ddc_batch_worker_', Tag, Alias),
+    with_mutex('$ddc_batch_workers',
+               (   catch(thread_property(Alias, status(running)), _, fail)
+               ->  true
+               ;   thread_create(worker_loop, _, [alias(Alias), detached(true)])
+               )).
+
+worker_loop :-
+    thread_get_message(Job),
+    (   Job = step_job(Q, Tag, S0, Obs, Facts)
+    ->  catch(( batch_step(S0, Obs, Facts, step(S, LWs)),
+                S = bs(_, _, T1, t(_, _, _, Tab1), _, R),
+                Out = done(T1, Tab1, R, LWs) ),
+              E, Out = error(E)),
+        catch(thread_send_message(Q, Tag-Out), _, true)
+    ;   true
+    ),
+    worker_loop.

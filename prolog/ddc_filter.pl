@@ -81,14 +81,15 @@ filter_new(File, N, Seed, F) :-
 %       outside its fragment is an error naming the clause), or auto
 %       (batched if the program is in the fragment, else per_particle).
 %       The batched engine gives other particles from the same seed (its
-%       draws come clause by clause) and ignores share and threads.
+%       draws come clause by clause), ignores share, and splits the
+%       particles into threads(K) groups stepped at the same time.
 filter_new(File, N, Seed, Options, F) :-
     must_be(list, Options),
     option(share(Share), Options, true),
     must_be(boolean, Share),
     option(threads(K), Options, 1),
     must_be(positive_integer, K),
-    option(engine(Engine), Options, per_particle),
+    option(engine(Engine), Options, auto),
     must_be(oneof([per_particle, batched, auto]), Engine),
     must_be(positive_integer, N),
     must_be(integer, Seed),
@@ -100,11 +101,12 @@ filter_new(File, N, Seed, Options, F) :-
         ->  true
         ;   catch(batch_check_program(Items, Abs), error(ddc(batched_unsupported(_), _), _), fail)
         )
-    ->  batch_new(M, Items, Abs, N, Seed, BS),
+    ->  batch_new(M, Items, Abs, N, Seed, K, BS),
         new_filter_name(F),
         nb_setval(F, bfilter(none, none)),
         nb_getval(F, Holder),
-        nb_linkarg(1, Holder, BS)
+        batch_keep(BS, Kept),
+        nb_linkarg(1, Holder, Kept)
     ;   particle_filter_new(M, N, Seed, Share, K, F)
     ).
 
@@ -118,8 +120,9 @@ batch_filter(F, H) :-
     atom(F), nb_current(F, H), H = bfilter(_, _).
 
 batch_commit(H, S0, S) :-
+    batch_keep(S, Kept),
     nb_linkarg(2, H, S0),
-    nb_linkarg(1, H, S).
+    nb_linkarg(1, H, Kept).
 
 particle_filter_new(M, N, Seed, Share, K, F) :-
     set_random(seed(Seed)),
@@ -836,7 +839,7 @@ filter_values(F, Template, Goal, Values) :-
 %   derived atom that the program only defines with a time index read at
 %   the current time t (as filter_holds/3 documents).
 batch_query_goal(S, Goal, G) :-
-    arg(1, S, M),
+    batch_module(S, M),
     M:'$ddc_info'(info(_, DerT, RvU, RvT, _, _, _)),
     current_time_goal(Goal, DerT, RvU, RvT, G).     % (sharing Goal's variables)
 

@@ -317,7 +317,7 @@ class Filter:
         resampling: Resampling = "systematic",
         share: bool = True,
         threads: int = DEFAULT_THREADS,
-        engine: Engine = "per_particle",
+        engine: Engine = "auto",
     ) -> None:
         """``share=False`` computes every value in every particle (see "Shared values" in
         ``prolog/ddc.pl``): the same particles, bit for bit, only slower; for comparison.

@@ -387,7 +387,7 @@ test(rows_of_floats) :-
     program([ 'c:0 ~ uniform([a, b]).', 'c:t+1 ~ val(C) := c:t ~= C.',
               'x:t+1 ~ gaussian(0.0, 1.0) := c:t+1 ~= a.',
               'p:t+1 ~ val((X, 2)) := x:t+1 ~= X.' ], F),
-    filter_new(F, 40, 3, Fi),
+    filter_new(F, 40, 3, [engine(per_particle)], Fi),      % (reads its stores below)
     filter_step(Fi, [], [], _),
     filter_rows(Fi, X, x:t ~= X, 1, Stored, []),
     filter_rows(Fi, X1, (x:t ~= X1, true), 1, Proved, []),

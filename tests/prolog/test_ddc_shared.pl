@@ -2,6 +2,8 @@
     "Shared values"): a value computed only from observations, facts and
     other shared values is computed once for all particles; the particles
     are bit for bit those of computing everything in every particle.
+    (Shared values and this file's threads are the per-particle engine's:
+    every filter here is made with engine(per_particle).)
 */
 :- use_module('../../prolog/ddc').
 :- use_module(library(plunit)).
@@ -45,7 +47,7 @@ step(F, Seen) :-
 %   resampling (a fixed, uneven choice) after every other one.
 run(Options, Trace) :-
     program(File),
-    filter_new(File, 40, 11, Options, F),
+    filter_new(File, 40, 11, [engine(per_particle)|Options], F),
     frames(Frames),
     findall(LW-Vs, ( nth1(K, Frames, Seen),
                      step(F, Seen), nb_getval(test_ddc_shared_lw, LW),
@@ -74,7 +76,7 @@ test(sharing_changes_no_particle) :-
 
 test(a_frame_the_particles_agree_on_is_computed_once) :-
     program(File),
-    filter_new(File, 30, 3, [share(true)], F),
+    filter_new(File, 30, 3, [engine(per_particle), share(true)], F),
     frames([S1, S2, S3|_]),
     step(F, S1), step(F, S2),
     filter_statistics(F, St2), memberchk(settled_steps(K2), St2),
@@ -86,8 +88,8 @@ test(a_frame_the_particles_agree_on_is_computed_once) :-
 
 test(perceived_values_are_held_once) :-
     program(File),
-    filter_new(File, 30, 3, [share(true)], F),
-    filter_new(File, 30, 3, [share(false)], G),
+    filter_new(File, 30, 3, [engine(per_particle), share(true)], F),
+    filter_new(File, 30, 3, [engine(per_particle), share(false)], G),
     frames([S1, S2, S3|_]),
     forall(member(Seen, [S1, S2]), ( step(F, Seen), step(G, Seen) )),
     %   everything is perceived: nothing of a particle's own
@@ -99,7 +101,7 @@ test(perceived_values_are_held_once) :-
 
 test(agreed_values_become_shared) :-
     program(File),
-    filter_new(File, 30, 5, [share(true)], F),
+    filter_new(File, 30, 5, [engine(per_particle), share(true)], F),
     frames(Frames), length(Pre, 6), append(Pre, _, Frames),
     maplist(step(F), Pre),          % the ball is seen again in the 6th frame
     filter_values(F, P, pos(ball):t ~= P, Ps),
@@ -113,7 +115,7 @@ test(agreed_values_become_shared) :-
 
 test(undo_restores_shared_values) :-
     program(File),
-    filter_new(File, 20, 7, [share(true)], F),
+    filter_new(File, 20, 7, [engine(per_particle), share(true)], F),
     frames([S1, S2|_]),
     step(F, S1),
     filter_values(F, P, pos(box):t ~= P, Before),
@@ -174,7 +176,7 @@ error_midway_changes_nothing(Threads) :-
                        'observation(x):t+1 ~ gaussian(0, 1) := pick:t ~= a.' ]),
            format(S, "~w~n", [L])),
     close(S),
-    filter_new(File, 40, 3, [threads(Threads)], F),
+    filter_new(File, 40, 3, [engine(per_particle), threads(Threads)], F),
     filter_values(F, P, pick:t ~= P, Picks),
     length(First, 20), append(First, Others, Picks),
     forall(member(X, First), X == a), memberchk(b, Others),
@@ -192,7 +194,7 @@ error_midway_changes_nothing(Threads) :-
 
 test(grouped_shared_values_are_joined) :-
     program(File),
-    filter_new(File, 30, 3, [threads(2)], F),
+    filter_new(File, 30, 3, [engine(per_particle), threads(2)], F),
     frames([S1, S2, S3|_]),
     step(F, S1), step(F, S2),
     own_entries(F, 0),              % settled: nothing split
@@ -242,7 +244,7 @@ test(joining_a_group_keeps_each_value_where_it_is_read) :-
 %   yet (pos(cup): proved, which records it as undefined).
 test(stored_reads_answer_as_proofs_do) :-
     program(File),
-    filter_new(File, 30, 5, [threads(2)], F),
+    filter_new(File, 30, 5, [engine(per_particle), threads(2)], F),
     frames(Frames),
     forall(member(Seen, Frames),
            (   step(F, Seen),
@@ -280,7 +282,7 @@ test(unindexed_store_finds_what_an_index_finds) :-
 %   ones.
 test(the_sweep_plan_lists_the_clauses_particles_sweep_on_their_own) :-
     program(File),
-    filter_new(File, 20, 3, [], F),
+    filter_new(File, 20, 3, [engine(per_particle)], F),
     frames([S1, S2, S3|_]),
     step(F, S1), step(F, S2), step(F, S3),     % the ball vanishes in S3
     ddc:filter_state(F, filter(_, _, T, _, _, _, sh(Shared, Impure, _, _, _, _))),
@@ -298,7 +300,7 @@ test(the_sweep_plan_lists_the_clauses_particles_sweep_on_their_own) :-
 %   next steps, and are dropped then.
 test(agreed_values_move_with_any_number_of_threads, [forall(member(K, [1, 2, 3]))]) :-
     program(File),
-    filter_new(File, 30, 5, [threads(K)], F),
+    filter_new(File, 30, 5, [engine(per_particle), threads(K)], F),
     frames(Frames), length(Pre, 6), append(Pre, [S7|_], Frames),
     maplist(step(F), Pre),          % the ball is seen again in the 6th frame
     ddc:filter_state(F, filter(_, N, T, Ws, _, _, sh(Shared, Impure, _, _, _, _))),
