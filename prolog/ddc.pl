@@ -204,13 +204,16 @@ ddc_program(M) :-
     current_program_(M), !.
 
 %   program_items(+File, -Items): the classified items of File's program
-%   (with the clauses its persistent/1 directives add), as the batched
-%   filter reads them (ddc_batch.pl).
+%   (with the clauses its persistent/1 directives add, and first(Spec) for
+%   each first_applicable/1 directive), as the batched filter reads them
+%   (ddc_batch.pl).
 program_items(File, Items) :-
     read_program(File, Items0),
     classify_items(Items0, File, 1, Items1, Dirs),
     directives_options(Dirs, File, _, Opts, _),
-    add_persistence(Opts, Items1, Items).
+    add_persistence(Opts, Items1, Items2),
+    findall(first(S), member(first(S), Opts), Firsts),
+    append(Items2, Firsts, Items).
 
 %   read_program(+File, -Items): Items is a list of t(Term, Line).
 read_program(File, Items) :-

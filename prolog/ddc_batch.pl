@@ -82,7 +82,10 @@ one), so the caller keeps the previous state for undo and for errors.
 %     plain(Clause, Line)   with Kind u, state, trans, fixed(N) or persist.
 %   Compiled into Module (the program's own module, which also holds the
 %   per-particle engine's code; the batched clauses are facts of their own):
-%     '$b_rv'(X, Kind, Dist, Body, Line)      Kind: zero, next, now
+%     '$b_rv'(X, Kind, Dist, Body, At)        Kind: zero, next, now;
+%         At = at(Line, Id, Rivals): Rivals true if a later clause of the
+%         same kind may define the same variable (and the program does not
+%         declare first_applicable for it): then checked for overlaps
 %     '$b_der'(X, Kind, Body, Line)           Kind: next, now, zero
 %     '$b_static'(Head, Body)                 untimed derived with a static body
 
@@ -167,8 +170,12 @@ compile(M, Items) :-
     retractall(M:'$b_der'(_, _, _, _)),
     retractall(M:'$b_static'(_, _)),
     retractall(M:'$b_static_pred'(_, _)),
-    forall(member(rv(_, X, K, D, B, L), Items),
-           ( kind(K, K1), assertz(M:'$b_rv'(X, K1, D, B, L)) )),
+    findall(S, ( member(first(Spec), Items), spec_list(Spec, Ss), member(S, Ss) ), First),
+    forall(member(rv(Id, X, K, D, B, L), Items),
+           (   kind(K, K1),
+               rivals(Id, X, K, First, Items, R),
+               assertz(M:'$b_rv'(X, K1, D, B, at(L, Id, R)))
+           )),
     forall(member(der(_, X, K, B, L), Items),
            (   K == u
            ->  assertz(M:'$b_static'(X, B)), static_pred(M, X, derived)
@@ -176,6 +183,23 @@ compile(M, Items) :-
            )),
     forall(member(plain(C, _), Items),
            ( clause_head(C, H), callable(H) -> static_pred(M, H, plain) ; true )).
+
+%   rivals(+Id, +X, +Kind, +First, +Items, -R): whether a later clause of
+%   the same kind can define what clause Id defines (as ddc.pl's rivals/7).
+rivals(Id, X, K, First, Items, R) :-
+    functor(X, N, A),
+    (   ( K == persist ; memberchk(all, First) ; memberchk(N/A, First) )
+    ->  R = false
+    ;   kind(K, K1),
+        member(rv(Id2, X2, K2, _, _, _), Items), Id2 > Id,
+        K2 \== persist, kind(K2, K1), \+ X2 \= X
+    ->  R = true
+    ;   R = false
+    ).
+
+spec_list(Spec, L) :- is_list(Spec), !, L = Spec.
+spec_list((A, B), L) :- !, spec_list(A, LA), spec_list(B, LB), append(LA, LB, L).
+spec_list(S, [S]).
 
 static_pred(M, H, Kind) :-
     functor(H, N, A), functor(P, N, A),
@@ -232,12 +256,12 @@ fill(I, C, V) :- arg(I, C, V), I1 is I-1, fill(I1, C, V).
                  *         ENVIRONMENT          *
                  *******************************/
 
-%   env(Module, N, Now, Tabs, Facts, Obs): Now is the time that t means in
+%   env(Module, N, Now, Tabs, Facts, Obs, _): Now is the time that t means in
 %   the body being evaluated; Tabs t(T0, Tab0, T1, Tab1) the tables held
 %   (T1 the latest: values of T0 are only read, a value T0 lacks is
 %   undefined, as in the per-particle filter's frozen time); Facts the
 %   facts of the latest time; Obs its observations H-V.
-env_time_table(env(_, _, _, Tabs, _, _), T, Tab) :-
+env_time_table(env(_, _, _, Tabs, _, _, _), T, Tab) :-
     Tabs = t(T0, Tab0, T1, Tab1),
     (   T == T1 -> Tab = Tab1
     ;   T == T0, Tab0 \== none
@@ -248,11 +272,11 @@ env_time_table(env(_, _, _, Tabs, _, _), T, Tab) :-
         )
     ).
 
-env_now(env(M, N, _, Tabs, Fs, Os), Now, env(M, N, Now, Tabs, Fs, Os)).
+env_now(env(M, N, _, Tabs, Fs, Os, Ck), Now, env(M, N, Now, Tabs, Fs, Os, Ck)).
 
-read_time(t, env(_, _, Now, _, _, _), Now) :- !.
-read_time(T0+1, env(_, _, Now, _, _, _), T) :- T0 == t, !, T is Now+1.
-read_time(T0-1, env(_, _, Now, _, _, _), T) :- T0 == t, !, T is Now-1.
+read_time(t, env(_, _, Now, _, _, _, _), Now) :- !.
+read_time(T0+1, env(_, _, Now, _, _, _, _), T) :- T0 == t, !, T is Now+1.
+read_time(T0-1, env(_, _, Now, _, _, _, _), T) :- T0 == t, !, T is Now-1.
 read_time(0, _, 0).
 
                  /*******************************
@@ -317,8 +341,9 @@ has_col(T) :-
 %   materialise(+T, -T1): T with each deferred expression computed into a
 %   column (for all the particles of the column it reads).
 materialise(T, T1) :-
-    (   compound(T), sub_term(X, T), compound(X), X = '$x'(Ex)
-    ->  once(sub_term('$c'(C0, _, _), Ex)),
+    (   deferred_in(T, X)
+    ->  X = '$x'(Ex),
+        once(column_in(Ex, C0)),
         functor(C0, _, N),
         numlist(1, N, All),
         plan(X, W, Bs),
@@ -329,6 +354,22 @@ materialise(T, T1) :-
         replace_eq(T, X, Ref, T2),
         materialise(T2, T1)
     ;   T1 = T
+    ).
+
+%   deferred_in(+T, -X): a deferred expression in T (not looking inside
+%   column references: a column has an argument per particle).
+deferred_in(T, X) :-
+    compound(T),
+    (   T = '$x'(_) -> X = T
+    ;   T = '$c'(_, _, _) -> fail
+    ;   arg(_, T, A), deferred_in(A, X)
+    ), !.
+
+%   column_in(+Ex, -C): a column Ex reads.
+column_in(T, C) :-
+    compound(T),
+    (   T = '$c'(C0, _, _) -> C = C0
+    ;   arg(_, T, A), column_in(A, C)
     ).
 
 %   (the particles where every column the expression reads has a value)
@@ -381,7 +422,7 @@ beval(X:TE ~= P, E, Ps0, Ps) :- !,
     unify_read(P, K, Entry, Ps2, Ps).
 beval(X ~= P, E, Ps0, Ps) :- !,                   % an observation of the step
     split(X, Ps0, X1, Ps1),
-    E = env(_, _, _, _, _, Obs),
+    E = env(_, _, _, _, _, Obs, _),
     member(X1-V, Obs),
     unify_value(P, V, Ps1, Ps).
 beval(G:TE, E, Ps0, Ps) :- !,                     % a derived atom at a time
@@ -431,7 +472,7 @@ test_each([I|Is], Bs, G, Ps) :-
 
 %   call_static(+G, +Env): a static predicate of the program, a fact of
 %   the step, or a builtin.
-call_static(G, env(M, _, _, _, Facts, _)) :-
+call_static(G, env(M, _, _, _, Facts, _, _)) :-
     (   M:'$b_static_pred'(G, Kind)
     ->  (   Kind == derived -> M:'$b_static'(G, B), M:B ; M:G )
     ;   predicate_property(M:G, visible)
@@ -493,7 +534,7 @@ firsts([L|Ls], Taken0, [F|Fs], Taken) :-
 
 %   collect(+T, +G, ?L, +E, +Ps0, -Ps): findall per particle.
 collect(T, G, L, E, Ps0, Ps) :-
-    E = env(_, N, _, _, _, _),
+    E = env(_, N, _, _, _, _, _),
     functor(LC, c, N),
     set_all(Ps0, LC, []),
     forall(beval(G, E, Ps0, Ps1),
@@ -667,13 +708,13 @@ value(E, X, T, Ps, Entry) :-
     env_time_table(E, T, Tab),
     (   tab_get(Tab, X, Entry0)
     ->  true
-    ;   E = env(_, N, _, _, _, _),
+    ;   E = env(_, N, _, _, _, _, _),
         new_column(N, '$u', C0),
         tab_put(Tab, X, e(C0, open, unknown)),
         tab_get(Tab, X, Entry0)
     ),
     Entry = Entry0,
-    (   arg(2, Entry, open), E = env(_, _, _, t(_, _, T, _), _, _)
+    (   arg(2, Entry, open), E = env(_, _, _, t(_, _, T, _), _, _, _)
     ->  arg(1, Entry, C),
         uncomputed(Ps, C, Miss),
         (   Miss == [] -> true ; compute(E, X, T, Miss, C) ),
@@ -717,30 +758,64 @@ column_status(I, C, V1, S0, S) :-
 %   compute(+E, +X, +T, +Ps, +C): the first applicable clause's draw for
 %   each particle of Ps ('$undef' where none applies).
 compute(E, X, T, Ps, C) :-
-    E = env(M, _, _, _, _, _),
+    E = env(M, _, _, _, _, _, _),
     (   T =:= 0 -> K = zero ; K = next ),
     Now is T-1,
     env_now(E, Now, EK),
     env_now(E, T, ES),
-    forall(rv_clause(M, X, K, D, B, L),
-           assign_clause(EK, B, D, L, Ps, C)),
-    forall(rv_clause(M, X, now, D, B, L),
-           assign_clause(ES, B, D, L, Ps, C)),
-    set_each(Ps, C, '$undef').
+    findall(c(K, D, B, At), rv_clause(M, X, K, D, B, At), Cls1),  % (no env: a copy)
+    findall(c(now, D, B, At), rv_clause(M, X, now, D, B, At), Cls2),
+    append(Cls1, Cls2, Cls),
+    assign_clauses(Cls, EK, ES, X, T, Ps, C, Rest),
+    set_each(Rest, C, '$undef').
 
-rv_clause(M, X, K, D, B, L) :-
-    M:'$b_rv'(H, K, D0, B0, L),
+%   assign_clauses(+Clauses, +EK, +ES, +X, +T, +Ps, +C, -Rest): each
+%   clause over the particles no earlier one gave a value (Rest: those none
+%   did); EK the env of the h:0/h:t+1 clauses' bodies, ES of the h:t ones.
+assign_clauses([], _, _, _, _, Ps, _, Ps).
+assign_clauses([c(K, D, B, At)|Cls], EK, ES, X, T, Ps, C, Rest) :-
+    (   Ps == []
+    ->  Rest = []
+    ;   ( K == now -> E = ES ; E = EK ),
+        assign_clause(E, X, T, K, B, D, At, Ps, C),
+        uncomputed(Ps, C, Ps1),
+        assign_clauses(Cls, EK, ES, X, T, Ps1, C, Rest)
+    ).
+
+rv_clause(M, X, K, D, B, At) :-
+    M:'$b_rv'(H, K, D0, B0, At),
     copy_term(H-D0-B0, X1-D-B),
     X1 = X.
 
-%   A distribution error names the clause (file:line), as in ddc.pl.
-assign_clause(E, B, D, L, Ps, C) :-
-    uncomputed(Ps, C, Rest),
-    (   Rest == [] -> true
-    ;   catch(forall(beval(B, E, Rest, Ps1), assign(Ps1, C, D)),
-              error(ddc_distribution(D1, Why), _),
-              ( E = env(M, _, _, _, _, _),
-                throw(error(ddc(distribution(D1, Why), M:L), _)) ))
+%   A distribution error names the clause (file:line), as in ddc.pl.  The
+%   particles of the env's check list that this clause gave a value are
+%   checked for a later clause that also applies (check_rivals/8).
+assign_clause(E, X, T, K, B, D, At, Rest, C) :-
+    At = at(L, Id, R),
+    E = env(M, _, _, _, _, _, Check),
+    catch(forall(beval(B, E, Rest, Ps1), assign(Ps1, C, D)),
+          error(ddc_distribution(D1, Why), _),
+          throw(error(ddc(distribution(D1, Why), M:L), _))),
+    (   R == true, Check \== []
+    ->  ord_intersection(Rest, Check, Watched),
+        exclude(uncomputed_at(C), Watched, Given),
+        check_rivals(Given, E, X, T, K, Id, L)
+    ;   true
+    ).
+
+uncomputed_at(C, I) :- arg(I, C, V), V == '$u'.
+
+%   check_rivals(+Ps, +E, +X, +T, +K, +Id, +L): no clause of kind K after
+%   clause Id applies to X in the particles Ps (those an earlier one gave
+%   X's value); else error overlapping_clauses, at this clause's line.
+check_rivals([], _, _, _, _, _, _) :- !.
+check_rivals(Ps, E, X, T, K, Id, L) :-
+    E = env(M, _, _, _, _, _, _),
+    (   M:'$b_rv'(H, K, _, B0, at(L2, Id2, _)), Id2 > Id,
+        copy_term(H-B0, X1-B), X1 = X,
+        \+ \+ beval(B, E, Ps, _)
+    ->  throw(error(ddc(overlapping_clauses(X:T, M:L2), M:L), _))
+    ;   true
     ).
 
 assign(Ps, C, D) :-
@@ -778,7 +853,7 @@ draw_each([I|Is], Bs, P, C) :-
 %   derived(+G, +T, +E, +Ps0, -Ps): G at time T by its clauses (each
 %   solution a branch).
 derived(G, T, E, Ps0, Ps) :-
-    E = env(M, _, _, _, _, _),
+    E = env(M, _, _, _, _, _, _),
     (   T =:= 0 -> K = zero, Now = 0 ; K = next, Now is T-1 ),
     (   M:'$b_der'(H, K, B0, _), Now1 = Now
     ;   M:'$b_der'(H, now, B0, _), Now1 = T
@@ -806,26 +881,30 @@ batch_new(M, Items, File, N, Seed, K, State) :-
     batch_check_program(Items, File),
     compile(M, Items),
     (   K =:= 1
-    ->  new_group(M, N, Seed, State)
+    ->  new_group(M, N, Seed, true, State)
     ;   random_property(state(Saved)),
         call_cleanup(( set_random(seed(Seed)),
                        K1 is K-1, length(Seeds, K1),
                        maplist(random_between(0, 0x3fffffffffffffff), Seeds) ),
                      set_random(state(Saved))),
         group_sizes(N, K, Sizes),
-        maplist(new_group(M), Sizes, [Seed|Seeds], Gs),
+        K1 is K-1, length(NoChecks, K1), maplist(=(false), NoChecks),
+        maplist(new_group(M), Sizes, [Seed|Seeds], [true|NoChecks], Gs),
         State = groups(Gs)
     ).
 
 group_sizes(N, K, Sizes) :-
     findall(S, ( between(1, K, G), S is (N*G)//K - (N*(G-1))//K ), Sizes).
 
-new_group(M, N, Seed, State) :-
+%   Overlapping clauses are looked for in the first 20 particles (of the
+%   first group), as the per-particle filter does at every step.
+new_group(M, N, Seed, Check, State) :-
+    check_list(Check, N, Ck),
     random_property(state(Saved)),
     call_cleanup(
         ( set_random(seed(Seed)),
           tab_new(Tab0), tab_new(Tab),
-          E = env(M, N, -1, t(-1, Tab0, 0, Tab), [], []),
+          E = env(M, N, -1, t(-1, Tab0, 0, Tab), [], [], Ck),
           numlist(1, N, All),
           sweep(M, zero, E, 0, All),
           random_property(state(R)) ),
@@ -894,7 +973,7 @@ batch_step(groups([G1|Gs]), Obs, Facts, step(groups([S1|Ss]), LWs)) :- !,
     message_queue_create(Q),
     setup_call_cleanup(
         maplist(start_step(Q, Obs, Facts), Tags, Gs),
-        (   catch(batch_step(G1, Obs, Facts, step(S10, LWs1)), E, true),
+        (   catch(group_step(G1, Obs, Facts, true, step(S10, LWs1)), E, true),
             maplist(step_result(Q), Tags, Results)
         ),
         message_queue_destroy(Q)),
@@ -902,12 +981,22 @@ batch_step(groups([G1|Gs]), Obs, Facts, step(groups([S1|Ss]), LWs)) :- !,
     maplist(group_done(Facts), Gs, Results, Ss, LWss),
     S1 = S10,
     append([LWs1|LWss], LWs).
-batch_step(State0, Obs, Facts, step(State, LWs)) :-
+batch_step(State0, Obs, Facts, Result) :-
+    group_step(State0, Obs, Facts, true, Result).
+
+check_list(true, N, Ck) :- !, K is min(N, 20), numlist(1, K, Ck).
+check_list(false, _, []).
+
+%   group_step(+State0, +Obs, +Facts, +Check, -Result): batch_step/4 of
+%   one group; Check: whether its first particles are checked for
+%   overlapping clauses (the first group's).
+group_step(State0, Obs, Facts, Check, step(State, LWs)) :-
     State0 = bs(M, N, T, t(_, _, _, Tab), _, R0),
+    check_list(Check, N, Ck),
     T1 is T+1,
     tab_new(Tab1),
     findall(H-V, member(H ~= V, Obs), HVs),
-    E = env(M, N, T, t(T, Tab, T1, Tab1), Facts, HVs),
+    E = env(M, N, T, t(T, Tab, T1, Tab1), Facts, HVs, Ck),
     numlist(1, N, All),
     random_property(state(Saved)),
     call_cleanup(
@@ -924,22 +1013,37 @@ batch_step(State0, Obs, Facts, step(State, LWs)) :-
 %   weigh_observation(+E, +H, +V, +Ps, +LW): the log density of V under
 %   H's first applicable clause at t+1, added to each particle's LW.
 weigh_observation(E, H, V, Ps, LW) :-
-    E = env(M, N, T, _, _, _),
+    E = env(M, N, T, _, _, _, _),
     T1 is T+1,
     new_column(N, '$u', Done),
-    forall(rv_clause(M, H, next, D, B, _), weigh_clause(E, B, D, V, Ps, Done, LW)),
+    forall(rv_clause(M, H, next, D, B, At),
+           weigh_clause(E, H, T1, next, B, D, At, V, Ps, Done, LW)),
     env_now(E, T1, ES),
-    forall(rv_clause(M, H, now, D, B, _), weigh_clause(ES, B, D, V, Ps, Done, LW)),
+    forall(rv_clause(M, H, now, D, B, At),
+           weigh_clause(ES, H, T1, now, B, D, At, V, Ps, Done, LW)),
     (   member(I, Ps), arg(I, Done, U), U == '$u'
     ->  throw(error(ddc(no_observation_clause(H ~= V), query), _))
     ;   true
     ).
 
-weigh_clause(E, B, D, V, Ps, Done, LW) :-
+%   (A distribution error names the clause; overlaps are checked as for
+%   draws, assign_clause/9.)
+weigh_clause(E, H, T, K, B, D, At, V, Ps, Done, LW) :-
     uncomputed(Ps, Done, Rest),
     (   Rest == [] -> true
-    ;   forall(beval(B, E, Rest, Ps1),
-               ( plan(D, Tmpl, Bs), dist_prepare(Tmpl, P), weigh_each(Ps1, Bs, P, V, Done, LW) ))
+    ;   At = at(L, Id, R),
+        E = env(M, _, _, _, _, _, Check),
+        catch(forall(beval(B, E, Rest, Ps1),
+                     ( plan(D, Tmpl, Bs), dist_prepare(Tmpl, P),
+                       weigh_each(Ps1, Bs, P, V, Done, LW) )),
+              error(ddc_distribution(D1, Why), _),
+              throw(error(ddc(distribution(D1, Why), M:L), _))),
+        (   R == true, Check \== []
+        ->  ord_intersection(Rest, Check, Watched),
+            exclude(uncomputed_at(Done), Watched, Given),
+            check_rivals(Given, E, H, T, K, Id, L)
+        ;   true
+        )
     ).
 
 weigh_each([], _, _, _, _, _).
@@ -1022,9 +1126,14 @@ resample_tables(Srcs0, Pairs, New) :-
 source_entry(K, Tab, E) :-
     (   Tab \== none, tab_get(Tab, K, E0) -> E = E0 ; E = none ).
 
+%   (A column of one value is the same after resampling: a source's of the
+%   same length is shared, not copied: a complete column is never written.)
 resampled_entry(Es, Pairs, N, E) :-
     (   Es = [e(_, same(V), A)|_], forall(member(E1, Es), same_entry(E1, V))
-    ->  functor(C, c, N), fill(N, C, V), duplicate_term(C, C1),
+    ->  (   member(e(C0, _, _), Es), functor(C0, _, N)
+        ->  C1 = C0
+        ;   functor(C, c, N), fill(N, C, V), duplicate_term(C, C1)
+        ),
         E = e(C1, same(V), A)
     ;   maplist(entry_column, Es, Cs),
         Src =.. [s|Cs],
@@ -1155,7 +1264,7 @@ value_each([I|Is], Bs, Tmpl, Done, VC) :-
     ),
     value_each(Is, Bs, Tmpl, Done, VC).
 
-query_env(bs(M, N, T, Tabs, Fs, _), env(M, N, T, Tabs, Fs, []), All) :-
+query_env(bs(M, N, T, Tabs, Fs, _), env(M, N, T, Tabs, Fs, [], []), All) :-
     numlist(1, N, All).
 
 %   with_state(+State, :Goal): Goal (a query) draws what it needs from
@@ -1210,7 +1319,7 @@ batch_worker(Tag, Alias) :-
 worker_loop :-
     thread_get_message(Job),
     (   Job = step_job(Q, Tag, S0, Obs, Facts)
-    ->  catch(( batch_step(S0, Obs, Facts, step(S, LWs)),
+    ->  catch(( group_step(S0, Obs, Facts, false, step(S, LWs)),
                 S = bs(_, _, T1, t(_, _, _, Tab1), _, R),
                 Out = done(T1, Tab1, R, LWs) ),
               E, Out = error(E)),
