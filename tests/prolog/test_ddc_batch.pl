@@ -1,0 +1,185 @@
+/*  plunit tests of the batched particle filter (prolog/ddc_batch.pl), reached
+    through ddc.pl's filter_* predicates with engine(batched) or auto.  The
+    conformance answers (wumpus, pit world, Kalman, follow the occluder) are
+    checked for both engines in tests/test_filter.py; these tests are about
+    what the batched engine does on its own: its fragment, its evaluation of
+    each goal kind over batches, its groups of threads, its state.
+*/
+:- use_module('../../prolog/ddc').
+:- use_module(library(plunit)).
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+
+program(Lines, File) :-
+    tmp_file_stream(text, File, S),
+    forall(member(L, Lines), format(S, "~w~n", [L])),
+    close(S).
+
+values(F, Goal-Template, Values) :-
+    filter_values(F, Template, Goal, Values).
+
+:- begin_tests(ddc_batch).
+
+%   A program outside the fragment: engine(batched) names the clause,
+%   engine(auto) takes the per-particle engine.
+test(outside_the_fragment_is_an_error_with_its_line) :-
+    program([ 'x:0 ~ val(1).',
+              'x:t+1 ~ val(Y) := x:t ~= X, sample(gaussian(X, 1.0), Y).' ], File),
+    catch(filter_new(File, 10, 1, [engine(batched)], _), E, true),
+    E = error(ddc(batched_unsupported(_), File:2), _),
+    message_to_codes(E, Text),
+    once(sub_atom(Text, _, _, _, ':2: outside what the batched filter evaluates')),
+    filter_new(File, 10, 1, [engine(auto)], F),
+    filter_statistics(F, Stats),
+    \+ memberchk(engine(batched), Stats),
+    filter_step(F, [], [], _),
+    filter_free(F).
+
+message_to_codes(E, Text) :-
+    message_to_codes(error, E, Codes0),
+    atom_codes(Text, Codes0).
+
+message_to_codes(Kind, E, Codes) :-
+    '$messages':translate_message(E, Lines, []),
+    with_output_to(codes(Codes), print_message_lines(current_output, kind(Kind), Lines)).
+
+test(auto_takes_the_batched_engine_in_its_fragment) :-
+    program([ 'x:0 ~ val(1).', 'x:t+1 ~ val(Y) := x:t ~= X, Y is X + 1.' ], File),
+    filter_new(File, 10, 1, [], F),
+    filter_statistics(F, Stats),
+    memberchk(engine(batched), Stats),
+    filter_step(F, [], [], _), filter_step(F, [], [], _),
+    values(F, (x:t ~= X)-X, Xs),
+    forall(member(X, Xs), X =:= 3),
+    filter_free(F).
+
+%   Each kind of goal over a batch, on a model whose answers are known in
+%   every particle: both engines give the same values.
+test(goals_over_batches_agree_with_the_per_particle_engine) :-
+    program([ 'obj(a) := true.', 'obj(b) := true.', 'obj(c) := true.',
+              'size(a, 3) := true.', 'size(b, 1) := true.', 'size(c, 2) := true.',
+              'k:0 ~ uniform([1, 2, 3]).',
+              'k:t+1 ~ val(K) := k:t ~= K.',
+              'big(O):t+1 := obj(O), size(O, S), k:t ~= K, S >= K.',
+              'n:t+1 ~ val(L) := findall_forward(O, big(O):t+1, Os), sort(Os, L).',
+              'kind:t+1 ~ val(V) := ( k:t ~= 1 -> V = one ; k:t ~= 2 -> V = two ; V = many ).',
+              'odd:t+1 ~ val(yes) := ( k:t ~= 1 ; k:t ~= 3 ).',
+              'odd:t+1 ~ val(no) := \\+ ( k:t ~= 1 ; k:t ~= 3 ).',
+              'seen:t+1 ~ val(V) := observation(o) ~= V.',
+              'observation(o):t+1 ~ val(V) := k:t ~= K, ( K > 1 -> V = high ; V = low ).',
+              'first:t+1 ~ val(L) := k:t ~= K, findall(X, ( member(X, [1, 2, 3]), X >= K -> true ), L).',
+              'fallback:t ~ val(unset).',
+              'fallback:t+1 ~ val(set) := k:t ~= 3.' ], File),
+    Template = r(K, L, V, O, S, B, Fi),
+    Goal = ( k:t ~= K, n:t ~= L, kind:t ~= V, odd:t ~= O, seen:t ~= S, fallback:t ~= B,
+             first:t ~= Fi ),
+    forall(member(Engine, [per_particle, batched]),
+           ( filter_new(File, 60, 4, [engine(Engine)], F),
+             filter_step(F, [observation(o) ~= high], [], LW),
+             values(F, Goal-Template, Rs),
+             nb_setval(Engine, Rs-LW),
+             filter_free(F) )),
+    nb_getval(batched, Rs-LW),
+    forall(nth1(I, Rs, R),
+           (   R = r(K1, L1, V1, O1, S1, B1, Fi1),
+               expected(K1, L1, V1, O1, B1),
+               Fi1 == [K1],                 % (a condition commits to its first solution)
+               S1 == high,
+               nth1(I, LW, W),
+               ( K1 > 1 -> W =:= 0.0 ; W < -1.0e308 )
+           )),
+    msort(Rs, Sorted), nb_getval(per_particle, Rs0-_), msort(Rs0, Sorted0),
+    %   (the draws differ by engine, so compare the kinds of particle)
+    sort(Sorted, Kinds), sort(Sorted0, Kinds0),
+    Kinds == Kinds0.
+
+expected(1, [a, b, c], one, yes, unset).
+expected(2, [a, c], two, no, unset).
+expected(3, [a], many, yes, set).
+
+%   A key computed by arithmetic over a column (the key's argument is a
+%   deferred expression: computed into a column to split the batch by it).
+test(a_computed_key_splits_the_batch) :-
+    program([ 'x:0 ~ uniform([1, 2]).', 'x:t+1 ~ val(X) := x:t ~= X.',
+              'y(2):t+1 ~ val(a).', 'y(3):t+1 ~ val(b).',
+              'z:t+1 ~ val(V) := x:t ~= X, J is X + 1, y(J):t+1 ~= V.' ], File),
+    filter_new(File, 40, 2, [engine(batched)], F),
+    filter_step(F, [], [], _),
+    values(F, (x:t ~= X, z:t ~= Z)-(X-Z), Ps),
+    memberchk(1-a, Ps), memberchk(2-b, Ps),
+    forall(member(X1-Z1, Ps), ( X1 =:= 1 -> Z1 == a ; Z1 == b )),
+    filter_free(F).
+
+%   The previous time stays readable after a step and after a resampling
+%   (resampled when first read), and undo restores the particles.
+test(previous_time_after_resampling_and_undo) :-
+    program([ 'x:0 ~ uniform([1, 2, 3, 4, 5, 6, 7, 8]).',
+              'x:t+1 ~ val(Y) := x:t ~= X, Y is X * 10.' ], File),
+    forall(member(K, [1, 2]),
+           ( filter_new(File, 8, 3, [engine(batched), threads(K)], F),
+             filter_step(F, [], [], _),
+             values(F, ((x:t-1) ~= X)-X, Before),
+             values(F, (x:t ~= Y)-Y, Now),
+             maplist([A, B]>>(B =:= A*10), Before, Now),
+             Is = [7, 6, 5, 4, 3, 2, 1, 0],
+             filter_resample(F, Is),
+             values(F, (x:t ~= Y1)-Y1, NowR),
+             values(F, ((x:t-1) ~= X1)-X1, BeforeR),
+             reverse(Now, NowR), reverse(Before, BeforeR),
+             filter_undo(F),
+             values(F, (x:t ~= Y2)-Y2, Now2), Now2 == Now,
+             filter_free(F) )).
+
+%   A step that fails (an observation no clause defines in some particle)
+%   leaves the filter as it was, in one thread and in two; the filter goes
+%   on.
+test(an_error_in_a_step_changes_nothing) :-
+    program([ 'pick:0 ~ finite([0.5:a, 0.5:b]).',
+              'pick:t+1 ~ val(P) := pick:t ~= P.',
+              'x:0 ~ uniform([1, 2, 3]).', 'x:t+1 ~ val(X) := x:t ~= X.',
+              'observation(o):t+1 ~ gaussian(0.0, 1.0) := pick:t ~= a.' ], File),
+    forall(member(K, [1, 2]),
+           ( filter_new(File, 40, 5, [engine(batched), threads(K)], F),
+             filter_step(F, [], [], _),
+             Query = (pick:t ~= P, (x:t-1) ~= X),
+             values(F, Query-(P-X), Before),
+             catch(filter_step(F, [observation(o) ~= 0.5], [], _), E, true),
+             E = error(ddc(no_observation_clause(_), _), _),
+             filter_time(F, 1),
+             values(F, Query-(P-X), After),
+             After == Before,
+             filter_step(F, [], [], _),
+             filter_time(F, 2),
+             filter_free(F) )).
+
+%   Overlapping clauses: the same error as the per-particle engine's.
+test(overlapping_clauses_are_an_error_as_in_the_other_engine) :-
+    program([ 'x:0 ~ val(1).', 'x:t+1 ~ val(2) := x:t ~= 1.',
+              'x:t+1 ~ val(3) := x:t ~= V, V > 0.' ], File),
+    forall(member(Engine, [per_particle, batched]),
+           ( filter_new(File, 30, 1, [engine(Engine)], F),
+             catch(filter_step(F, [], [], _), E, true),
+             message_to_codes(E, Text),
+             nb_setval(Engine, Text),
+             filter_free(F) )),
+    nb_getval(per_particle, T1), nb_getval(batched, T2),
+    T1 == T2,
+    once(sub_atom(T2, _, _, _, ':2: two clauses define x:1')).
+
+%   Groups: the same seed and number of threads, the same particles; other
+%   thread counts, other random streams.
+test(groups_are_deterministic) :-
+    program([ 'x:0 ~ gaussian(0.0, 1.0).', 'x:t+1 ~ gaussian(X, 0.5) := x:t ~= X.',
+              'observation(y):t+1 ~ gaussian(X, 1.0) := x:t+1 ~= X.' ], File),
+    run_walk(File, 2, A), run_walk(File, 2, B), run_walk(File, 1, C), run_walk(File, 3, D),
+    A == B, A \== C, A \== D,
+    A = Xs-_, length(Xs, 30).
+
+run_walk(File, K, Xs-LW) :-
+    filter_new(File, 30, 9, [engine(batched), threads(K)], F),
+    filter_step(F, [observation(y) ~= 0.4], [], _),
+    filter_step(F, [observation(y) ~= 0.9], [], LW),
+    values(F, (x:t ~= X)-X, Xs),
+    filter_free(F).
+
+:- end_tests(ddc_batch).
