@@ -842,6 +842,10 @@ instance_each([I|Is], Bs, Tmpl, C) :-
     ),
     instance_each(Is, Bs, Tmpl, C).
 
+%   (With one column to bind, the common case, a loop that binds it
+%   directly: bind/2's list walk costs as much as a draw's arithmetic.)
+draw_each(Ps, [C1-Pat], P, C) :- !,
+    draw_each1(Ps, C1, Pat, P, C).
 draw_each([], _, _, _).
 draw_each([I|Is], Bs, P, C) :-
     (   arg(I, C, U), U == '$u'
@@ -849,6 +853,14 @@ draw_each([I|Is], Bs, P, C) :-
     ;   true
     ),
     draw_each(Is, Bs, P, C).
+
+draw_each1([], _, _, _, _).
+draw_each1([I|Is], C1, Pat, P, C) :-
+    (   arg(I, C, U), U == '$u'
+    ->  \+ \+ ( arg(I, C1, Pat), dist_sample_prepared(P, S), nb_setarg(I, C, S) )
+    ;   true
+    ),
+    draw_each1(Is, C1, Pat, P, C).
 
 %   derived(+G, +T, +E, +Ps0, -Ps): G at time T by its clauses (each
 %   solution a branch).
@@ -1046,6 +1058,8 @@ weigh_clause(E, H, T, K, B, D, At, V, Ps, Done, LW) :-
         )
     ).
 
+weigh_each(Ps, [C1-Pat], P, V, Done, LW) :- !,
+    weigh_each1(Ps, C1, Pat, P, V, Done, LW).
 weigh_each([], _, _, _, _, _).
 weigh_each([I|Is], Bs, P, V, Done, LW) :-
     (   arg(I, Done, U), U == '$u'
@@ -1054,6 +1068,15 @@ weigh_each([I|Is], Bs, P, V, Done, LW) :-
     ;   true
     ),
     weigh_each(Is, Bs, P, V, Done, LW).
+
+weigh_each1([], _, _, _, _, _, _).
+weigh_each1([I|Is], C1, Pat, P, V, Done, LW) :-
+    (   arg(I, Done, U), U == '$u'
+    ->  nb_setarg(I, Done, done),
+        \+ \+ ( arg(I, C1, Pat), dist_log_density_prepared(P, V, LP), add_log(I, LW, LP) )
+    ;   true
+    ),
+    weigh_each1(Is, C1, Pat, P, V, Done, LW).
 
 add_log(I, LW, LP) :-
     arg(I, LW, L0),
