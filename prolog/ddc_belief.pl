@@ -72,6 +72,8 @@ it was.
 %     - resampling(Scheme): systematic (default), multinomial or residual
 %     - share(Bool): compute the values the particles agree on once
 %       (default true; see filter_new/5)
+%     - engine(E): auto (default), batched or per_particle (see
+%       filter_new/5)
 belief_new(File, Options, belief(Key)) :-
     option(particles(N), Options, 1000),
     option(seed(Seed), Options, 0),
@@ -79,11 +81,12 @@ belief_new(File, Options, belief(Key)) :-
     option(resample_threshold(Th), Options, 0.9),
     option(resampling(Scheme), Options, systematic),
     option(share(Share), Options, true),
+    option(engine(Engine), Options, auto),
     must_be(positive_integer, N),
     must_be(integer, Seed),
     must_be(between(0.0, 1.0), Th),
     must_be(oneof([systematic, multinomial, residual]), Scheme),
-    filter_new(File, N, Seed, [threads(K), share(Share)], F),
+    filter_new(File, N, Seed, [threads(K), share(Share), engine(Engine)], F),
     uniform_log_weights(N, LWs),
     resampling_stream(Seed, R),
     gensym('$ddc_belief_', Key),

@@ -19,11 +19,13 @@ PIT_WORLD = EXAMPLES / "pit_world.pl"
 QUERY_WALL = "maze(0,1):t ~= wall"
 
 
+@pytest.mark.parametrize("engine", ["auto", "per_particle"])
 def test_filter_table_prints_the_queried_probability_per_step(
-    capsys: pytest.CaptureFixture[str],
+    capsys: pytest.CaptureFixture[str], engine: str
 ) -> None:
     status = main(["filter", str(WUMPUS), str(EXAMPLES / "wumpus.jsonl"), "--particles", "800",
-                   "--seed", "3", "--query", QUERY_WALL, "--query", "position:t ~= (0,0)"])
+                   "--seed", "3", "--engine", engine,
+                   "--query", QUERY_WALL, "--query", "position:t ~= (0,0)"])
     out, err = capsys.readouterr()
     assert status == 0, err
     lines = out.strip().splitlines()

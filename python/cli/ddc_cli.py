@@ -217,7 +217,7 @@ def run_filter(args: argparse.Namespace) -> int:
     try:
         f = Filter(program, particles=args.particles, seed=args.seed,
                    resample_threshold=args.threshold, resampling=args.resampling,
-                   threads=args.threads)
+                   threads=args.threads, engine=args.engine)
     except FilterError as exc:
         raise CliError(str(exc)) from None
     printer: _JsonPrinter | _TablePrinter = (
@@ -323,6 +323,10 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--threads", type=_positive_int, default=2,
                    help="Prolog threads that step the particles (default 2; the particles "
                         "depend on the seed and this number)")
+    f.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
+                   help="batched: each clause evaluated once for a batch of particles; "
+                        "per_particle: one particle at a time; auto (default): batched when "
+                        "the program is in its fragment")
     f.add_argument("--query", action="append", default=[], metavar="GOAL",
                    help="a goal whose probability is printed after each step (repeatable)")
     f.add_argument("--distribution", action="append", default=[], metavar="TERM",
