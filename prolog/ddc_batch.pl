@@ -777,8 +777,9 @@ assign_clauses([c(K, D, B, At)|Cls], EK, ES, X, T, Ps, C, Rest) :-
     (   Ps == []
     ->  Rest = []
     ;   ( K == now -> E = ES ; E = EK ),
-        assign_clause(E, X, T, K, B, D, At, Ps, C),
-        uncomputed(Ps, C, Ps1),
+        Any = any(false),
+        assign_clause(E, X, T, K, B, D, At, Ps, C, Any),
+        (   arg(1, Any, true) -> uncomputed(Ps, C, Ps1) ; Ps1 = Ps ),   % (nothing given)
         assign_clauses(Cls, EK, ES, X, T, Ps1, C, Rest)
     ).
 
@@ -790,10 +791,10 @@ rv_clause(M, X, K, D, B, At) :-
 %   A distribution error names the clause (file:line), as in ddc.pl.  The
 %   particles of the env's check list that this clause gave a value are
 %   checked for a later clause that also applies (check_rivals/8).
-assign_clause(E, X, T, K, B, D, At, Rest, C) :-
+assign_clause(E, X, T, K, B, D, At, Rest, C, Any) :-
     At = at(L, Id, R),
     E = env(M, _, _, _, _, _, Check),
-    catch(forall(beval(B, E, Rest, Ps1), assign(Ps1, C, D)),
+    catch(forall(beval(B, E, Rest, Ps1), ( nb_setarg(1, Any, true), assign(Ps1, C, D) )),
           error(ddc_distribution(D1, Why), _),
           throw(error(ddc(distribution(D1, Why), M:L), _))),
     (   R == true, Check \== []
@@ -844,6 +845,11 @@ instance_each([I|Is], Bs, Tmpl, C) :-
 
 %   (With one column to bind, the common case, a loop that binds it
 %   directly: bind/2's list walk costs as much as a draw's arithmetic.)
+%   (And when that column's value is the mean itself, as in gaussian([X, Y,
+%   Z], Cov) := pos(O):t ~= (X, Y, Z), not even that: the value is passed.)
+draw_each(Ps, [C1-Pat], P, C) :-
+    dist_mean_slots(P, Slots), Slots == Pat, !,
+    draw_at(Ps, C1, P, C).
 draw_each(Ps, [C1-Pat], P, C) :- !,
     draw_each1(Ps, C1, Pat, P, C).
 draw_each([], _, _, _).
@@ -853,6 +859,16 @@ draw_each([I|Is], Bs, P, C) :-
     ;   true
     ),
     draw_each(Is, Bs, P, C).
+
+draw_at([], _, _, _).
+draw_at([I|Is], C1, P, C) :-
+    (   arg(I, C, U), U == '$u'
+    ->  arg(I, C1, Mean),
+        dist_sample_at(P, Mean, S),
+        nb_setarg(I, C, S)
+    ;   true
+    ),
+    draw_at(Is, C1, P, C).
 
 draw_each1([], _, _, _, _).
 draw_each1([I|Is], C1, Pat, P, C) :-
@@ -1039,7 +1055,7 @@ weigh_observation(E, H, V, Ps, LW) :-
     ).
 
 %   (A distribution error names the clause; overlaps are checked as for
-%   draws, assign_clause/9.)
+%   draws, assign_clause/10.)
 weigh_clause(E, H, T, K, B, D, At, V, Ps, Done, LW) :-
     uncomputed(Ps, Done, Rest),
     (   Rest == [] -> true
@@ -1058,6 +1074,9 @@ weigh_clause(E, H, T, K, B, D, At, V, Ps, Done, LW) :-
         )
     ).
 
+weigh_each(Ps, [C1-Pat], P, V, Done, LW) :-
+    dist_mean_slots(P, Slots), Slots == Pat, !,
+    weigh_at(Ps, C1, P, V, Done, LW).
 weigh_each(Ps, [C1-Pat], P, V, Done, LW) :- !,
     weigh_each1(Ps, C1, Pat, P, V, Done, LW).
 weigh_each([], _, _, _, _, _).
@@ -1068,6 +1087,17 @@ weigh_each([I|Is], Bs, P, V, Done, LW) :-
     ;   true
     ),
     weigh_each(Is, Bs, P, V, Done, LW).
+
+weigh_at([], _, _, _, _, _).
+weigh_at([I|Is], C1, P, V, Done, LW) :-
+    (   arg(I, Done, U), U == '$u'
+    ->  nb_setarg(I, Done, done),
+        arg(I, C1, Mean),
+        dist_log_density_at(P, Mean, V, LP),
+        add_log(I, LW, LP)
+    ;   true
+    ),
+    weigh_at(Is, C1, P, V, Done, LW).
 
 weigh_each1([], _, _, _, _, _, _).
 weigh_each1([I|Is], C1, Pat, P, V, Done, LW) :-

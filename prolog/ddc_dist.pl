@@ -26,7 +26,10 @@
             dist_mean/2,                % +Dist, -Mean
             dist_prepare/2,             % +Dist, -Prepared
             dist_sample_prepared/2,     % +Prepared, -Value
-            dist_log_density_prepared/3 % +Prepared, +Value, -LogP
+            dist_log_density_prepared/3,% +Prepared, +Value, -LogP
+            dist_mean_slots/2,          % +Prepared, -MeanSlots
+            dist_sample_at/3,           % +Prepared, +Mean, -Value
+            dist_log_density_at/4       % +Prepared, +Mean, +Value, -LogP
           ]).
 %   Arithmetic compiled inline (local to this file; see ddc.pl).
 :- set_prolog_flag(optimise, true).
@@ -665,6 +668,48 @@ dist_sample_prepared(gauss1(M, _, SD, _), X) :-
 dist_sample_prepared(any(D), X) :-
     dist_check(D),
     dist_sample(D, X).
+
+%!  dist_mean_slots(+Prepared, -Slots) is semidet.
+%
+%   Slots is the term of the prepared gaussian's mean variables: (M1, M2,
+%   M3) for a 3-D one, M for a 1-D one; fails for a distribution kept as
+%   it was.  A caller that holds the mean as such a term (a particle's
+%   value of pos(O) ~= (X, Y, Z)) passes it to dist_sample_at/3 and
+%   dist_log_density_at/4 instead of binding the variables.
+dist_mean_slots(gauss3(M1, M2, M3, _, _, _, _, _, _, _, _), (M1, M2, M3)).
+dist_mean_slots(gauss1(M, _, _, _), M).
+
+%!  dist_sample_at(+Prepared, +Mean, -Value) is det.
+%
+%   dist_sample_prepared/2 with the mean given as a term of the shape of
+%   dist_mean_slots/2 (the same draws).
+dist_sample_at(gauss3(_, _, _, _, L11, L21, L22, L31, L32, L33, _), (M1, M2, M3), (X1, X2, X3)) :-
+    std_normals(3, [Z1, Z2, Z3]),
+    X1 is M1 + L11*Z1,
+    X2 is M2 + L21*Z1 + L22*Z2,
+    X3 is M3 + L31*Z1 + L32*Z2 + L33*Z3.
+dist_sample_at(gauss1(_, _, SD, _), M, X) :-
+    std_normal(Z),
+    X is M + SD*Z.
+
+%!  dist_log_density_at(+Prepared, +Mean, +Value, -LogP) is det.
+%
+%   dist_log_density_prepared/3 with the mean given as dist_sample_at/3's.
+dist_log_density_at(gauss3(_, _, _, Cs, L11, L21, L22, L31, L32, L33, LN), (M1, M2, M3),
+                    X, LP) :-
+    (   X = (X1, X2, X3), number(X1), number(X2), number(X3)
+    ->  Y1 is (X1 - M1)/L11,
+        Y2 is (X2 - M2 - L21*Y1)/L22,
+        Y3 is (X3 - M3 - L31*Y1 - L32*Y2)/L33,
+        LP is -0.5*(Y1*Y1 + Y2*Y2 + Y3*Y3) + LN
+    ;   dist_log_density(gaussian([M1, M2, M3], Cs), X, LP)
+    ).
+dist_log_density_at(gauss1(_, V, SD, LN), M, X, LP) :-
+    (   number(X)
+    ->  Y is (X - M)/SD,
+        LP is -0.5*Y*Y + LN
+    ;   dist_log_density(gaussian(M, V), X, LP)
+    ).
 
 %!  dist_log_density_prepared(+Prepared, +Value, -LogP) is det.
 %
