@@ -462,8 +462,68 @@ arith_loop([I|Is], Bs, Ex, C) :-
 
 test_loop(G, Ps0, Ps) :-
     plan(G, Tmpl, Bs),
-    test_each(Ps0, Bs, Tmpl, Ps),
+    (   Ps0 = [_, _, _, _, _, _, _, _, _, _, _, _, _, _, _, _|_]
+    ->  compiled_test(Ps0, Bs, Tmpl, Ps)
+    ;   test_each(Ps0, Bs, Tmpl, Ps)
+    ),
     Ps \== [].
+
+%   compiled_test(+Ps0, +Binds, +Test, -Ps): test_each/4 as a loop compiled
+%   for this goal and batch (its arithmetic compiled to virtual-machine
+%   instructions, as the per-particle engine's clauses are; the particle's
+%   values bound by head-free unification, no undo between particles): a
+%   thread-local predicate asserted for the call, for batches large enough
+%   to pay for the assert.
+:- thread_local '$b_test_loop'/3, '$b_instance_loop'/3.
+
+compiled_test(Ps0, Bs, Tmpl, Ps) :-
+    bind_goals(Bs, I, Cs, CVs, Gets, Evals),
+    append([Gets, Evals, [Tmpl]], Gs),
+    list_conj(Gs, Cond),
+    Head =.. [cols|CVs],
+    retractall('$b_test_loop'(_, _, _)),
+    optimised_assert([ '$b_test_loop'([], _, []),
+                       ( '$b_test_loop'([I|Is], Head, Out) :-
+                             (   Cond -> Out = [I|Out1] ; Out = Out1 ),
+                             '$b_test_loop'(Is, Head, Out1) ) ]),
+    Cols =.. [cols|Cs],
+    '$b_test_loop'(Ps0, Cols, Ps).
+
+%   compiled_instance(+Ps, +Binds, +Tmpl, +C): instance_each/4 as a
+%   compiled loop (see compiled_test/4).
+compiled_instance(Ps, Bs, Tmpl, C) :-
+    bind_goals(Bs, I, Cs, CVs, Gets, Evals),
+    append(Gets, Evals, Gs0),
+    (   Gs0 == [] -> Cond = true ; list_conj(Gs0, Cond) ),
+    Head =.. [cols|CVs],
+    retractall('$b_instance_loop'(_, _, _)),
+    optimised_assert([ '$b_instance_loop'([], _, _),
+                       ( '$b_instance_loop'([I|Is], Head, Out) :-
+                             (   arg(I, Out, U), U == '$u', Cond
+                             ->  nb_setarg(I, Out, Tmpl)
+                             ;   true
+                             ),
+                             '$b_instance_loop'(Is, Head, Out) ) ]),
+    Cols =.. [cols|Cs],
+    '$b_instance_loop'(Ps, Cols, C).
+
+%   bind_goals(+Binds, ?I, -Columns, -ColumnVars, -Gets, -Evals): the goals
+%   that bind/2 runs for particle I, each column a variable (a clause must
+%   not hold a column: asserting it would copy it).
+bind_goals([], _, [], [], [], []).
+bind_goals([C-P|Bs], I, [C|Cs], [CV|CVs], [arg(I, CV, P)|Gs], Es) :- !,
+    bind_goals(Bs, I, Cs, CVs, Gs, Es).
+bind_goals(['$e'(W, Ex, _)|Bs], I, Cs, CVs, Gs, [W is Ex|Es]) :-
+    bind_goals(Bs, I, Cs, CVs, Gs, Es).
+
+list_conj([G], G) :- !.
+list_conj([G|Gs], (G, C)) :- list_conj(Gs, C).
+
+optimised_assert(Clauses) :-
+    current_prolog_flag(optimise, Old),
+    setup_call_cleanup(set_prolog_flag(optimise, true),
+                       forall(member(C, Clauses), assertz(C)),
+                       set_prolog_flag(optimise, Old)).
 
 test_each([], _, _, []).
 test_each([I|Is], Bs, G, Ps) :-
@@ -824,7 +884,10 @@ assign(Ps, C, D) :-
     ->  set_each(Ps, C, V)
     ;   D = val(V)
     ->  plan(V, Tmpl, Bs),
-        instance_each(Ps, Bs, Tmpl, C)
+        (   Ps = [_, _, _, _, _, _, _, _, _, _, _, _, _, _, _, _|_]
+        ->  compiled_instance(Ps, Bs, Tmpl, C)
+        ;   instance_each(Ps, Bs, Tmpl, C)
+        )
     ;   plan(D, Tmpl, Bs),
         dist_prepare(Tmpl, P),
         draw_each(Ps, Bs, P, C)
