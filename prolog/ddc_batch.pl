@@ -437,9 +437,13 @@ beval(V is Ex, _, Ps0, Ps) :- !,
     ->  test_loop(V =:= Ex, Ps0, Ps)
     ;   V is Ex, Ps = Ps0
     ).
+beval(A = B, _, Ps0, Ps) :-                      % binds a variable side as it is
+    ( var(A) ; var(B) ), !,
+    A = B,
+    Ps = Ps0.
 beval(G, E, Ps0, Ps) :-
     (   has_col(G)
-    ->  (   test_goal(G)
+    ->  (   test_goal(G), \+ has_free_var(G)
         ->  test_loop(G, Ps0, Ps)
         ;   split(G, Ps0, G1, Ps1),
             call_static(G1, E),
@@ -448,6 +452,13 @@ beval(G, E, Ps0, Ps) :-
     ;   call_static(G, E),
         Ps = Ps0
     ).
+
+%   has_free_var(+T): T has a variable of its own (not one inside a column
+%   reference or a deferred expression, which each particle binds).
+has_free_var(T) :- var(T), !.
+has_free_var(T) :-
+    compound(T), T \= '$c'(_, _, _), T \= '$x'(_),
+    arg(_, T, A), has_free_var(A), !.
 
 %   A goal run particle by particle as a test: no variables to bind (all
 %   bound to values or columns) and a comparison or unification.
