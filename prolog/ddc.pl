@@ -85,7 +85,10 @@
     filter_values(+Filter, +Template, +Goal, -Values), filter_time(+Filter, -T),
     filter_size(+Filter, -N), filter_statistics(+Filter, -Stats), filter_free(+Filter);
     filter_new(+ProgramFile, +N, +Seed, +Options, -Filter) with share(false) computes
-    every value in every particle (see "Shared values" below)
+    every value in every particle (see "Shared values" below), threads(K) steps the
+    particles in K threads, engine(auto|batched|per_particle) picks the engine: the
+    batched one (ddc_batch.pl, each clause evaluated once for a batch of particles) for
+    a program in its fragment, by default
 
 ## Loading
 
