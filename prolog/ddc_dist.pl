@@ -657,17 +657,12 @@ mean_slot(M) :- ( var(M) -> true ; number(M) ).
 %   variables bound): the draw dist_sample/2 makes from the same state of
 %   the random generator.  Throws dist_check/1's errors for a Dist kept as
 %   it was.
-dist_sample_prepared(gauss3(M1, M2, M3, _, L11, L21, L22, L31, L32, L33, _), (X1, X2, X3)) :-
-    std_normals(3, [Z1, Z2, Z3]),
-    X1 is M1 + L11*Z1,
-    X2 is M2 + L21*Z1 + L22*Z2,
-    X3 is M3 + L31*Z1 + L32*Z2 + L33*Z3.
-dist_sample_prepared(gauss1(M, _, SD, _), X) :-
-    std_normal(Z),
-    X is M + SD*Z.
-dist_sample_prepared(any(D), X) :-
+dist_sample_prepared(any(D), X) :- !,
     dist_check(D),
     dist_sample(D, X).
+dist_sample_prepared(G, X) :-
+    dist_mean_slots(G, Mean),
+    dist_sample_at(G, Mean, X).
 
 %!  dist_mean_slots(+Prepared, -Slots) is semidet.
 %
@@ -714,23 +709,12 @@ dist_log_density_at(gauss1(_, V, SD, LN), M, X, LP) :-
 %!  dist_log_density_prepared(+Prepared, +Value, -LogP) is det.
 %
 %   dist_log_density/3 of the distribution dist_prepare/2 prepared.
-dist_log_density_prepared(gauss3(M1, M2, M3, Cs, L11, L21, L22, L31, L32, L33, LN), X, LP) :-
-    (   X = (X1, X2, X3), number(X1), number(X2), number(X3)
-    ->  Y1 is (X1 - M1)/L11,
-        Y2 is (X2 - M2 - L21*Y1)/L22,
-        Y3 is (X3 - M3 - L31*Y1 - L32*Y2)/L33,
-        LP is -0.5*(Y1*Y1 + Y2*Y2 + Y3*Y3) + LN
-    ;   dist_log_density(gaussian([M1, M2, M3], Cs), X, LP)
-    ).
-dist_log_density_prepared(gauss1(M, V, SD, LN), X, LP) :-
-    (   number(X)
-    ->  Y is (X - M)/SD,
-        LP is -0.5*Y*Y + LN
-    ;   dist_log_density(gaussian(M, V), X, LP)
-    ).
-dist_log_density_prepared(any(D), X, LP) :-
+dist_log_density_prepared(any(D), X, LP) :- !,
     dist_check(D),
     dist_log_density(D, X, LP).
+dist_log_density_prepared(G, X, LP) :-
+    dist_mean_slots(G, Mean),
+    dist_log_density_at(G, Mean, X, LP).
 
 		 /*******************************
 		 *        LINEAR ALGEBRA        *

@@ -460,4 +460,42 @@ test(one_dimensional_multivariate_value_is_a_number) :-
     dist_sample(indepGaussians([(5, 1)]), Y), number(Y),
     dist_sample(gaussian([0, 0], [1, 0, 0, 1]), (A, B)), number(A), number(B).
 
+%   Prepared distributions (the batched filter's): the same draws and
+%   densities as the distribution itself, the mean bound or passed.
+test(prepared_gaussians_draw_and_weigh_as_the_distribution) :-
+    Cov = [0.04, 0.01, 0.0, 0.01, 0.09, 0.02, 0.0, 0.02, 0.16],
+    forall(member(D-Slots-Mean-X,
+                  [ gaussian([A, B, C], Cov)-(A, B, C)-(0.1, -0.2, 0.3)-(0.15, -0.1, 0.2),
+                    gaussian(M, 0.25)-M-1.5-1.2 ]),
+           (   dist_prepare(D, P),
+               P \= any(_),
+               dist_mean_slots(P, S), S == Slots,
+               copy_term(D-Slots, D1-Mean),
+               set_random(seed(7)), dist_sample(D1, X1),
+               set_random(seed(7)), dist_sample_at(P, Mean, X2),
+               X1 == X2,
+               copy_term(P-Slots, P1-Mean),
+               set_random(seed(7)), dist_sample_prepared(P1, X3),
+               X3 == X1,
+               dist_log_density(D1, X, L1),
+               dist_log_density_at(P, Mean, X, L2),
+               dist_log_density_prepared(P1, X, L3),
+               abs(L1 - L2) < 1.0e-12, abs(L1 - L3) < 1.0e-12
+           )).
+
+test(other_distributions_are_kept_and_checked_at_each_use) :-
+    dist_prepare(uniform(L), P),
+    P == any(uniform(L)),
+    \+ dist_mean_slots(P, _),
+    L = [a, b],
+    set_random(seed(3)), dist_sample(uniform([a, b]), X1),
+    set_random(seed(3)), dist_sample_prepared(P, X2),
+    X1 == X2,
+    catch(dist_sample_prepared(any(gaussian(0.0, -1.0)), _), E, true),
+    E = error(ddc_distribution(_, negative_variance), _).
+
+test(a_prepared_covariance_is_checked_once) :-
+    catch(dist_prepare(gaussian([_, _, _], [1, 0, 0, 0, -1, 0, 0, 0, 1]), _), E, true),
+    E = error(ddc_distribution(_, _), _).
+
 :- end_tests(ddc_dist_api).
