@@ -207,16 +207,19 @@ ddc_program(M) :-
     current_program_(M), !.
 
 %   program_items(+File, -Items): the classified items of File's program
-%   (with the clauses its persistent/1 directives add, and first(Spec) for
-%   each first_applicable/1 directive), as the batched filter reads them
+%   (with the clauses its persistent/1 directives add, and rivals(Id, R)
+%   for each random variable clause: whether a later clause can define
+%   what it defines, see rivals/7), as the batched filter reads them
 %   (ddc_batch.pl).
 program_items(File, Items) :-
     read_program(File, Items0),
     classify_items(Items0, File, 1, Items1, Dirs),
     directives_options(Dirs, File, _, Opts, _),
     add_persistence(Opts, Items1, Items2),
-    findall(first(S), member(first(S), Opts), Firsts),
-    append(Items2, Firsts, Items).
+    program_info(Items2, Opts, Info),
+    findall(rivals(Id, R), ( member(rv(Id, X, K, _, _, _), Items2), tier(K, Tier),
+                             rivals(Id, X, K, Tier, Info, Items2, R) ), Rivals),
+    append(Items2, Rivals, Items).
 
 %   read_program(+File, -Items): Items is a list of t(Term, Line).
 read_program(File, Items) :-

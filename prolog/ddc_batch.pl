@@ -20,12 +20,11 @@
     applicable clause (h:0 or h:t+1, then h:t as a fallback); a step
     weighs each observation by its first applicable clause's density
     (none: an error), sweeps the transition clauses' ground heads, keeps
-    time t for queries and drops t-1.  Differences, documented in the
-    README: clauses are tried in order over the particles without the
-    overlap check (a later clause that also applies is not an error), and
-    the random draws come in another order (clause by clause over the
-    particles), so the same seed gives other particles than the
-    per-particle engine.
+    time t for queries and drops t-1; overlapping clauses are an error,
+    looked for in the first 20 particles.  The random draws come in
+    another order (clause by clause over the particles), so the same seed
+    gives other particles than the per-particle engine
+    (docs/batched-filter.md, "What differs").
 
     Fragment (batch_check_program/2 names the first clause outside it,
     file:line): random variables h:0, h:t+1 and h:t; derived atoms h:t+1
@@ -34,9 +33,11 @@
     plain Prolog clauses, untimed derived atoms with static bodies), the
     step's facts (actions, plain observations); bodies of conjunctions,
     \+, if-then-else, disjunction, reads h:t ~= P, h:t+1 ~= P, h:0 ~= P,
-    untimed reads of an observation of the step, is/2, comparisons, ==,
-    \==, =, findall/3 and findall_forward/3, calls of static predicates and
-    of Prolog's builtins.
+    untimed reads of an observation of the step, is/2, comparisons (a
+    random variable h:t as an operand reads it), ==, \==, =, findall/3 and
+    findall_forward/3, logistic/3 and linear/3, calls of static predicates
+    and of Prolog's builtins; distribution parameters may be arithmetic
+    expressions.
 */
 
 :- module(ddc_batch,
@@ -170,36 +171,89 @@ compile(M, Items) :-
     retractall(M:'$b_der'(_, _, _, _)),
     retractall(M:'$b_static'(_, _)),
     retractall(M:'$b_static_pred'(_, _)),
-    findall(S, ( member(first(Spec), Items), spec_list(Spec, Ss), member(S, Ss) ), First),
-    forall(member(rv(Id, X, K, D, B, L), Items),
+    findall(N/A, ( member(rv(_, X, _, _, _, _), Items), functor(X, N, A) ), Rvs0),
+    sort(Rvs0, Rvs),
+    forall(member(rv(Id, X, K, D0, B0, L), Items),
            (   kind(K, K1),
-               rivals(Id, X, K, First, Items, R),
+               ( memberchk(rivals(Id, R0), Items) -> R = R0 ; R = false ),
+               param_goals(D0, D, Ps),
+               operand_reads(B0, Rvs, B1),
+               conj_with(B1, Ps, B),
                assertz(M:'$b_rv'(X, K1, D, B, at(L, Id, R)))
            )),
-    forall(member(der(_, X, K, B, L), Items),
+    forall(member(der(_, X, K, B0, L), Items),
            (   K == u
-           ->  assertz(M:'$b_static'(X, B)), static_pred(M, X, derived)
-           ;   kind(K, K1), assertz(M:'$b_der'(X, K1, B, L))
+           ->  assertz(M:'$b_static'(X, B0)), static_pred(M, X, derived)
+           ;   kind(K, K1),
+               operand_reads(B0, Rvs, B),
+               assertz(M:'$b_der'(X, K1, B, L))
            )),
     forall(member(plain(C, _), Items),
            ( clause_head(C, H), callable(H) -> static_pred(M, H, plain) ; true )).
 
-%   rivals(+Id, +X, +Kind, +First, +Items, -R): whether a later clause of
-%   the same kind can define what clause Id defines (as ddc.pl's rivals/7).
-rivals(Id, X, K, First, Items, R) :-
-    functor(X, N, A),
-    (   ( K == persist ; memberchk(all, First) ; memberchk(N/A, First) )
-    ->  R = false
-    ;   kind(K, K1),
-        member(rv(Id2, X2, K2, _, _, _), Items), Id2 > Id,
-        K2 \== persist, kind(K2, K1), \+ X2 \= X
-    ->  R = true
-    ;   R = false
-    ).
+%   (rivals(Id, R) items: ddc.pl's rivals/7, whether a later clause can
+%   define what clause Id defines: then overlaps are looked for.)
 
-spec_list(Spec, L) :- is_list(Spec), !, L = Spec.
-spec_list((A, B), L) :- !, spec_list(A, LA), spec_list(B, LB), append(LA, LB, L).
-spec_list(S, [S]).
+%   param_goals(+Dist0, -Dist, -Goals): Dist0 with each arithmetic
+%   expression among its numeric parameters replaced by a variable that
+%   Goals compute (V is Expr, run after the body: as ddc.pl's eval_dist/2
+%   evaluates them), so that a parameter over columns is a deferred
+%   expression like any other.
+param_goals(D0, D, Goals) :-
+    compound(D0), !,
+    compound_name_arguments(D0, N, Args0),
+    (   memberchk(N, [finite, propfinite, logfinite]), Args0 = [L0], is_list(L0)
+    ->  foldl(pair_param, L0, L, [], Gs0), Args = [L]
+    ;   N == val
+    ->  Args = Args0, Gs0 = []
+    ;   N == uniform, Args0 = [S0], nonvar(S0), S0 = A0:C0
+    ->  param(A0, A, [], Gs1), param(C0, C, Gs1, Gs0), Args = [A:C]
+    ;   N == uniform
+    ->  Args = Args0, Gs0 = []
+    ;   foldl(param, Args0, Args, [], Gs0)
+    ),
+    compound_name_arguments(D, N, Args),
+    reverse(Gs0, Goals).
+param_goals(D, D, []).
+
+pair_param(P0:V, P:V, Gs0, Gs) :- !, param(P0, P, Gs0, Gs).
+pair_param(X, X, Gs, Gs).
+
+param(X, X, Gs, Gs) :- var(X), !.
+param(X, X, Gs, Gs) :- number(X), !.
+param([], [], Gs, Gs) :- !.
+param([H0|T0], [H|T], Gs0, Gs) :- !, param(H0, H, Gs0, Gs1), param(T0, T, Gs1, Gs).
+param((A0, B0), (A, B), Gs0, Gs) :- !, param(A0, A, Gs0, Gs1), param(B0, B, Gs1, Gs).
+param(X, X, Gs, Gs) :- atom(X), \+ catch(_ is X, _, fail), !.
+param(X, V, Gs, [V is X|Gs]).
+
+conj_with(B, [], B) :- !.
+conj_with(B, [G|Gs], (B, C)) :- list_conj([G|Gs], C).
+
+%   operand_reads(+Body, +Rvs, -Body1): a comparison whose operand is a
+%   random variable at a time (pos(1):t > 0, the paper's shorthand) reads
+%   it first, as ddc.pl's compiler does.
+operand_reads(V, _, V) :- var(V), !.
+operand_reads((A, B), R, (A1, B1)) :- !, operand_reads(A, R, A1), operand_reads(B, R, B1).
+operand_reads((A ; B), R, (A1 ; B1)) :- !, operand_reads(A, R, A1), operand_reads(B, R, B1).
+operand_reads((A -> B), R, (A1 -> B1)) :- !, operand_reads(A, R, A1), operand_reads(B, R, B1).
+operand_reads(\+ A, R, \+ A1) :- !, operand_reads(A, R, A1).
+operand_reads(findall(T, A, L), R, findall(T, A1, L)) :- !, operand_reads(A, R, A1).
+operand_reads(findall_forward(T, A, L), R, findall_forward(T, A1, L)) :- !,
+    operand_reads(A, R, A1).
+operand_reads(G, _, G1) :-
+    compound(G), functor(G, Op, 2), memberchk(Op, [<, >, =<, >=, =:=, =\=]),
+    G =.. [Op, A, B],
+    ( rv_operand(A) ; rv_operand(B) ), !,
+    operand(A, VA, RA), operand(B, VB, RB),
+    G2 =.. [Op, VA, VB],
+    list_conj([RA, RB, G2], G1).
+operand_reads(G, _, G).
+
+rv_operand(X) :- nonvar(X), X = Y:_, nonvar(Y), \+ number(X).
+
+operand(A, V, (A ~= V)) :- rv_operand(A), !.
+operand(A, A, true).
 
 static_pred(M, H, Kind) :-
     functor(H, N, A), functor(P, N, A),
@@ -217,12 +271,14 @@ kind(fixed(0), zero).
                  *            COLUMNS           *
                  *******************************/
 
-%   A table of one time: Key -> e(Column, Status), Status one of
+%   A table of one time: Key -> e(Column, Status, Arity), Status one of
 %   open (some particle may lack its value: '$u'), same(V) (every particle
 %   holds V, '$undef' where no clause applied), defined (each particle a
 %   value of its own), mixed (some undefined).  A fixed number of bucket
 %   chains; an entry is copied once, when put, and then updated in place,
-%   so that a column taken from the table stays the table's own.
+%   so that a column taken from the table stays the table's own.  Arity:
+%   the tuple arity of all of a defined column's values, unknown until
+%   found (entry_arity/2), or none.
 tab_new(T) :- functor(T, tab, 1024).
 
 tab_get(T, K, E) :-
@@ -430,13 +486,13 @@ beval(G:TE, E, Ps0, Ps) :- !,                     % a derived atom at a time
     split(G, Ps0, G1, Ps1),
     derived(G1, T, E, Ps1, Ps).
 beval(V is Ex, _, Ps0, Ps) :- !,
-    (   has_col(Ex), var(V)
-    ->  V = '$x'(Ex),
-        Ps = Ps0
-    ;   ( has_col(V) ; has_col(Ex) )
-    ->  test_loop(V =:= Ex, Ps0, Ps)
-    ;   V is Ex, Ps = Ps0
-    ).
+    arith_value(V, Ex, Ps0, Ps).
+beval(linear(Is, Ws, Y), _, Ps0, Ps) :- !,
+    linear_expr(Is, Ws, Ex),
+    arith_value(Y, Ex, Ps0, Ps).
+beval(logistic(Is, Ws, P), _, Ps0, Ps) :- !,        % (1+tanh(z/2))/2 = 1/(1+exp(-z)),
+    linear_expr(Is, Ws, Ex),                        %  without exp's overflow
+    arith_value(P, (1 + tanh(Ex/2))/2, Ps0, Ps).
 beval(A = B, _, Ps0, Ps) :-                      % binds a variable side as it is
     ( var(A) ; var(B) ), !,
     A = B,
@@ -451,6 +507,26 @@ beval(G, E, Ps0, Ps) :-
         )
     ;   call_static(G, E),
         Ps = Ps0
+    ).
+
+%   linear_expr(+Inputs, +Weights, -Expr): w1*x1 + ... + wn*xn + b, with
+%   Weights = [w1, ..., wn, b] (ddc.pl's linear/3).
+linear_expr(Is, Ws, Ex) :-
+    must_be(list, Is), must_be(list, Ws),
+    length(Is, N), N1 is N+1,
+    (   length(Ws, N1) -> true
+    ;   domain_error(weights_one_more_than_inputs(N), Ws)
+    ),
+    weighted_sum(Is, Ws, Ex).
+
+weighted_sum([], [B], B).
+weighted_sum([X|Xs], [W|Ws], W*X + Ex) :- weighted_sum(Xs, Ws, Ex).
+
+%   arith_value(?V, +Ex, +Ps0, -Ps): V is Ex, over columns or not.
+arith_value(V, Ex, Ps0, Ps) :-
+    (   has_col(Ex), var(V) -> V = '$x'(Ex), Ps = Ps0
+    ;   ( has_col(V) ; has_col(Ex) ) -> test_loop(V =:= Ex, Ps0, Ps)
+    ;   V is Ex, Ps = Ps0
     ).
 
 %   has_free_var(+T): T has a variable of its own (not one inside a column

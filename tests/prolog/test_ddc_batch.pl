@@ -99,6 +99,30 @@ expected(1, [a, b, c], one, yes, unset).
 expected(2, [a, c], two, no, unset).
 expected(3, [a], many, yes, set).
 
+%   The language's arithmetic conveniences over columns: a random variable
+%   as a comparison's operand, expressions as distribution parameters,
+%   logistic/3 and linear/3; in both engines.
+test(operands_parameters_and_statistical_models) :-
+    program([ 'x:0 ~ uniform([1, 2, 3]).', 'x:t+1 ~ val(X) := x:t ~= X.',
+              'big:t+1 ~ val(yes) := x:t > 1.', 'big:t+1 ~ val(no) := x:t =< 1.',
+              'y:t+1 ~ gaussian(X*10, 1.0e-8) := x:t ~= X.',
+              'q:t+1 ~ finite([X/3:a, 1-X/3:b]) := x:t ~= X.',
+              'p:t+1 ~ val(P) := x:t ~= X, logistic([X], [2.0, -4.0], P).',
+              'l:t+1 ~ val(Y) := x:t ~= X, linear([X, X], [1, 2, 0.5], Y).' ], File),
+    forall(member(Engine, [per_particle, batched]),
+           ( filter_new(File, 60, 8, [engine(Engine)], F),
+             filter_step(F, [], [], _),
+             values(F, (x:t ~= X, big:t ~= B, y:t ~= Y, q:t ~= Q, p:t ~= P, l:t ~= L)
+                       -r(X, B, Y, Q, P, L), Rs),
+             forall(member(r(X1, B1, Y1, Q1, P1, L1), Rs),
+                    (   ( X1 > 1 -> B1 == yes ; B1 == no ),
+                        abs(Y1 - 10*X1) < 1.0e-3,
+                        ( X1 =:= 3 -> Q1 == a ; memberchk(Q1, [a, b]) ),
+                        abs(P1 - 1/(1 + exp(-(2*X1 - 4)))) < 1.0e-12,
+                        L1 =:= 3*X1 + 0.5
+                    )),
+             filter_free(F) )).
+
 %   A key computed by arithmetic over a column (the key's argument is a
 %   deferred expression: computed into a column to split the batch by it).
 test(a_computed_key_splits_the_batch) :-
