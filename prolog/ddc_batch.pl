@@ -394,21 +394,19 @@ has_col(T) :-
     compound(T),
     (   T = '$c'(_, _, _) -> true ; T = '$x'(_) -> true ; arg(_, T, A), has_col(A) ), !.
 
-%   materialise(+T, -T1): T with each deferred expression computed into a
-%   column (for all the particles of the column it reads).
-materialise(T, T1) :-
+%   materialise(+T, +Ps, -T1): T with each deferred expression computed
+%   into a column, for the particles Ps.
+materialise(T, Ps, T1) :-
     (   deferred_in(T, X)
     ->  X = '$x'(Ex),
         once(column_in(Ex, C0)),
         functor(C0, _, N),
-        numlist(1, N, All),
         plan(X, W, Bs),
         functor(C, c, N),
-        defined_at_all(All, Bs, Ps),
         arith_loop(Ps, Bs, W, C),
         col_ref(C, _, Ref),
         replace_eq(T, X, Ref, T2),
-        materialise(T2, T1)
+        materialise(T2, Ps, T1)
     ;   T1 = T
     ).
 
@@ -427,12 +425,6 @@ column_in(T, C) :-
     (   T = '$c'(C0, _, _) -> C = C0
     ;   arg(_, T, A), column_in(A, C)
     ).
-
-%   (the particles where every column the expression reads has a value)
-defined_at_all(All, Bs, Ps) :-
-    include(bindable(Bs), All, Ps).
-
-bindable(Bs, I) :- \+ \+ catch(bind(Bs, I), _, fail).
 
 replace_eq(T, X, Y, T1) :-
     (   T == X -> T1 = Y
@@ -558,7 +550,7 @@ test_loop(G, Ps0, Ps) :-
 %   compiled_test(+Ps0, +Binds, +Test, -Ps): test_each/4 as a loop compiled
 %   for this goal and batch (its arithmetic compiled to virtual-machine
 %   instructions, as the per-particle engine's clauses are; the particle's
-%   values bound by head-free unification, no undo between particles): a
+%   values bound by unification in the clause, no undo between particles): a
 %   thread-local predicate asserted for the call, for batches large enough
 %   to pay for the assert.
 :- thread_local '$b_test_loop'/3, '$b_instance_loop'/3.
@@ -633,7 +625,7 @@ call_static(G, env(M, _, _, _, Facts, _, _)) :-
 %   T1's, for the goals after it.)
 split(T0, Ps0, T1, Ps) :-
     (   has_col(T0)
-    ->  materialise(T0, T),
+    ->  materialise(T0, Ps0, T),
         plan(T, Tmpl, Bs),
         pairs_keys_values(Bs, Cs, Pats),
         split_pairs(Ps0, Cs, Pairs),
