@@ -284,6 +284,20 @@ def test_bad_observations_raise_and_leave_the_filter_usable(engine: str) -> None
         assert f.probability("maze(1,1):t ~= free") < 0.5
 
 
+def test_auto_takes_the_batched_engine_for_programs_in_its_fragment(tmp_path: Path) -> None:
+    too = Path(__file__).resolve().parents[1] / "prolog" / "too.pl"
+    with Filter(RANDOM_WALK, particles=20) as f:
+        assert f.engine == "batched"
+    with Filter(too, particles=20) as f:  # reads derived atoms at t: outside the fragment
+        assert f.engine == "per_particle"
+    with Filter(RANDOM_WALK, particles=20, engine="per_particle") as f:
+        assert f.engine == "per_particle"
+    with pytest.raises(FilterError, match=r"too\.pl:\d+: outside what the batched filter"):
+        Filter(too, particles=20, engine="batched")
+    with pytest.raises(ValueError, match="engine"):
+        Filter(RANDOM_WALK, engine="fast")  # type: ignore[arg-type]
+
+
 def test_constructor_errors_are_clear(tmp_path: Path) -> None:
     with pytest.raises(FileNotFoundError, match="no_such.pl"):
         Filter(tmp_path / "no_such.pl")

@@ -197,9 +197,12 @@ parse_goal(Text, Goal) :-
     catch(term_string(Goal, Text, [module(ddc)]), E,
           ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(goal, "", Text, Msg)) )).
 
-new(Program, N, Seed, Share, Threads, Engine, Key, Err) :-
+new(Program, N, Seed, Share, Threads, Engine, Key, Used, Err) :-
     guarded(( ddc:filter_new(Program, N, Seed, [share(Share), threads(Threads), engine(Engine)], F),
-              nb_setval(Key, F) ), Err).
+              ddc:filter_statistics(F, Stats),
+              ( memberchk(engine(batched), Stats) -> Used = batched ; Used = per_particle ),
+              nb_setval(Key, F) ), Err),
+    ( var(Used) -> Used = none ; true ).
 
 step(Key, ObsTexts, ActTexts, LW, Err) :-
     guarded(( filter_of(Key, F),
@@ -359,7 +362,7 @@ class Filter:
         self.resampling: Resampling = resampling
         self.share = bool(share)
         self.threads = int(threads)
-        self.engine: Engine = engine
+        self.engine: str = engine
         self._rng = np.random.default_rng(self.seed)
         self._log_weights = np.full(self.particles, -math.log(self.particles))
         self.log_likelihood = 0.0
@@ -373,7 +376,7 @@ class Filter:
         _ensure_engine()
         key = f"ddc_filter_{os.getpid()}_{next(_keys)}"
         result = _call(
-            "new(P, N, S, Sh, Th, E, K, Err)",
+            "new(P, N, S, Sh, Th, E, K, Used, Err)",
             {"P": str(self.program_path), "N": self.particles, "S": self.seed,
              "Sh": "true" if self.share else "false", "Th": self.threads, "E": engine,
              "K": key},
@@ -383,6 +386,8 @@ class Filter:
             raise FilterError(error if str(path) in error or str(self.program_path) in error
                               else f"{self.program_path}: {error}")
         self._key = key
+        #: the engine that steps the particles: "batched" or "per_particle" (``auto`` resolved)
+        self.engine = str(result["Used"])
 
     # -- life cycle ---------------------------------------------------------------------------
     def close(self) -> None:
