@@ -10,9 +10,11 @@ table, moving slowly; balls are hidden for a few frames at times (occluder picki
 following) and every 10th frame is blind (no observations).  Resampling is done by the
 bridge as usual.  Target (issue 4): N = 1000, M = 10 in at most 33 ms per step.
 
-``unshared`` is the same filter with ``share=False`` (every value computed in every particle,
-the engine before values all particles agree on were computed once: same particles, bit for
-bit); ``ratio`` is unshared / shared, timed in the same run.
+``--engine`` picks the engine timed, as ``bridge.Filter``'s (default auto: the batched one,
+too.pl being in its fragment); the reference column, timed in the same run, is the
+per-particle engine, and ``ratio`` is reference / timed. With ``--engine per_particle`` the
+reference is the same engine with ``share=False`` (every value computed in every particle:
+same particles, bit for bit).
 """
 
 from __future__ import annotations
@@ -75,9 +77,10 @@ def step_terms(frame):
     return observations, facts
 
 
-def time_filter(particles: int, objects: int, steps: int, seed: int, share: bool = True) -> float:
+def time_filter(particles: int, objects: int, steps: int, seed: int, share: bool = True,
+                engine: str = "auto") -> float:
     frames = scene(objects, steps + 2, seed)
-    with Filter(str(PROGRAM), particles=particles, seed=seed, share=share) as f:
+    with Filter(str(PROGRAM), particles=particles, seed=seed, share=share, engine=engine) as f:
         times = []
         for k, frame in enumerate(frames):
             obs, facts = step_terms(frame)
@@ -95,14 +98,27 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--steps", type=int, default=20, help="steps timed (default 20)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--json", action="store_true", help="end with a JSON line (N=1000, M=10)")
+    parser.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
+                        help="the engine timed (default auto: the batched one for too.pl); the "
+                             "reference column is the per-particle engine, or for it the same "
+                             "engine without shared values")
     args = parser.parse_args(argv)
-    print(f"{'N':>6} {'M':>4} {'ms/step':>10} {'ms/particle':>12} {'unshared':>10} {'ratio':>6}",
-          flush=True)
+    per_particle = args.engine == "per_particle"
+    reference_name = "unshared" if per_particle else "per-part."
+    print(f"engine: {args.engine}; reference: "
+          + ("per-particle engine without shared values" if per_particle
+             else "per-particle engine"))
+    print(f"{'N':>6} {'M':>4} {'ms/step':>10} {'ms/particle':>12} {reference_name:>10} "
+          f"{'ratio':>6}", flush=True)
     last = None
     for m in args.objects:
         for n in args.particles:
-            ms = time_filter(n, m, args.steps, args.seed)
-            reference = time_filter(n, m, args.steps, args.seed, share=False)
+            ms = time_filter(n, m, args.steps, args.seed, engine=args.engine)
+            if per_particle:
+                reference = time_filter(n, m, args.steps, args.seed, share=False,
+                                        engine="per_particle")
+            else:
+                reference = time_filter(n, m, args.steps, args.seed, engine="per_particle")
             print(f"{n:>6} {m:>4} {ms:>10.1f} {ms / n:>12.3f} {reference:>10.1f} "
                   f"{reference / ms:>5.1f}x", flush=True)
             if (n, m) == (1000, 10) or last is None:

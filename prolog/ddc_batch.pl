@@ -128,12 +128,8 @@ check_body(X ~= _, _, _, F, L) :- !,
     (   nonvar(X), X = observation(_) -> true
     ;   unsupported(F, L, untimed_read(X))
     ).
-check_body(G:TE, Is, K, F, L) :- !,
-    check_time(G, TE, F, L),
-    (   TE == t, K \== state, callable(G), derived_timed(G, Is)
-    ->  unsupported(F, L, derived_read_at_t(G))
-    ;   true
-    ).
+check_body(G:TE, _, _, F, L) :- !,
+    check_time(G, TE, F, L).
 check_body(G, _, _, F, L) :-
     compound(G), functor(G, N, A),
     memberchk(N/A, [sample/2, true/1, belief/1, timestep/1, current/1, next/1, prior/1]), !,
@@ -144,10 +140,6 @@ check_time(X, TE, F, L) :-
     (   nonvar(TE), ( TE == t ; TE = T0+1, T0 == t ; TE == 0 ) -> true
     ;   unsupported(F, L, time(X:TE))
     ).
-
-derived_timed(G, Items) :-
-    functor(G, N, A), functor(P, N, A),
-    memberchk(der(_, P, K, _, _), Items), K \== u.
 
 static_body(B, _) :- var(B), !, fail.
 static_body((A, B), Is) :- !, static_body(A, Is), static_body(B, Is).
@@ -171,6 +163,8 @@ compile(M, Items) :-
     retractall(M:'$b_der'(_, _, _, _)),
     retractall(M:'$b_static'(_, _)),
     retractall(M:'$b_static_pred'(_, _)),
+    retractall(M:'$b_lookback'(_)),
+    forall(lookback(Items, NA), assertz(M:'$b_lookback'(NA))),
     findall(N/A, ( member(rv(_, X, _, _, _, _), Items), functor(X, N, A) ), Rvs0),
     sort(Rvs0, Rvs),
     forall(member(rv(Id, X, K, D0, B0, L), Items),
@@ -190,6 +184,30 @@ compile(M, Items) :-
            )),
     forall(member(plain(C, _), Items),
            ( clause_head(C, H), callable(H) -> static_pred(M, H, plain) ; true )).
+
+%   lookback(+Items, -N/A): a derived predicate that a transition body
+%   reads at t: materialised at every step (materialise_derived/3), so
+%   that the next step reads its instances of the time before, as the
+%   per-particle engine's sweep materialises them.
+lookback(Items, N/A) :-
+    findall(N0/A0, ( member(I, Items),
+                     ( I = rv(_, _, K, _, B, _) ; I = der(_, _, K, B, _) ),
+                     memberchk(K, [trans, persist]),
+                     body_read_at_t(B, G),
+                     functor(G, N0, A0), functor(P, N0, A0),
+                     memberchk(der(_, P, K2, _, _), Items), K2 \== u ), L),
+    sort(L, Ls),
+    member(N/A, Ls).
+
+body_read_at_t(B, _) :- var(B), !, fail.
+body_read_at_t((A, B), G) :- !, ( body_read_at_t(A, G) ; body_read_at_t(B, G) ).
+body_read_at_t((A ; B), G) :- !, ( body_read_at_t(A, G) ; body_read_at_t(B, G) ).
+body_read_at_t((A -> B), G) :- !, ( body_read_at_t(A, G) ; body_read_at_t(B, G) ).
+body_read_at_t(\+ A, G) :- !, body_read_at_t(A, G).
+body_read_at_t(findall(_, A, _), G) :- !, body_read_at_t(A, G).
+body_read_at_t(findall_forward(_, A, _), G) :- !, body_read_at_t(A, G).
+body_read_at_t(_ ~= _, _) :- !, fail.
+body_read_at_t(G0:TE, G) :- TE == t, callable(G0), G = G0.
 
 %   (rivals(Id, R) items: ddc.pl's rivals/7, whether a later clause can
 %   define what clause Id defines: then overlaps are looked for.)
@@ -548,43 +566,90 @@ test_loop(G, Ps0, Ps) :-
     Ps \== [].
 
 %   compiled_test(+Ps0, +Binds, +Test, -Ps): test_each/4 as a loop compiled
-%   for this goal and batch (its arithmetic compiled to virtual-machine
-%   instructions, as the per-particle engine's clauses are; the particle's
-%   values bound by unification in the clause, no undo between particles): a
-%   thread-local predicate asserted for the call, for batches large enough
-%   to pay for the assert.
-:- thread_local '$b_test_loop'/3, '$b_instance_loop'/3.
-
+%   for the goal (its arithmetic compiled to virtual-machine instructions,
+%   as the per-particle engine's clauses are; a particle's values bound by
+%   unification in the clause, no undo between particles), for batches
+%   large enough to pay for it.  A loop is compiled once per shape of goal:
+%   its numbers are arguments (they change from step to step), so the
+%   number of loops is bounded by the program's goals, and none is ever
+%   retracted (a retracted clause waits for the clause garbage collector,
+%   which a forked process, such as anchoring evaluate's workers, does not
+%   have: loops asserted and retracted per batch made each run there seven
+%   times slower).
 compiled_test(Ps0, Bs, Tmpl, Ps) :-
     bind_goals(Bs, I, Cs, CVs, Gets, Evals),
     append([Gets, Evals, [Tmpl]], Gs),
-    list_conj(Gs, Cond),
+    list_conj(Gs, Cond0),
+    abstract_numbers(Cond0, Cond, Ks),
+    pairs_keys_values(Ks, KVs, Ns),
     Head =.. [cols|CVs],
-    retractall('$b_test_loop'(_, _, _)),
-    optimised_assert([ '$b_test_loop'([], _, []),
-                       ( '$b_test_loop'([I|Is], Head, Out) :-
-                             (   Cond -> Out = [I|Out1] ; Out = Out1 ),
-                             '$b_test_loop'(Is, Head, Out1) ) ]),
+    compiled_loop(test, Head, k(KVs), I, Cond, Name),
     Cols =.. [cols|Cs],
-    '$b_test_loop'(Ps0, Cols, Ps).
+    call(Name, Ps0, Cols, k(Ns), Ps).
 
 %   compiled_instance(+Ps, +Binds, +Tmpl, +C): instance_each/4 as a
 %   compiled loop (see compiled_test/4).
 compiled_instance(Ps, Bs, Tmpl, C) :-
     bind_goals(Bs, I, Cs, CVs, Gets, Evals),
     append(Gets, Evals, Gs0),
-    (   Gs0 == [] -> Cond = true ; list_conj(Gs0, Cond) ),
+    (   Gs0 == [] -> Cond1 = true ; list_conj(Gs0, Cond1) ),
+    abstract_numbers(Cond1-Tmpl, Cond-Value, Ks),
+    pairs_keys_values(Ks, KVs, Ns),
     Head =.. [cols|CVs],
-    retractall('$b_instance_loop'(_, _, _)),
-    optimised_assert([ '$b_instance_loop'([], _, _),
-                       ( '$b_instance_loop'([I|Is], Head, Out) :-
-                             (   arg(I, Out, U), U == '$u', Cond
-                             ->  nb_setarg(I, Out, Tmpl)
-                             ;   true
-                             ),
-                             '$b_instance_loop'(Is, Head, Out) ) ]),
+    compiled_loop(instance(Value), Head, k(KVs), I, Cond, Name),
     Cols =.. [cols|Cs],
-    '$b_instance_loop'(Ps, Cols, C).
+    call(Name, Ps, Cols, k(Ns), C).
+
+%   compiled_loop(+Kind, +Head, +Consts, ?I, +Cond, -Name): the loop
+%   predicate Name/4 for this shape (Name(Ps, Cols, Consts, Out)), made the
+%   first time (under a mutex: threads share it).
+compiled_loop(Kind, Head, Consts, I, Cond, Name) :-
+    Shape = loop(Kind, Head, Consts, I, Cond),
+    variant_sha1(Shape, Sha),
+    atom_concat('$b_loop_', Sha, Name),
+    (   '$b_loop_ready'(Name)
+    ->  true
+    ;   with_mutex('$ddc_batch_loops',
+                   (   '$b_loop_ready'(Name) -> true
+                   ;   copy_term(Shape, loop(Kind1, Head1, Consts1, I1, Cond1)),
+                       loop_clauses(Kind1, Name, Head1, Consts1, I1, Cond1, Clauses),
+                       optimised_assert(Clauses),
+                       compile_predicates([Name/4]),
+                       assertz('$b_loop_ready'(Name))   % (last: another thread may look)
+                   ))
+    ).
+
+:- dynamic '$b_loop_ready'/1.
+
+loop_clauses(test, Name, Head, Consts, I, Cond,
+             [ Base, (Rec :- ( Cond -> Out = [I|Out1] ; Out = Out1 ), Next) ]) :-
+    Base =.. [Name, [], _, _, []],
+    Rec =.. [Name, [I|Is], Head, Consts, Out],
+    Next =.. [Name, Is, Head, Consts, Out1].
+loop_clauses(instance(Value), Name, Head, Consts, I, Cond,
+             [ Base, (Rec :- ( arg(I, Out, U), U == '$u', Cond -> nb_setarg(I, Out, Value)
+                              ; true ), Next) ]) :-
+    Base =.. [Name, [], _, _, _],
+    Rec =.. [Name, [I|Is], Head, Consts, Out],
+    Next =.. [Name, Is, Head, Consts, Out].
+
+%   abstract_numbers(+T, -T1, -Pairs): T with each number a variable;
+%   Pairs the Variable-Number pairs, in order.
+abstract_numbers(T, T1, Ps) :-
+    abstract_numbers(T, T1, Ps, []).
+
+abstract_numbers(T, T, Ps, Ps) :- var(T), !.
+abstract_numbers(T, V, [V-T|Ps], Ps) :- number(T), !.
+abstract_numbers(T, T, Ps, Ps) :- atomic(T), !.
+abstract_numbers(T, T1, Ns0, Ns) :-
+    compound_name_arguments(T, F, As),
+    abstract_list(As, As1, Ns0, Ns),
+    compound_name_arguments(T1, F, As1).
+
+abstract_list([], [], Ns, Ns).
+abstract_list([A|As], [A1|As1], Ns0, Ns) :-
+    abstract_numbers(A, A1, Ns0, Ns1),
+    abstract_list(As, As1, Ns1, Ns).
 
 %   bind_goals(+Binds, ?I, -Columns, -ColumnVars, -Gets, -Evals): the goals
 %   that bind/2 runs for particle I, each column a variable (a clause must
@@ -611,13 +676,29 @@ test_each([I|Is], Bs, G, Ps) :-
 
 %   call_static(+G, +Env): a static predicate of the program, a fact of
 %   the step, or a builtin.
-call_static(G, env(M, _, _, _, Facts, _, _)) :-
+call_static(G, E) :-
+    E = env(M, _, _, _, Facts, _, _),
     (   M:'$b_static_pred'(G, Kind)
-    ->  (   Kind == derived -> M:'$b_static'(G, B), M:B ; M:G )
+    ->  (   Kind == derived -> M:'$b_static'(G, B), static_body_call(B, E) ; M:G )
     ;   predicate_property(M:G, visible)
     ->  M:G
     ;   member(G, Facts)
     ).
+
+%   static_body_call(+B, +E): an untimed derived atom's body, whose goals
+%   may be the step's facts (can_occlude(O) := category(O, C), ...).
+static_body_call(V, _) :- var(V), !, throw(error(instantiation_error, _)).
+static_body_call(true, _) :- !.
+static_body_call((A, B), E) :- !, static_body_call(A, E), static_body_call(B, E).
+static_body_call((A ; B), E) :- !,
+    (   nonvar(A), A = (C -> T)
+    ->  ( static_body_call(C, E) -> static_body_call(T, E) ; static_body_call(B, E) )
+    ;   ( static_body_call(A, E) ; static_body_call(B, E) )
+    ).
+static_body_call((C -> T), E) :- !, ( static_body_call(C, E) -> static_body_call(T, E) ).
+static_body_call(\+ A, E) :- !, \+ static_body_call(A, E).
+static_body_call(findall(X, A, L), E) :- !, findall(X, static_body_call(A, E), L).
+static_body_call(G, E) :- call_static(G, E).
 
 %   split(+T, +Ps0, -T1, -Ps): T with its column references replaced by
 %   the particles' values, for each group of particles that share them.
@@ -1020,18 +1101,36 @@ draw_each1([I|Is], C1, Pat, P, C) :-
     ),
     draw_each1(Is, C1, Pat, P, C).
 
-%   derived(+G, +T, +E, +Ps0, -Ps): G at time T by its clauses (each
-%   solution a branch).
+%   derived(+G, +T, +E, +Ps0, -Ps): G at time T: from the instances
+%   materialised at T (a predicate a transition body reads at t: each
+%   group of particles with the same instances a branch per instance),
+%   else by its clauses (each solution a branch).
+derived(G, T, E, Ps0, Ps) :-
+    E = env(M, _, _, _, _, _, _),
+    functor(G, N, A),
+    M:'$b_lookback'(N/A),
+    env_time_table(E, T, Tab),
+    tab_get(Tab, '$inst'(N/A), e(C, S, _)),
+    !,
+    (   S = same(L)
+    ->  Ps = Ps0
+    ;   split_column(C, Ps0, L, Ps)
+    ),
+    member(G, L).
 derived(G, T, E, Ps0, Ps) :-
     E = env(M, _, _, _, _, _, _),
     (   T =:= 0 -> K = zero, Now = 0 ; K = next, Now is T-1 ),
-    (   M:'$b_der'(H, K, B0, _), Now1 = Now
-    ;   M:'$b_der'(H, now, B0, _), Now1 = T
+    (   M:'$b_der'(H, K, B0, L), Now1 = Now
+    ;   M:'$b_der'(H, now, B0, L), Now1 = T
     ),
     copy_term(H-B0, G1-B),
     G1 = G,
     env_now(E, Now1, E1),
-    beval(B, E1, Ps0, Ps).
+    beval(B, E1, Ps0, Ps),
+    (   has_free_var(G)                 % not range-restricted: as ddc.pl, an error
+    ->  throw(error(ddc(non_ground_head(G), M:L), _))
+    ;   true
+    ).
 
                  /*******************************
                  *            FILTER            *
@@ -1077,17 +1176,44 @@ new_group(M, N, Seed, Check, State) :-
           E = env(M, N, -1, t(-1, Tab0, 0, Tab), [], [], Ck),
           numlist(1, N, All),
           sweep(M, zero, E, 0, All),
+          materialise_derived(M, E, 0, All),
           random_property(state(R)) ),
         set_random(state(Saved))),
     State = bs(M, N, 0, t(-1, Tab0, 0, Tab), [], R).
 
+%   materialise_derived(+M, +E, +T, +All): each lookback predicate's
+%   instances at T, per particle (a list without repeats, in the order
+%   its clauses give them), as the entry '$inst'(N/A) of T's table.
+materialise_derived(M, E, T, All) :-
+    forall(M:'$b_lookback'(N/A),
+           (   functor(G, N, A),
+               Now is T-1,
+               env_now(E, Now, E1),
+               env_time_table(E, T, Tab),
+               E = env(_, Size, _, _, _, _, _),
+               collect(G, G:(t+1), L, E1, All, _),
+               functor(C, c, Size),
+               (   L = '$c'(LC, _, _)
+               ->  sets_each(All, LC, C)
+               ;   list_to_set(L, Set), fill(Size, C, Set)
+               ),
+               tab_put(Tab, '$inst'(N/A), e(C, open, none)),
+               tab_get(Tab, '$inst'(N/A), Entry),
+               settle(Entry)
+           )).
+
+sets_each([], _, _).
+sets_each([I|Is], LC, C) :-
+    arg(I, LC, L), list_to_set(L, Set), arg(I, C, Set),
+    sets_each(Is, LC, C).
+
 %   sweep(+M, +Kind, +E, +T, +All): every ground head of a Kind clause
 %   drawn at T for the particles that have it.  The heads come from the
-%   goals the clause's body starts with that draw nothing: static goals,
-%   and reads at t, whose keys are those held (so a value held at t that a
-%   persistence clause such as h:t+1 ~ val(V) := h:t ~= V carries on is
-%   carried on in the particles that hold it, as the per-particle filter's
-%   sweep does).
+%   goals the clause's body starts with: static goals, derived atoms
+%   (pos(A):t+1 := hidden(A):t+1, ...: the per-particle filter's sweep
+%   proves the whole body), and reads at t, whose keys are those held (so
+%   a value held at t that a persistence clause such as h:t+1 ~ val(V) :=
+%   h:t ~= V carries on is carried on in the particles that hold it).
 sweep(M, K, E, T, All) :-
     findall(X-Ps, sweep_head(M, K, E, All, X, Ps), Pairs0),
     keysort(Pairs0, Pairs),
@@ -1122,7 +1248,10 @@ sweep_prefix(A, M, P) :-
     (   sweep_goal(A, M) -> P = A ; P = true ).
 
 sweep_goal(G, M) :-
-    (   nonvar(G), G = (_:TE ~= _) -> TE == t ; static_goal(G, M) ).
+    (   nonvar(G), G = (_:TE ~= _) -> TE == t
+    ;   nonvar(G), G = (D:_), callable(D) -> true        % a derived atom (hidden(A):t+1)
+    ;   static_goal(G, M)
+    ).
 
 static_goal(G, M) :-
     callable(G), G \= _:_, G \= (_ ~= _), G \= (_, _), G \= (_ ; _), G \= (_ -> _),
@@ -1174,6 +1303,7 @@ group_step(State0, Obs, Facts, Check, step(State, LWs)) :-
           new_column(N, 0.0, LW),
           forall(member(H-V, HVs), weigh_observation(E, H, V, All, LW)),
           sweep(M, next, E, T1, All),
+          materialise_derived(M, E, T1, All),
           random_property(state(R)) ),
         set_random(state(Saved))),
     LW =.. [_|LWs],
@@ -1437,6 +1567,20 @@ flags(I, N, Ps, [0|Fs]) :- I1 is I+1, flags(I1, N, Ps, Fs).
 batch_values(groups(Gs), Template, Goal, Values) :- !,
     maplist(group_values(Template-Goal), Gs, Vss),
     append(Vss, Values).
+batch_values(S, Template, Goal, Values) :-          % a variable's values: read as they are
+    nonvar(Goal), Goal = (X:TE ~= V), var(V), ground(X),
+    (   Template == V -> Wrap = plain ; Template == value(V) -> Wrap = value ),
+    !,
+    query_env(S, E, All),
+    read_time(TE, E, T),
+    (   env_time_table(E, T, _)
+    ->  with_state(S, value(E, X, T, All, Entry)),
+        arg(1, Entry, C),
+        C =.. [_|Vs],
+        maplist(wrapped_value(Wrap), Vs, Values)
+    ;   S = bs(_, N, _, _, _, _),
+        length(Values, N), maplist(=(none), Values)
+    ).
 batch_values(S, Template, Goal, Values) :-
     query_env(S, E, All),
     S = bs(_, N, _, _, _, _),
@@ -1445,6 +1589,12 @@ batch_values(S, Template, Goal, Values) :-
     with_state(S, forall(beval(Goal, E, All, Ps),
                          ( plan(Template, Tmpl, Bs), value_each(Ps, Bs, Tmpl, Done, VC) ))),
     VC =.. [_|Values].
+
+wrapped_value(Wrap, V, W) :-
+    (   ( V == '$undef' ; V == '$u' ) -> W = none
+    ;   Wrap == value -> W = value(V)
+    ;   W = V
+    ).
 
 group_values(TG, G, Values) :-
     copy_term(TG, Template-Goal),

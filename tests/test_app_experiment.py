@@ -46,12 +46,12 @@ def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypat
     calls: list[tuple[str, int]] = []
     methods_run: list[tuple[str, int, list[str]]] = []
 
-    def fake_unit(label, scenario, seed, methods, particles, cache, threads):
+    def fake_unit(label, scenario, seed, methods, particles, cache, threads, engine):
         calls.append((scenario.stem, seed))
         methods_run.append((scenario.stem, seed, list(methods)))
         kept = seed % 2 == 0
         return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": m,
-                 "particles": particles, "threads": threads,
+                 "particles": particles, "threads": threads, "engine": engine,
                  "summary": {"objects": [{"id": "ball_1", "symbols": ["ball-1"],
                                           "identity_kept": kept}],
                              "id_switches": 0, "idf1": 1.0}}
@@ -86,6 +86,19 @@ def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypat
     lines = experiment.read_summaries(log)
     log.write_text("".join(json.dumps({k: v for k, v in line.items() if k != "threads"}) + "\n"
                            for line in lines if line.get("threads") == 1))
+    calls.clear()
+    experiment.run_experiment(options)
+    assert calls == []
+
+    # another engine (other draws) runs the reasoning again; lines recorded before the engine
+    # was (no "engine") were made with the per-particle one
+    calls.clear()
+    options.engine = "per_particle"
+    experiment.run_experiment(options)
+    assert calls == [("transitive", 0), ("transitive", 1), ("transitive", 2)]
+    lines = experiment.read_summaries(log)
+    log.write_text("".join(json.dumps({k: v for k, v in line.items() if k != "engine"}) + "\n"
+                           for line in lines if line.get("engine") == "per_particle"))
     calls.clear()
     experiment.run_experiment(options)
     assert calls == []

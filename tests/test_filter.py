@@ -286,14 +286,19 @@ def test_bad_observations_raise_and_leave_the_filter_usable(engine: str) -> None
 
 def test_auto_takes_the_batched_engine_for_programs_in_its_fragment(tmp_path: Path) -> None:
     too = Path(__file__).resolve().parents[1] / "prolog" / "too.pl"
-    with Filter(RANDOM_WALK, particles=20) as f:
-        assert f.engine == "batched"
-    with Filter(too, particles=20) as f:  # reads derived atoms at t: outside the fragment
+    outside = tmp_path / "inline_draw.pl"   # sample/2 in a body: outside the fragment
+    outside.write_text("x:0 ~ val(0.0).\n"
+                       "x:t+1 ~ val(Y) := x:t ~= X, sample(gaussian(X, 1.0), Y).\n")
+    for program in (RANDOM_WALK, too):
+        with Filter(program, particles=20) as f:
+            assert f.engine == "batched"
+    with Filter(outside, particles=20) as f:
         assert f.engine == "per_particle"
+        f.step([])
     with Filter(RANDOM_WALK, particles=20, engine="per_particle") as f:
         assert f.engine == "per_particle"
-    with pytest.raises(FilterError, match=r"too\.pl:\d+: outside what the batched filter"):
-        Filter(too, particles=20, engine="batched")
+    with pytest.raises(FilterError, match=r"inline_draw\.pl:2: outside what the batched filter"):
+        Filter(outside, particles=20, engine="batched")
     with pytest.raises(ValueError, match="engine"):
         Filter(RANDOM_WALK, engine="fast")  # type: ignore[arg-type]
 

@@ -41,6 +41,7 @@ class ExperimentOptions:
     first_game_seed: int = 0
     jobs: int = 1
     threads: int = DEFAULT_THREADS  # Prolog threads per filter (the particles depend on it)
+    engine: str = "auto"            # the filter's engine (bridge.Filter's; the particles too)
 
 
 def game_scenarios(out: Path, games: int, first_seed: int = 0) -> list[Path]:
@@ -74,24 +75,25 @@ def percept_stream(scenario: Path, seed: int, cache: Path) -> Path:
 
 
 def run_method(method: str, stream: Path, particles: int, seed: int,
-               threads: int = DEFAULT_THREADS) -> dict[str, Any]:
+               threads: int = DEFAULT_THREADS, engine: str = "auto") -> dict[str, Any]:
     """One method on one percept stream -> its summary."""
     if method in ("reasoning", "no-reasoning"):
         output = run(RunOptions(percepts=stream, particles=particles, seed=seed,
                                 reasoning=method == "reasoning", progress=False,
-                                threads=threads))
+                                threads=threads, engine=engine))  # type: ignore[arg-type]
         return output.summary
     records = run_baseline(method, list(read_percepts(stream)))
     return make_summary(records, evaluate(records), extra={"method": method})
 
 
 def run_unit(label: str, scenario: Path, seed: int, methods: Sequence[str], particles: int,
-             cache: Path, threads: int = DEFAULT_THREADS) -> list[dict[str, Any]]:
+             cache: Path, threads: int = DEFAULT_THREADS,
+             engine: str = "auto") -> list[dict[str, Any]]:
     """Every method on one (scenario, seed): the lines of ``summaries.jsonl``."""
     stream = percept_stream(scenario, seed, cache)
     return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": method,
-             "particles": particles, "threads": threads,
-             "summary": run_method(method, stream, particles, seed, threads)}
+             "particles": particles, "threads": threads, "engine": engine,
+             "summary": run_method(method, stream, particles, seed, threads, engine)}
             for method in methods]
 
 
@@ -124,7 +126,10 @@ def run_experiment(options: ExperimentOptions,
         (line["scenario"], line["seed"], line["method"]): line
         for line in read_summaries(log_path)
         if line.get("particles", options.particles) == options.particles
-        and (line["method"] != "reasoning" or line.get("threads", 1) == options.threads)
+        and (line["method"] != "reasoning"
+             or (line.get("threads", 1) == options.threads
+                 # (runs recorded before the engine was, ran the per-particle one)
+                 and line.get("engine", "per_particle") == options.engine))
     }
     todo = [(label, scenario, seed,
              [m for m in options.methods if (scenario.stem, seed, m) not in done])
@@ -141,7 +146,7 @@ def run_experiment(options: ExperimentOptions,
                          f"({len(done)} runs recorded)")
 
         args = [(label, scenario, seed, methods, options.particles, out / "percepts",
-                 options.threads) for label, scenario, seed, methods in todo]
+                 options.threads, options.engine) for label, scenario, seed, methods in todo]
         if options.jobs > 1 and len(args) > 1:
             with ProcessPoolExecutor(max_workers=options.jobs) as pool:
                 for lines in pool.map(run_unit, *zip(*args, strict=True)):

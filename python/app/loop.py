@@ -14,6 +14,7 @@ import numpy as np
 from anchoring import AnchorManager, FrameResult
 from app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS, AnchorState, OcclusionReasoner
 from app.sources import PendingFrame, SourceFrame
+from bridge.filter import Engine
 from evaluation import FrameTimings, Hypothesis, TrackingRecord, point_estimate, record_for_frame
 
 logger = logging.getLogger(__name__)
@@ -34,6 +35,9 @@ class LoopConfig:
     # Prolog threads that step the particles (bridge.Filter's ``threads``): the particles
     # depend on the seed and this number, not on the machine.
     threads: int = DEFAULT_THREADS
+    # The filter's engine (bridge.Filter's ``engine``): auto takes the batched one when the
+    # theory is in its fragment (prolog/too.pl is), else the per-particle one.
+    engine: Engine = "auto"
     # Anchoring may re-identify a percept by appearance alone when it looks like exactly one
     # anchor left over (AnchorManager.reid_seconds); False switches that off, so that only
     # the matcher (and, with reasoning, the particles of hidden anchors) re-acquires.
@@ -71,7 +75,7 @@ class AnchoringLoop:
         self.reasoner = (
             OcclusionReasoner(config.theory, particles=config.particles, seed=config.seed,
                               resample_threshold=config.resample_threshold,
-                              threads=config.threads)
+                              threads=config.threads, engine=config.engine)
             if config.reasoning else None
         )
         self.rejected_percepts = 0

@@ -12,6 +12,7 @@ import numpy as np
 
 from app.naming import category_atom, symbol_atom
 from bridge import DEFAULT_THREADS, Filter, terms
+from bridge.filter import Engine
 
 DEFAULT_THEORY = Path(__file__).resolve().parents[2] / "prolog" / "too.pl"
 
@@ -38,10 +39,11 @@ class OcclusionReasoner:
 
     def __init__(self, theory: str | Path = DEFAULT_THEORY, particles: int = 1000,
                  seed: int = 0, resample_threshold: float = 0.9,
-                 threads: int = DEFAULT_THREADS) -> None:
+                 threads: int = DEFAULT_THREADS, engine: Engine = "auto") -> None:
         self.theory = Path(theory)
         self.filter = Filter(self.theory, particles=particles, seed=seed,
-                             resample_threshold=resample_threshold, threads=threads)
+                             resample_threshold=resample_threshold, threads=threads,
+                             engine=engine)
         self._symbols: dict[str, str] = {}  # atom -> symbol
 
     @property

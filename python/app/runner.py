@@ -90,6 +90,7 @@ def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
         "method": "reasoning" if options.reasoning else "no-reasoning",
         "particles": options.particles if options.reasoning else 0,
         "threads": options.threads if options.reasoning else 0,
+        "engine": loop.reasoner.filter.engine if loop.reasoner is not None else "",
         "seed": options.seed,
         "zero_weight_events": (loop.reasoner.filter.zero_weight_events
                                if loop.reasoner is not None else 0),

@@ -20,6 +20,9 @@ def register(sub: Any) -> None:
     parser.add_argument("--threads", type=int, default=2,
                         help="Prolog threads per filter (default 2; the particles depend on the "
                              "seed and this number)")
+    parser.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
+                        help="the filter's engine (default auto); a run recorded with another "
+                             "engine is run again")
     parser.add_argument("--methods", default=None,
                         help="comma-separated subset of reasoning,no-reasoning,sort,bytetrack,"
                              "ocsort (default all)")
@@ -42,7 +45,7 @@ def main(args: argparse.Namespace) -> int:
     table = run_experiment(
         ExperimentOptions(out=args.out, seeds=args.seeds, games=args.games,
                           particles=args.particles, methods=methods, scenarios=scenarios,
-                          jobs=args.jobs, threads=args.threads),
+                          jobs=args.jobs, threads=args.threads, engine=args.engine),
         progress=lambda msg: print(msg, flush=True),
     )
     print(table)

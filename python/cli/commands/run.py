@@ -19,6 +19,9 @@ def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> N
     parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
                         help=f"Prolog threads that step the particles (default "
                              f"{DEFAULT_THREADS}; the particles depend on the seed and it)")
+    parser.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
+                        help="the filter's engine (default auto: the batched one for a theory "
+                             "in its fragment, as prolog/too.pl)")
     parser.add_argument("--resample-threshold", type=float, default=0.9,
                         help="resample when ESS < this fraction of the particles (default 0.9)")
     parser.add_argument("--out", type=Path, default=None,
@@ -55,7 +58,7 @@ def main(args: argparse.Namespace) -> int:
         scenario=args.scenario, percepts=args.percepts, particles=args.particles,
         theory=args.theory, seed=args.seed, reasoning=not args.no_reasoning,
         resample_threshold=args.resample_threshold, reidentify=not args.no_reid, out=args.out,
-        threads=args.threads, overlap=not args.sequential,
+        threads=args.threads, engine=args.engine, overlap=not args.sequential,
         picture_every=args.every, progress=not args.quiet,
     ))
     print(format_summary(output.summary))
