@@ -76,10 +76,11 @@ filter_new(File, N, Seed, F) :-
 %       stream seeded from the filter's.  The particles depend on Seed and
 %       K, not on the machine; K = 1 steps them one after the other in the
 %       calling thread.
-%     - engine(E): per_particle (the default), batched (ddc_batch.pl:
-%       each clause evaluated once for a batch of particles; a program
-%       outside its fragment is an error naming the clause), or auto
-%       (batched if the program is in the fragment, else per_particle).
+%     - engine(E): auto (the default: batched if the program is in the
+%       batched engine's fragment, else per_particle), batched
+%       (ddc_batch.pl: each clause evaluated once for a batch of
+%       particles; a program outside its fragment is an error naming the
+%       clause) or per_particle (this file: one particle at a time).
 %       The batched engine gives other particles from the same seed (its
 %       draws come clause by clause), ignores share, and splits the
 %       particles into threads(K) groups stepped at the same time.
@@ -227,26 +228,16 @@ filter_free(F) :-
 %   error.
 filter_step(F, Obs, Acts, LogWs) :-
     batch_filter(F, H), !,
-    must_be(list, Obs),
-    must_be(list, Acts),
-    forall(member(O, Obs), must_be_ground_item(O)),
-    forall(member(A, Acts), must_be_ground_item(A)),
-    partition(weighted_observation, Obs, Weighted, PlainObs),
-    append(Acts, PlainObs, Facts),
+    step_input(Obs, Acts, Weighted, Facts),
     arg(1, H, S0),
     batch_step(S0, Weighted, Facts, step(S, LogWs)),
     batch_commit(H, S0, S).
 filter_step(F, Obs, Acts, LogWs) :-
     filter_state(F, State),
     State = filter(M, N, T, Ws0, _, R0, Sh0),
-    must_be(list, Obs),
-    must_be(list, Acts),
-    forall(member(O, Obs), must_be_ground_item(O)),
-    forall(member(A, Acts), must_be_ground_item(A)),
+    step_input(Obs, Acts, Weighted, Facts0),
     T1 is T+1,
     M:'$ddc_info'(Info),
-    partition(weighted_observation, Obs, Weighted, PlainObs),
-    append(Acts, PlainObs, Facts0),
     group_facts(Facts0, Facts),
     maplist(observation_key(Info, T1), Weighted, Keys),
     scratch_copy(F, Ws0, Sh0, Ws, Sh),
@@ -608,6 +599,17 @@ commit(F, State, T, Ws, Sh, T0, Ws0, Sh0, R) :-
     nb_setarg(6, State, R),
     atom_concat(F, '$next', FN),
     nb_delete(FN).
+
+%   step_input(+Obs, +Acts, -Weighted, -Facts): a step's input checked
+%   (lists of ground items), its weighted observations (h ~= v) and its
+%   facts (the actions, then the plain observations).
+step_input(Obs, Acts, Weighted, Facts) :-
+    must_be(list, Obs),
+    must_be(list, Acts),
+    forall(member(O, Obs), must_be_ground_item(O)),
+    forall(member(A, Acts), must_be_ground_item(A)),
+    partition(weighted_observation, Obs, Weighted, PlainObs),
+    append(Acts, PlainObs, Facts).
 
 weighted_observation(O) :-
     nonvar(O), O = (_ ~= _).
