@@ -1146,18 +1146,20 @@ derived(G, T, E, Ps0, Ps) :-
 %   (the first seeded with Seed, the others with seeds drawn from it), whose
 %   steps run at the same time in as many threads (see "Groups" below).
 %   The particles depend on Seed and Threads, not on the machine.
-batch_new(M, Items, File, N, Seed, K, State) :-
+batch_new(M, Items, File, N, Seed, K0, State) :-
     batch_check_program(Items, File),
     compile(M, Items),
+    K is min(K0, N),                    % (no empty group)
     (   K =:= 1
     ->  new_group(M, N, Seed, true, State)
-    ;   random_property(state(Saved)),
+    ;   K1 is K-1,
+        length(Seeds, K1),
+        random_property(state(Saved)),
         call_cleanup(( set_random(seed(Seed)),
-                       K1 is K-1, length(Seeds, K1),
                        maplist(random_between(0, 0x3fffffffffffffff), Seeds) ),
                      set_random(state(Saved))),
         group_sizes(N, K, Sizes),
-        K1 is K-1, length(NoChecks, K1), maplist(=(false), NoChecks),
+        length(NoChecks, K1), maplist(=(false), NoChecks),
         maplist(new_group(M), Sizes, [Seed|Seeds], [true|NoChecks], Gs),
         State = groups(Gs)
     ).
@@ -1223,14 +1225,17 @@ sweep(M, K, E, T, All) :-
            ;   ord_union(Pss, Ps), value(E, X, T, Ps, _)
            )).
 
-%   (Ps is all when the prefix is static: every particle.)
+%   (Ps is all when the prefix is static: every particle.  A head whose
+%   key reads a column, x(K):t+1 := k:t ~= K, ..., gives a key per group
+%   of particles with the same value.)
 sweep_head(M, K, E, All, X, Ps) :-
     M:'$b_rv'(H, K, _, B, _), H \= observation(_),
-    copy_term(H-B, X-B1),
+    copy_term(H-B, X0-B1),
     sweep_prefix(B1, M, P),
     (   static_conj(P, M)
-    ->  prefix_solutions(P, E), Ps = all
-    ;   beval(P, E, All, Ps)
+    ->  prefix_solutions(P, E), Ps = all, X = X0
+    ;   beval(P, E, All, Ps0),
+        split(X0, Ps0, X, Ps)
     ),
     ground(X).
 

@@ -136,6 +136,18 @@ test(a_computed_key_splits_the_batch) :-
     forall(member(X1-Z1, Ps), ( X1 =:= 1 -> Z1 == a ; Z1 == b )),
     filter_free(F).
 
+%   The sweep draws a head whose key reads a column (one key per value),
+%   so that the next step still holds it at t.
+test(a_head_key_read_from_a_column_is_swept) :-
+    program([ 'k:0 ~ uniform([1, 2, 3]).', 'k:t+1 ~ val(K) := k:t ~= K.',
+              'x(K):t+1 ~ val(K) := k:t ~= K.' ], File),
+    filter_new(File, 30, 1, [engine(batched)], F),
+    filter_step(F, [], [], _), filter_step(F, [], [], _),
+    values(F, (k:t ~= K, (x(K):t-1) ~= X)-(K-X), Ps),
+    \+ memberchk(none, Ps),                  % (every particle holds its x(K))
+    forall(member(K1-X1, Ps), X1 == K1),
+    filter_free(F).
+
 %   The previous time stays readable after a step and after a resampling
 %   (resampled when first read), and undo restores the particles.
 test(previous_time_after_resampling_and_undo) :-
