@@ -36,6 +36,7 @@ sys.path.insert(0, str(HERE.parent / "python"))
 from app.reasoning import DEFAULT_THEORY  # noqa: E402
 from app.runner import RunOptions, run  # noqa: E402
 from bridge import DEFAULT_THREADS, Filter  # noqa: E402
+from bridge.filter import ENGINES  # noqa: E402
 
 Frame = tuple[list[str], list[str]]
 
@@ -100,7 +101,7 @@ def main(argv: list[str] | None = None) -> int:
                         help="Prolog threads stepping the particles (default: bridge.Filter's)")
     parser.add_argument("--shared-only", action="store_true",
                         help="leave out the reference replay")
-    parser.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
+    parser.add_argument("--engine", choices=ENGINES, default="auto",
                         help="the engine timed (default auto: the batched one for too.pl); the "
                              "reference is the per-particle engine, or for it the same engine "
                              "without shared values")

@@ -47,6 +47,7 @@ sys.path.insert(0, str(HERE.parent / "python"))
 import filter_numpy_reference as model  # noqa: E402
 from bridge import DEFAULT_THREADS, Filter, FilterError  # noqa: E402
 from bridge import prolog as bridge_prolog  # noqa: E402
+from bridge.filter import ENGINES  # noqa: E402
 
 TARGET_MS = 33.0
 
@@ -157,7 +158,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
                         help="Prolog threads stepping the particles (default: bridge.Filter's)")
     parser.add_argument("--json", action="store_true", help="end with a JSON line")
-    parser.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
+    parser.add_argument("--engine", choices=ENGINES, default="auto",
                         help="the filter engine, as bridge.Filter's engine (default auto)")
     parser.add_argument("--calls", type=int, default=0, metavar="K",
                         help="with one configuration: also print the K most-called predicates "

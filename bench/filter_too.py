@@ -32,6 +32,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "python"))
 
 from bridge import Filter, terms  # noqa: E402
+from bridge.filter import ENGINES  # noqa: E402
 
 PROGRAM = HERE.parent / "prolog" / "too.pl"
 TARGET_MS = 33.0
@@ -98,7 +99,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--steps", type=int, default=20, help="steps timed (default 20)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--json", action="store_true", help="end with a JSON line (N=1000, M=10)")
-    parser.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
+    parser.add_argument("--engine", choices=ENGINES, default="auto",
                         help="the engine timed (default auto: the batched one for too.pl); the "
                              "reference column is the per-particle engine, or for it the same "
                              "engine without shared values")

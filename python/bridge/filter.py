@@ -59,7 +59,7 @@ logger = logging.getLogger(__name__)
 
 Resampling = Literal["systematic", "multinomial", "residual"]
 Engine = Literal["per_particle", "batched", "auto"]
-ENGINES: tuple[Engine, ...] = ("per_particle", "batched", "auto")
+ENGINES: tuple[Engine, ...] = ("auto", "batched", "per_particle")
 #: Prolog threads that step the particles unless told otherwise (the 2-core machine's cores)
 DEFAULT_THREADS = 2
 _TEMPLATE_VAR = "DdcBridgeValue__"
@@ -339,7 +339,8 @@ class Filter:
         a program outside its fragment raises :class:`FilterError` naming the clause);
         ``"auto"`` takes the batched engine when the program is in its fragment. The two give
         other particles from the same seed (the draws come in another order); the batched one
-        ignores ``share`` and ``threads``."""
+        ignores ``share``. After construction ``engine`` is the one that steps the particles
+        (auto resolved)."""
         if int(particles) < 1:
             raise ValueError(f"particles must be >= 1, got {particles}")
         if int(threads) < 1:

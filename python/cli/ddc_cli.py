@@ -33,6 +33,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from cli.options import add_engine_option
+
 
 class CliError(Exception):
     """A message for the user (no traceback)."""
@@ -323,10 +325,7 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--threads", type=_positive_int, default=2,
                    help="Prolog threads that step the particles (default 2; the particles "
                         "depend on the seed and this number)")
-    f.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
-                   help="batched: each clause evaluated once for a batch of particles; "
-                        "per_particle: one particle at a time; auto (default): batched when "
-                        "the program is in its fragment")
+    add_engine_option(f, "")
     f.add_argument("--query", action="append", default=[], metavar="GOAL",
                    help="a goal whose probability is printed after each step (repeatable)")
     f.add_argument("--distribution", action="append", default=[], metavar="TERM",

@@ -5,6 +5,18 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+#: bridge.Filter's engines, auto first (the default), for --engine (not imported from the
+#: bridge here: importing it starts Prolog)
+ENGINES = ("auto", "batched", "per_particle")
+
+
+def add_engine_option(parser: argparse.ArgumentParser, what: str) -> None:
+    """``--engine``: the filter's engine (bridge.Filter's ``engine``)."""
+    parser.add_argument("--engine", choices=ENGINES, default="auto",
+                        help="the filter's engine: batched (each clause evaluated once for a "
+                             "batch of particles), per_particle, or auto (the default: batched "
+                             f"when the program is in its fragment){what}")
+
 
 def add_frame_options(parser: argparse.ArgumentParser) -> None:
     """The scenario argument and how its frames are rendered (render, perceive)."""

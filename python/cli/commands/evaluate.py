@@ -7,6 +7,8 @@ import argparse
 from pathlib import Path
 from typing import Any
 
+from cli.options import add_engine_option
+
 
 def register(sub: Any) -> None:
     parser = sub.add_parser("evaluate", help="measure identity keeping over many runs",
@@ -20,9 +22,7 @@ def register(sub: Any) -> None:
     parser.add_argument("--threads", type=int, default=2,
                         help="Prolog threads per filter (default 2; the particles depend on the "
                              "seed and this number)")
-    parser.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
-                        help="the filter's engine (default auto); a run recorded with another "
-                             "engine is run again")
+    add_engine_option(parser, "; a run recorded with another engine is run again")
     parser.add_argument("--methods", default=None,
                         help="comma-separated subset of reasoning,no-reasoning,sort,bytetrack,"
                              "ocsort (default all)")

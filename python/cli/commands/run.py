@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS
+from cli.options import add_engine_option
 
 
 def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> None:
@@ -19,9 +20,7 @@ def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> N
     parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
                         help=f"Prolog threads that step the particles (default "
                              f"{DEFAULT_THREADS}; the particles depend on the seed and it)")
-    parser.add_argument("--engine", choices=["auto", "batched", "per_particle"], default="auto",
-                        help="the filter's engine (default auto: the batched one for a theory "
-                             "in its fragment, as prolog/too.pl)")
+    add_engine_option(parser, ", as prolog/too.pl is")
     parser.add_argument("--resample-threshold", type=float, default=0.9,
                         help="resample when ESS < this fraction of the particles (default 0.9)")
     parser.add_argument("--out", type=Path, default=None,
