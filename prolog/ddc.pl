@@ -34,6 +34,7 @@
             filter_values/4,            % +Filter, +Template, +Goal, -Values
             filter_rows/6,              % +Filter, +Template, +Goal, -Width, -Floats, -Values
             filter_time/2,              % +Filter, -T
+            filter_engine/2,            % +Filter, -Engine
             filter_size/2,              % +Filter, -N
             filter_statistics/2,        % +Filter, -Stats
             filter_free/1,              % +Filter
@@ -83,6 +84,7 @@
     filter_step(+Filter, +Observations, +Actions, -LogWeights), filter_undo(+Filter),
     filter_resample(+Filter, +Indices), filter_holds(+Filter, +Goal, -Flags),
     filter_values(+Filter, +Template, +Goal, -Values), filter_time(+Filter, -T),
+    filter_engine(+Filter, -Engine),
     filter_size(+Filter, -N), filter_statistics(+Filter, -Stats), filter_free(+Filter);
     filter_new(+ProgramFile, +N, +Seed, +Options, -Filter) with share(false) computes
     every value in every particle (see "Shared values" below), threads(K) steps the
@@ -206,20 +208,13 @@ resolve_file(Spec, File) :-
 ddc_program(M) :-
     current_program_(M), !.
 
-%   program_items(+File, -Items): the classified items of File's program
-%   (with the clauses its persistent/1 directives add, and rivals(Id, R)
-%   for each random variable clause: whether a later clause can define
-%   what it defines, see rivals/7), as the batched filter reads them
-%   (ddc_batch.pl).
-program_items(File, Items) :-
-    read_program(File, Items0),
-    classify_items(Items0, File, 1, Items1, Dirs),
-    directives_options(Dirs, File, _, Opts, _),
-    add_persistence(Opts, Items1, Items2),
-    program_info(Items2, Opts, Info),
-    findall(rivals(Id, R), ( member(rv(Id, X, K, _, _, _), Items2), tier(K, Tier),
-                             rivals(Id, X, K, Tier, Info, Items2, R) ), Rivals),
-    append(Items2, Rivals, Items).
+%   program_items(+Module, -Items): the classified items of the program
+%   loaded into Module (with the clauses its persistent/1 directives add,
+%   and rivals(Id, R) for each random variable clause: whether a later
+%   clause can define what it defines, see rivals/7), as the batched filter
+%   reads them (ddc_batch.pl); kept by compile_program/5.
+program_items(M, Items) :-
+    M:'$ddc_items'(Items).
 
 %   read_program(+File, -Items): Items is a list of t(Term, Line).
 read_program(File, Items) :-
@@ -275,6 +270,7 @@ declare_program_preds(M, Info) :-
     dynamic(M:'$rv'/9),
     dynamic(M:'$rv_pos'/3),
     dynamic(M:'$ddc_info'/1),
+    dynamic(M:'$ddc_items'/1),
     dynamic(M:'$ddc_tmp'/4),
     dynamic(M:'$sweep'/4),
     dynamic(M:'$sweep_key'/4),
@@ -336,7 +332,10 @@ compile_program(File, M, Items0, Clauses, Info) :-
               derived_name(N, dt1, DN1), append(Args, [T, W], CArgs), H1 =.. [DN1|CArgs] ),
             Sw2a),
     sort(Sw2a, Sw2),
-    append([DirClauses, Cs0, Ds, Ps, Sw1, Sw2], Clauses).
+    findall(rivals(Id, R), ( member(rv(Id, X, K, _, _, _), Items), tier(K, Tier),
+                             rivals(Id, X, K, Tier, Info, Items, R) ), Rivals),
+    append(Items, Rivals, BatchItems),
+    append([DirClauses, Cs0, Ds, Ps, Sw1, Sw2, ['$ddc_items'(BatchItems)]], Clauses).
 
 state_rv(rv(_, _, state, _, _, _)).
 

@@ -42,7 +42,7 @@
 
 :- module(ddc_batch,
           [ batch_check_program/2,      % +Items, +File
-            batch_new/7,                % +Module, +Items, +File, +N, +Seed, +Threads, -State
+            batch_new/6,                % +Module, +Items, +N, +Seed, +Threads, -State
             batch_step/4,               % +State0, +Observations, +Facts, -Result
             batch_resample/3,           % +State0, +Indices, -State
             batch_holds/3,              % +State, +Goal, -Flags
@@ -376,29 +376,36 @@ read_time(0, _, 0).
 %   evaluation after the bindings it reads): bind/2 makes Tmpl a
 %   particle's instance.
 plan(T, Tmpl, Binds) :-
-    plan(T, Tmpl, [], Binds0),
+    map_term(plan_leaf, T, Tmpl, [], Binds0),
     reverse(Binds0, Binds).
 
-plan(T, T, Bs, Bs) :- var(T), !.
-plan('$c'(C, P, V), V, Bs0, Bs) :- !,
+plan_leaf('$c'(C, P, V), V, Bs0, Bs) :-
     (   member(C0-P0, Bs0), C0 == C, P0 == P -> Bs = Bs0 ; Bs = [C-P|Bs0] ).
-plan(X, W, Bs0, Bs) :-
-    X = '$x'(Ex), !,
+plan_leaf(X, W, Bs0, Bs) :-
+    X = '$x'(Ex),
     (   member('$e'(W0, _, X0), Bs0), X0 == X
     ->  W = W0, Bs = Bs0
-    ;   plan(Ex, ExT, Bs0, Bs1),
+    ;   map_term(plan_leaf, Ex, ExT, Bs0, Bs1),
         Bs = ['$e'(W, ExT, X)|Bs1]
     ).
-plan(T, T, Bs, Bs) :- atomic(T), !.
-plan(T, T1, Bs0, Bs) :-
+
+%   map_term(:Leaf, +T, -T1, +A0, -A): T with each subterm S for which
+%   call(Leaf, S, S1, A0, A) succeeds replaced by S1 (its arguments not
+%   visited), the others copied, A threaded through the leaves from left
+%   to right.
+:- meta_predicate map_term(4, +, -, +, -).
+map_term(_, T, T, A, A) :- var(T), !.
+map_term(Leaf, T, T1, A0, A) :- call(Leaf, T, T1, A0, A), !.
+map_term(_, T, T, A, A) :- atomic(T), !.
+map_term(Leaf, T, T1, A0, A) :-
     compound_name_arguments(T, F, As),
-    plan_list(As, As1, Bs0, Bs),
+    map_args(As, Leaf, As1, A0, A),
     compound_name_arguments(T1, F, As1).
 
-plan_list([], [], Bs, Bs).
-plan_list([A|As], [A1|As1], Bs0, Bs) :-
-    plan(A, A1, Bs0, Bs1),
-    plan_list(As, As1, Bs1, Bs).
+map_args([], _, [], A, A).
+map_args([X|Xs], Leaf, [Y|Ys], A0, A) :-
+    map_term(Leaf, X, Y, A0, A1),
+    map_args(Xs, Leaf, Ys, A1, A).
 
 bind([], _).
 bind([B|Bs], I) :- bind_one(B, I), bind(Bs, I).
@@ -445,16 +452,13 @@ column_in(T, C) :-
     ).
 
 replace_eq(T, X, Y, T1) :-
+    map_term(replace_leaf(X, Y), T, T1, none, _).
+
+replace_leaf(X, Y, T, T1, A, A) :-
     (   T == X -> T1 = Y
-    ;   var(T) -> T1 = T
-    ;   compound(T), T \= '$c'(_, _, _)
-    ->  compound_name_arguments(T, F, As),
-        maplist(replace_in(X, Y), As, As1),
-        compound_name_arguments(T1, F, As1)
-    ;   T1 = T
+    ;   T = '$c'(_, _, _) -> T1 = T             % (a column: not walked)
     ).
 
-replace_in(X, Y, A, A1) :- replace_eq(A, X, Y, A1).
 
 %   beval(+Body, +Env, +Ps0, -Ps): the body for the particles Ps0 (a sorted
 %   list of indices, not empty); nondeterministic over branches (solutions
@@ -636,20 +640,9 @@ loop_clauses(instance(Value), Name, Head, Consts, I, Cond,
 %   abstract_numbers(+T, -T1, -Pairs): T with each number a variable;
 %   Pairs the Variable-Number pairs, in order.
 abstract_numbers(T, T1, Ps) :-
-    abstract_numbers(T, T1, Ps, []).
+    map_term(number_leaf, T, T1, Ps, []).
 
-abstract_numbers(T, T, Ps, Ps) :- var(T), !.
-abstract_numbers(T, V, [V-T|Ps], Ps) :- number(T), !.
-abstract_numbers(T, T, Ps, Ps) :- atomic(T), !.
-abstract_numbers(T, T1, Ns0, Ns) :-
-    compound_name_arguments(T, F, As),
-    abstract_list(As, As1, Ns0, Ns),
-    compound_name_arguments(T1, F, As1).
-
-abstract_list([], [], Ns, Ns).
-abstract_list([A|As], [A1|As1], Ns0, Ns) :-
-    abstract_numbers(A, A1, Ns0, Ns1),
-    abstract_list(As, As1, Ns1, Ns).
+number_leaf(T, V, [V-T|Ps], Ps) :- number(T).
 
 %   bind_goals(+Binds, ?I, -Columns, -ColumnVars, -Gets, -Evals): the goals
 %   that bind/2 runs for particle I, each column a variable (a clause must
@@ -854,8 +847,6 @@ tuple_of_vars(P, [A|Vs]) :-
 tuple_vars(P, [P]) :- var(P), !.
 tuple_vars((A, B), [A|Vs]) :- var(A), tuple_vars(B, Vs).
 
-tuple_arity(V, K) :- K =:= 1, !, V \== '$undef', V \== '$u'.
-tuple_arity(V, K) :- nonvar(V), V = (_, B), K1 is K-1, tuple_arity(B, K1).
 
                  /*******************************
                  *        RANDOM VARIABLES      *
@@ -1136,18 +1127,17 @@ derived(G, T, E, Ps0, Ps) :-
                  *            FILTER            *
                  *******************************/
 
-%!  batch_new(+Module, +Items, +File, +N, +Seed, +Threads, -State) is det.
+%!  batch_new(+Module, +Items, +N, +Seed, +Threads, -State) is det.
 %
 %   N particles at time 0 of the program Items (ddc.pl's classified
-%   clauses, already loaded into Module): every h:0 clause's ground heads
-%   drawn.  Throws batch_check_program/2's error outside the fragment.
+%   clauses, already loaded into Module, in the fragment: see
+%   batch_check_program/2): every h:0 clause's ground heads drawn.
 %   Threads > 1: the particles are split into that many contiguous groups
 %   (sizes differing by at most one), each with a random stream of its own
 %   (the first seeded with Seed, the others with seeds drawn from it), whose
 %   steps run at the same time in as many threads (see "Groups" below).
 %   The particles depend on Seed and Threads, not on the machine.
-batch_new(M, Items, File, N, Seed, K0, State) :-
-    batch_check_program(Items, File),
+batch_new(M, Items, N, Seed, K0, State) :-
     compile(M, Items),
     K is min(K0, N),                    % (no empty group)
     (   K =:= 1

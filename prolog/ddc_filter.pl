@@ -97,12 +97,12 @@ filter_new(File, N, Seed, Options, F) :-
     resolve_file(File, Abs),
     ddc_load(Abs, M),
     (   Engine \== per_particle,
-        program_items(Abs, Items),
+        program_items(M, Items),
         (   Engine == batched
-        ->  true
+        ->  batch_check_program(Items, Abs)
         ;   catch(batch_check_program(Items, Abs), error(ddc(batched_unsupported(_), _), _), fail)
         )
-    ->  batch_new(M, Items, Abs, N, Seed, K, BS),
+    ->  batch_new(M, Items, N, Seed, K, BS),
         new_filter_name(F),
         nb_setval(F, bfilter(none, none)),
         nb_getval(F, Holder),
@@ -182,6 +182,14 @@ with_rng(R, Goal, R1) :-
     set_random(state(R)),
     call_cleanup(( Goal, random_property(state(R1)) ),
                  set_random(state(Saved))).
+
+%!  filter_engine(+Filter, -Engine) is det.
+%
+%   The engine that steps Filter's particles: batched or per_particle.
+filter_engine(F, E) :-
+    (   batch_filter(F, _) -> E = batched
+    ;   filter_state(F, _), E = per_particle
+    ).
 
 %!  filter_time(+Filter, -T) is det.
 filter_time(F, T) :-

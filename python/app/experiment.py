@@ -21,6 +21,7 @@ import numpy as np
 
 from app.reasoning import DEFAULT_THREADS
 from app.runner import RunOptions, run
+from bridge.filter import Engine
 from evaluation import evaluate, make_summary, results_table
 from evaluation.baselines import BASELINES, run_baseline
 from percepts import read_percepts, write_percepts
@@ -41,7 +42,7 @@ class ExperimentOptions:
     first_game_seed: int = 0
     jobs: int = 1
     threads: int = DEFAULT_THREADS  # Prolog threads per filter (the particles depend on it)
-    engine: str = "auto"            # the filter's engine (bridge.Filter's; the particles too)
+    engine: Engine = "auto"         # the filter's engine (bridge.Filter's; the particles too)
 
 
 def game_scenarios(out: Path, games: int, first_seed: int = 0) -> list[Path]:
@@ -75,12 +76,12 @@ def percept_stream(scenario: Path, seed: int, cache: Path) -> Path:
 
 
 def run_method(method: str, stream: Path, particles: int, seed: int,
-               threads: int = DEFAULT_THREADS, engine: str = "auto") -> dict[str, Any]:
+               threads: int = DEFAULT_THREADS, engine: Engine = "auto") -> dict[str, Any]:
     """One method on one percept stream -> its summary."""
     if method in ("reasoning", "no-reasoning"):
         output = run(RunOptions(percepts=stream, particles=particles, seed=seed,
                                 reasoning=method == "reasoning", progress=False,
-                                threads=threads, engine=engine))  # type: ignore[arg-type]
+                                threads=threads, engine=engine))
         return output.summary
     records = run_baseline(method, list(read_percepts(stream)))
     return make_summary(records, evaluate(records), extra={"method": method})
@@ -88,7 +89,7 @@ def run_method(method: str, stream: Path, particles: int, seed: int,
 
 def run_unit(label: str, scenario: Path, seed: int, methods: Sequence[str], particles: int,
              cache: Path, threads: int = DEFAULT_THREADS,
-             engine: str = "auto") -> list[dict[str, Any]]:
+             engine: Engine = "auto") -> list[dict[str, Any]]:
     """Every method on one (scenario, seed): the lines of ``summaries.jsonl``."""
     stream = percept_stream(scenario, seed, cache)
     return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": method,

@@ -199,8 +199,7 @@ parse_goal(Text, Goal) :-
 
 new(Program, N, Seed, Share, Threads, Engine, Key, Used, Err) :-
     guarded(( ddc:filter_new(Program, N, Seed, [share(Share), threads(Threads), engine(Engine)], F),
-              ddc:filter_statistics(F, Stats),
-              ( memberchk(engine(batched), Stats) -> Used = batched ; Used = per_particle ),
+              ddc:filter_engine(F, Used),
               nb_setval(Key, F) ), Err),
     ( var(Used) -> Used = none ; true ).
 

@@ -30,6 +30,7 @@ test(outside_the_fragment_is_an_error_with_its_line) :-
     message_to_codes(E, Text),
     once(sub_atom(Text, _, _, _, ':2: outside what the batched filter evaluates')),
     filter_new(File, 10, 1, [engine(auto)], F),
+    filter_engine(F, per_particle),
     filter_statistics(F, Stats),
     \+ memberchk(engine(batched), Stats),
     filter_step(F, [], [], _),
@@ -46,6 +47,7 @@ message_to_codes(Kind, E, Codes) :-
 test(auto_takes_the_batched_engine_in_its_fragment) :-
     program([ 'x:0 ~ val(1).', 'x:t+1 ~ val(Y) := x:t ~= X, Y is X + 1.' ], File),
     filter_new(File, 10, 1, [], F),
+    filter_engine(F, batched),
     filter_statistics(F, Stats),
     memberchk(engine(batched), Stats),
     filter_step(F, [], [], _), filter_step(F, [], [], _),
