@@ -1003,9 +1003,20 @@ rv_clause(M, X, K, D, B, At) :-
 %   particles of the env's check list that this clause gave a value are
 %   checked for a later clause that also applies (check_rivals/8).
 assign_clause(E, X, T, K, B, D, At, Rest, C, Any) :-
+    run_clause(E, X, T, K, B, At, Rest, C, assign_branch(Any, C, D)).
+
+assign_branch(Any, C, D, Ps) :-
+    nb_setarg(1, Any, true),
+    assign(Ps, C, D).
+
+%   run_clause(+E, +X, +T, +K, +B, +At, +Rest, +C, :Action): Action on the
+%   particles of each branch of body B over Rest; a distribution error
+%   names the clause's line; then the particles of the env's check list
+%   that got a value in C are checked for a later clause that applies too.
+run_clause(E, X, T, K, B, At, Rest, C, Action) :-
     At = at(L, Id, R),
     E = env(M, _, _, _, _, _, Check),
-    catch(forall(beval(B, E, Rest, Ps1), ( nb_setarg(1, Any, true), assign(Ps1, C, D) )),
+    catch(forall(beval(B, E, Rest, Ps), call(Action, Ps)),
           error(ddc_distribution(D1, Why), _),
           throw(error(ddc(distribution(D1, Why), M:L), _))),
     (   R == true, Check \== []
@@ -1322,24 +1333,17 @@ weigh_observation(E, H, V, Ps, LW) :-
     ).
 
 %   (A distribution error names the clause; overlaps are checked as for
-%   draws, assign_clause/10.)
+%   draws: run_clause/9.)
 weigh_clause(E, H, T, K, B, D, At, V, Ps, Done, LW) :-
     uncomputed(Ps, Done, Rest),
     (   Rest == [] -> true
-    ;   At = at(L, Id, R),
-        E = env(M, _, _, _, _, _, Check),
-        catch(forall(beval(B, E, Rest, Ps1),
-                     ( plan(D, Tmpl, Bs), dist_prepare(Tmpl, P),
-                       weigh_each(Ps1, Bs, P, V, Done, LW) )),
-              error(ddc_distribution(D1, Why), _),
-              throw(error(ddc(distribution(D1, Why), M:L), _))),
-        (   R == true, Check \== []
-        ->  ord_intersection(Rest, Check, Watched),
-            exclude(uncomputed_at(Done), Watched, Given),
-            check_rivals(Given, E, H, T, K, Id, L)
-        ;   true
-        )
+    ;   run_clause(E, H, T, K, B, At, Rest, Done, weigh_branch(D, V, Done, LW))
     ).
+
+weigh_branch(D, V, Done, LW, Ps) :-
+    plan(D, Tmpl, Bs),
+    dist_prepare(Tmpl, P),
+    weigh_each(Ps, Bs, P, V, Done, LW).
 
 weigh_each(Ps, [C1-Pat], P, V, Done, LW) :-
     dist_mean_slots(P, Slots), Slots == Pat, !,
