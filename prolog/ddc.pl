@@ -23,8 +23,6 @@
             ddc_expectation_text/7,     % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Result
             ddc_distribution_text/7,    % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Pairs
             ddc_sample_world/4,         % +Module, +Query, +Options, -Facts
-            logistic/3,                 % +Inputs, +Weights, -P
-            linear/3,                   % +Inputs, +Weights, -Y
             filter_new/4,               % +ProgramFile, +N, +Seed, -Filter
             filter_new/5,               % +ProgramFile, +N, +Seed, +Options, -Filter
             filter_step/4,              % +Filter, +Observations, +Actions, -LogWeights
@@ -54,6 +52,7 @@
 :- use_module(ddc_dist).
 :- use_module(ddc_store).
 :- use_module(ddc_batch).
+:- reexport(ddc_models).       % logistic/3, linear/3, softmax/3, mean_list/2, ...
 
 :- op(700, xfx, ~).
 :- op(700, xfx, ~=).
@@ -79,7 +78,9 @@
     distribution(+Evidence, +Query, ?X, -Dist, +Options),
     ddc_query(+Module, +Evidence, +Query, +Options, -P, -stats(SE, ESS, NCounted, N))
   - Python bridge helpers: ddc_query_text/6, ddc_expectation_text/7, ddc_distribution_text/7
-  - logistic(+Inputs, +Weights, -P), linear(+Inputs, +Weights, -Y)
+  - logistic(+Inputs, +Weights, -P), linear(+Inputs, +Weights, -Y),
+    softmax(+Inputs, +WeightRows, -Ps), mean_list/2, mode_list/2,
+    antimode_list/2 (ddc_models.pl, re-exported)
   - Particle filter (ddc_filter.pl): filter_new(+ProgramFile, +N, +Seed, -Filter),
     filter_step(+Filter, +Observations, +Actions, -LogWeights), filter_undo(+Filter),
     filter_resample(+Filter, +Indices), filter_holds(+Filter, +Goal, -Flags),
@@ -114,7 +115,9 @@ a program as a directive: `:- use_module(library(ddc)). :- ddc_load(model).`
     Prolog builtins and library(lists) predicates, findall/3 (its goal may
     use DC literals), findall_forward/3 (same), true(P) (a fresh flip at
     each call), sample(D, X) (inline draw), belief(A) (A is ground),
-    timestep(T), logistic/3, linear/3, predicates declared with
+    timestep(T), the models and aggregates of learned clauses (logistic/3,
+    linear/3, softmax/3, mean_list/2, mode_list/2, antimode_list/2:
+    ddc_models.pl), predicates declared with
     `builtin(Pattern).` or defined by plain Prolog clauses in the program
     file.  A predicate with no clauses at all is looked up among the facts
     asserted into the world (actions and plain observations of the filter).
@@ -1003,8 +1006,8 @@ cb(true(P), _, ddc:'$flip'(P)) :- !.
 cb(sample(D, X), _, ddc:'$sample_inline'(D, X)) :- !.
 cb(belief(A), _, ground(A)) :- !.
 cb(timestep(T), ctx(_, Tc, _, _), (T = Tc)) :- !.
-cb(logistic(I, Ws, P), _, ddc:logistic(I, Ws, P)) :- !.
-cb(linear(I, Ws, P), _, ddc:linear(I, Ws, P)) :- !.
+cb(G, _, ddc_models:G) :-                   % logistic/3, linear/3, softmax/3, mean_list/2, ...
+    callable(G), predicate_property(ddc_models:G, exported), !.
 cb(G, C, Code) :-
     compound(G), functor(G, Op, 2), memberchk(Op, [<, >, =<, >=, =:=, =\=]),
     G =.. [Op, A, B],
@@ -1574,36 +1577,6 @@ range_(Lo, Hi, L) :-
 '$sample_inline'(D0, X) :-
     (   needs_eval(D0) -> eval_dist(D0, D) ; D = D0 ),
     dist_sample(D, X).
-
-%!  logistic(+Inputs, +Weights, -P) is det.
-%
-%   Logistic regression, the statistical model of learned clauses:
-%   P = 1/(1+exp(-(w1*x1 + ... + wn*xn + b))) with Weights = [w1,...,wn,b]
-%   (one more weight than inputs: the last is the bias).  So the paper's
-%   logistic([Distance],[-16.9,0.8],P1) is P1 = sigma(0.8 - 16.9*Distance),
-%   which falls with the distance.  Inputs and weights may be numbers or
-%   arithmetic expressions.
-logistic(Inputs, Weights, P) :-
-    linear(Inputs, Weights, Z),
-    (   Z >= 0 -> P is 1/(1+exp(-Z)) ; E is exp(Z), P is E/(1+E) ).
-
-%!  linear(+Inputs, +Weights, -Y) is det.
-%
-%   Linear model for Gaussian means: Y = w1*x1 + ... + wn*xn + b with
-%   Weights = [w1,...,wn,b].  E.g. `x ~ gaussian(M, 0.1) := y ~= Y,
-%   linear([Y], [2.0, 0.5], M).`
-linear(Inputs, Weights, Y) :-
-    must_be(list, Inputs),
-    must_be(list, Weights),
-    length(Inputs, N),
-    N1 is N+1,
-    (   length(Weights, N1) -> true
-    ;   domain_error(weights_one_more_than_inputs(N), Weights)
-    ),
-    dot(Inputs, Weights, 0.0, Y).
-
-dot([], [B], S, Y) :- Y is S + B.
-dot([X|Xs], [W|Ws], S0, Y) :- S is S0 + W*X, dot(Xs, Ws, S, Y).
 
                  /*******************************
                  *            QUERIES           *

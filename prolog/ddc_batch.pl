@@ -58,6 +58,7 @@
 :- use_module(library(pairs)).
 :- use_module(library(ordsets)).
 :- use_module(ddc_dist).
+:- use_module(ddc_models, []).
 
 :- set_prolog_flag(optimise, true).
 
@@ -673,6 +674,8 @@ call_static(G, E) :-
     E = env(M, _, _, _, Facts, _, _),
     (   M:'$b_static_pred'(G, Kind)
     ->  (   Kind == derived -> M:'$b_static'(G, B), static_body_call(B, E) ; M:G )
+    ;   predicate_property(ddc_models:G, exported)     % softmax/3, mean_list/2, ...
+    ->  ddc_models:G
     ;   predicate_property(M:G, visible)
     ->  M:G
     ;   member(G, Facts)
@@ -1264,6 +1267,7 @@ static_goal(G, M) :-
     G \= (\+ _), G \= findall(_, _, _), G \= findall_forward(_, _, _),
     G \= (_ is _), \+ test_goal(G),
     (   M:'$b_static_pred'(G, _) -> true
+    ;   predicate_property(ddc_models:G, exported) -> true
     ;   \+ predicate_property(M:G, visible)          % a fact of the step
     ).
 

@@ -1,0 +1,230 @@
+"""The structure learner's data, seen from Python: the only module of the learner that calls Prolog.
+
+``prolog/ddc_learn.pl`` owns the data (facts, background knowledge, declarative bias), the
+groundings of each node of a tree, the candidate literals and their outcomes in partial possible
+worlds, and the translation of a tree's leaves into DC clauses; the search and the leaf models
+live in :mod:`ddclearn`. Every call returns plain Python values (dicts, lists, numpy arrays).
+
+Example::
+
+    from bridge.learning import LearningData
+    data = LearningData(["data.pl"])
+    target = data.targets()[0]                  # {'name': 'occluded_by(A,O):t+1', ...}
+    root = data.root(target["predicate"])        # node id, y, weight, example per grounding
+    candidates = data.candidates(root.node)
+
+Errors of the data (a value outside its declared domain, a mode naming an unknown predicate, a
+target without facts, ...) raise :class:`bridge.DDCError` whose message names file:line and the
+cause.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import janus_swi as janus
+import numpy as np
+
+from bridge import prolog
+from bridge.program import DDCError
+
+LEARNER: Path = prolog.PROLOG_DIR / "ddc_learn.pl"
+
+_lock = threading.Lock()
+
+
+def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
+    prolog.ensure_loaded(LEARNER)
+    try:
+        with _lock:
+            result = janus.query_once(goal, bindings)
+    except janus.PrologError as error:
+        raise DDCError(_message(error)) from None
+    if not result.get("truth", False):
+        raise DDCError(f"the learner failed on {goal}")
+    return result
+
+
+def _message(error: janus.PrologError) -> str:
+    """The Prolog error as the user should read it (``file:line: cause``)."""
+    return str(error).strip()
+
+
+@dataclass(frozen=True)
+class Root:
+    """The root node of a target: one entry per grounding row."""
+
+    node: int
+    y: np.ndarray
+    weight: np.ndarray
+    example: np.ndarray
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """A candidate's outcome in the rows of a node (one entry per row and partial world)."""
+
+    row: np.ndarray
+    branch: np.ndarray
+    factor: np.ndarray
+    x: np.ndarray
+    pure: np.ndarray
+
+
+@dataclass(frozen=True)
+class Child:
+    """A child node made by a split: its rows come from the parent's ``row`` entries."""
+
+    node: int
+    branch: int
+    row: np.ndarray
+    factor: np.ndarray
+    x: np.ndarray
+
+
+def _outcome(d: dict[str, Any]) -> Outcome:
+    return Outcome(
+        row=np.asarray(d["row"], dtype=np.int64),
+        branch=np.asarray(d["branch"], dtype=np.int64),
+        factor=np.asarray(d["factor"], dtype=float),
+        x=np.asarray(d["x"], dtype=float),
+        pure=np.asarray(d["pure"], dtype=bool),
+    )
+
+
+class LearningData:
+    """Learning data (facts, background knowledge, bias) read into a Prolog module of its own.
+
+    Parameters
+    ----------
+    files : sequence of path
+        The data files (DC facts and clauses, Prolog clauses, declarative bias; DreaML's
+        declarations are read too).
+    seed : int, optional
+        Seeds the samples of continuous uncertain facts (their partial worlds).
+    samples : int, default=20
+        Samples per continuous uncertain fact.
+    max_worlds : int, default=4096
+        Most partial worlds one grounding may split into.
+    targets : bool, default=True
+        False for data that a program is scored on: no target need be declared or have facts.
+    """
+
+    def __init__(
+        self,
+        files: Sequence[str | Path],
+        *,
+        seed: int | None = None,
+        samples: int = 20,
+        max_worlds: int = 4096,
+        targets: bool = True,
+    ) -> None:
+        paths = [str(Path(f).resolve()) for f in files]
+        for p in paths:
+            if not Path(p).is_file():
+                raise DDCError(f"{p}: no such file")
+        options = f"[samples({int(samples)}), max_worlds({int(max_worlds)})"
+        if not targets:
+            options += ", targets(false)"
+        options += f", seed({int(seed)})]" if seed is not None else "]"
+        result = _call("term_string(_O, OT), ddc_learn:learn_load(Fs, _O, M)",
+                       {"Fs": paths, "OT": options})
+        self.module: str = str(result["M"])
+        self.files = tuple(paths)
+
+    # -- the data
+    def targets(self) -> list[dict[str, Any]]:
+        """The targets: name (DC head), predicate (internal name), kind, domain, file, line."""
+        result = _call("ddc_learn:learn_targets(M, Ts)", {"M": self.module})
+        return [dict(t) for t in result["Ts"]]
+
+    def warnings(self) -> list[str]:
+        """Warnings of the data, as ``file:line: cause`` lines."""
+        result = _call("ddc_learn_data:learn_data_warnings(M, Ss)", {"M": self.module})
+        return [str(s) for s in result["Ss"]]
+
+    # -- nodes
+    def root(self, predicate: str) -> Root:
+        result = _call("ddc_learn:learn_root(M, P, [], R)", {"M": self.module, "P": predicate})
+        r = result["R"]
+        return Root(node=int(r["node"]), y=np.asarray(r["y"], dtype=float),
+                    weight=np.asarray(r["weight"], dtype=float),
+                    example=np.asarray(r["example"], dtype=np.int64))
+
+    def candidates(self, node: int) -> list[dict[str, Any]]:
+        """The literals the bias allows at ``node`` (see ``learn_candidates/3``)."""
+        result = _call("ddc_learn:learn_candidates(M, N, Cs)", {"M": self.module, "N": node})
+        return [dict(c) for c in result["Cs"]]
+
+    def evaluate(self, node: int, candidates: Sequence[int]) -> list[Outcome]:
+        """Each candidate's outcome in every row of ``node``."""
+        if not candidates:
+            return []
+        result = _call("ddc_learn:learn_evaluate(M, N, Ids, Os)",
+                       {"M": self.module, "N": node, "Ids": [int(c) for c in candidates]})
+        return [_outcome(o) for o in result["Os"]]
+
+    def evaluate_rows(self, node: int, candidate: int, rows: Sequence[int]) -> Outcome:
+        """A candidate's outcome in some rows of ``node`` (row indices from 0)."""
+        result = _call("ddc_learn:learn_evaluate_rows(M, N, C, Is, O)",
+                       {"M": self.module, "N": node, "C": int(candidate),
+                        "Is": [int(i) for i in rows]})
+        return _outcome(result["O"])
+
+    def split(self, node: int, candidate: int) -> list[Child]:
+        """Split ``node`` by a candidate: one child per branch, in branch order."""
+        result = _call("ddc_learn:learn_split(M, N, C, Cs)",
+                       {"M": self.module, "N": node, "C": int(candidate)})
+        return [Child(node=int(c["node"]), branch=int(c["branch"]),
+                      row=np.asarray(c["row"], dtype=np.int64),
+                      factor=np.asarray(c["factor"], dtype=float),
+                      x=np.asarray(c["x"], dtype=float)) for c in result["Cs"]]
+
+    def forget(self, nodes: Sequence[int]) -> None:
+        """Drop nodes' rows (branches not kept)."""
+        if nodes:
+            _call("forall(member(_N, Ns), ddc_learn:learn_forget(M, _N))",
+                  {"M": self.module, "Ns": [int(n) for n in nodes]})
+
+    # -- clauses
+    def leaf_clause(self, node: int, model: str, regressors: Sequence[int]) -> dict[str, str]:
+        """The clause of a leaf: ``clause`` (DC text), ``distribution`` and ``model`` texts.
+
+        ``model`` is the Prolog text of the leaf's model term (``logistic([-16.9, 0.8])``),
+        ``regressors`` the path steps whose values are its inputs.
+        """
+        result = _call("ddc_learn:learn_leaf_text(M, N, MT, Rs, D)",
+                       {"M": self.module, "N": node, "MT": model,
+                        "Rs": [int(r) for r in regressors]})
+        return {k: str(v) for k, v in dict(result["D"]).items()}
+
+    def background(self, leaves: Sequence[tuple[int, str, Sequence[int]]]) -> list[str]:
+        """The background clauses (DC text) that the leaves' clauses need."""
+        result = _call("ddc_learn:learn_background_for(M, Ls, Ts)",
+                       {"M": self.module,
+                        "Ls": [[int(n), m, [int(r) for r in rs]] for n, m, rs in leaves]})
+        return [str(t) for t in result["Ts"]]
+
+    def program_scores(self, program: str | Path,
+                       predicates: Sequence[str] = ()) -> list[dict[str, Any]]:
+        """Held-out scores of a DC program's clauses on this data (``learn_program_scores/5``)."""
+        path = Path(program).resolve()
+        if not path.is_file():
+            raise DDCError(f"{path}: no such file")
+        result = _call("ddc_learn:learn_program_scores(M, F, Ts, [], Ss)",
+                       {"M": self.module, "F": str(path), "Ts": list(predicates)})
+        return [dict(s) for s in result["Ss"]]
+
+    def free(self) -> None:
+        """Forget the data (its Prolog module)."""
+        _call("ddc_learn:learn_free(M)", {"M": self.module})
+
+    def __enter__(self) -> LearningData:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.free()
