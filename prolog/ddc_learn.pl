@@ -693,8 +693,10 @@ learn_groundings(M, Node, Gs) :-
     M:'$ddcl_node'(Node, info(target(N, A, _), _, _, _), Rows),
     findall(H-Ps, ( member(r(Bs, W), Rows), length(Ks, A), append(Ks, _, Bs),
                     K =.. [N|Ks], dc_term(M, K, H),
-                    assoc_to_list(W, Ps0), maplist([Key-V, DK=V]>>dc_term(M, Key, DK), Ps0, Ps) ),
+                    assoc_to_list(W, Ps0), maplist(world_pair(M), Ps0, Ps) ),
             Gs).
+
+world_pair(M, Key-V, DK=V) :- dc_term(M, Key, DK).
 
                  /*******************************
                  *            CLAUSES           *
@@ -1129,12 +1131,15 @@ learn_program_scores(M, File, Targets0, _Options, Scores) :-
     maplist(target_scores(M, File), Targets, Scores).
 
 load_program(M, Items0, Heads) :-
-    maplist([item(T0, Vs, D, W), item(T, Vs, D, W)]>>internal_key(M, T0, T), Items0, Items),
+    maplist(internal_item(M), Items0, Items),
     dynamic(M:'$prog_clause'/3),
     retractall(M:'$prog_clause'(_, _, _)),
     forall(member(item(T, _, _, W), Items), program_item(M, T, W)),
     findall(N/A, M:'$prog_clause'(N/A, _, _), Hs0),
     sort(Hs0, Heads).
+
+internal_item(M, item(T0, Vs, D, W), item(T, Vs, D, W)) :-
+    internal_key(M, T0, T).
 
 program_item(_, (:- _), _) :- !.
 program_item(M, (K ~ D := B), W) :- !, program_rv(M, K, D, B, W).

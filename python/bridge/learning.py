@@ -39,6 +39,10 @@ _lock = threading.Lock()
 
 def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
     prolog.ensure_loaded(LEARNER)
+    if "M" in bindings:  # the data module: an atom in Prolog (janus passes str as a string)
+        bindings = dict(bindings)
+        bindings["_MS"] = bindings.pop("M")
+        goal = f"atom_string(M, _MS), {goal}"
     try:
         with _lock:
             result = janus.query_once(goal, bindings)

@@ -4,6 +4,8 @@
     ddc filter PROGRAM OBSERVATIONS.jsonl [--particles N] [--seed S] [--query GOAL]...
                [--distribution TERM]... [--mean TERM]...
                [--resampling systematic|multinomial|residual] [--threshold F] [--json]
+    ddc learn DATA.pl... --out LEARNED.pl [--target NAME]... [--json] [--seed S] [--plot F]
+    ddc evaluate LEARNED.pl TEST.pl... [--target NAME]... [--json]   (see cli.ddc_learn_cli)
 
 ``ddc filter`` runs one filtering step per line of OBSERVATIONS.jsonl. A line is a JSON object
 with the optional keys ``observations`` and ``actions`` (lists; missing means empty) and
@@ -33,6 +35,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from cli.ddc_learn_cli import add_learn_commands
 from cli.options import add_engine_option
 
 
@@ -339,6 +342,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="resample when ESS < threshold * particles (default 0.9)")
     f.add_argument("--json", action="store_true", help="one JSON object per step")
     f.set_defaults(func=run_filter)
+
+    add_learn_commands(sub, _positive_int)
     return parser
 
 
