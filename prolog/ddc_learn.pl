@@ -1185,7 +1185,7 @@ target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_l
              ->  ddc_learn_data:eval_dist_at(D0, CW, D), R = d(D)
              ;   R = uncovered
              ) ),
-    foldl(score_example(M, Ks, Goal, Y-R, Spec), Keys, s(0, 0, 0, 0, 0), S),
+    foldl(score_example(M, N, Ks, Goal, Y-R, Spec), Keys, s(0, 0, 0, 0, 0), S),
     S = s(SW, SLL, SC, SE, U),
     (   SW > 0, U =:= 0 -> MLL is SLL / SW ; SW > 0 -> MLL = -inf ; MLL = nan ),
     LL = SLL,
@@ -1194,16 +1194,17 @@ target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_l
     ;   Acc = nan, ( SW > 0 -> RMSE is sqrt(SE / SW) ; RMSE = nan )
     ).
 
-score_example(M, Ks, Goal, Out, Spec, Key, S0, S) :-
+score_example(M, N, Ks, Goal, Out, Spec, Key, S0, S) :-
     copy_term(Ks-Goal-Out, Key-G-O),
     empty_assoc(E0),
     alts(M, G, O, E0, 1.0, Alts),
-    foldl(score_alt(M, Key, Spec), Alts, S0, S).
+    foldl(score_alt(M, N, Key, Spec), Alts, S0, S).
 
-score_alt(M, Key, Spec, a(Y-R, _, F, _), s(W0, L0, C0, E0, U0), s(W, L, C, E, U)) :-
+score_alt(M, N, Key, Spec, a(Y-R, _, F, _), s(W0, L0, C0, E0, U0), s(W, L, C, E, U)) :-
     W is W0 + F,
     (   R = d(D)
-    ->  check_program_value(M, Key, Y, D),
+    ->  K =.. [N|Key],
+        check_program_value(M, K, Y, D),
         dist_log_density(D, Y, LP),
         (   LP =:= -inf -> L is -inf ; L is L0 + F*LP ),
         (   Spec = discrete(_)
