@@ -104,7 +104,8 @@ set_options(M, Options) :-
     retractall(M:'$ddcl_option'(_, _)),
     assertz(M:'$ddcl_option'(samples, S)),
     assertz(M:'$ddcl_option'(max_worlds, K)),
-    maplist(declare(M), ['$ddcl_node'/3, '$ddcl_cand'/3, '$ddcl_counter'/2, '$ddcl_consts'/2]).
+    maplist(declare(M), ['$ddcl_node'/3, '$ddcl_cand'/3, '$ddcl_counter'/2, '$ddcl_consts'/2,
+                         '$ddcl_out'/3, '$ddcl_out_done'/1]).
 
 declare(M, PI) :- dynamic(M:PI).
 
@@ -509,25 +510,65 @@ evaluate_rows(M, Rows, Id, Out) :-
 evaluate_indexed(M, IRs, Id, _{row: Rs, branch: Bs, factor: Fs, x: Xs, pure: Ps}) :-
     M:'$ddcl_cand'(Id, _, Spec),
     outcome_goal(M, Spec, Bind, Goal, Out),
-    foldl(eval_row(M, Bind, Goal, Out), IRs, Rs-Bs-Fs-Xs-Ps, []-[]-[]-[]-[]).
+    node_outcomes(M, IRs, Bind, Goal, Out, Results),
+    outcome_lists(Results, Rs, Bs, Fs, Xs, Ps).
 
-eval_row(M, Bind, Goal, Out, I-r(Bs, World), Rs0-Bs0-Fs0-Xs0-Ps0, Rs-Bs1-Fs-Xs-Ps) :-
+outcome_lists([], [], [], [], [], []).
+outcome_lists([res(I, _, _, F, P, o(B, X, _))|T], [I|Is], [B|Bs], [F|Fs], [X|Xs], [P|Ps]) :-
+    outcome_lists(T, Is, Bs, Fs, Xs, Ps).
+
+%   node_outcomes(+M, +IndexedRows, ?Bind, +Goal, ?Out, -Results): the
+%   outcome of Goal in each row and partial world, res(I, Bindings, World,
+%   Factor, Pure, Out) in row order.  A row whose proof reads no uncertain
+%   fact the row's world has not assigned is proved once, in a failure-
+%   driven loop (no copy of the goal); only the others split their worlds
+%   (alts/6).
+node_outcomes(M, IRs, Bind, Goal, Out, Results) :-
+    findall(R, ( member(I-r(Bs, W), IRs), row_outcome(Bind, Goal, Out, I, Bs, W, R) ), Rs),
+    foldl(world_outcomes(M, Bind, Goal, Out), Rs, Results, []).
+
+row_outcome(Bind, Goal, Out, I, Bs, W, R) :-
+    nb_setval(ddcl_touched, false),
+    Bind = Bs,
+    catch(( in_world(W, Goal) -> R0 = ok ; R0 = failed ), ddcl_need(_, _), R0 = need),
+    (   R0 == ok
+    ->  nb_getval(ddcl_touched, T),
+        ( T == true -> P = false ; P = true ),
+        R = res(I, Bs, W, 1.0, P, Out)
+    ;   R0 == need
+    ->  R = slow(I, Bs, W)
+    ;   throw(error(ddc_learn(goal_failed(Goal), data), _))
+    ).
+
+world_outcomes(_, _, _, _, R, [R|T], T) :- R = res(_, _, _, _, _, _), !.
+world_outcomes(M, Bind, Goal, Out, slow(I, Bs, W), L, T) :-
     copy_term(Bind-Goal-Out, Bs-G-O),
-    alts(M, G, O, World, 1.0, Alts),
-    foldl(eval_alt(I), Alts, Rs0-Bs0-Fs0-Xs0-Ps0, Rs-Bs1-Fs-Xs-Ps).
+    alts(M, G, O, W, 1.0, Alts),
+    foldl(alt_result(I, Bs), Alts, L, T).
 
-eval_alt(I, a(o(B, X, _), _, F, Pure), [I|Rs]-[B|Bs]-[F|Fs]-[X|Xs]-[Pure|Ps], Rs-Bs-Fs-Xs-Ps).
+alt_result(I, Bs, a(O, W, F, P), [res(I, Bs, W, F, P, O)|T], T).
 
 %   outcome_goal(+M, +Spec, -Bind, -Goal, -Out): Goal, once Bind (the node
 %   variables' values) is bound, always succeeds with Out = o(Branch, X,
 %   FreshValues).
-outcome_goal(M, Spec, Bind, Goal, o(B, X, FVs)) :-
-    copy_term(Spec, cand(_, Kind, G, Ins, Fresh, Val, Dom, Ts, Agg, _)),
-    Bind = BindList,
-    bind_goal(Ins, BindList, BG),
-    findall(V, member(v(_, V), Fresh), FVs),
-    kind_goal(Kind, Agg, M:G, Val, Dom, Ts, B, X, KG),
-    Goal = ( BG, KG ).
+%   The goal is compiled once per candidate, as the clause
+%   '$ddcl_out'(Id, Bind, Out) :- Goal of the data module, so that each row
+%   runs compiled code instead of a meta-call of the whole conjunction.
+outcome_goal(M, Spec, Bind, M:'$ddcl_out'(Id, Bind, Out), Out) :-
+    candidate_id(M, Spec, Id),
+    (   M:'$ddcl_out_done'(Id) -> true
+    ;   copy_term(Spec, cand(_, Kind, G, Ins, Fresh, Val, Dom, Ts, Agg, _)),
+        bind_goal(Ins, BindList, BG),
+        findall(V, member(v(_, V), Fresh), FVs),
+        kind_goal(Kind, Agg, M:G, Val, Dom, Ts, B, X, KG),
+        optimised_assert(M, ('$ddcl_out'(Id, BindList, o(B, X, FVs)) :- BG, KG)),
+        assertz(M:'$ddcl_out_done'(Id))
+    ).
+
+optimised_assert(M, Clause) :-
+    current_prolog_flag(optimise, Old),
+    setup_call_cleanup(set_prolog_flag(optimise, true), assertz(M:Clause),
+                       set_prolog_flag(optimise, Old)).
 
 %   bind_goal(+Ins, ?Bindings, -Goal): unify each template variable with
 %   its node variable's value in the row.
@@ -642,11 +683,9 @@ learn_split(M, Node, Id, Children) :-
     length(Rows, NR), NR1 is NR-1,
     ( NR1 >= 0 -> numlist(0, NR1, Is) ; Is = [] ),
     pairs_keys_values(IRs, Is, Rows),
+    node_outcomes(M, IRs, Bind, Goal, Out, Results),
     findall(B-(I-r(Bs1, W1)-F-X),
-            ( member(I-r(Bs, W), IRs),
-              copy_term(Bind-Goal-Out, Bs-G-O),
-              alts(M, G, O, W, 1.0, Alts),
-              member(a(o(B, X, FVs), W1, F, _), Alts),
+            ( member(res(I, Bs, W1, F, _, o(B, X, FVs)), Results),
               ( B =:= 0, FVs \== [] -> append(Bs, FVs, Bs1) ; Bs1 = Bs ) ),
             Pairs),
     NB1 is NB-1, numlist(0, NB1, BIs),

@@ -133,8 +133,7 @@ new_data_module(M) :-
                                  '$ddcl_dreaml'/3, '$ddcl_timed'/3, '$ddcl_mode'/6,
                                  '$ddcl_thresholds'/2, '$ddcl_rank'/2, '$ddcl_target'/4,
                                  '$ddcl_examples'/4, '$ddcl_background'/3, '$ddcl_file'/2,
-                                 '$ddcl_warning'/1, '$ddcl_prob_pred'/2, '$ddcl_bg_rv'/2,
-                                 '$ddcl_fact_count'/3]).
+                                 '$ddcl_warning'/1, '$ddcl_prob_pred'/2, '$ddcl_bg_rv'/2]).
 
 declare_dynamic(M, PI) :- dynamic(M:PI).
 
@@ -628,8 +627,7 @@ rv_fact(M, K, V, W) :-
     ->  throw(error(ddc_learn(key_defined_twice(K, other), W), _))
     ;   V0 = V,
         assertz(M:F),
-        fact_line(M, N, Ks, W),
-        count_fact(M, N, A)
+        fact_line(M, N, Ks, W)
     ).
 
 %   fact_line(+M, +N, +Keys, +Where): '$line:N'(K1..Kn, File:Line), for
@@ -659,10 +657,6 @@ repeated_fact(M, N, A, W) :-
     ->  C is C0+1, assertz(M:'$ddcl_warning'(W0-repeated_facts(N/A, C)))
     ;   assertz(M:'$ddcl_warning'(W-repeated_facts(N/A, 1)))
     ).
-
-count_fact(M, N, A) :-
-    (   retract(M:'$ddcl_fact_count'(N, A, C0)) -> C is C0+1 ; C = 1 ),
-    assertz(M:'$ddcl_fact_count'(N, A, C)).
 
 %   check_value(+Spec, +Key, +Value, +M, +Where)
 check_value(discrete(D), K, V, M, W) :- !,
@@ -715,7 +709,6 @@ prob_fact(M, K, D, W) :-
     append(Ks, [D], PAs), PF =.. [PN|PAs],
     assertz(M:PF),
     fact_line(M, N, Ks, W),
-    count_fact(M, N, A),
     prob_clause(M, N, A, rv).
 
 prob_atom(M, A0, P, W) :-
@@ -727,7 +720,6 @@ prob_atom(M, A0, P, W) :-
         prob_table(N, PN), append(Ks, [bool(P)], PAs), PF =.. [PN|PAs],
         (   clause(M:A0, true) -> throw(error(ddc_learn(key_defined_twice(A0, other), W), _)) ; true ),
         assertz(M:PF),
-        count_fact(M, N, Ar),
         prob_clause(M, N, Ar, atom)
     ).
 
@@ -756,7 +748,7 @@ atom_fact(M, A0, W) :-
         )
     ;   ( M:'$ddcl_pred'(N, Ar, atom) -> true ; assertz(M:'$ddcl_pred'(N, Ar, atom)) ),
         (   clause(M:A0, true) -> repeated_fact(M, N, Ar, W)
-        ;   assertz(M:A0), count_fact(M, N, Ar)
+        ;   assertz(M:A0)
         )
     ).
 
@@ -910,13 +902,21 @@ mode_preds_known(M, L, W) :-
     ;   throw(error(ddc_learn(unknown_mode_predicate(N/Ar), W), _))
     ).
 
+%   has_facts(+M, +N, +A): the random variable N/A has a certain or an
+%   uncertain fact.
+has_facts(M, N, A) :-
+    length(Ks, A), append(Ks, [_], As), F =.. [N|As],
+    (   clause(M:F, true) -> true
+    ;   M:'$ddcl_prob_pred'(N, A)
+    ), !.
+
 check_target(M, N, A, W) :-
     (   M:'$ddcl_pred'(N, A, rv(Spec)) -> true
     ;   throw(error(ddc_learn(target_not_random(N/A), W), _))
     ),
     (   Spec == any -> throw(error(ddc_learn(target_without_values(N/A), W), _)) ; true ),
     (   M:'$ddcl_examples'(N/A, _, _, _) -> true
-    ;   M:'$ddcl_fact_count'(N, A, C), C > 0 -> true
+    ;   has_facts(M, N, A) -> true
     ;   throw(error(ddc_learn(target_without_facts(N/A), W), _))
     ),
     (   M:'$ddcl_target'(N, A, dreaml(Type), _)

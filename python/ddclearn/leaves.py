@@ -25,12 +25,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.special import gammaln, log_expit, logsumexp, xlogy
-from sklearn.linear_model import LogisticRegression, PoissonRegressor
+
+if TYPE_CHECKING:  # scikit-learn takes seconds to import: only the fits that need it load it
+    from sklearn.linear_model import LogisticRegression, PoissonRegressor
 
 __all__ = ["FAMILIES", "Kind", "Leaf", "LeafOptions", "fit_leaf"]
 
@@ -514,6 +516,8 @@ def _fit_classifier(
         sample_weight = np.concatenate([w, np.full(K, options.smoothing)])
     C = 1.0 / options.l2 if options.l2 > 0 else np.inf
     # Two classes: sklearn fits the plain binary logistic (one coefficient row).
+    from sklearn.linear_model import LogisticRegression
+
     model = LogisticRegression(C=C, solver="lbfgs", max_iter=_MAX_ITER, tol=_TOL)
     model.fit(Z, labels, sample_weight=sample_weight)
     return model
@@ -529,6 +533,8 @@ def _fit_poisson(
     ``alpha = l2 / W`` gives ``sum_i w_i nll_i + l2 / 2 ||c||^2``.
     """
     alpha = options.l2 / float(w.sum())
+    from sklearn.linear_model import PoissonRegressor
+
     model = PoissonRegressor(alpha=alpha, solver="lbfgs", max_iter=_MAX_ITER, tol=_TOL)
     model.fit(std.transform(X), y, sample_weight=w)
     return model
