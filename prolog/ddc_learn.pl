@@ -559,11 +559,16 @@ outcome_goal(M, Spec, Bind, M:'$ddcl_out'(Id, Bind, Out), Out) :-
     (   M:'$ddcl_out_done'(Id) -> true
     ;   copy_term(Spec, cand(_, Kind, G, Ins, Fresh, Val, Dom, Ts, Agg, _)),
         bind_goal(Ins, BindList, BG),
-        findall(V, member(v(_, V), Fresh), FVs),
+        fresh_values(Fresh, FVs),
         kind_goal(Kind, Agg, M:G, Val, Dom, Ts, B, X, KG),
         optimised_assert(M, ('$ddcl_out'(Id, BindList, o(B, X, FVs)) :- BG, KG)),
         assertz(M:'$ddcl_out_done'(Id))
     ).
+
+%   fresh_values(+Fresh, -Vars): the variables of [v(Type, Var)], shared
+%   (findall/3 would copy them).
+fresh_values([], []).
+fresh_values([v(_, V)|Fs], [V|Vs]) :- fresh_values(Fs, Vs).
 
 optimised_assert(M, Clause) :-
     current_prolog_flag(optimise, Old),
@@ -811,7 +816,7 @@ path_literal(M, step(Id, B), s(Lits, VT0, Bs0, K0, Xs0), s([Lit|Lits], VT, Bs, K
     fresh_names(Fresh, Bs0, Bs1),
     branch_literal(M, Spec, B, Lit, Bs1, Bs),
     (   B =:= 0, Fresh \== []
-    ->  findall(V, member(v(_, V), Fresh), FVs), append(VT0, FVs, VT)
+    ->  fresh_values(Fresh, FVs), append(VT0, FVs, VT)
     ;   VT = VT0
     ),
     regressor_of(Kind, Lit, Val, X),

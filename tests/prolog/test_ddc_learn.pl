@@ -214,8 +214,8 @@ test(uncertain_feature_splits_a_row_into_weighted_worlds) :-
 test(new_variables_bind_to_the_first_solution, [nondet]) :-
     load([ 'type(y(e)).', 'type(link(e, e)).', 'type(v(e)).', 'rv(v(_), continuous).',
            'learn(y(X)).', 'mode(y(_), link(+, -)).', 'mode(y(_), v(+)).',
-           'y(1) ~= a.', 'y(2) ~= b.', 'link(1, 10).', 'link(1, 11).', 'v(10) ~= 0.5.',
-           'v(11) ~= 0.7.' ], M),
+           'y(1) ~= a.', 'y(2) ~= b.', 'v(11) ~= 0.7.', 'link(1, 10).', 'link(1, 11).',
+           'v(10) ~= 0.5.' ], M),
     learn_root(M, y, [], R), get_dict(node, R, N),
     candidate(M, N, test, "(link(X, E) -> true)", C), get_dict(id, C, Id),
     get_dict(fresh, C, true),
