@@ -562,7 +562,8 @@ own_item(M, K ~= V, _, W) :- !,
     ).
 own_item(M, (K ~ D := B), _, W) :- !, background_rv(M, K, D, B, W).
 own_item(M, (K ~ D <- B), _, W) :- !, background_rv(M, K, D, B, W).
-own_item(M, K ~ D, _, W) :- !,
+own_item(M, K ~ D0, _, W) :- !,
+    ddc:dist_sugar(D0, D),                  % the engine's shorthand: uniform(A, B), finite(P:V, ...)
     (   ground(K), callable(K), ground(D), D = val(V)
     ->  rv_fact(M, K, V, W)
     ;   ground(K), callable(K), ground(D)
@@ -786,7 +787,7 @@ background_rv(M, K, D, B, W) :-
 %   eval_dist_at(+D0, +Where, -D): the distribution with its parameters
 %   evaluated (gaussian(X+1, 0.5) -> gaussian(2.3, 0.5)), checked.
 eval_dist_at(D0, W, D) :-
-    catch(( ddc:eval_dist(D0, D), ( D = val(_) -> true ; dist_check(D) ) ),
+    catch(( ddc:dist_sugar(D0, D1), ddc:eval_dist(D1, D), ( D = val(_) -> true ; dist_check(D) ) ),
           E, bad_dist(E, D0, W)).
 
 %   dist_value(+Key, +Dist, +Where, -V)
@@ -1166,6 +1167,18 @@ learn_cause(target_type_mismatch(P, T, S)) --> !,
 learn_cause(variable_goal) --> !, [ 'a variable as a goal'-[] ].
 learn_cause(random_body(P)) --> !,
     [ '~w draws fresh randomness: not allowed in learning data'-[P] ].
+learn_cause(no_types(P)) --> !,
+    [ 'a mode with + or - arguments needs the argument types of ~w: declare type(...) (or base/1)'-[P] ].
+learn_cause(bad_model(Model, Spec)) --> !,
+    [ 'the model ~q does not fit a target with values ~q'-[Model, Spec] ].
+learn_cause(no_value(Key)) --> !, [ 'the example ~q has no value'-[Key] ].
+learn_cause(too_many_worlds(Max)) --> !,
+    [ 'a grounding splits into more than ~D partial worlds (uncertain facts it reads); raise max_worlds or make facts certain'-[Max] ].
+learn_cause(goal_failed(_)) --> !, [ 'internal: an outcome goal failed'-[] ].
+learn_cause(value_not_in_program(K, V, Vs)) --> !,
+    [ '~q ~~= ~q: the program gives ~q no probability (its values: ~q)'-[K, V, V, Vs] ].
+learn_cause(cyclic_targets(Ts)) --> !,
+    [ 'the targets read each other (~w): order them with rank/1'-[Ts] ].
 learn_cause(random_variable_as_atom(P)) --> !,
     [ '~w is a random variable: read it with ~~= (K ~~= V)'-[P] ].
 learn_cause(C) --> [ '~q'-[C] ].

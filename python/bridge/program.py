@@ -129,6 +129,26 @@ class Program:
         )
         return [(float(p), str(v)) for p, v in result["R"]]  # type: ignore[union-attr]
 
+    def sample(self, template: str, goal: str, seed: int) -> list[str]:
+        """The solutions of ``findall(template, goal, L)`` in ONE sampled world of the program.
+
+        ``goal`` is a DC goal (``between(1, 100, I), a(I) ~= A, y(I) ~= Y``) read together with
+        ``template`` (``I-A-Y``): they share variables. Every random variable the goal reads is
+        drawn once in the world (by the engine's backward sampler, ``ddc_sample_world/4``), so
+        the solutions are one joint sample of the program; the same seed gives the same world.
+        Each solution is returned as Prolog term text (``term_string/2``: atoms quoted when
+        needed, floats in full precision), e.g. ``"1-p-0.25"``.
+        """
+        result = _call(
+            "atom_string(_M, MS),"
+            " format(string(_Both), '(~w)-(~w)', [TT, GT]),"
+            " term_string(_T-_G, _Both, [module(ddc)]),"
+            " ddc:ddc_sample_world(_M, findall(_T, _G, _L), [seed(S)], _),"
+            " findall(_X, (member(_Y, _L), term_string(_Y, _X)), L)",
+            {"MS": self.module, "TT": template, "GT": goal, "S": int(seed)},
+        )
+        return [str(s) for s in result["L"]]  # type: ignore[union-attr]
+
     def reload(self) -> Program:
         """Compile the file again (the previous program stays if the new text has an error)."""
         return load(self.path)
