@@ -232,3 +232,70 @@ class LearningData:
 
     def __exit__(self, *exc: object) -> None:
         self.free()
+
+
+def split_files(
+    files: Sequence[str | Path],
+    train: str | Path,
+    test: str | Path,
+    fraction: float = 0.2,
+    seed: int = 0,
+    unit: str | None = None,
+) -> dict[str, int]:
+    """Split a data set into a training file and a test file of separate worlds (``ddc split``).
+
+    The facts are grouped into units: the connected components of the graph that links the
+    constants of each fact's key, or, with ``unit``, the constants of that argument type, every
+    other constant following the unit nearest to it. Whole units, in an order shuffled by
+    ``seed``, go to the test file until it holds at least ``fraction`` of the facts; a fact whose
+    constants fall on both sides is cut (written to neither). Declarations, directives and
+    background rules go to both files. See ``learn_split_files/3`` in
+    ``prolog/ddc_learn_split.pl``.
+
+    Parameters
+    ----------
+    files : sequence of path
+        The data files (one dialect: the project's own or DreaML's).
+    train, test : path
+        The two outputs, created or replaced (only once both are complete).
+    fraction : float, default=0.2
+        The test part's share of the facts, strictly between 0 and 1.
+    seed : int, default=0
+        Seeds the order of the units.
+    unit : str, optional
+        An argument type whose constants are the units (``d`` for FinancialData.pl's
+        districts).
+
+    Returns
+    -------
+    dict
+        ``train``, ``test`` (facts in that part only), ``cut`` (in neither), ``both`` (facts
+        without constants, in both), ``units`` and ``test_units``.
+
+    Raises
+    ------
+    ValueError
+        ``fraction`` is not strictly between 0 and 1.
+    DDCError
+        A data file is missing or bad, the facts form one world only (no unit to hold out), the
+        unit type is unknown, or an output is an input file (the message names file:line).
+    """
+    if not 0.0 < float(fraction) < 1.0:
+        raise ValueError(f"the test fraction must be between 0 and 1 (exclusive), got {fraction}")
+    paths = [str(Path(f).resolve()) for f in files]
+    for p in paths:
+        if not Path(p).is_file():
+            raise DDCError(f"{p}: no such file")
+    prolog.ensure_loaded(prolog.PROLOG_DIR / "ddc_learn_split.pl")
+    bindings: dict[str, Any] = {"Fs": paths, "Tr": str(Path(train).resolve()),
+                                "Te": str(Path(test).resolve()), "F": float(fraction),
+                                "S": int(seed)}
+    if unit is None:
+        goal = "_Us = []"
+    else:
+        bindings["US"] = str(unit)
+        goal = "atom_string(_U, US), _Us = [unit(_U)]"
+    goal += (", ddc_learn_split:learn_split_files(Fs, [train(Tr), test(Te), fraction(F), "
+             "seed(S)|_Us], St)")
+    stats = dict(_call(goal, bindings)["St"])
+    return {k: int(stats[k]) for k in ("train", "test", "cut", "both", "units", "test_units")}

@@ -26,7 +26,7 @@ from typing import Any
 
 
 def add_learn_commands(sub: Any, positive_int: Any) -> None:
-    """Add ``learn`` and ``evaluate`` to the ``ddc`` sub-command parser."""
+    """Add ``learn``, ``evaluate`` and ``split`` to the ``ddc`` sub-command parser."""
     learn = sub.add_parser("learn", help="learn a DC program (one tree per target) from data")
     learn.add_argument("data", nargs="+", help="data files: facts, background, bias")
     learn.add_argument("--out", required=True, type=Path, help="the learned program (.pl)")
@@ -58,6 +58,19 @@ def add_learn_commands(sub: Any, positive_int: Any) -> None:
                     help="a target to score (repeatable; default: every one with facts)")
     ev.add_argument("--json", action="store_true", help="print one JSON object")
     ev.set_defaults(func=run_evaluate)
+
+    sp = sub.add_parser("split", help="split data into training and test files of separate worlds")
+    sp.add_argument("data", nargs="+", help="data files: facts, background, bias (one dialect)")
+    sp.add_argument("--train", required=True, type=Path, help="the training part (.pl)")
+    sp.add_argument("--test", required=True, type=Path, help="the test part (.pl)")
+    sp.add_argument("--fraction", type=float, default=0.2,
+                    help="the test part's share of the facts, 0 < F < 1 (default 0.2)")
+    sp.add_argument("--seed", type=int, default=0, help="seed of the units' order (default 0)")
+    sp.add_argument("--unit", default=None, metavar="TYPE",
+                    help="split by the constants of this argument type (every other constant "
+                         "follows the nearest one); default: by connected worlds")
+    sp.add_argument("--json", action="store_true", help="print one JSON object")
+    sp.set_defaults(func=run_split)
 
 
 def run_learn(args: argparse.Namespace) -> int:
@@ -112,6 +125,24 @@ def run_evaluate(args: argparse.Namespace) -> int:
         rmse = f"{s['rmse']:.6g}" if "rmse" in s else "-"
         print(f"{key:<28} {s['n']:>8} {s['mean_log_likelihood']:>13.5g} {acc:>9} {rmse:>12} "
               f"{s['uncovered']:>9}")
+    return 0
+
+
+def run_split(args: argparse.Namespace) -> int:
+    """``ddc split``: write the training and test parts and print their counts."""
+    from bridge.learning import split_files
+    from cli.ddc_cli import CliError
+
+    if not 0.0 < args.fraction < 1.0:
+        raise CliError(f"--fraction {args.fraction:g}: must be between 0 and 1 (exclusive)")
+    stats = split_files(args.data, args.train, args.test, fraction=args.fraction,
+                        seed=args.seed, unit=args.unit)
+    if args.json:
+        print(json.dumps(stats))
+        return 0
+    print(f"train {stats['train']} facts, test {stats['test']} facts ({stats['test_units']} of "
+          f"{stats['units']} units), {stats['cut']} cut, {stats['both']} in both: "
+          f"wrote {args.train} and {args.test}")
     return 0
 
 
