@@ -1,9 +1,11 @@
-"""`ddc learn` and `ddc evaluate`: the structure learner from the shell.
+"""`ddc learn`, `ddc evaluate` and `ddc split`: the structure learner from the shell.
 
     ddc learn DATA.pl [MORE.pl ...] --out LEARNED.pl [--target NAME]... [--json] [--seed S]
               [--plot TREE.png|TREE.svg] [--min-leaf N] [--max-depth D] [--min-gain G]
               [--smoothing A] [--l2 L] [--no-lookahead] [--quiet]
     ddc evaluate LEARNED.pl TEST.pl [MORE.pl ...] [--target NAME]... [--json]
+    ddc split DATA.pl [MORE.pl ...] --train TRAIN.pl --test TEST.pl [--fraction F] [--seed S]
+              [--unit TYPE] [--json]
 
 ``ddc learn`` reads background knowledge, training facts and declarative bias from the data
 files, learns one distributional logic tree per target and writes the DC program they make
@@ -11,7 +13,8 @@ files, learns one distributional logic tree per target and writes the DC program
 target the clauses, groundings, seconds and training log-likelihood (``--json``: one JSON object
 keyed by target). ``ddc evaluate`` scores a DC program on held-out facts: per target the number of
 test groundings, the mean log-likelihood per grounding (natural log) and the accuracy (discrete)
-or RMSE (continuous).
+or RMSE (continuous). ``ddc split`` writes a training and a test file whose test facts form
+worlds of their own (docs/learning.md, "Held-out data").
 """
 
 from __future__ import annotations
