@@ -23,8 +23,9 @@ from bridge import DDCError
 from bridge.learning import LearningData, split_files
 from cli.ddc_cli import main
 from ddclearn import evaluate, learn
+from ddclearn.datasets import financial
 
-FINANCIAL = Path("/work/shared/learning-data/FinancialData.pl")
+FINANCIAL = financial()
 
 BIAS = """\
 :- discontiguous pair/2.
@@ -219,7 +220,6 @@ def test_output_that_is_an_input(tmp_path: Path) -> None:
 # ----------------------------------------------------------------------------- Financial
 
 
-@pytest.mark.skipif(not FINANCIAL.is_file(), reason="FinancialData.pl is not there")
 def test_financial_split_by_district(tmp_path: Path) -> None:
     train, test = tmp_path / "train.pl", tmp_path / "test.pl"
     start = time.perf_counter()
