@@ -7,20 +7,18 @@ dialect with time-indexed facts, as the paper writes them.
 
 from __future__ import annotations
 
-import io
 import json
 import math
 import subprocess
 import sys
-from contextlib import redirect_stderr, redirect_stdout
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from bridge import DDCError
-from cli.ddc_cli import main
+from ddc_cli_helpers import Run
+from ddc_cli_helpers import ddc as run_ddc
 from ddclearn import evaluate, learn
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -64,22 +62,8 @@ def occlusion_data(path: Path, n: int, seed: int) -> Path:
     return path
 
 
-@dataclass
-class Run:
-    returncode: int
-    stdout: str
-    stderr: str
-
-
 def ddc(*args: str | Path, check: bool = True) -> Run:
-    """``ddc ARGS`` in this process (its argument parsing, output and exit status)."""
-    out, err = io.StringIO(), io.StringIO()
-    with redirect_stdout(out), redirect_stderr(err):
-        code = main([str(a) for a in args])
-    result = Run(code, out.getvalue(), err.getvalue())
-    if check:
-        assert result.returncode == 0, result.stderr
-    return result
+    return run_ddc(*args, check=check)
 
 
 def test_the_command_runs_from_the_shell(tmp_path: Path) -> None:

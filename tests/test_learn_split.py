@@ -7,13 +7,10 @@ DreaML data are the PKDD'99 Financial data set, split by district (``--unit d``)
 
 from __future__ import annotations
 
-import io
 import json
 import re
 import time
 from collections import Counter
-from contextlib import redirect_stderr, redirect_stdout
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -21,7 +18,7 @@ import pytest
 
 from bridge import DDCError
 from bridge.learning import LearningData, split_files
-from cli.ddc_cli import main
+from ddc_cli_helpers import ddc
 from ddclearn import evaluate, learn
 from ddclearn.datasets import financial
 
@@ -66,21 +63,6 @@ def episodes(path: Path, n: int, seed: int = 1) -> Path:
             lines.append(f"0.6 :: seen({agent}):t+1.")
     path.write_text("\n".join(lines) + "\n")
     return path
-
-
-@dataclass
-class Run:
-    returncode: int
-    stdout: str
-    stderr: str
-
-
-def ddc(*args: str | Path) -> Run:
-    """``ddc ARGS`` in this process."""
-    out, err = io.StringIO(), io.StringIO()
-    with redirect_stdout(out), redirect_stderr(err):
-        code = main([str(a) for a in args])
-    return Run(code, out.getvalue(), err.getvalue())
 
 
 def split_json(*args: str | Path) -> dict[str, int]:
