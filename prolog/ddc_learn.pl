@@ -105,7 +105,7 @@ set_options(M, Options) :-
     assertz(M:'$ddcl_option'(samples, S)),
     assertz(M:'$ddcl_option'(max_worlds, K)),
     maplist(declare(M), ['$ddcl_node'/3, '$ddcl_cand'/3, '$ddcl_counter'/2, '$ddcl_consts'/2,
-                         '$ddcl_out'/3, '$ddcl_out_done'/1]).
+                         '$ddcl_out'/3, '$ddcl_out_done'/1, '$ddcl_node_target'/1]).
 
 declare(M, PI) :- dynamic(M:PI).
 
@@ -188,13 +188,16 @@ learn_root(M, N, _Options, _{node: Id, y: Ys, weight: Ws, example: Es}) :-
     length(Ks, A), append(Ks, [V], As), TG =.. [N|As],
     (   M:'$ddcl_examples'(N/A, _, _, _) -> Missing = false ; Missing = '$none' ),
     Goal = ( once(M:TG) -> Y = V ; Y = Missing ),
+    retractall(M:'$ddcl_node_target'(_)), assertz(M:'$ddcl_node_target'(N)),
     foldl(root_rows(M, Spec, Ks, Goal, Y, E0), Keys, 0-Rows-Ys-Ws-Es, _-[]-[]-[]-[]),
     new_node(M, info(target(N, A, Spec), Vars, [], []), Rows, Id).
 
 root_rows(M, Spec, Ks, Goal, Y, E0, Key, I0-Rows0-Ys0-Ws0-Es0, I-Rows-Ys-Ws-Es) :-
     I is I0+1,
     copy_term(Ks-Goal-Y, Key-G-Y1),
-    alts(M, G, Y1, E0, 1.0, Alts),
+    M:'$ddcl_node_target'(N),
+    K =.. [N|Key], example_weight(M, K, W),
+    alts(M, G, Y1, E0, W, Alts),
     foldl(root_alt(M, Spec, Key, I0), Alts, Rows0-Ys0-Ws0-Es0, Rows-Ys-Ws-Es).
 
 root_alt(M, Spec, Key, I, a(Y, World, F, _), [r(Key, World)|Rows]-[YV|Ys]-[F|Ws]-[I|Es], Rows-Ys-Ws-Es) :-
@@ -245,9 +248,11 @@ head_var(Name0, Type, Vars0-Used0, Vars-Used) :-
 
 %!  learn_candidates(+Data, +Node, -Candidates:list(dict)) is det.
 %
-%   The literals the bias allows at Node: its target's modes not used on
-%   the path yet, whose predicates rank below the target, instantiated in
-%   every way the types allow.  Each dict: id, mode, kind (see the module
+%   The literals the bias allows at Node: its target's modes whose
+%   predicates rank below the target, instantiated in every way the types
+%   allow, less the instances already on the path (DreaML uses each mode
+%   once per path; here kind(A) and kind(O) of one mode may both be
+%   tested).  Each dict: id, mode, kind (see the module
 %   header), branches (the number of outcomes), labels (each branch's
 %   literal in DC syntax), regressor (per branch: whether it gives a
 %   value), root (whether it reads only the head's variables: its outcome
@@ -264,10 +269,10 @@ learn_candidates(M, Node, Cands) :-
 node_candidate(M, TN, TA, Vars, Used, Id) :-
     M:'$ddcl_mode'(MId, TN0/TA0, Agg, C, L, W),
     TN0 == TN, ( TA0 == any -> true ; TA0 =:= TA ),
-    \+ memberchk(MId, Used),
     allowed_by_rank(M, TN, C, L),
     instance(M, Vars, MId, Agg, C, L, W, Spec),
-    candidate_id(M, Spec, Id).
+    candidate_id(M, Spec, Id),
+    \+ memberchk(Id, Used).                 % a literal at most once on a path
 
 %   allowed_by_rank(+M, +Target, +Cond, +Lit): every predicate the literal
 %   reads ranks below the target (unranked predicates rank 0, always
@@ -366,7 +371,8 @@ bind_keys(M, [Mo|Ms], [T|Ts], Vars, [A|As], Ins0, Ins, F0, F) :-
     bind_keys(M, Ms, Ts, Vars, As, Ins1, Ins, F1, F).
 
 key_arg(_, +, T, Vars, V, Ins0, [P-V|Ins0], F, F) :- !,
-    nth0(P, Vars, v(_, T0)), T0 == T.
+    nth0(P, Vars, v(_, T0)), T0 == T,
+    \+ memberchk(P-_, Ins0).                 % the + arguments of a literal: distinct variables
 key_arg(_, -, T, _, V, Ins, Ins, F, [v(T, V)|F]) :- !.
 key_arg(M, Mo, T, _, C, Ins, Ins, F, F) :- ( Mo == c ; Mo == '#' ), !,
     type_constants(M, T, Cs), member(C, Cs).
@@ -711,7 +717,7 @@ child(M, T, Vars, Used, Path, Id, MId, Fresh, Pairs, B,
     ;   Vars1 = Vars
     ),
     append(Path, [step(Id, B)], Path1),
-    new_node(M, info(T, Vars1, [MId|Used], Path1), Rows, C).
+    new_node(M, info(T, Vars1, [Id|Used], Path1), Rows, C).
 
 fresh_var(v(Type, _), Vars0-Used0, Vars-[Name|Used0]) :-
     type_var_base(Type, Base),
@@ -800,11 +806,37 @@ clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs) :-
     clause_names(HeadInfo, HeadVars, Bs0),
     K =.. [N|HeadVars], dc_term(M, K, Head),
     foldl(path_literal(M), Path, s([], HeadVars, Bs0, 0, []), s(RevLits, _, Bs1, _, Xs0)),
-    reverse(RevLits, Lits),
+    reverse(RevLits, Lits1),
+    examples_guard(M, N, A, HeadVars, Lits1, Lits),
     regressor_vars(Regs, Xs0, Xs),
     (   model_goals(Model, Spec, Xs, Dist, Goals, Bs1, Bs) -> true
     ;   throw(error(ddc_learn(bad_model(Model, Spec), Node), _))
     ).
+
+%   examples_guard(+M, +N, +A, +HeadVars, +Lits0, -Lits): a target whose
+%   groundings examples/2 declares gets its goal as the first literal of
+%   every clause: the head's variables are then bound by the body, as DC's
+%   forward reasoning (the particle filter's sweep of h:t+1 clauses) needs,
+%   also for a clause whose path tests only negations.
+examples_guard(M, N, A, HeadVars, Lits0, Lits) :-
+    (   M:'$ddcl_examples'(N/A, H0, G0, _)
+    ->  copy_term(H0-G0, H-G),
+        H =.. [_|HeadVars],
+        renamed_dc(M, G, DG),
+        Lits = [DG|Lits0]
+    ;   Lits = Lits0
+    ).
+
+%   renamed_dc(+M, +Goal, -DC): a goal of the data (time-indexed terms
+%   renamed, pair_t1(A, O)) in DC syntax again (pair(A, O):t+1).
+renamed_dc(_, V, V) :- var(V), !.
+renamed_dc(M, (A, B), (DA, DB)) :- !, renamed_dc(M, A, DA), renamed_dc(M, B, DB).
+renamed_dc(M, (A ; B), (DA ; DB)) :- !, renamed_dc(M, A, DA), renamed_dc(M, B, DB).
+renamed_dc(M, (A -> B), (DA -> DB)) :- !, renamed_dc(M, A, DA), renamed_dc(M, B, DB).
+renamed_dc(M, \+ A, \+ DA) :- !, renamed_dc(M, A, DA).
+renamed_dc(M, K ~= V, DK ~= V) :- !, dc_term(M, K, DK).
+renamed_dc(M, G, DG) :- callable(G), !, dc_term(M, G, DG).
+renamed_dc(_, G, G).
 
 %   path_literal(+M, +Step, +S0, -S): S = s(LiteralsReversed, VarTerms,
 %   Bindings, StepIndex, StepIndex-ValueVariable pairs).
@@ -983,7 +1015,7 @@ learn_background(M, Clauses, Texts) :-
     background_closure(M, Ps, [], Needed),
     findall(W-T, ( member(N/A, Needed), functor(H, N, A),
                    M:'$ddcl_background'(H0, C, W), \+ H0 \= H,
-                   background_text(M, C, T) ), WTs),
+                   background_text(M, C, W, T) ), WTs),
     sort(WTs, Sorted),
     pairs_values(Sorted, Texts).
 
@@ -999,6 +1031,8 @@ body_pred(findall(_, G, _), P) :- !, body_pred(G, P).
 body_pred(K ~= _, P) :- !, internal_name(K, P).
 body_pred(G, P) :- callable(G), internal_name(G, P).
 
+internal_name(X:TE, N/A) :- nonvar(TE), TE = T+1, T == t, !, functor(X, N0, A),
+    atom_concat(N0, '_t1', N).
 internal_name((X:T)+1, N/A) :- T == t, !, functor(X, N0, A), atom_concat(N0, '_t1', N).
 internal_name(X:T, N/A) :- T == t, !, functor(X, N0, A), atom_concat(N0, '_t', N).
 internal_name(G, N/A) :- functor(G, N, A).
@@ -1018,16 +1052,32 @@ background_calls((_ ~ _ := B), Q) :- !, body_pred(B, Q).
 background_calls((_ := B), Q) :- !, body_pred(B, Q).
 background_calls((_ :- B), Q) :- !, body_pred(B, Q).
 
-%   background_text(+M, +Clause, -Text): a DC clause as read; a Prolog rule
-%   whose body reads the data as a derived DC clause.
-background_text(M, (H :- B), Text) :- !,
+%   background_text(+M, +Clause, +Where, -Text): a DC clause as it was read
+%   (its time-indexed terms and variable names back); a Prolog rule whose
+%   body reads the data as a derived DC clause.
+background_text(M, (H :- B), _, Text) :- !,
     (   reads_data(M, B)
     ->  internal_body_dc(M, B, DB), dc_term(M, H, DH),
         clause_text_vars((DH := DB), Text)
     ;   clause_text_vars((H :- B), Text)
     ).
-background_text(_, C, Text) :-
-    clause_text_vars(C, Text).
+background_text(M, C, W, Text) :-
+    (   M:'$ddcl_named'(W, T-Vs) -> true ; T = C, Vs = [] ),
+    undo_time(M, T, DC),
+    learn_clause_text(M, clause(DC, Vs), Text).
+
+%   undo_time(+M, +Term, -DC): every time-indexed term renamed for learning
+%   (pos_t(A)) as it was written (pos(A):t).
+undo_time(_, V, V) :- var(V), !.
+undo_time(M, T0, T) :-
+    compound(T0), !,
+    compound_name_arguments(T0, N, As0),
+    maplist(undo_time(M), As0, As),
+    compound_name_arguments(T1, N, As),
+    (   M:'$ddcl_timed'(N, _, _) -> dc_term(M, T1, T) ; T = T1 ).
+undo_time(M, A, T) :-
+    atom(A), M:'$ddcl_timed'(A, _, _), !, dc_term(M, A, T).
+undo_time(_, T, T).
 
 reads_data(M, B) :-
     body_pred(B, N/A),
@@ -1098,7 +1148,7 @@ print_literal(findall_forward(T, G, L)) :- !,
     write(', '), print_term_(L), write(')').
 print_literal(G) :-
     compound(G), G =.. [Op, A, B], memberchk(Op, [~=, <, >, =<, >=, ==, is, =, =:=, =\=]), !,
-    print_term_(A), format(' ~w ', [Op]), print_term_(B).
+    print_term_(A, 699), format(' ~w ', [Op]), print_term_(B, 699).
 print_literal(G) :- print_term_(G).
 
 print_inner(G) :-
@@ -1111,8 +1161,11 @@ print_conj((A, B)) :- !, print_literal(A), write(', '), print_conj(B).
 print_conj(A) :- print_literal(A).
 
 print_term_(T) :-
+    print_term_(T, 1200).
+
+print_term_(T, Priority) :-
     write_term(T, [quoted(true), numbervars(true), spacing(next_argument),
-                   module(ddc_learn_data)]).
+                   module(ddc_learn_data), priority(Priority)]).
 
                  /*******************************
                  *            NAMES             *
@@ -1241,7 +1294,8 @@ target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_l
 score_example(M, N, Ks, Goal, Out, Spec, Key, S0, S) :-
     copy_term(Ks-Goal-Out, Key-G-O),
     empty_assoc(E0),
-    alts(M, G, O, E0, 1.0, Alts),
+    K =.. [N|Key], example_weight(M, K, W),
+    alts(M, G, O, E0, W, Alts),
     foldl(score_alt(M, N, Key, Spec), Alts, S0, S).
 
 score_alt(M, N, Key, Spec, a(Y-R, _, F, _), s(W0, L0, C0, E0, U0), s(W, L, C, E, U)) :-

@@ -13,6 +13,7 @@
             learn_data_free/1,          % +Data
             learn_data_targets/2,       % +Data, -Targets
             learn_data_pred/4,          % +Data, ?Name, ?KeyArity, ?Kind
+            example_weight/3,           % +Data, +Key, -Weight
             learn_data_warnings/2,      % +Data, -Warnings
             message_text/2,             % +Message, -Text
             dc_goal/4,                  % +Data, +DCGoal, -Goal, +Where
@@ -158,6 +159,8 @@ load_into(M, Paths, Check) :-
     bias_items(M, Items),
     finish_preds(M, Items),
     forall(member(I, Items), load_item(M, I)),
+    forall(( member(item(T, Vs, _, W), Items), M:'$ddcl_background'(_, _, W) ),
+           assertz(M:'$ddcl_named'(W, T-Vs))),
     check_bias(M, Check).
 
 %   Items: item(Term, VarNames, Dialect, File:Line).
@@ -267,7 +270,7 @@ bias_term(dreaml, T) :- functor(T, N, A), memberchk(N/A, [base/1, thres/4, rando
                                                           mode/3, learn/4, rank/1]).
 bias_term(own, T) :- functor(T, N, A), memberchk(N/A, [type/1, rv/2, rv/1, mode/2, mode/3,
                                                        threshold/2, learn/1, examples/2,
-                                                       rank/1]).
+                                                       rank/1, weight/2]).
 
 % -- DreaML's declarations
 bias_item(M, dreaml, base(P), _, W) :- !,
@@ -332,6 +335,16 @@ bias_item(M, own, mode(T, L), _, W) :- !,
     add_mode(M, T, none, L, W).
 bias_item(M, own, mode(T, Agg, L), _, W) :- !,
     add_mode(M, T, Agg, L, W).
+bias_item(M, own, weight(K, W), _, W0) :- !,
+    (   ground(K), callable(K), number(W), W > 0
+    ->  K =.. [N|Ks], atom_concat('$weight:', N, WN),
+        append(Ks, [X], WAs), WF =.. [WN|WAs],
+        (   length(WAs, WA), current_predicate(M:WN/WA), M:WF
+        ->  throw(error(ddc_learn(weighted_twice(K, X, W), W0), _))
+        ;   append(Ks, [W], As), F =.. [WN|As], assertz(M:F)
+        )
+    ;   throw(error(ddc_learn(bad_weight(weight(K, W)), W0), _))
+    ).
 bias_item(_, _, rank(_), _, _) :- !.       % rank_levels/2, once all files are read
 
 must_be_callable(P, W) :-
@@ -942,6 +955,16 @@ learn_data_targets(M, Targets) :-
               ( How = own(Names) -> true ; length(Names, A), maplist(=('_'), Names) ) ),
             Targets).
 
+%!  example_weight(+Data, +Key, -Weight) is det.
+%
+%   The weight of a grounding (weight(Key, W) in the data; 1 when none is
+%   given): how many examples it stands for.
+example_weight(M, K, W) :-
+    K =.. [N|Ks], atom_concat('$weight:', N, WN),
+    append(Ks, [W0], As), F =.. [WN|As],
+    length(As, A),
+    (   current_predicate(M:WN/A), M:F -> W = W0 ; W = 1.0 ).
+
 %!  learn_data_pred(+Data, ?Name, ?KeyArity, ?Kind) is nondet.
 %
 %   Kind is rv(Spec) (Spec: discrete(Domain), continuous, count, any) or
@@ -1167,6 +1190,9 @@ learn_cause(target_type_mismatch(P, T, S)) --> !,
 learn_cause(variable_goal) --> !, [ 'a variable as a goal'-[] ].
 learn_cause(random_body(P)) --> !,
     [ '~w draws fresh randomness: not allowed in learning data'-[P] ].
+learn_cause(bad_weight(T)) --> !,
+    [ 'bad weight ~q: weight(Key, W) with a ground key and a number W > 0'-[T] ].
+learn_cause(weighted_twice(K, W0, W)) --> !, [ '~q is given two weights, ~q and ~q'-[K, W0, W] ].
 learn_cause(no_types(P)) --> !,
     [ 'a mode with + or - arguments needs the argument types of ~w: declare type(...) (or base/1)'-[P] ].
 learn_cause(bad_model(Model, Spec)) --> !,

@@ -26,18 +26,22 @@ cover_height(0.12).         % a container whose centre rises more than this abov
                             % centre no longer covers it (it was lifted)
 
 % ------------------------------------------------------------------ background knowledge
+% -- begin hand-written occlusion rules (anchoring learn-theory replaces them with learned ones)
 % What cannot hide anything: a ball does not afford occluding.
 cannot_occlude(ball) := true.
 % What cannot be hidden by other objects: hands (skin) are not anchored inside anything.
 cannot_be_occluded(skin) := true.
 cannot_be_occluded(hand) := true.
+% -- end hand-written occlusion rules
 % What carries what it hides through space (a hand lifts a grasped object); containers slide
 % over the table and what they cover stays on the table.
 carrier(skin) := true.
 carrier(hand) := true.
 
+% -- begin hand-written occlusion rules (anchoring learn-theory replaces them with learned ones)
 can_occlude(O) := category(O, C), \+ cannot_occlude(C).
 can_be_occluded(A) := category(A, C), \+ cannot_be_occluded(C).
+% -- end hand-written occlusion rules
 
 % ------------------------------------------------------------------ seen and hidden
 seen(A):t+1 := observed(A).
@@ -45,18 +49,21 @@ hidden(A):t+1 := object(A), \+ observed(A).
 % The camera saw nothing at all (covered by a hand): an object lost now could be anywhere.
 blind:t+1 := \+ observed(_).
 
+% -- begin hand-written occlusion rules (anchoring learn-theory replaces them with learned ones)
 % A container covers an object while its centre is not lifted far above the object's; a
 % carrier (a hand) covers what it holds wherever it goes.
 covers(O, A):t+1 := category(O, C), carrier(C), object(A), A \== O.
 covers(O, A):t+1 :=
     category(O, C), \+ carrier(C), A \== O,
     pos(O):t+1 ~= (_, _, ZO), pos(A):t ~= (_, _, Z), cover_height(H), ZO < Z + H.
+% -- end hand-written occlusion rules
 
 % An object hidden while blind stays "lost anywhere" until an occluder explains it.
 lost_anywhere(A):t+1 := hidden(A):t+1, blind:t+1, \+ occluded_by(A, _):t+1.
 lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
 
 % ------------------------------------------------------------------ occlusion
+% -- begin hand-written occlusion rules (anchoring learn-theory replaces them with learned ones)
 % O could hide A: O is perceived now, may occlude, covers A, and is near A's last position
 % and not below it, or A was lost while the camera was blind (then every occluder on the
 % table could).
@@ -110,6 +117,7 @@ occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
 % The occlusion lasts while the object is hidden and its occluder is perceived and still
 % covers it.
 occluded_by(A, O):t+1 := occluded_by(A, O):t, hidden(A):t+1, observed(O), covers(O, A):t+1.
+% -- end hand-written occlusion rules
 % Transitive occlusion (section 5.3 of the paper; remove this clause to switch it off): an
 % object whose occluder is itself hidden stays with it, under whatever hides the occluder (or,
 % while the occluder is under nothing, where the occluder is believed to be: a box lowered

@@ -134,8 +134,9 @@ def test_the_learned_program_loads_in_the_engine_and_answers(
     train, _ = data
     path = learn([train]).write(tmp_path / "learned.pl")
     facts = tmp_path / "query.pl"
-    facts.write_text(path.read_text()
-                     + "\ndistance(a, b):t ~ val(0.05).\ncategory(b) ~ val(box).\n")
+    # the clauses start with the examples' goal, pair(A, O): the pair they are about
+    facts.write_text(path.read_text() + "\npair(a, b) := true.\n"
+                     + "distance(a, b):t ~ val(0.05).\ncategory(b) ~ val(box).\n")
     program = bridge.load(facts)
     p = program.query("occluder(a, b):t+1 ~= true", samples=10, seed=0).probability
     expected = 1.0 / (1.0 + math.exp(16.9 * 0.05 - 0.8))

@@ -8,9 +8,13 @@ The same seed gives the same game.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from tabletop.builder import ScenarioBuilder
+from tabletop.errors import ScenarioError
+from tabletop.scenario import Scenario
 
 CONTAINER_KINDS = (
     ("mug", {"radius": 0.04, "height": 0.1}),
@@ -65,3 +69,249 @@ def shell_game(containers: int = 3, swaps: int = 3, seed: int = 0, fps: float = 
         b.lift(t, ids[int(i)], to=to, duration=2.0)
         t += 2.5
     return b
+
+
+def _free_spot(rng: np.random.Generator, spots: list[tuple[float, float]],
+               gap: float = 0.16) -> tuple[float, float]:
+    """A table spot ``gap`` from the others (remembered: later objects keep clear of it)."""
+    for _ in range(200):
+        xy = (float(rng.uniform(-0.3, 0.3)), float(rng.uniform(-0.17, 0.2)))
+        if all(np.hypot(xy[0] - a, xy[1] - c) > gap for a, c in spots):
+            break
+    spots.append(xy)
+    return xy
+
+
+SCENE_COLOURS = ["red", "orange", "yellow", "green", "cyan", "blue", "purple", "pink", "brown",
+                 "white", "gray", "black"]
+
+
+def random_scene(seed: int) -> Scenario:
+    """A random table scene with the events the scenarios use: objects pushed around (also past
+    each other), balls and cans put under containers, containers swapped, moved and lifted, the
+    camera covered; look-alike objects on purpose. About 12-18 s at 15 fps."""
+    for attempt in range(50):
+        rng = np.random.default_rng([seed, attempt])
+        b = ScenarioBuilder(f"training-{seed}", fps=15)
+        kinds = ["ball", "ball", "mug", "box", "can", "mug", "box", "cup"]
+        n = int(rng.integers(3, 7))
+        chosen = list(rng.choice(kinds, n, replace=False))
+        colours = list(rng.choice(SCENE_COLOURS, n, replace=True))
+        if rng.random() < 0.5 and chosen.count("ball") == 2:  # twins
+            i, j = [k for k, c in enumerate(chosen) if c == "ball"]
+            colours[j] = colours[i]
+        spots: list[tuple[float, float]] = []
+        free = functools.partial(_free_spot, rng, spots)
+
+        ids: dict[str, list[str]] = {}
+        where: dict[str, tuple[float, float]] = {}  # rough positions, for "front"
+        for k, (cat, col) in enumerate(zip(chosen, colours, strict=True)):
+            oid = f"{cat}_{k}"
+            ids.setdefault(cat, []).append(oid)
+            xy = free()
+            where[oid] = xy
+            if cat == "ball":
+                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.025, 0.035)))
+            elif cat in ("mug", "cup"):
+                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.04, 0.045)),
+                      height=float(rng.uniform(0.09, 0.11)))
+            elif cat == "can":
+                b.add(oid, cat, col, position=xy, radius=0.033, height=0.12)
+            else:
+                side = float(rng.uniform(0.13, 0.16))
+                b.add(oid, cat, col, position=xy, size=[side, side, side])
+        containers = ids.get("mug", []) + ids.get("box", []) + ids.get("cup", [])
+        small = ids.get("ball", []) + ids.get("can", [])
+        t = 1.0
+        hidden: dict[str, str] = {}
+        for _ in range(int(rng.integers(3, 7))):
+            what = rng.choice(["move", "move", "under", "swap", "lift", "cover", "front"])
+            if what == "under" and small and containers:
+                obj = str(rng.choice(small))
+                free_c = [c for c in containers if c not in hidden.values()]
+                if obj in hidden or not free_c:
+                    continue
+                box = str(rng.choice(free_c))
+                if obj.startswith("can") and not box.startswith("box"):
+                    continue
+                b.put_under(t, obj, box, duration=2.5)
+                hidden[obj] = box
+                where[box] = where[obj]
+                t += 3.0
+            elif what == "swap" and len(containers) >= 2:
+                a, c = (str(x) for x in rng.choice(containers, 2, replace=False))
+                b.swap(t, a, c, duration=float(rng.uniform(1.5, 2.5)))
+                where[a], where[c] = where[c], where[a]
+                t += 3.0
+            elif what == "lift" and hidden:
+                obj = str(rng.choice(sorted(hidden)))
+                box = hidden.pop(obj)
+                where[box] = free(0.12)
+                b.lift(t, box, to=where[box], duration=2.5)
+                t += 3.0
+            elif what == "front" and containers:
+                # a container passes in front of another object (between it and the camera,
+                # which looks from -y): the object is partly hidden, its percept a fragment
+                box = str(rng.choice([c for c in containers if c not in hidden.values()]
+                                     or containers))
+                others = [o for os_ in ids.values() for o in os_
+                          if o != box and o not in hidden]
+                if box in hidden.values() or not others:
+                    continue
+                target = str(rng.choice(others))
+                tx, ty = where[target]
+                spot = (tx + float(rng.uniform(-0.03, 0.03)),
+                        ty - float(rng.uniform(0.15, 0.18)))
+                if not (-0.32 < spot[0] < 0.32 and -0.2 < spot[1] < 0.22):
+                    continue
+                spots.append(spot)
+                b.move(t, box, to=spot, speed=float(rng.uniform(0.08, 0.2)))
+                where[box] = spot
+                t += float(rng.uniform(3.0, 4.5))
+            elif what == "cover":
+                b.cover_camera(t, duration=float(rng.uniform(1.0, 2.5)))
+                t += 3.0
+            else:
+                movable = [o for os_ in ids.values() for o in os_ if o not in hidden]
+                obj = str(rng.choice(movable))
+                where[obj] = free(0.12)
+                b.move(t, obj, to=where[obj], speed=float(rng.uniform(0.08, 0.25)))
+                t += float(rng.uniform(2.0, 3.5))
+        for obj in sorted(hidden):
+            b.lift(t, hidden[obj], to=free(0.12), duration=2.5)
+            t += 3.0
+        b.data["duration"] = t + 1.0
+        try:
+            return b.build()
+        except ScenarioError:
+            continue
+    raise ValueError(f"could not build a valid random scene for seed {seed}")
+
+
+def occlusion_game(seed: int) -> ScenarioBuilder:
+    """A random table with many kinds of occlusion, for learning a theory of occlusion.
+
+    Three to six objects (balls, cans, mugs, cups, boxes; balls and cans are small and cannot
+    hide anything) and five to nine events of: an object covered by a container (carried over
+    it, with other containers near and far), a container carried with what it covers, two
+    containers swapped, a container lifted off what it covers, an object grasped by a hand,
+    carried and put down elsewhere, a container passing in front of an object (it is only
+    behind, not under), the camera covered (sometimes while an object goes under a container),
+    an object pushed elsewhere. Everything hidden is revealed at the end. About 15-30 s at 15
+    fps; the same seed gives the same game.
+    """
+    for attempt in range(50):
+        rng = np.random.default_rng([seed, attempt, 17])
+        b = ScenarioBuilder(f"occlusion_game_{seed}", fps=15)
+        kinds = ["ball", "ball", "can", "mug", "cup", "box", "mug", "box", "cup"]
+        n = int(rng.integers(3, 7))
+        chosen = list(rng.choice(kinds, n, replace=False))
+        if not any(c in ("mug", "cup", "box") for c in chosen):
+            chosen[-1] = str(rng.choice(["mug", "cup", "box"]))
+        colours = list(rng.choice(SCENE_COLOURS, n, replace=True))
+        spots: list[tuple[float, float]] = []
+        free = functools.partial(_free_spot, rng, spots)
+        ids: dict[str, list[str]] = {}
+        where: dict[str, tuple[float, float]] = {}
+        for k, (cat, col) in enumerate(zip(chosen, colours, strict=True)):
+            oid = f"{cat}_{k}"
+            ids.setdefault(cat, []).append(oid)
+            xy = free()
+            where[oid] = xy
+            if cat == "ball":
+                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.025, 0.035)))
+            elif cat in ("mug", "cup"):
+                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.04, 0.045)),
+                      height=float(rng.uniform(0.09, 0.11)))
+            elif cat == "can":
+                b.add(oid, cat, col, position=xy, radius=0.033, height=0.12)
+            else:
+                side = float(rng.uniform(0.13, 0.16))
+                b.add(oid, cat, col, position=xy, size=[side, side, side])
+        containers = ids.get("mug", []) + ids.get("box", []) + ids.get("cup", [])
+        small = ids.get("ball", []) + ids.get("can", [])
+        t = 1.0
+        hidden: dict[str, str] = {}       # object -> container over it
+        held: str | None = None
+        events = int(rng.integers(5, 10))
+        choices = ["under", "under", "carry", "swap", "lift", "grasp", "front", "cover",
+                   "cover_under", "move"]
+        for _ in range(events):
+            what = str(rng.choice(choices))
+            free_c = [c for c in containers if c not in hidden.values()]
+            visible_small = [o for o in small if o not in hidden]
+            if what in ("under", "cover_under") and visible_small and free_c:
+                obj = str(rng.choice(visible_small))
+                box = str(rng.choice(free_c))
+                if obj.startswith("can") and not box.startswith("box"):
+                    continue
+                if what == "cover_under":
+                    b.cover_camera(t, duration=2.6)
+                    b.put_under(t + 0.2, obj, box, duration=2.2)
+                    t += 3.4
+                else:
+                    b.put_under(t, obj, box, duration=float(rng.uniform(2.0, 3.0)))
+                    t += 3.2
+                hidden[obj] = box
+                where[box] = where[obj]
+            elif what == "carry" and hidden:
+                obj = str(rng.choice(sorted(hidden)))
+                box = hidden[obj]
+                to = free(0.16)
+                b.move(t, box, to=to, speed=float(rng.uniform(0.08, 0.18)))
+                where[box] = where[obj] = to
+                t += float(rng.uniform(3.0, 4.5))
+            elif what == "swap" and len(containers) >= 2:
+                a, c = (str(x) for x in rng.choice(containers, 2, replace=False))
+                b.swap(t, a, c, duration=float(rng.uniform(1.5, 2.5)))
+                where[a], where[c] = where[c], where[a]
+                t += 3.0
+            elif what == "lift" and hidden:
+                obj = str(rng.choice(sorted(hidden)))
+                box = hidden.pop(obj)
+                where[box] = free(0.12)
+                b.lift(t, box, to=where[box], duration=2.5)
+                t += 3.0
+            elif what == "grasp" and visible_small and held is None:
+                obj = str(rng.choice(visible_small))
+                b.pick_up(t, obj, duration=2.0)
+                t += 2.5
+                where[obj] = free(0.12)
+                b.put_down(t, obj, to=where[obj], duration=float(rng.uniform(2.0, 3.0)))
+                t += 3.5
+            elif what == "front" and containers:
+                box = str(rng.choice(free_c or containers))
+                others = [o for os_ in ids.values() for o in os_ if o != box and o not in hidden]
+                if box in hidden.values() or not others:
+                    continue
+                target = str(rng.choice(others))
+                tx, ty = where[target]
+                spot = (tx + float(rng.uniform(-0.03, 0.03)), ty - float(rng.uniform(0.15, 0.18)))
+                if not (-0.32 < spot[0] < 0.32 and -0.2 < spot[1] < 0.22):
+                    continue
+                spots.append(spot)
+                b.move(t, box, to=spot, speed=float(rng.uniform(0.08, 0.2)))
+                where[box] = spot
+                t += float(rng.uniform(3.0, 4.5))
+            elif what == "cover":
+                b.cover_camera(t, duration=float(rng.uniform(1.0, 2.5)))
+                t += 3.0
+            else:
+                movable = [o for os_ in ids.values() for o in os_
+                           if o not in hidden and o not in hidden.values()]
+                if not movable:
+                    continue
+                obj = str(rng.choice(movable))
+                where[obj] = free(0.12)
+                b.move(t, obj, to=where[obj], speed=float(rng.uniform(0.08, 0.25)))
+                t += float(rng.uniform(2.0, 3.5))
+        for obj in sorted(hidden):
+            b.lift(t, hidden[obj], to=free(0.12), duration=2.5)
+            t += 3.0
+        b.data["duration"] = t + 1.0
+        try:
+            b.build()
+        except ScenarioError:
+            continue
+        return b
+    raise ValueError(f"could not build a valid occlusion game for seed {seed}")

@@ -251,7 +251,8 @@ test(logistic_clause_in_the_papers_order, [nondet]) :-
     learn_split(M, N, Id, [Def, _]), get_dict(node, Def, DN),
     learn_leaf_text(M, DN, "logistic([-16.9, 0.8])", [0], T),
     get_dict(clause, T, Text),
-    Text == "occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=\n    distance(Occluded, Occluder):t ~= Distance,\n    logistic([Distance], [-16.9, 0.8], P1),\n    P2 is 1-P1.",
+    %  the examples' goal first (the head's variables bound, for forward reasoning)
+    Text == "occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=\n    pair(Occluded, Occluder),\n    distance(Occluded, Occluder):t ~= Distance,\n    logistic([Distance], [-16.9, 0.8], P1),\n    P2 is 1-P1.",
     learn_free(M).
 
 test(learned_clause_text_loads_in_the_engine_and_gives_the_model, [nondet]) :-
@@ -261,7 +262,7 @@ test(learned_clause_text_loads_in_the_engine_and_gives_the_model, [nondet]) :-
     learn_split(M, N, Id, [Def, Undef]), get_dict(node, Def, DN), get_dict(node, Undef, UN),
     learn_leaf_text(M, DN, "logistic([-16.9, 0.8])", [0], T1), get_dict(clause, T1, C1),
     learn_leaf_text(M, UN, "finite([0.25, 0.75])", [], T2), get_dict(clause, T2, C2),
-    data(['distance(a, b):t ~ val(0.1).', C1, C2], F),
+    data(['distance(a, b):t ~ val(0.1).', 'pair(a, b) := true.', C1, C2], F),
     ddc_load(F, P),
     query((occluder(a, b):t+1) ~= true, Prob, [samples(10), program(P), time(0)]),
     Expected is 1/(1+exp(16.9*0.1 - 0.8)),

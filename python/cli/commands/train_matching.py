@@ -10,7 +10,6 @@ similarity vectors, and written as JSON (plus a report JSON with every figure).
 from __future__ import annotations
 
 import argparse
-import functools
 import json
 from pathlib import Path
 
@@ -289,125 +288,7 @@ def scenes_wanted(args: argparse.Namespace) -> bool:
 def _perceive(what: Path | int, seed: int) -> list[PerceptFrame]:
     """Simulate and perceive a scenario file, or random scene number ``what``."""
     from perception import perceive_scenario
+    from tabletop.generate import random_scene
 
     scenario = what if isinstance(what, Path) else random_scene(1000 * seed + what)
     return list(perceive_scenario(scenario, seed=seed))
-
-
-def _free_spot(rng: np.random.Generator, spots: list[tuple[float, float]],
-               gap: float = 0.16) -> tuple[float, float]:
-    """A table spot ``gap`` from the others (remembered: later objects keep clear of it)."""
-    for _ in range(200):
-        xy = (float(rng.uniform(-0.3, 0.3)), float(rng.uniform(-0.17, 0.2)))
-        if all(np.hypot(xy[0] - a, xy[1] - c) > gap for a, c in spots):
-            break
-    spots.append(xy)
-    return xy
-
-
-SCENE_COLOURS = ["red", "orange", "yellow", "green", "cyan", "blue", "purple", "pink", "brown",
-                 "white", "gray", "black"]
-
-
-def random_scene(seed: int):  # -> tabletop.Scenario
-    """A random table scene with the events the scenarios use: objects pushed around (also past
-    each other), balls and cans put under containers, containers swapped, moved and lifted, the
-    camera covered; look-alike objects on purpose. About 12-18 s at 15 fps."""
-    from tabletop import ScenarioBuilder, ScenarioError
-
-    for attempt in range(50):
-        rng = np.random.default_rng([seed, attempt])
-        b = ScenarioBuilder(f"training-{seed}", fps=15)
-        kinds = ["ball", "ball", "mug", "box", "can", "mug", "box", "cup"]
-        n = int(rng.integers(3, 7))
-        chosen = list(rng.choice(kinds, n, replace=False))
-        colours = list(rng.choice(SCENE_COLOURS, n, replace=True))
-        if rng.random() < 0.5 and chosen.count("ball") == 2:  # twins
-            i, j = [k for k, c in enumerate(chosen) if c == "ball"]
-            colours[j] = colours[i]
-        spots: list[tuple[float, float]] = []
-        free = functools.partial(_free_spot, rng, spots)
-
-        ids: dict[str, list[str]] = {}
-        where: dict[str, tuple[float, float]] = {}  # rough positions, for "front"
-        for k, (cat, col) in enumerate(zip(chosen, colours, strict=True)):
-            oid = f"{cat}_{k}"
-            ids.setdefault(cat, []).append(oid)
-            xy = free()
-            where[oid] = xy
-            if cat == "ball":
-                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.025, 0.035)))
-            elif cat in ("mug", "cup"):
-                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.04, 0.045)),
-                      height=float(rng.uniform(0.09, 0.11)))
-            elif cat == "can":
-                b.add(oid, cat, col, position=xy, radius=0.033, height=0.12)
-            else:
-                side = float(rng.uniform(0.13, 0.16))
-                b.add(oid, cat, col, position=xy, size=[side, side, side])
-        containers = ids.get("mug", []) + ids.get("box", []) + ids.get("cup", [])
-        small = ids.get("ball", []) + ids.get("can", [])
-        t = 1.0
-        hidden: dict[str, str] = {}
-        for _ in range(int(rng.integers(3, 7))):
-            what = rng.choice(["move", "move", "under", "swap", "lift", "cover", "front"])
-            if what == "under" and small and containers:
-                obj = str(rng.choice(small))
-                free_c = [c for c in containers if c not in hidden.values()]
-                if obj in hidden or not free_c:
-                    continue
-                box = str(rng.choice(free_c))
-                if obj.startswith("can") and not box.startswith("box"):
-                    continue
-                b.put_under(t, obj, box, duration=2.5)
-                hidden[obj] = box
-                where[box] = where[obj]
-                t += 3.0
-            elif what == "swap" and len(containers) >= 2:
-                a, c = (str(x) for x in rng.choice(containers, 2, replace=False))
-                b.swap(t, a, c, duration=float(rng.uniform(1.5, 2.5)))
-                where[a], where[c] = where[c], where[a]
-                t += 3.0
-            elif what == "lift" and hidden:
-                obj = str(rng.choice(sorted(hidden)))
-                box = hidden.pop(obj)
-                where[box] = free(0.12)
-                b.lift(t, box, to=where[box], duration=2.5)
-                t += 3.0
-            elif what == "front" and containers:
-                # a container passes in front of another object (between it and the camera,
-                # which looks from -y): the object is partly hidden, its percept a fragment
-                box = str(rng.choice([c for c in containers if c not in hidden.values()]
-                                     or containers))
-                others = [o for os_ in ids.values() for o in os_
-                          if o != box and o not in hidden]
-                if box in hidden.values() or not others:
-                    continue
-                target = str(rng.choice(others))
-                tx, ty = where[target]
-                spot = (tx + float(rng.uniform(-0.03, 0.03)),
-                        ty - float(rng.uniform(0.15, 0.18)))
-                if not (-0.32 < spot[0] < 0.32 and -0.2 < spot[1] < 0.22):
-                    continue
-                spots.append(spot)
-                b.move(t, box, to=spot, speed=float(rng.uniform(0.08, 0.2)))
-                where[box] = spot
-                t += float(rng.uniform(3.0, 4.5))
-            elif what == "cover":
-                b.cover_camera(t, duration=float(rng.uniform(1.0, 2.5)))
-                t += 3.0
-            else:
-                movable = [o for os_ in ids.values() for o in os_ if o not in hidden]
-                obj = str(rng.choice(movable))
-                where[obj] = free(0.12)
-                b.move(t, obj, to=where[obj], speed=float(rng.uniform(0.08, 0.25)))
-                t += float(rng.uniform(2.0, 3.5))
-        for obj in sorted(hidden):
-            b.lift(t, hidden[obj], to=free(0.12), duration=2.5)
-            t += 3.0
-        b.data["duration"] = t + 1.0
-        try:
-            return b.build()
-        except ScenarioError:
-            continue
-    raise ValueError(f"could not build a valid random scene for seed {seed}")

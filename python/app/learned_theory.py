@@ -1,0 +1,192 @@
+"""``anchoring learn-theory``: the theory of occlusion with rules learned from experience.
+
+The structure learner (:func:`ddclearn.learn`) learns, from the data ``anchoring collect``
+writes, one distributional logic tree for ``occluder(A, O):t+1``: whether O covers (or holds)
+the hidden object A at t+1. Its branch where A was known to be under O at t is the *tracking
+rule* (does the occlusion go on?), the other branch the *occluder rule* (may O start hiding A?),
+both with statistical models (a logistic regression on a distance, ...) in their leaves.
+
+The theory written is the hand-written one (``prolog/too.pl``) with its hand-written occlusion
+rules (the parts between ``% -- begin hand-written occlusion rules`` and ``% -- end ...``: what
+may occlude what, which container covers which object, which object may be picked as an
+occluder, how long an occlusion lasts) replaced by the learned clauses and three glue clauses
+that use them as the paper's theory does (section 2.3): a hidden object's candidate occluders
+are the perceived objects O for which a particle draws ``occluder(A, O):t+1 ~= true``; it picks
+one uniformly (or ``behind``, when it has just vanished, as in ``too.pl``); an occlusion goes on
+while the particle draws ``occluder(A, O):t+1 ~= true`` and O is perceived. Everything else of
+``too.pl`` stays: motion and observation models, what blind frames do, the transitive clause
+(section 5.3: added by hand).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import tempfile
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from app.reasoning import DEFAULT_THEORY
+from ddclearn import LearnResult, SearchOptions, learn
+
+__all__ = ["DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError", "learn_theory",
+           "logistic_leaves", "theory_text"]
+
+BEGIN = "% -- begin hand-written occlusion rules"
+END = "% -- end hand-written occlusion rules"
+
+#: The paper's learned clause, P1 = sigmoid(0.8 - 16.9 d) (section 4).
+PAPER = (-16.9, 0.8)
+#: The original system's deployed model, sigmoid(1.948 - 16.488 d) (ProbAnch).
+DEPLOYED = (-16.488, 1.948)
+
+GLUE = """\
+% ------------------------------------------------------------------ learned occlusion rules
+% How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
+% (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples);
+% O is a candidate occluder of the hidden A when the particle
+% draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
+% when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
+% occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
+pair(A, O):t+1 := hidden(A):t+1, observed(O), O \\== A.
+occluder_candidate(A, O):t+1 :=
+    pair(A, O):t+1, \\+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, seen(A):t, \\+ occluded_by(A, _):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \\== [],
+    Os = [behind | Os1].
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, \\+ seen(A):t, \\+ occluded_by(A, _):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \\== [].
+occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \\== behind.
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+"""
+
+
+class TheoryError(ValueError):
+    """A theory that cannot be written: the base has no rules to replace, or the result does
+    not load (the message names the file, line and cause)."""
+
+
+@dataclass
+class LearnedTheory:
+    """What ``learn-theory`` wrote and learned."""
+
+    out: Path
+    result: LearnResult
+    text: str
+
+
+def theory_text(base: str, learned_program: str, header: str) -> str:
+    """The base theory with its hand-written occlusion rules replaced by the learned ones.
+
+    ``learned_program`` is the learner's output (background knowledge and clauses); it goes,
+    after the glue clauses, where the last hand-written part was.
+    """
+    pattern = re.compile(rf"^{re.escape(BEGIN)}.*?^{re.escape(END)}[^\n]*\n", re.S | re.M)
+    parts = list(pattern.finditer(base))
+    if not parts:
+        raise TheoryError(f"the base theory has no '{BEGIN}' ... '{END}' part to replace")
+    body = _program_body(learned_program)
+    out: list[str] = []
+    last = 0
+    for i, m in enumerate(parts):
+        out.append(base[last:m.start()])
+        if i == len(parts) - 1:
+            out.append(GLUE + "\n" + body.rstrip() + "\n")
+        last = m.end()
+    out.append(base[last:])
+    return header + "".join(out)
+
+
+def _program_body(program: str) -> str:
+    """The learned program without its own header comment (the theory's header says it)."""
+    lines = program.splitlines()
+    k = 0
+    while k < len(lines) and (lines[k].startswith("%") or not lines[k].strip()):
+        k += 1
+    intro = ("% The learned rules (ddc learn): a distributional logic tree for occluder/2, one "
+             "clause per path,\n% with the background knowledge they read.\n")
+    return intro + "\n".join(lines[k:]) + "\n"
+
+
+def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
+                 options: SearchOptions | None = None, base: str | Path = DEFAULT_THEORY,
+                 command: str | None = None, progress: bool = False) -> LearnedTheory:
+    """Learn the occlusion rules from ``data`` and write the complete theory to ``out``.
+
+    ``out`` is replaced only once the theory is complete and loads in the engine (a failed run
+    leaves the previous file as it was).
+
+    Raises
+    ------
+    TheoryError
+        The base theory has nothing to replace, or the theory written does not load.
+    bridge.DDCError
+        The data has an error (its message names the file and line).
+    """
+    import bridge
+
+    out = Path(out)
+    base_path = Path(base)
+    result = learn(data, ["occluder:t+1"], seed=seed, options=options, progress=progress)
+    target = result.targets[0]
+    names = ", ".join(Path(d).name for d in data)
+    header = [
+        "/*  too_learned.pl -- the theory of occlusion with rules learned from experience.",
+        "",
+        "    Written by `anchoring learn-theory`: the hand-written occlusion rules of",
+        f"    {base_path.name} are replaced by a tree learned (ddc learn) from {names}:",
+        f"    {target.groundings} groundings of occluder(A, O):t+1, {target.clauses} clauses,",
+        f"    training log-likelihood {target.log_likelihood:.6g}; search seed {seed}.",
+    ]
+    if command:
+        header.append(f"    Command: {command}")
+    header += [
+        "    Everything else is too.pl's (motion, observations, blind frames, the transitive",
+        "    clause). Regenerate it rather than edit it; edit prolog/too.pl for the rest.",
+        "*/",
+        "",
+    ]
+    text = theory_text(base_path.read_text(encoding="utf-8"), result.program,
+                       "\n".join(header) + "\n")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".pl", dir=out.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+        try:
+            bridge.load(tmp)
+        except bridge.DDCError as error:
+            raise TheoryError(f"the learned theory does not load: {error}") from None
+        os.replace(tmp, out)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return LearnedTheory(out, result, text)
+
+
+def logistic_leaves(result: LearnResult, feature: str = "distance") -> list[tuple[str, float,
+                                                                                  float]]:
+    """The leaves of the learned tree whose model is a logistic regression on one regressor
+    read from ``feature``: (the leaf's path, weight, bias)."""
+    out = []
+    for leaf in result.targets[0].leaves:
+        lf = leaf.leaf
+        if lf.family != "logistic" or lf.weights is None or len(lf.weights) != 2:
+            continue
+        if f"{feature}(" not in leaf.clause:
+            continue
+        body = leaf.clause.split(":=", 1)[1]
+        path = ", ".join(line.strip().rstrip(",") for line in body.splitlines()
+                         if line.strip() and "logistic(" not in line and " is 1-" not in line)
+        out.append((path, float(lf.weights[0]), float(lf.weights[1])))
+    return out
+
+
+def sigmoid_curve(w: float, b: float, d: Sequence[float]) -> list[float]:
+    """P1 = 1 / (1 + exp(-(w d + b)))."""
+    return [1.0 / (1.0 + math.exp(-(w * x + b))) for x in d]
