@@ -701,10 +701,10 @@ learn_split(M, Node, Id, Children) :-
             Pairs),
     NB1 is NB-1, numlist(0, NB1, BIs),
     Info = info(T, Vars, Used, Path),
-    Spec = cand(MId, _, _, _, Fresh, _, _, _, _, _),
-    maplist(child(M, T, Vars, Used, Path, Id, MId, Fresh, Pairs), BIs, Children).
+    Spec = cand(_, _, _, _, Fresh, _, _, _, _, _),
+    maplist(child(M, T, Vars, Used, Path, Id, Fresh, Pairs), BIs, Children).
 
-child(M, T, Vars, Used, Path, Id, MId, Fresh, Pairs, B,
+child(M, T, Vars, Used, Path, Id, Fresh, Pairs, B,
       _{node: C, branch: B, row: Rs, factor: Fs, x: Xs}) :-
     findall(R-I-F-X, member(B-(I-R-F-X), Pairs), Ls),
     findall(R, member(R-_-_-_, Ls), Rows),

@@ -10,6 +10,7 @@ directory) and every method runs on that same stream. The (scenario, seed) units
 
 from __future__ import annotations
 
+import hashlib
 import json
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
@@ -21,6 +22,7 @@ import numpy as np
 
 from app.reasoning import DEFAULT_THREADS
 from app.runner import RunOptions, run
+from app.theories import theory_path
 from bridge.filter import Engine
 from evaluation import evaluate, make_summary, results_table
 from evaluation.baselines import BASELINES, run_baseline
@@ -28,7 +30,11 @@ from percepts import read_percepts, write_percepts
 
 ROOT = Path(__file__).resolve().parents[2]
 SHIPPED = ("shell_game", "can_under_box", "ball_under_box_two_balls", "transitive")
+#: Reasoning with each shipped theory of occlusion (app.theories): the hand-written one, the one
+#: learned from ground-truth labels, the one learned from hindsight labels.
+REASONING = {"reasoning": "hand", "learned": "learned", "learned-hindsight": "hindsight"}
 METHODS = ("reasoning", "no-reasoning", *BASELINES)
+ALL_METHODS = (*REASONING, "no-reasoning", *BASELINES)
 
 
 @dataclass
@@ -75,13 +81,22 @@ def percept_stream(scenario: Path, seed: int, cache: Path) -> Path:
     return path
 
 
+def theory_digest(method: str) -> str | None:
+    """The SHA-1 of the theory a reasoning method runs (None for the others): a run recorded
+    with another version of the theory is run again."""
+    if method not in REASONING:
+        return None
+    return hashlib.sha1(theory_path(REASONING[method]).read_bytes()).hexdigest()[:12]
+
+
 def run_method(method: str, stream: Path, particles: int, seed: int,
                threads: int = DEFAULT_THREADS, engine: Engine = "auto") -> dict[str, Any]:
     """One method on one percept stream -> its summary."""
-    if method in ("reasoning", "no-reasoning"):
+    if method in REASONING or method == "no-reasoning":
+        theory = theory_path(REASONING.get(method, "hand"))
         output = run(RunOptions(percepts=stream, particles=particles, seed=seed,
-                                reasoning=method == "reasoning", progress=False,
-                                threads=threads, engine=engine))
+                                reasoning=method != "no-reasoning", theory=theory,
+                                progress=False, threads=threads, engine=engine))
         return output.summary
     records = run_baseline(method, list(read_percepts(stream)))
     return make_summary(records, evaluate(records), extra={"method": method})
@@ -94,6 +109,7 @@ def run_unit(label: str, scenario: Path, seed: int, methods: Sequence[str], part
     stream = percept_stream(scenario, seed, cache)
     return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": method,
              "particles": particles, "threads": threads, "engine": engine,
+             "theory": theory_digest(method),
              "summary": run_method(method, stream, particles, seed, threads, engine)}
             for method in methods]
 
@@ -123,14 +139,17 @@ def run_experiment(options: ExperimentOptions,
         units.append(("generated shell games", path, 0))
 
     log_path = out / "summaries.jsonl"
+    digests = {m: theory_digest(m) for m in REASONING}
     done: dict[tuple[str, int, str], dict[str, Any]] = {
         (line["scenario"], line["seed"], line["method"]): line
         for line in read_summaries(log_path)
         if line.get("particles", options.particles) == options.particles
-        and (line["method"] != "reasoning"
+        and (line["method"] not in REASONING
              or (line.get("threads", 1) == options.threads
                  # (runs recorded before the engine was, ran the per-particle one)
-                 and line.get("engine", "per_particle") == options.engine))
+                 and line.get("engine", "per_particle") == options.engine
+                 # (runs recorded before the theory was, ran prolog/too.pl as it was then)
+                 and line.get("theory", digests[line["method"]]) == digests[line["method"]]))
     }
     todo = [(label, scenario, seed,
              [m for m in options.methods if (scenario.stem, seed, m) not in done])

@@ -20,7 +20,6 @@ while the particle draws ``occluder(A, O):t+1 ~= true`` and O is perceived. Ever
 
 from __future__ import annotations
 
-import math
 import os
 import re
 import tempfile
@@ -28,11 +27,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from app.reasoning import DEFAULT_THEORY
 from ddclearn import LearnResult, SearchOptions, learn
 
 __all__ = ["DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError", "learn_theory",
-           "logistic_leaves", "theory_text"]
+           "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
 
 BEGIN = "% -- begin hand-written occlusion rules"
 END = "% -- end hand-written occlusion rules"
@@ -78,6 +79,12 @@ class LearnedTheory:
     out: Path
     result: LearnResult
     text: str
+
+    @property
+    def logistic(self) -> list[dict[str, object]]:
+        """The leaves whose model is a logistic regression on the distance: their path, the
+        regressors' names and weights (the bias last), their groundings."""
+        return logistic_leaves(self.result)
 
 
 def theory_text(base: str, learned_program: str, header: str) -> str:
@@ -169,24 +176,71 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     return LearnedTheory(out, result, text)
 
 
-def logistic_leaves(result: LearnResult, feature: str = "distance") -> list[tuple[str, float,
-                                                                                  float]]:
-    """The leaves of the learned tree whose model is a logistic regression on one regressor
-    read from ``feature``: (the leaf's path, weight, bias)."""
-    out = []
+def logistic_leaves(result: LearnResult, feature: str = "distance") -> list[dict[str, object]]:
+    """The leaves of the learned tree whose model is a logistic regression with ``feature``
+    among its regressors: path (the tested literals), regressors (their variables' names),
+    weights (one per regressor, the bias last), rows, weight."""
+    out: list[dict[str, object]] = []
     for leaf in result.targets[0].leaves:
         lf = leaf.leaf
-        if lf.family != "logistic" or lf.weights is None or len(lf.weights) != 2:
+        if lf.family != "logistic" or lf.weights is None or f"{feature}(" not in leaf.clause:
             continue
-        if f"{feature}(" not in leaf.clause:
+        m = re.search(r"logistic\(\[([^\]]*)\]", leaf.clause)
+        names = [n.strip() for n in m.group(1).split(",")] if m else []
+        if feature.capitalize() not in names:
             continue
         body = leaf.clause.split(":=", 1)[1]
-        path = ", ".join(line.strip().rstrip(",") for line in body.splitlines()
-                         if line.strip() and "logistic(" not in line and " is 1-" not in line)
-        out.append((path, float(lf.weights[0]), float(lf.weights[1])))
+        path = [line.strip().rstrip(",") for line in body.splitlines()
+                if line.strip() and "logistic(" not in line and " is 1-" not in line
+                and not line.strip().startswith("pair(")]
+        out.append({"path": path, "regressors": names, "weights": [float(w) for w in lf.weights],
+                    "rows": leaf.rows, "weight": leaf.weight})
     return out
 
 
-def sigmoid_curve(w: float, b: float, d: Sequence[float]) -> list[float]:
-    """P1 = 1 / (1 + exp(-(w d + b)))."""
-    return [1.0 / (1.0 + math.exp(-(w * x + b))) for x in d]
+def probability_at(leaf: dict[str, object], distance: np.ndarray,
+                   feature: str = "Distance") -> np.ndarray:
+    """P1 of a logistic leaf along ``distance``, its other regressors at 0 (e.g. lift 0: an
+    occluder that does not move up or down)."""
+    names = list(leaf["regressors"])  # type: ignore[arg-type]
+    w = np.asarray(leaf["weights"], dtype=float)
+    z = np.full_like(distance, w[-1], dtype=float)
+    z += w[names.index(feature)] * distance
+    return 1.0 / (1.0 + np.exp(-z))
+
+
+def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Path]:
+    """The learned tree (``<name>_tree.png``) and P(occluder | distance) of its logistic leaves
+    beside the paper's sigmoid(0.8 - 16.9 d) and the original system's deployed
+    sigmoid(1.948 - 16.488 d) (``<name>_distance.png``)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from ddclearn.plot import plot_trees
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    tree = plot_trees([t.tree for t in theory.result.targets], folder / f"{name}_tree.png")
+    d = np.linspace(0.0, 0.35, 200)
+    fig = Figure(figsize=(7.5, 4.2))
+    ax = fig.add_subplot()
+    for label, (w, b), style in (("paper: sigmoid(0.8 - 16.9 d)", PAPER, "k--"),
+                                 ("original system: sigmoid(1.948 - 16.488 d)", DEPLOYED, "k:")):
+        ax.plot(d, 1.0 / (1.0 + np.exp(-(w * d + b))), style, label=label)
+    leaves = sorted(theory.logistic, key=lambda leaf: -float(leaf["weight"]))[:6]  # type: ignore[arg-type]
+    for leaf in leaves:
+        path = [p for p in leaf["path"] if "~= Distance" not in p]  # type: ignore[union-attr]
+        label = ", ".join(p.replace("(Occluded, Occluder)", "").replace("(Occluded)", "(A)")
+                          .replace("(Occluder)", "(O)") for p in path)
+        ax.plot(d, probability_at(leaf, d), label=f"learned ({leaf['rows']} rows): {label}")
+    ax.set_xlabel("distance d in the table plane (m)")
+    ax.set_ylabel("P(occluder)")
+    ax.set_ylim(0, 1)
+    ax.legend(fontsize=6, loc="upper right")
+    ax.set_title("P(O hides A | distance), the learned leaves beside the paper's")
+    curve = folder / f"{name}_distance.png"
+    fig.tight_layout()
+    fig.savefig(curve, dpi=110)
+    return [tree, curve]

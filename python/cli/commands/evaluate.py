@@ -24,8 +24,10 @@ def register(sub: Any) -> None:
                              "seed and this number)")
     add_engine_option(parser, "; a run recorded with another engine is run again")
     parser.add_argument("--methods", default=None,
-                        help="comma-separated subset of reasoning,no-reasoning,sort,bytetrack,"
-                             "ocsort (default all)")
+                        help="comma-separated methods: reasoning (the hand-written theory), "
+                             "learned, learned-hindsight (the learned theories), no-reasoning, "
+                             "sort, bytetrack, ocsort (default: reasoning, no-reasoning and the "
+                             "three trackers)")
     parser.add_argument("--scenarios", default=None,
                         help="comma-separated shipped scenarios (default all four)")
     parser.add_argument("--jobs", type=int, default=1,
@@ -35,12 +37,12 @@ def register(sub: Any) -> None:
 
 
 def main(args: argparse.Namespace) -> int:
-    from app.experiment import METHODS, SHIPPED, ExperimentOptions, run_experiment
+    from app.experiment import ALL_METHODS, METHODS, SHIPPED, ExperimentOptions, run_experiment
 
     methods = args.methods.split(",") if args.methods else list(METHODS)
-    unknown = sorted(set(methods) - set(METHODS))
+    unknown = sorted(set(methods) - set(ALL_METHODS))
     if unknown:
-        raise ValueError(f"unknown methods {unknown}; choose from {', '.join(METHODS)}")
+        raise ValueError(f"unknown methods {unknown}; choose from {', '.join(ALL_METHODS)}")
     scenarios = args.scenarios.split(",") if args.scenarios else list(SHIPPED)
     table = run_experiment(
         ExperimentOptions(out=args.out, seeds=args.seeds, games=args.games,

@@ -8,14 +8,17 @@ from pathlib import Path
 from typing import Any
 
 from app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS
+from app.theories import theory_path
 from cli.options import add_engine_option
 
 
 def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> None:
     parser.add_argument("--particles", type=int, default=particles,
                         help=f"particles of the filter (default {particles})")
-    parser.add_argument("--theory", type=Path, default=DEFAULT_THEORY,
-                        help="theory of occlusion, a DDC program (default prolog/too.pl)")
+    parser.add_argument("--theory", type=theory_path, default=DEFAULT_THEORY,
+                        help="theory of occlusion: hand (prolog/too.pl, the default), learned "
+                             "(prolog/too_learned.pl), hindsight "
+                             "(prolog/too_learned_hindsight.pl), or a DDC program's path")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
                         help=f"Prolog threads that step the particles (default "

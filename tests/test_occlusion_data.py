@@ -1,0 +1,170 @@
+"""Labels, particle states and facts of ``anchoring collect`` on hand-made episodes whose answer
+is known: a ball covered by a mug (lowered over it, carried, lifted off), a ball behind a box,
+a ball that is never seen again, two mugs near where a ball reappears."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from app.experience import AnchorView, Episode, EpisodeFrame
+from app.occlusion_data import (
+    Collection,
+    LabelOptions,
+    data_text,
+    episode_facts,
+    hindsight_agreement,
+    labels,
+)
+from bridge.learning import LearningData
+
+BALL = (0.0, 0.0, 0.03)
+
+
+def frame(k: int, anchors: dict[str, tuple[bool, tuple[float, float, float]]],
+          truth: dict[str, dict]) -> EpisodeFrame:
+    cats = {"ball-1": "ball", "mug-1": "mug", "mug-2": "mug", "box-1": "box"}
+    views = {s: AnchorView(s, cats[s], seen, pos) for s, (seen, pos) in anchors.items()}
+    objects = {gt: {"position": list(info["position"]), "visible": info.get("visible", True),
+                    "under": info.get("under"), "held_by": None}
+               for gt, info in truth.items()}
+    return EpisodeFrame(k, k / 15, views, {"objects": objects, "hands": {}})
+
+
+def covered_ball_episode() -> Episode:
+    """Frames 0-1 the ball is seen; 2 a mug being lowered hides it (the simulator's `under`
+    not set yet); 3-6 under the mug, which is carried to x = 0.1 in 5-6; 7 the mug lifted
+    (still over it, `under` ended); 8 the ball seen again at x = 0.1."""
+    frames = []
+    mug_x = [0.3, 0.1, 0.0, 0.0, 0.0, 0.05, 0.1, 0.1, 0.1]
+    mug_z = [0.05, 0.14, 0.1, 0.05, 0.05, 0.05, 0.05, 0.1, 0.25]
+    for k in range(9):
+        ball_x = 0.1 if k >= 5 else 0.0
+        seen = k in (0, 1, 8)
+        under = "mug_1" if 3 <= k <= 6 else None
+        truth = {"ball_1": {"position": (ball_x, 0.0, 0.03), "visible": seen, "under": under},
+                 "mug_1": {"position": (mug_x[k], 0.0, mug_z[k])}}
+        last_ball = (0.1, 0.0, 0.03) if k == 8 else BALL
+        frames.append(frame(k, {"ball-1": (seen, last_ball),
+                                "mug-1": (True, (mug_x[k], 0.0, mug_z[k]))}, truth))
+    return Episode("covered", frames, {"ball-1": "ball_1", "mug-1": "mug_1"})
+
+
+def test_truth_labels_cover_the_lowering_and_the_lift() -> None:
+    lab = labels(covered_ball_episode(), LabelOptions(source="truth"))
+    assert "ball-1" not in lab[0] and "ball-1" not in lab[1]          # seen: no label
+    # frame 2: being lowered over it (10 cm above its centre... 7 cm: within the cover height)
+    assert lab[2]["ball-1"] == {"mug-1": 1.0}
+    assert all(lab[k]["ball-1"] == {"mug-1": 1.0} for k in range(3, 7))
+    assert lab[7]["ball-1"] == {"mug-1": 1.0}      # lifted 7 cm: still over it, `under` ended
+
+
+def test_hindsight_labels_the_whole_interval_from_where_it_emerged() -> None:
+    ep = covered_ball_episode()
+    lab = labels(ep, LabelOptions(source="hindsight"))
+    assert all(lab[k]["ball-1"] == {"mug-1": 1.0} for k in range(2, 8))
+    agree, n = hindsight_agreement(ep, LabelOptions())
+    assert n == 6 and agree == pytest.approx(6.0)
+
+
+def test_an_anchor_never_seen_again_has_no_hindsight_label() -> None:
+    ep = covered_ball_episode()
+    ep.frames[8].anchors["ball-1"] = AnchorView("ball-1", "ball", False, BALL)
+    lab = labels(ep, LabelOptions(source="hindsight"))
+    assert all(lab[k]["ball-1"] is None for k in range(2, 9))
+    collection = Collection()
+    episode_facts(ep, 0, LabelOptions(source="hindsight"), collection)
+    assert collection.pairs == 0
+
+
+def test_two_candidates_share_the_hindsight_label_by_distance() -> None:
+    frames = []
+    for k in range(4):
+        seen = k in (0, 3)
+        anchors = {"ball-1": (seen, (0.0, 0.0, 0.03)), "mug-1": (True, (0.02, 0.0, 0.05)),
+                   "mug-2": (True, (0.0, 0.06, 0.05)), "box-1": (True, (0.4, 0.0, 0.07))}
+        frames.append(frame(k, anchors, {}))
+    ep = Episode("two", frames, {})
+    opts = LabelOptions(source="hindsight", sigma=0.04, steady_stride=1)
+    lab = labels(ep, opts)[1]["ball-1"]
+    w1, w2 = math.exp(-0.02 ** 2 / (2 * 0.04 ** 2)), math.exp(-0.06 ** 2 / (2 * 0.04 ** 2))
+    assert set(lab) == {"mug-1", "mug-2"}                 # the box is out of reach
+    assert lab["mug-1"] == pytest.approx(w1 / (w1 + w2))
+    collection = Collection()
+    episode_facts(ep, 0, opts, collection)
+    text = "\n".join(collection.lines)
+    assert f"{lab['mug-1']:.6g} :: occluder(ball_1_e0_f1, mug_1_e0_f1):t+1." in text
+
+
+def test_behind_something_is_covered_by_nothing() -> None:
+    """A ball hidden while a box stands in front of it (12 cm), seen again where it was."""
+    frames = [frame(k, {"ball-1": (k != 1, BALL), "box-1": (True, (0.0, -0.12, 0.07))},
+                    {"ball_1": {"position": BALL, "visible": k != 1}, "box_1":
+                     {"position": (0.0, -0.12, 0.07)}}) for k in range(3)]
+    ep = Episode("behind", frames, {"ball-1": "ball_1", "box-1": "box_1"})
+    for source in ("truth", "hindsight"):
+        assert labels(ep, LabelOptions(source=source))[1]["ball-1"] == {}
+
+
+def test_facts_of_the_pairs() -> None:
+    ep = covered_ball_episode()
+    collection = Collection()
+    episode_facts(ep, 3, LabelOptions(source="truth", steady_stride=1), collection)
+    text = "\n".join(collection.lines)
+    # frame 1 -> 2: the ball has just vanished (seen at t), the mug is lowered over it
+    assert "pos(ball_1_e3_f1):t ~= (0.0000, 0.0000, 0.0300)." in text
+    assert "seen(ball_1_e3_f1):t." in text
+    assert "pos(mug_1_e3_f1):t+1 ~= (0.0000, 0.0000, 0.1000)." in text
+    assert "pair(ball_1_e3_f1, mug_1_e3_f1):t+1.\noccluder(ball_1_e3_f1, mug_1_e3_f1):t+1." \
+        in text
+    # frame 5 -> 6: known under the mug at t: followed it (its place), occluded_by at t
+    assert "occluded_by(ball_1_e3_f5, mug_1_e3_f5):t." in text
+    assert "pos(ball_1_e3_f5):t ~= (0.0500, 0.0000, 0.0300)." in text
+    # ... and as a particle that lost it: no occluder known, where it was last seen
+    assert "pos(ball_1_e3_f5_c):t ~= (0.0000, 0.0000, 0.0300)." in text
+    assert "occluded_by(ball_1_e3_f5_c" not in text
+    assert "occluder(ball_1_e3_f5_c, mug_1_e3_f5):t+1." in text
+    # hidden at t+1 = 2..7: six pairs; known under the mug at t = 2..6: five lost-track pairs
+    assert collection.pairs == 6 + 5
+
+
+def test_steady_points_are_thinned_with_weights() -> None:
+    """A ball under a still mug for 12 frames: its steady pairs kept one in 3, weight 3."""
+    frames = []
+    for k in range(14):
+        seen = k in (0, 13)
+        truth = {"ball_1": {"position": BALL, "visible": seen, "under": None if seen else "mug_1"},
+                 "mug_1": {"position": (0.0, 0.0, 0.05)}}
+        frames.append(frame(k, {"ball-1": (seen, BALL), "mug-1": (True, (0.0, 0.0, 0.05))},
+                            truth))
+    ep = Episode("still", frames, {"ball-1": "ball_1", "mug-1": "mug_1"})
+    full, thin = Collection(), Collection()
+    episode_facts(ep, 0, LabelOptions(steady_stride=1), full)
+    episode_facts(ep, 0, LabelOptions(steady_stride=3), thin)
+    assert thin.pairs < full.pairs
+    assert thin.weight == pytest.approx(full.weight, abs=3)
+    assert thin.positive == pytest.approx(full.positive, abs=3)
+    assert sum(line.startswith("weight(occluder(") and line.endswith(", 3).")
+               for line in thin.lines) >= 3
+
+
+def test_the_data_file_loads_and_learns(tmp_path: Path) -> None:
+    ep = covered_ball_episode()
+    collection = Collection()
+    episode_facts(ep, 0, LabelOptions(), collection)
+    path = tmp_path / "data.pl"
+    path.write_text(data_text(collection, ["covered"], LabelOptions(), "anchoring collect ..."))
+    with LearningData([path]) as data:
+        targets = data.targets()
+        assert [t["name"] for t in targets] == ["occluder(Occluded, Occluder):t+1"]
+        root = data.root("occluder_t1")
+        assert len(root.y) == collection.pairs
+
+
+def test_label_options_are_checked() -> None:
+    with pytest.raises(ValueError, match="truth"):
+        LabelOptions(source="guess")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="steady_stride"):
+        LabelOptions(steady_stride=0)
