@@ -1467,7 +1467,7 @@ resampled_entry(Es, Pairs, N, E) :-
         Src =.. [s|Cs],
         pair_values(Pairs, Src, Vs),
         C =.. [c|Vs],
-        (   forall(member(E1, Es), arg(2, E1, defined))
+        (   forall(member(E1, Es), defined_entry(E1))
         ->  common_arity(Es, A),
             E = e(C, defined, A)
         ;   E0 = e(C, open, unknown),
@@ -1477,6 +1477,10 @@ resampled_entry(Es, Pairs, N, E) :-
     ).
 
 same_entry(E, V) :- nonvar(E), E = e(_, same(V1), _), V1 == V.
+
+%   defined_entry(+E): E is a group's entry with a value in every particle
+%   (a group that lacks the key, none, has it open: never drawn there).
+defined_entry(E) :- E \== none, arg(2, E, defined).
 
 entry_column(none, '$none') :- !.
 entry_column(e(C, _, _), C).

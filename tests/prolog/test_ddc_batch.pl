@@ -170,6 +170,28 @@ test(previous_time_after_resampling_and_undo) :-
              values(F, (x:t ~= Y2)-Y2, Now2), Now2 == Now,
              filter_free(F) )).
 
+%   Resampling across groups where a key is defined in every particle of
+%   one group and absent from another (no particle of it asked for w(a)):
+%   the key is open after the resampling, defined where it was drawn.
+test(resampling_a_key_one_group_lacks) :-
+    program([ 'b:0 ~ finite([0.5:yes, 0.5:no]).', 'b:t+1 ~ val(B) := b:t ~= B.',
+              'w(K):t+1 ~ gaussian(0.0, 1.0) := b:t ~= yes, K = a.',
+              'y:t+1 ~ val(V) := b:t ~= yes, w(a):t+1 ~= V.' ], File),
+    findall(Seed,
+            ( between(1, 40, Seed),
+              filter_new(File, 4, Seed, [engine(batched), threads(2)], F),
+              filter_step(F, [], [], _),
+              values(F, (b:t ~= B)-B, Bs),
+              values(F, (w(a):t ~= Y)-Y, Ys),
+              filter_resample(F, [3, 2, 1, 0]),
+              values(F, (b:t ~= B1)-B1, BsR),
+              values(F, (w(a):t ~= Y1)-Y1, YsR),
+              reverse(Bs, BsR), reverse(Ys, YsR),
+              filter_free(F),
+              Bs = [X, X, Z, Z], X \== Z ),      % (one group drew y, the other not)
+            Pure),
+    Pure \== [].
+
 %   A step that fails (an observation no clause defines in some particle)
 %   leaves the filter as it was, in one thread and in two; the filter goes
 %   on.
