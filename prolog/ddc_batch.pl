@@ -165,6 +165,7 @@ compile(M, Items) :-
     retractall(M:'$b_static'(_, _)),
     retractall(M:'$b_static_pred'(_, _)),
     retractall(M:'$b_lookback'(_)),
+    retractall(M:'$b_visible'(_, _)),
     forall(lookback(Items, NA), assertz(M:'$b_lookback'(NA))),
     findall(N/A, ( member(rv(_, X, _, _, _, _), Items), functor(X, N, A) ), Rvs0),
     sort(Rvs0, Rvs),
@@ -674,11 +675,33 @@ call_static(G, E) :-
     E = env(M, _, _, _, Facts, _, _),
     (   M:'$b_static_pred'(G, Kind)
     ->  (   Kind == derived -> M:'$b_static'(G, B), static_body_call(B, E) ; M:G )
-    ;   predicate_property(ddc_models:G, exported)     % softmax/3, mean_list/2, ...
+    ;   model_goal(G)                                  % softmax/3, mean_list/2, ...
     ->  ddc_models:G
-    ;   predicate_property(M:G, visible)
+    ;   visible(M, G)
     ->  M:G
     ;   member(G, Facts)
+    ).
+
+%   model_goal(+G): G is one of library ddc_models' (without asking
+%   predicate_property/2, which looks for G in the autoload index when the
+%   answer is no).
+model_goal(G) :-
+    functor(G, N, A),
+    module_property(ddc_models, exports(Es)),
+    memberchk(N/A, Es).
+
+%   visible(+M, +G): G's predicate is defined in M or reachable from it
+%   (imported, a builtin, autoloadable).  Asked once per predicate and
+%   program: predicate_property(M:G, visible) searches the autoload index
+%   each time the answer is no (a fact of the step, such as category/2,
+%   asked for in every particle at every step).
+visible(M, G) :-
+    functor(G, N, A),
+    (   M:'$b_visible'(N/A, V)
+    ->  V == true
+    ;   (   predicate_property(M:G, visible) -> V = true ; V = false ),
+        assertz(M:'$b_visible'(N/A, V)),
+        V == true
     ).
 
 %   static_body_call(+B, +E): an untimed derived atom's body, whose goals
@@ -1267,8 +1290,8 @@ static_goal(G, M) :-
     G \= (\+ _), G \= findall(_, _, _), G \= findall_forward(_, _, _),
     G \= (_ is _), \+ test_goal(G),
     (   M:'$b_static_pred'(G, _) -> true
-    ;   predicate_property(ddc_models:G, exported) -> true
-    ;   \+ predicate_property(M:G, visible)          % a fact of the step
+    ;   model_goal(G) -> true
+    ;   \+ visible(M, G)                              % a fact of the step
     ).
 
 %!  batch_step(+State0, +Observations, +Facts, -Result) is det.
