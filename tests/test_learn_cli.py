@@ -127,12 +127,13 @@ def test_learning_is_deterministic(data: tuple[Path, Path]) -> None:
     assert learn([train], seed=3).program == learn([train], seed=3).program
 
 
+@pytest.mark.parametrize("form", ["clauses", "tree"])
 def test_the_learned_program_loads_in_the_engine_and_answers(
-        data: tuple[Path, Path], tmp_path: Path) -> None:
+        data: tuple[Path, Path], tmp_path: Path, form: str) -> None:
     import bridge
 
     train, _ = data
-    path = learn([train]).write(tmp_path / "learned.pl")
+    path = learn([train]).write(tmp_path / "learned.pl", form=form)  # type: ignore[arg-type]
     facts = tmp_path / "query.pl"
     # the clauses start with the examples' goal, pair(A, O): the pair they are about
     facts.write_text(path.read_text() + "\npair(a, b) := true.\n"
@@ -141,6 +142,25 @@ def test_the_learned_program_loads_in_the_engine_and_answers(
     p = program.query("occluder(a, b):t+1 ~= true", samples=10, seed=0).probability
     expected = 1.0 / (1.0 + math.exp(16.9 * 0.05 - 0.8))
     assert p == pytest.approx(expected, abs=0.08)
+
+
+def test_the_tree_form_is_one_clause_with_the_same_scores(
+        data: tuple[Path, Path], tmp_path: Path) -> None:
+    train, test = data
+    clauses, tree = tmp_path / "clauses.pl", tmp_path / "tree.pl"
+    ddc("learn", train, "--out", clauses, "--quiet")
+    ddc("learn", train, "--out", tree, "--form", "tree", "--quiet")
+    head = "\noccluder(Occluded, Occluder):t+1 ~ "
+    n_clauses = clauses.read_text().count(head)
+    text = tree.read_text()
+    assert n_clauses >= 3 and text.count(head) == 1
+    assert head + "finite([P1:true, P2:false]) :=" in text
+    assert text.count("% n = ") == n_clauses          # each leaf's comment, inside the tree
+    assert "->" in text and "logistic([Distance], [-1" in text
+    a = json.loads(ddc("evaluate", clauses, test, "--json").stdout)["occluder:t+1"]
+    b = json.loads(ddc("evaluate", tree, test, "--json").stdout)["occluder:t+1"]
+    assert b["uncovered"] == a["uncovered"] == 0
+    assert b["log_likelihood"] == pytest.approx(a["log_likelihood"], rel=1e-12)
 
 
 def test_an_unknown_target_is_an_error(data: tuple[Path, Path]) -> None:

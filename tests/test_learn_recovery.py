@@ -111,6 +111,12 @@ def _run(tmp: Path, generator: str, facts: list, bias: str, key: str, n_train: i
     program = result.write(tmp / "learned.pl")
     learned = evaluate(program, [test], targets=[key])[key]
     generating = evaluate(gen, [test], targets=[key])[key]
+    # The tree form (one clause, nested if-then-else) is the same program: the same score of
+    # every held-out grounding, none left uncovered that the clauses cover.
+    assert result.targets[0].tree_clause is not None
+    tree = evaluate(result.write(tmp / "learned_tree.pl", form="tree"), [test], targets=[key])[key]
+    assert tree["uncovered"] == learned["uncovered"]
+    assert tree["log_likelihood"] == pytest.approx(learned["log_likelihood"], rel=1e-12, abs=1e-9)
     return Run(_facts(train_text), result.targets[0], n_train, n_test, learned, generating)
 
 

@@ -213,6 +213,18 @@ class LearningData:
                         "Ls": [[int(n), m, [int(r) for r in rs]] for n, m, rs in leaves]})
         return [str(t) for t in result["Ts"]]
 
+    def tree_clause(self, leaves: Sequence[tuple[int, str, Sequence[int], str]]) -> str | None:
+        """A target's tree as one clause of nested if-then-else goals (``learn_tree_text/3``).
+
+        ``leaves`` are the target's leaves from left to right: node, model text, regressors
+        and the comment written at the leaf. None if the leaves' distributions are not of
+        one family (no single head).
+        """
+        result = _call("( ddc_learn:learn_tree_text(M, Ls, T0) -> T = [T0] ; T = [] )",
+                       {"M": self.module,
+                        "Ls": [[int(n), m, [int(r) for r in rs], c] for n, m, rs, c in leaves]})
+        return str(result["T"][0]) if result["T"] else None
+
     def program_scores(self, program: str | Path,
                        predicates: Sequence[str] = ()) -> list[dict[str, Any]]:
         """Held-out scores of a DC program's clauses on this data (``learn_program_scores/5``)."""

@@ -2,14 +2,16 @@
 
     ddc learn DATA.pl [MORE.pl ...] --out LEARNED.pl [--target NAME]... [--json] [--seed S]
               [--plot TREE.png|TREE.svg] [--min-leaf N] [--max-depth D] [--min-gain G]
-              [--smoothing A] [--l2 L] [--no-lookahead] [--quiet]
+              [--smoothing A] [--l2 L] [--no-lookahead] [--form clauses|tree] [--quiet]
     ddc evaluate LEARNED.pl TEST.pl [MORE.pl ...] [--target NAME]... [--json]
     ddc split DATA.pl [MORE.pl ...] --train TRAIN.pl --test TEST.pl [--fraction F] [--seed S]
               [--unit TYPE] [--json]
 
 ``ddc learn`` reads background knowledge, training facts and declarative bias from the data
 files, learns one distributional logic tree per target and writes the DC program they make
-(``--out`` is replaced only once the program is complete and loads in the engine). It prints per
+(``--out`` is replaced only once the program is complete and loads in the engine): one clause per
+path of a tree (``--form clauses``, the default) or one clause per tree, its body the tree as
+nested if-then-else goals (``--form tree``: the same program, faster in the filter). It prints per
 target the clauses, groundings, seconds and training log-likelihood (``--json``: one JSON object
 keyed by target). ``ddc evaluate`` scores a DC program on held-out facts: per target the number of
 test groundings, the mean log-likelihood per grounding (natural log) and the accuracy (discrete)
@@ -51,6 +53,8 @@ def add_learn_commands(sub: Any, positive_int: Any) -> None:
                        help="L2 penalty on standardised regression weights (default 0.01)")
     learn.add_argument("--no-lookahead", action="store_true",
                        help="score literals that introduce variables by themselves")
+    learn.add_argument("--form", choices=["clauses", "tree"], default="clauses",
+                       help="one clause per path (default) or per tree (nested if-then-else)")
     learn.add_argument("--quiet", action="store_true", help="no progress bar")
     learn.set_defaults(func=run_learn)
 
@@ -93,7 +97,7 @@ def run_learn(args: argparse.Namespace) -> int:
                    command=command, progress=not args.quiet and sys.stderr.isatty())
     for w in result.warnings:
         print(f"ddc learn: warning: {w.strip()}", file=sys.stderr)
-    result.write(args.out)
+    result.write(args.out, form=args.form)
     if args.plot is not None:
         from ddclearn.plot import plot_trees
 

@@ -18,13 +18,15 @@ from collections.abc import Sequence
 from contextlib import nullcontext
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from bridge.learning import LearningData
 from bridge.program import DDCError
-from ddclearn.search import SearchOptions, TargetResult, learn_target
+from ddclearn.search import LeafRecord, SearchOptions, TargetResult, learn_target
 
-__all__ = ["LearnResult", "evaluate", "learn", "target_key"]
+__all__ = ["LearnResult", "evaluate", "learn", "leaf_comment", "target_key"]
+
+Form = Literal["clauses", "tree"]
 
 
 def target_key(name: str) -> str:
@@ -55,10 +57,28 @@ class LearnResult:
 
     @property
     def program(self) -> str:
-        """The learned DC program (text)."""
+        """The learned DC program (text), one clause per path of each tree."""
         if self._program is None:
             self._program = _program_text(self)
         return self._program
+
+    def program_text(self, form: Form = "clauses") -> str:
+        """The learned DC program in either form.
+
+        Parameters
+        ----------
+        form : {"clauses", "tree"}, default="clauses"
+            ``"clauses"``: one clause per path from the root to a leaf (the paper's form).
+            ``"tree"``: one clause per target whose body is the tree itself, nested
+            if-then-else goals binding the head's parameters; the same program, in which a
+            test shared by many paths is evaluated once (faster in the particle filter). A
+            target whose leaves' distributions differ in family keeps its clauses.
+        """
+        if form == "clauses":
+            return self.program
+        if form != "tree":
+            raise ValueError(f"form must be 'clauses' or 'tree', got {form!r}")
+        return _program_text(self, tree=True)
 
     def report(self) -> dict[str, dict[str, Any]]:
         """Per target: clauses, groundings, examples, seconds, training log-likelihood."""
@@ -77,18 +97,19 @@ class LearnResult:
             for t in self.targets
         }
 
-    def write(self, path: str | Path, check: bool = True) -> Path:
-        """Write the program to ``path`` atomically.
+    def write(self, path: str | Path, check: bool = True, form: Form = "clauses") -> Path:
+        """Write the program (in ``form``, see :meth:`program_text`) to ``path`` atomically.
 
         With ``check`` the program is first compiled by the DDC engine (a program that does not
         load is an error, and ``path`` keeps what it held).
         """
+        text = self.program_text(form)
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".pl", dir=path.parent)
         try:
             with os.fdopen(fd, "w") as f:
-                f.write(self.program)
+                f.write(text)
             if check:
                 import bridge
 
@@ -162,7 +183,10 @@ def learn(
                     if bar is not None:
                         bar.set_postfix(nodes=nodes[0], refresh=False)
 
-                results.append(learn_target(data, t, options, tick))
+                result = learn_target(data, t, options, tick)
+                result.tree_clause = data.tree_clause(
+                    [(r.node, r.model_term, r.regressors, leaf_comment(r)) for r in result.leaves])
+                results.append(result)
                 if bar is not None:
                     bar.update(1)
         leaves = [(r.node, r.model_term, r.regressors) for t in results for r in t.leaves]
@@ -191,13 +215,32 @@ def _select(declared: list[dict], wanted: Sequence[str] | None) -> list[dict]:
     return chosen
 
 
-def _program_text(r: LearnResult) -> str:
+def leaf_comment(leaf: LeafRecord) -> str:
+    """What the program says of a leaf: its groundings, log-likelihood and family."""
+    what = (f"n = {leaf.rows}" if abs(leaf.weight - leaf.rows) < 1e-9
+            else f"n = {leaf.rows} (weight {leaf.weight:.6g})")
+    if leaf.inherited:
+        what += ", too few groundings for a model of its own: the parent's model"
+    ll = f", log-likelihood {leaf.log_likelihood:.6g}" if leaf.rows else ""
+    return f"{what}{ll}, {leaf.leaf.family}"
+
+
+def _program_text(r: LearnResult, tree: bool = False) -> str:
     o = r.options
-    lines = [
-        "% A DC program learned by the project's structure learner (ddc learn): one",
-        "% distributional logic tree per target, each path from the root to a leaf one clause;",
-        "% the clauses of a target are mutually exclusive and cover every grounding.",
-    ]
+    if tree:
+        lines = [
+            "% A DC program learned by the project's structure learner (ddc learn): one",
+            "% distributional logic tree per target, written as one clause whose body is the",
+            "% tree (nested if-then-else goals; each path from the root to a leaf is one clause",
+            "% of the tree's other form, whose clauses are mutually exclusive).",
+        ]
+    else:
+        lines = [
+            "% A DC program learned by the project's structure learner (ddc learn): one",
+            "% distributional logic tree per target, each path from the root to a leaf one "
+            "clause;",
+            "% the clauses of a target are mutually exclusive and cover every grounding.",
+        ]
     if r.command:
         lines.append(f"% Command: {r.command}")
     lines.append("% Data: " + ", ".join(Path(f).name for f in r.files))
@@ -213,14 +256,12 @@ def _program_text(r: LearnResult) -> str:
         lines.append(f"% {t.name}: {t.clauses} clauses, {t.groundings} groundings, training "
                      f"log-likelihood {t.log_likelihood:.6g} (mean {t.mean_log_likelihood:.6g} "
                      f"per grounding), {t.n_params} parameters.")
-        for leaf in t.leaves:
-            what = (f"n = {leaf.rows}" if abs(leaf.weight - leaf.rows) < 1e-9
-                    else f"n = {leaf.rows} (weight {leaf.weight:.6g})")
-            if leaf.inherited:
-                what += ", too few groundings for a model of its own: the parent's model"
-            ll = (f", log-likelihood {leaf.log_likelihood:.6g}" if leaf.rows else "")
-            lines.append(f"% {what}{ll}, {leaf.leaf.family}")
-            lines.append(leaf.clause)
+        if tree and t.tree_clause is not None:
+            lines.append(t.tree_clause)
+        else:
+            for leaf in t.leaves:
+                lines.append(f"% {leaf_comment(leaf)}")
+                lines.append(leaf.clause)
         lines.append("")
     return "\n".join(lines)
 

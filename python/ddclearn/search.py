@@ -107,6 +107,9 @@ class TargetResult:
     log_likelihood: float
     n_params: int
     seconds: float
+    #: The whole tree as one clause of nested if-then-else goals (the tree form), or None if
+    #: its leaves' distributions are not of one family.
+    tree_clause: str | None = None
 
     @property
     def clauses(self) -> int:
