@@ -12,8 +12,6 @@ The data file is written only once every episode is done (atomically), and an em
 from __future__ import annotations
 
 import multiprocessing
-import os
-import tempfile
 import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
@@ -22,6 +20,7 @@ from pathlib import Path
 
 from app.occlusion_data import Collection, LabelOptions, data_text, episode_facts
 from app.occlusion_data import hindsight_agreement as _agreement
+from ddclearn.files import write_atomically
 
 __all__ = ["CollectError", "CollectOptions", "CollectReport", "collect", "game_files"]
 
@@ -158,7 +157,7 @@ def collect(options: CollectOptions,
         raise CollectError(f"no occlusion happened in {len(scenarios)} episodes: no anchor was "
                            "hidden while another was perceived; nothing written")
     text = data_text(total, [s.stem for s in scenarios], options.labels, options.command)
-    _write_atomically(options.out, text)
+    write_atomically(options.out, text)
     return CollectReport(
         episodes=total.episodes, pairs=total.pairs, positive=total.positive,
         seconds_perception=seconds_p, seconds_facts=seconds_f,
@@ -167,13 +166,3 @@ def collect(options: CollectOptions,
         per_episode=total.per_episode, out=options.out)
 
 
-def _write_atomically(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise

@@ -15,9 +15,10 @@ from __future__ import annotations
 
 import gzip
 import os
-import tempfile
 from importlib import resources
 from pathlib import Path
+
+from ddclearn.files import write_atomically
 
 __all__ = ["cache_folder", "financial"]
 
@@ -52,13 +53,4 @@ def _decompressed(name: str, folder: Path) -> Path:
     out = folder / name.removesuffix(".gz")
     if out.is_file() and out.stat().st_size == len(data):
         return out
-    folder.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", dir=folder)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, out)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return out
+    return write_atomically(out, data)

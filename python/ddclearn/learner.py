@@ -12,8 +12,6 @@ Example::
 from __future__ import annotations
 
 import math
-import os
-import tempfile
 from collections.abc import Sequence
 from contextlib import nullcontext
 from dataclasses import dataclass, field
@@ -22,6 +20,7 @@ from typing import Any, Literal
 
 from bridge.learning import LearningData
 from bridge.program import DDCError
+from ddclearn.files import write_atomically
 from ddclearn.search import LeafRecord, SearchOptions, TargetResult, learn_target
 
 __all__ = ["LearnResult", "evaluate", "learn", "leaf_comment", "target_key"]
@@ -103,25 +102,15 @@ class LearnResult:
         With ``check`` the program is first compiled by the DDC engine (a program that does not
         load is an error, and ``path`` keeps what it held).
         """
-        text = self.program_text(form)
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".pl", dir=path.parent)
-        try:
-            with os.fdopen(fd, "w") as f:
-                f.write(text)
-            if check:
-                import bridge
+        def loads(tmp: Path) -> None:
+            import bridge
 
-                try:
-                    bridge.load(tmp)
-                except DDCError as error:
-                    raise DDCError(f"the learned program does not load: {error}") from None
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
-        return path
+            try:
+                bridge.load(str(tmp))
+            except DDCError as error:
+                raise DDCError(f"the learned program does not load: {error}") from None
+
+        return write_atomically(path, self.program_text(form), loads if check else None)
 
 
 def learn(
