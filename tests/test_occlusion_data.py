@@ -83,8 +83,9 @@ def test_two_candidates_share_the_hindsight_label_by_distance() -> None:
     frames = []
     for k in range(4):
         seen = k in (0, 3)
-        anchors = {"ball-1": (seen, (0.0, 0.0, 0.03)), "mug-1": (True, (0.02, 0.0, 0.05)),
-                   "mug-2": (True, (0.0, 0.06, 0.05)), "box-1": (True, (0.4, 0.0, 0.07))}
+        z = 0.08 if k == 3 else 0.05            # both mugs lifted as the ball reappears
+        anchors = {"ball-1": (seen, (0.0, 0.0, 0.03)), "mug-1": (True, (0.02, 0.0, z)),
+                   "mug-2": (True, (0.0, 0.06, z)), "box-1": (True, (0.4, 0.0, 0.07))}
         frames.append(frame(k, anchors, {}))
     ep = Episode("two", frames, {})
     opts = LabelOptions(source="hindsight", sigma=0.04, steady_stride=1)
@@ -168,3 +169,45 @@ def test_label_options_are_checked() -> None:
         LabelOptions(source="guess")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="steady_stride"):
         LabelOptions(steady_stride=0)
+
+
+def test_hindsight_does_not_label_an_occluder_that_stood_still() -> None:
+    """A ball rolls behind a mug that never moves and comes out 5 cm from it, within reach:
+    the mug hid it from view, it did not cover it (it would have had to be lifted or slid
+    off); the same episode with the mug lifted as the ball reappears labels the mug."""
+    def episode(mug_lifted: bool) -> Episode:
+        frames = []
+        for k in range(6):
+            seen = k in (0, 1, 5)
+            ball = (0.05 * k / 5, 0.05, 0.03)
+            mug_z = 0.05 + (0.1 if mug_lifted and k >= 5 else 0.0)
+            truth = {"ball_1": {"position": ball, "visible": seen},
+                     "mug_1": {"position": (0.0, 0.0, mug_z)}}
+            frames.append(frame(k, {"ball-1": (seen, ball), "mug-1": (True, (0.0, 0.0, mug_z))},
+                                truth))
+        return Episode("behind", frames, {"ball-1": "ball_1", "mug-1": "mug_1"})
+
+    still = labels(episode(False), LabelOptions(source="hindsight"))
+    assert all(still[k]["ball-1"] == {} for k in range(2, 5))
+    lifted = labels(episode(True), LabelOptions(source="hindsight"))
+    assert all(lifted[k]["ball-1"] == {"mug-1": 1.0} for k in range(2, 5))
+
+
+def test_the_covering_anchor_does_not_depend_on_dictionary_order() -> None:
+    """Two perceived anchors of the same body (perception split a box into two): the label
+    names the same one whatever order the anchors were met in (collect is deterministic)."""
+    def episode(order: list[str]) -> Episode:
+        frames = []
+        for k in range(3):
+            seen = k != 1
+            truth = {"ball_1": {"position": BALL, "visible": seen,
+                                "under": "box_1" if k == 1 else None},
+                     "box_1": {"position": (0.0, 0.0, 0.06)}}
+            views = {"ball-1": (seen, BALL)}
+            views |= {s: (True, (0.0, 0.0, 0.06)) for s in order}
+            frames.append(frame(k, views, truth))
+        return Episode("split", frames, {"ball-1": "ball_1"} | {s: "box_1" for s in order})
+
+    a = labels(episode(["mug-2", "box-1"]), LabelOptions(source="truth"))
+    b = labels(episode(["box-1", "mug-2"]), LabelOptions(source="truth"))
+    assert a[1]["ball-1"] == b[1]["ball-1"] == {"box-1": 1.0}

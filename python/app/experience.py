@@ -84,7 +84,7 @@ class Episode:
         anchors = self.frames[frame].anchors
         found = [o for o, gt in self.truth_of.items()
                  if gt == parent and o != symbol and o in anchors]
-        found.sort(key=lambda o: not anchors[o].perceived)   # a perceived one first
+        found.sort(key=lambda o: (not anchors[o].perceived, o))   # a perceived one first
         return found[0] if found else None
 
 
@@ -127,7 +127,7 @@ def play(frames: Iterable[PerceptFrame], name: str) -> Episode:
                                               percept is not None, position)  # type: ignore[arg-type]
         out.append(EpisodeFrame(k, float(frame.time), views, frame.truth))
     truth_of: dict[str, str | None] = {}
-    for symbol in {s for f in out for s in f.anchors}:
+    for symbol in sorted({s for f in out for s in f.anchors}):   # (an order of its own)
         counts = votes.get(symbol) or hand_votes.get(symbol)
         truth_of[symbol] = counts.most_common(1)[0][0] if counts else None
     return Episode(name, out, truth_of)
