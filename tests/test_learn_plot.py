@@ -12,7 +12,7 @@ from matplotlib import _pylab_helpers
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from ddclearn.plot import layout, plot_tree, plot_trees, tree_size, wrap_text
+from ddclearn.plot import layout, plot_tree, plot_trees, pruned, tree_size, wrap_text
 from ddclearn.tree import Branch, Tree, TreeNode
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -204,3 +204,18 @@ def test_bad_suffix(tmp_path):
     with pytest.raises(ValueError):
         plot_trees([], tmp_path / "tree.png")
     assert not list(tmp_path.iterdir())
+
+
+def test_a_pruned_tree_keeps_its_first_levels_and_counts_what_it_cuts(tmp_path):
+    tree = comb_tree(8)                       # depth 7, 8 leaves
+    cut = pruned(tree, 3)
+    assert cut.root.depth() == 3
+    leaves = cut.root.leaves()
+    assert len(leaves) == 4                   # three leaves above the cut, one box below it
+    assert leaves[-1].distribution == "a subtree of 5 leaves"
+    assert leaves[-1].rows == 10              # the cut node's own counts
+    assert [lf.distribution for lf in leaves[:3]] == [lf.distribution
+                                                      for lf in tree.root.leaves()[:3]]
+    full = png_size(plot_trees([tree], tmp_path / "full.png"))
+    small = png_size(plot_trees([tree], tmp_path / "small.png", max_depth=3))
+    assert small[1] < full[1]

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import matplotlib
@@ -26,9 +26,9 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 
-from ddclearn.tree import Tree, TreeNode
+from ddclearn.tree import Branch, Tree, TreeNode
 
-__all__ = ["layout", "plot_tree", "plot_trees", "tree_size", "wrap_text"]
+__all__ = ["layout", "plot_tree", "plot_trees", "pruned", "tree_size", "wrap_text"]
 
 #: Node path: the indices of the branches taken from the root (the root is ``()``).
 NodePath = tuple[int, ...]
@@ -307,13 +307,32 @@ def _draw(geom: _Geometry, ax: Axes) -> None:
 _FORMATS = {".png": "png", ".svg": "svg"}
 
 
-def plot_trees(trees: Sequence[Tree], path: str | Path) -> Path:
+def pruned(tree: Tree, max_depth: int) -> Tree:
+    """``tree`` with each subtree below depth ``max_depth`` drawn as one box (its number of
+    leaves and groundings), for a tree too big to read whole."""
+    def cut(node: TreeNode, depth: int) -> TreeNode:
+        if node.is_leaf:
+            return node
+        if depth >= max_depth:
+            k = len(node.leaves())
+            return TreeNode(rows=node.rows, weight=node.weight,
+                            distribution=f"a subtree of {k} leaves")
+        return replace(node, branches=[Branch(b.label, cut(b.child, depth + 1))
+                                       for b in node.branches])
+
+    return replace(tree, root=cut(tree.root, 0))
+
+
+def plot_trees(trees: Sequence[Tree], path: str | Path, max_depth: int | None = None) -> Path:
     """Draw each tree (one panel per tree, stacked vertically) into a PNG or SVG file (by
     suffix; other suffixes -> ``ValueError`` naming the suffix). Returns the path.
 
     The figure is as wide as the widest panel and as tall as all of them: each panel gets the
-    size :func:`tree_size` gives, so it grows with the number of leaves and the depth.
+    size :func:`tree_size` gives, so it grows with the number of leaves and the depth. With
+    ``max_depth``, the subtrees below that depth are drawn as one box each (:func:`pruned`).
     """
+    if max_depth is not None:
+        trees = [pruned(t, max_depth) for t in trees]
     path = Path(path)
     fmt = _FORMATS.get(path.suffix.lower())
     if fmt is None:
