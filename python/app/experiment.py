@@ -139,7 +139,7 @@ def run_experiment(options: ExperimentOptions,
         units.append(("generated shell games", path, 0))
 
     log_path = out / "summaries.jsonl"
-    digests = {m: theory_digest(m) for m in REASONING}
+    digests = {m: theory_digest(m) for m in REASONING if m in options.methods}
     done: dict[tuple[str, int, str], dict[str, Any]] = {
         (line["scenario"], line["seed"], line["method"]): line
         for line in read_summaries(log_path)
@@ -149,7 +149,8 @@ def run_experiment(options: ExperimentOptions,
                  # (runs recorded before the engine was, ran the per-particle one)
                  and line.get("engine", "per_particle") == options.engine
                  # (runs recorded before the theory was, ran prolog/too.pl as it was then)
-                 and line.get("theory", digests[line["method"]]) == digests[line["method"]]))
+                 and line.get("theory", digests.get(line["method"]))
+                 == digests.get(line["method"])))
     }
     todo = [(label, scenario, seed,
              [m for m in options.methods if (scenario.stem, seed, m) not in done])

@@ -20,9 +20,7 @@ while the particle draws ``occluder(A, O):t+1 ~= true`` and O is perceived. Ever
 
 from __future__ import annotations
 
-import os
 import re
-import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,8 +29,11 @@ import numpy as np
 
 from app.reasoning import DEFAULT_THEORY
 from ddclearn import LearnResult, SearchOptions, learn
+from ddclearn.files import write_atomically
+from ddclearn.learner import Form
 
-__all__ = ["DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError", "learn_theory",
+__all__ = ["DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError", "along_distance",
+           "learn_theory",
            "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
 
 BEGIN = "% -- begin hand-written occlusion rules"
@@ -115,15 +116,21 @@ def _program_body(program: str) -> str:
     k = 0
     while k < len(lines) and (lines[k].startswith("%") or not lines[k].strip()):
         k += 1
-    intro = ("% The learned rules (ddc learn): a distributional logic tree for occluder/2, one "
-             "clause per path,\n% with the background knowledge they read.\n")
+    intro = ("% The learned rules (ddc learn): a distributional logic tree for occluder/2 (each "
+             "path from its\n% root to a leaf is one clause of the tree), with the background "
+             "knowledge it reads.\n")
     return intro + "\n".join(lines[k:]) + "\n"
 
 
 def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
                  options: SearchOptions | None = None, base: str | Path = DEFAULT_THEORY,
-                 command: str | None = None, progress: bool = False) -> LearnedTheory:
+                 command: str | None = None, progress: bool = False,
+                 form: Form = "tree") -> LearnedTheory:
     """Learn the occlusion rules from ``data`` and write the complete theory to ``out``.
+
+    The tree goes into the theory in its tree form (``form="tree"``: one clause whose body is
+    the tree, each test evaluated once per particle, as fast in the filter as the hand-written
+    rules) or as one clause per path (``form="clauses"``, the paper's form; the same program).
 
     ``out`` is replaced only once the theory is complete and loads in the engine (a failed run
     leaves the previous file as it was).
@@ -143,7 +150,7 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     target = result.targets[0]
     names = ", ".join(Path(d).name for d in data)
     header = [
-        "/*  too_learned.pl -- the theory of occlusion with rules learned from experience.",
+        f"/*  {out.name} -- the theory of occlusion with rules learned from experience.",
         "",
         "    Written by `anchoring learn-theory`: the hand-written occlusion rules of",
         f"    {base_path.name} are replaced by a tree learned (ddc learn) from {names}:",
@@ -153,41 +160,37 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     if command:
         header.append(f"    Command: {command}")
     header += [
-        "    Everything else is too.pl's (motion, observations, blind frames, the transitive",
-        "    clause). Regenerate it rather than edit it; edit prolog/too.pl for the rest.",
+        f"    Everything else is {base_path.name}'s (motion, observations, blind frames, the",
+        "    transitive clause). Regenerate it rather than edit it; edit",
+        f"    {base_path.name} for the rest.",
         "*/",
         "",
     ]
-    text = theory_text(base_path.read_text(encoding="utf-8"), result.program,
+    text = theory_text(base_path.read_text(encoding="utf-8"), result.program_text(form),
                        "\n".join(header) + "\n")
-    out.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{out.name}.", suffix=".pl", dir=out.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
+
+    def loads(tmp: Path) -> None:
         try:
-            bridge.load(tmp)
+            bridge.load(str(tmp))
         except bridge.DDCError as error:
             raise TheoryError(f"the learned theory does not load: {error}") from None
-        os.replace(tmp, out)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+
+    write_atomically(out, text, loads)
     return LearnedTheory(out, result, text)
 
 
-def logistic_leaves(result: LearnResult, feature: str = "distance") -> list[dict[str, object]]:
-    """The leaves of the learned tree whose model is a logistic regression with ``feature``
-    among its regressors: path (the tested literals), regressors (their variables' names),
+def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:
+    """The leaves of the learned tree whose model is a logistic regression with a distance
+    among its regressors (see :func:`along_distance`): path (the tested literals), regressors (their variables' names),
     weights (one per regressor, the bias last), rows, weight."""
     out: list[dict[str, object]] = []
     for leaf in result.targets[0].leaves:
         lf = leaf.leaf
-        if lf.family != "logistic" or lf.weights is None or f"{feature}(" not in leaf.clause:
+        if lf.family != "logistic" or lf.weights is None:
             continue
         m = re.search(r"logistic\(\[([^\]]*)\]", leaf.clause)
         names = [n.strip() for n in m.group(1).split(",")] if m else []
-        if feature.capitalize() not in names:
+        if not any(_is_distance(n) for n in names):
             continue
         body = leaf.clause.split(":=", 1)[1]
         path = [line.strip().rstrip(",") for line in body.splitlines()
@@ -198,19 +201,36 @@ def logistic_leaves(result: LearnResult, feature: str = "distance") -> list[dict
     return out
 
 
-def probability_at(leaf: dict[str, object], distance: np.ndarray,
-                   feature: str = "Distance") -> np.ndarray:
-    """P1 of a logistic leaf along ``distance``, its other regressors at 0 (e.g. lift 0: an
-    occluder that does not move up or down)."""
+def along_distance(leaf: dict[str, object]) -> tuple[float, float]:
+    """A logistic leaf as sigmoid(bias + slope d) along the table-plane distance d, at equal
+    heights (its 3-D distance is then d too) and its other regressors at 0 (e.g. lift 0: an
+    occluder that does not move up or down): (slope, bias), comparable with the paper's
+    (-16.9, 0.8)."""
     names = list(leaf["regressors"])  # type: ignore[arg-type]
-    w = np.asarray(leaf["weights"], dtype=float)
-    z = np.full_like(distance, w[-1], dtype=float)
-    z += w[names.index(feature)] * distance
-    return 1.0 / (1.0 + np.exp(-z))
+    w = [float(x) for x in leaf["weights"]]  # type: ignore[union-attr]
+    slope = sum(wi for n, wi in zip(names, w, strict=False) if _is_distance(n))
+    return slope, w[-1]
+
+
+def _is_distance(name: str) -> bool:
+    """A regressor's variable for distance/2 (Distance, Distance2, ...) or distance3/2
+    (Distance3, Distance32, ...)."""
+    return re.fullmatch(r"Distance\d*", name) is not None
+
+
+def probability_at(leaf: dict[str, object], distance: np.ndarray) -> np.ndarray:
+    """P1 of a logistic leaf along the table-plane ``distance`` (see :func:`along_distance`)."""
+    slope, bias = along_distance(leaf)
+    return 1.0 / (1.0 + np.exp(-(bias + slope * np.asarray(distance, dtype=float))))
+
+
+#: The tree's picture shows this many levels (a deeper subtree is one box: its leaves' count).
+TREE_PICTURE_DEPTH = 3
 
 
 def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Path]:
-    """The learned tree (``<name>_tree.png``) and P(occluder | distance) of its logistic leaves
+    """The learned tree (``<name>_tree.png``, its first levels) and P(occluder | distance) of its
+    logistic leaves
     beside the paper's sigmoid(0.8 - 16.9 d) and the original system's deployed
     sigmoid(1.948 - 16.488 d) (``<name>_distance.png``)."""
     import matplotlib
@@ -222,7 +242,8 @@ def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Pa
 
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
-    tree = plot_trees([t.tree for t in theory.result.targets], folder / f"{name}_tree.png")
+    tree = plot_trees([t.tree for t in theory.result.targets], folder / f"{name}_tree.png",
+                      max_depth=TREE_PICTURE_DEPTH)
     d = np.linspace(0.0, 0.35, 200)
     fig = Figure(figsize=(7.5, 4.2))
     ax = fig.add_subplot()

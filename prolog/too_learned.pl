@@ -1,0 +1,578 @@
+/*  too_learned.pl -- the theory of occlusion with rules learned from experience.
+
+    Written by `anchoring learn-theory`: the hand-written occlusion rules of
+    too.pl are replaced by a tree learned (ddc learn) from data_truth.pl:
+    78097 groundings of occluder(A, O):t+1, 85 clauses,
+    training log-likelihood -24832; search seed 0.
+    Command: anchoring learn-theory out/learn/data_truth.pl --seed 0 --out prolog/too_learned.pl --plots docs/images
+    Everything else is too.pl's (motion, observations, blind frames, the
+    transitive clause). Regenerate it rather than edit it; edit
+    too.pl for the rest.
+*/
+
+/*  too.pl -- the theory of occlusion: which object may hide which, and where a hidden object is.
+
+    An ordinary DDC program, filtered over time by the particle filter (prolog/ddc.pl);
+    edit it freely.  What the runner tells it at every step t+1 (one camera frame):
+
+      facts         object(A)          every anchor that exists, as an atom (ball-1 -> ball_1)
+                    category(A, C)     its best category: ball, mug, cup, box, can, skin, ...
+                    observed(A)        A was perceived in this frame
+      observations  observation(pos(A)) ~= (X,Y,Z)   its perceived position (metres, z up)
+
+    What it reads back, per particle: pos(A):t ~= (X,Y,Z) and occluded_by(A, O):t.
+*/
+
+% ------------------------------------------------------------------ parameters
+% Variances are per axis, in square metres; one step is one camera frame.
+obs_var(0.0001).            % measurement noise of a perceived position: (1 cm)^2
+motion_var(0.0004).         % how far a perceived object moves in one frame: (2 cm)^2
+reappear_var(0.0025).       % where a hidden object shows up again, around its belief: (5 cm)^2
+follow_var(0.000004).       % jitter of a hidden object that follows its occluder: (2 mm)^2
+wander_var(0.0001).         % how far a hidden object under nothing may move in a frame: (1 cm)^2
+coast_keep(0.9).            % fraction of its velocity a hidden object under nothing keeps per frame
+follow_keep(0.95).          % fraction of its offset from the occluder's centre kept per frame
+occluder_reach(0.15).       % an occluder is within 15 cm of the object in the table plane ...
+occluder_rise(0.02).        % ... and its centre is no more than 2 cm lower than the object's
+cover_height(0.12).         % a container whose centre rises more than this above the object's
+                            % centre no longer covers it (it was lifted)
+
+% ------------------------------------------------------------------ background knowledge
+% What carries what it hides through space (a hand lifts a grasped object); containers slide
+% over the table and what they cover stays on the table.
+carrier(skin) := true.
+carrier(hand) := true.
+
+
+% ------------------------------------------------------------------ seen and hidden
+seen(A):t+1 := observed(A).
+hidden(A):t+1 := object(A), \+ observed(A).
+% The camera saw nothing at all (covered by a hand): an object lost now could be anywhere.
+blind:t+1 := \+ observed(_).
+
+
+% An object hidden while blind stays "lost anywhere" until an occluder explains it.
+lost_anywhere(A):t+1 := hidden(A):t+1, blind:t+1, \+ occluded_by(A, _):t+1.
+lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
+
+% ------------------------------------------------------------------ occlusion
+% ------------------------------------------------------------------ learned occlusion rules
+% How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
+% (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples);
+% O is a candidate occluder of the hidden A when the particle
+% draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
+% when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
+% occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
+pair(A, O):t+1 := hidden(A):t+1, observed(O), O \== A.
+occluder_candidate(A, O):t+1 :=
+    pair(A, O):t+1, \+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, seen(A):t, \+ occluded_by(A, _):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \== [],
+    Os = [behind | Os1].
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, \+ seen(A):t, \+ occluded_by(A, _):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
+occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+
+% The learned rules (ddc learn): a distributional logic tree for occluder/2 (each path from its
+% root to a leaf is one clause of the tree), with the background knowledge it reads.
+distance(A, O):t+1 ~ val(D) :=
+    pos(A):t ~= (X, Y, _),
+    pos(O):t+1 ~= (XO, YO, _),
+    D is sqrt((X-XO)**2+(Y-YO)**2).
+rise(A, O):t+1 ~ val(H) :=
+    pos(A):t ~= (_, _, Z),
+    pos(O):t+1 ~= (_, _, ZO),
+    H is ZO-Z.
+lift(O):t+1 ~ val(H) :=
+    pos(O):t ~= (_, _, Z0),
+    pos(O):t+1 ~= (_, _, Z1),
+    H is Z1-Z0.
+kind(A):t+1 ~ val(C) :=
+    category(A, C).
+
+% occluder(Occluded, Occluder):t+1: 85 clauses, 78097 groundings, training log-likelihood -24832 (mean -0.108257 per grounding), 125 parameters.
+occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
+    pair(Occluded, Occluder):t+1,
+    (   occluded_by(Occluded, Occluder):t
+    ->  (   lift(Occluder):t+1 ~= Lift
+        ->  (   rise(Occluded, Occluder):t+1 ~= Rise
+            ->  (   Rise < 0.0
+                ->  % n = 124 (weight 484), log-likelihood -0.996911, finite
+                    P1 = 0.99794239,
+                    P2 = 0.00205761
+                ;   Rise < 0.1
+                ->  (   kind(Occluded):t+1 ~= ball
+                    ->  (   kind(Occluder):t+1 ~= ball
+                        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Lift], [-113.793, 5.34458], P1),
+                            P2 is 1-P1
+                        ;   kind(Occluder):t+1 ~= box
+                        ->  (   distance(Occluded, Occluder):t+1 ~= Distance
+                            ->  % n = 643 (weight 2223), log-likelihood -65.1078, logistic
+                                logistic([Lift, Distance], [-570.165, 905.243, 5.61433], P1),
+                                P2 is 1-P1
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Lift], [-421.92, 5.46561], P1),
+                                P2 is 1-P1
+                            )
+                        ;   kind(Occluder):t+1 ~= can
+                        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Lift], [-113.793, 5.34458], P1),
+                            P2 is 1-P1
+                        ;   kind(Occluder):t+1 ~= cup
+                        ->  % n = 1089 (weight 3573), log-likelihood -76.921, logistic
+                            logistic([Lift], [-144.832, 5.76312], P1),
+                            P2 is 1-P1
+                        ;   kind(Occluder):t+1 ~= mug
+                        ->  (   distance(Occluded, Occluder):t+1 ~= Distance2
+                            ->  % n = 939 (weight 3311), log-likelihood -63.8267, logistic
+                                logistic([Lift, Distance2], [-605.239, 1182.8, 5.30133], P1),
+                                P2 is 1-P1
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Lift], [-308.877, 5.60712], P1),
+                                P2 is 1-P1
+                            )
+                        ;   kind(Occluder):t+1 ~= skin
+                        ->  % n = 138 (weight 166), log-likelihood -22.5162, finite
+                            P1 = 0.9642857,
+                            P2 = 0.0357143
+                        ;   \+ kind(Occluder):t+1 ~= _
+                        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Lift], [-113.793, 5.34458], P1),
+                            P2 is 1-P1
+                        )
+                    ;   kind(Occluded):t+1 ~= box
+                    ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Lift], [-147.694, 5.21662], P1),
+                        P2 is 1-P1
+                    ;   kind(Occluded):t+1 ~= can
+                    ->  % n = 577 (weight 1349), log-likelihood -39.6814, logistic
+                        logistic([Lift], [-452.032, 6.64937], P1),
+                        P2 is 1-P1
+                    ;   kind(Occluded):t+1 ~= cup
+                    ->  % n = 5, too few groundings for a model of its own: the parent's model, log-likelihood -0.00298719, logistic
+                        logistic([Lift], [-147.694, 5.21662], P1),
+                        P2 is 1-P1
+                    ;   kind(Occluded):t+1 ~= mug
+                    ->  % n = 83 (weight 367), log-likelihood -7.20678, finite
+                        P1 = 0.99457995,
+                        P2 = 0.00542005
+                    ;   kind(Occluded):t+1 ~= skin
+                    ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Lift], [-147.694, 5.21662], P1),
+                        P2 is 1-P1
+                    ;   \+ kind(Occluded):t+1 ~= _
+                    ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Lift], [-147.694, 5.21662], P1),
+                        P2 is 1-P1
+                    )
+                ;   % n = 802 (weight 1306), log-likelihood -101.2, logistic
+                    logistic([Lift], [-54.1251, 4.45189], P1),
+                    P2 is 1-P1
+                )
+            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Lift], [-85.2523, 5.05166], P1),
+                P2 is 1-P1
+            )
+        ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+            P1 = 0.99092758,
+            P2 = 0.00907242
+        )
+    ;   (   distance(Occluded, Occluder):t+1 ~= Distance4
+        ->  (   kind(Occluded):t+1 ~= ball
+            ->  (   kind(Occluder):t+1 ~= ball
+                ->  % n = 2798 (weight 9922), log-likelihood -0.999849, finite
+                    P1 = 0.000100766,
+                    P2 = 0.999899234
+                ;   kind(Occluder):t+1 ~= box
+                ->  (   rise(Occluded, Occluder):t+1 ~= Rise4
+                    ->  (   Rise4 < 0.0
+                        ->  % n = 241 (weight 1073), log-likelihood -0.998604, finite
+                            P1 = 0.000930233,
+                            P2 = 0.999069767
+                        ;   Rise4 < 0.1
+                        ->  (   lost_anywhere(Occluded):t
+                            ->  % n = 118 (weight 550), log-likelihood -2.13875, logistic
+                                logistic([Distance4], [-50.5145, 2.34709], P1),
+                                P2 is 1-P1
+                            ;   (   seen(Occluded):t
+                                ->  % n = 119, log-likelihood -0.987558, finite
+                                    P1 = 0.00826446,
+                                    P2 = 0.99173554
+                                ;   % n = 7094 (weight 20578), log-likelihood -4372.83, logistic
+                                    logistic([Distance4], [-13.9051, 0.411775], P1),
+                                    P2 is 1-P1
+                                )
+                            )
+                        ;   % n = 609 (weight 845), log-likelihood -91.6787, logistic
+                            logistic([Distance4], [-22.8211, -0.23725], P1),
+                            P2 is 1-P1
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance4], [-14.4202, 0.360346], P1),
+                        P2 is 1-P1
+                    )
+                ;   kind(Occluder):t+1 ~= can
+                ->  % n = 1822 (weight 7542), log-likelihood -0.999801, finite
+                    P1 = 0.000132556,
+                    P2 = 0.999867444
+                ;   kind(Occluder):t+1 ~= cup
+                ->  (   rise(Occluded, Occluder):t+1 ~= Rise8
+                    ->  (   Rise8 < 0.0
+                        ->  (   lost_anywhere(Occluded):t
+                            ->  % n = 76 (weight 232), log-likelihood -6.74502, finite
+                                P1 = 0.00854701,
+                                P2 = 0.99145299
+                            ;   % n = 581 (weight 1617), log-likelihood -513.024, finite
+                                P1 = 0.0969734,
+                                P2 = 0.9030266
+                            )
+                        ;   Rise8 < 0.1
+                        ->  (   lost_anywhere(Occluded):t
+                            ->  (   seen(Occluder):t
+                                ->  % n = 118 (weight 466), log-likelihood -0.996792, finite
+                                    P1 = 0.00213675,
+                                    P2 = 0.99786325
+                                ;   % n = 11 (weight 15), log-likelihood -9.56045, finite
+                                    P1 = 0.352941,
+                                    P2 = 0.647059
+                                )
+                            ;   (   seen(Occluded):t
+                                ->  % n = 98, log-likelihood -5.69517, logistic
+                                    logistic([Distance4], [-31.822, 2.07908], P1),
+                                    P2 is 1-P1
+                                ;   % n = 7269 (weight 18841), log-likelihood -7894.32, logistic
+                                    logistic([Distance4], [-5.24623, -0.423102], P1),
+                                    P2 is 1-P1
+                                )
+                            )
+                        ;   % n = 476 (weight 552), log-likelihood -90.3871, logistic
+                            logistic([Distance4], [-13.8413, -0.0771486], P1),
+                            P2 is 1-P1
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance4], [-5.1201, -0.567952], P1),
+                        P2 is 1-P1
+                    )
+                ;   kind(Occluder):t+1 ~= mug
+                ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
+                    ->  (   Rise12 < 0.0
+                        ->  % n = 491 (weight 1771), log-likelihood -15.7594, finite
+                            P1 = 0.00169205,
+                            P2 = 0.99830795
+                        ;   Rise12 < 0.1
+                        ->  (   lost_anywhere(Occluded):t
+                            ->  % n = 124 (weight 364), log-likelihood -9.96381, logistic
+                                logistic([Distance4], [-48.4227, 1.05198], P1),
+                                P2 is 1-P1
+                            ;   % n = 7435 (weight 18055), log-likelihood -7247.76, logistic
+                                logistic([Distance4], [-7.83001, 0.18033], P1),
+                                P2 is 1-P1
+                            )
+                        ;   % n = 339 (weight 399), log-likelihood -42.5161, logistic
+                            logistic([Distance4], [-15.2828, -0.419902], P1),
+                            P2 is 1-P1
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance4], [-8.04683, 0.0816828], P1),
+                        P2 is 1-P1
+                    )
+                ;   kind(Occluder):t+1 ~= skin
+                ->  (   rise(Occluded, Occluder):t+1 ~= Rise16
+                    ->  (   Rise16 < 0.0
+                        ->  % n = 65 (weight 97), log-likelihood -9.91632, finite
+                            P1 = 0.030303,
+                            P2 = 0.969697
+                        ;   Rise16 < 0.1
+                        ->  % n = 649 (weight 745), log-likelihood -402.546, finite
+                            P1 = 0.231593,
+                            P2 = 0.768407
+                        ;   (   lost_anywhere(Occluded):t
+                            ->  % n = 18 (weight 26), log-likelihood -0.945559, finite
+                                P1 = 0.0357143,
+                                P2 = 0.9642857
+                            ;   % n = 1136 (weight 1504), log-likelihood -840.076, logistic
+                                logistic([Distance4], [-1.6019, -0.684152], P1),
+                                P2 is 1-P1
+                            )
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                        P1 = 0.232519,
+                        P2 = 0.767481
+                    )
+                ;   \+ kind(Occluder):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance4], [-8.67329, -0.22457], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= box
+            ->  % n = 5630 (weight 16954), log-likelihood -0.999912, finite
+                P1 = 5.89762e-5,
+                P2 = 0.9999410238
+            ;   kind(Occluded):t+1 ~= can
+            ->  (   kind(Occluder):t+1 ~= ball
+                ->  (   seen(Occluder):t
+                    ->  % n = 1147 (weight 4799), log-likelihood -25.2684, finite
+                        P1 = 0.00083316,
+                        P2 = 0.99916684
+                    ;   (   lift(Occluder):t+1 ~= Lift2
+                        ->  % n = 70 (weight 90), log-likelihood -15.9823, logistic
+                            logistic([Distance4, Lift2], [1.59872, 38.4099, -3.55372], P1),
+                            P2 is 1-P1
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                            P1 = 0.108696,
+                            P2 = 0.891304
+                        )
+                    )
+                ;   kind(Occluder):t+1 ~= box
+                ->  (   rise(Occluded, Occluder):t+1 ~= Rise20
+                    ->  (   Rise20 < 0.0
+                        ->  % n = 485 (weight 1005), log-likelihood -25.7498, logistic
+                            logistic([Distance4], [-58.1408, 4.28134], P1),
+                            P2 is 1-P1
+                        ;   Rise20 < 0.1
+                        ->  (   lost_anywhere(Occluded):t
+                            ->  % n = 62 (weight 154), log-likelihood -12.0061, logistic
+                                logistic([Distance4], [-19.4899, 0.501112], P1),
+                                P2 is 1-P1
+                            ;   % n = 2119 (weight 4891), log-likelihood -2013.89, logistic
+                                logistic([Distance4], [-9.29782, 0.828266], P1),
+                                P2 is 1-P1
+                            )
+                        ;   % n = 446 (weight 630), log-likelihood -51.3961, finite
+                            P1 = 0.0174051,
+                            P2 = 0.9825949
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance4], [-11.4498, 1.03451], P1),
+                        P2 is 1-P1
+                    )
+                ;   kind(Occluder):t+1 ~= can
+                ->  % n = 645 (weight 2905), log-likelihood -0.999484, finite
+                    P1 = 0.000343997,
+                    P2 = 0.999656003
+                ;   kind(Occluder):t+1 ~= cup
+                ->  % n = 2261 (weight 8273), log-likelihood -0.999819, finite
+                    P1 = 0.000120846,
+                    P2 = 0.999879154
+                ;   kind(Occluder):t+1 ~= mug
+                ->  % n = 2253 (weight 7513), log-likelihood -0.9998, finite
+                    P1 = 0.000133067,
+                    P2 = 0.999866933
+                ;   kind(Occluder):t+1 ~= skin
+                ->  (   rise(Occluded, Occluder):t+1 ~= Rise24
+                    ->  (   Rise24 < 0.0
+                        ->  % n = 26 (weight 30), log-likelihood -0.952461, finite
+                            P1 = 0.03125,
+                            P2 = 0.96875
+                        ;   Rise24 < 0.1
+                        ->  (   lift(Occluder):t+1 ~= Lift4
+                            ->  % n = 415 (weight 419), log-likelihood -208.804, logistic
+                                logistic([Distance4, Lift4], [-3.12979, -41.0541, 2.05132], P1),
+                                P2 is 1-P1
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Distance4], [-3.32992, 2.1457], P1),
+                                P2 is 1-P1
+                            )
+                        ;   (   seen(Occluder):t
+                            ->  (   lost_anywhere(Occluded):t
+                                ->  % n = 14 (weight 18), log-likelihood -4.09371, finite
+                                    P1 = 0.1,
+                                    P2 = 0.9
+                                ;   (   lift(Occluder):t+1 ~= Lift6
+                                    ->  % n = 988 (weight 1012), log-likelihood -426.772, logistic
+                                        logistic([Distance4, Lift6], [-5.72537, -23.5349, 3.20191], P1),
+                                        P2 is 1-P1
+                                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                        logistic([Distance4], [-5.28312, 2.98427], P1),
+                                        P2 is 1-P1
+                                    )
+                                )
+                            ;   % n = 19, log-likelihood -0.927013, finite
+                                P1 = 0.047619,
+                                P2 = 0.952381
+                            )
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance4], [-4.65336, 2.52629], P1),
+                        P2 is 1-P1
+                    )
+                ;   \+ kind(Occluder):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance4], [-8.57319, -0.445492], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= cup
+            ->  (   kind(Occluder):t+1 ~= ball
+                ->  % n = 850 (weight 3154), log-likelihood -0.999525, finite
+                    P1 = 0.000316857,
+                    P2 = 0.999683143
+                ;   kind(Occluder):t+1 ~= box
+                ->  % n = 1468 (weight 4880), log-likelihood -0.999693, finite
+                    P1 = 0.000204834,
+                    P2 = 0.999795166
+                ;   kind(Occluder):t+1 ~= can
+                ->  % n = 601 (weight 2469), log-likelihood -0.999393, finite
+                    P1 = 0.000404694,
+                    P2 = 0.999595306
+                ;   kind(Occluder):t+1 ~= cup
+                ->  % n = 1238 (weight 4002), log-likelihood -0.999625, finite
+                    P1 = 0.00024975,
+                    P2 = 0.99975025
+                ;   kind(Occluder):t+1 ~= mug
+                ->  % n = 1529 (weight 5225), log-likelihood -0.999713, finite
+                    P1 = 0.000191314,
+                    P2 = 0.999808686
+                ;   kind(Occluder):t+1 ~= skin
+                ->  % n = 476 (weight 592), log-likelihood -61.8509, logistic
+                    logistic([Distance4], [-8.95436, -2.01379], P1),
+                    P2 is 1-P1
+                ;   \+ kind(Occluder):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance4], [-10.2088, -5.37789], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= mug
+            ->  (   kind(Occluder):t+1 ~= ball
+                ->  % n = 913 (weight 2937), log-likelihood -0.99949, finite
+                    P1 = 0.000340252,
+                    P2 = 0.999659748
+                ;   kind(Occluder):t+1 ~= box
+                ->  (   lost_anywhere(Occluded):t
+                    ->  % n = 200 (weight 776), log-likelihood -0.998071, finite
+                        P1 = 0.00128535,
+                        P2 = 0.99871465
+                    ;   % n = 1301 (weight 3489), log-likelihood -30.0244, logistic
+                        logistic([Distance4], [-193.604, 4.62729], P1),
+                        P2 is 1-P1
+                    )
+                ;   kind(Occluder):t+1 ~= can
+                ->  % n = 460 (weight 1968), log-likelihood -0.999238, finite
+                    P1 = 0.000507614,
+                    P2 = 0.999492386
+                ;   kind(Occluder):t+1 ~= cup
+                ->  % n = 1611 (weight 5563), log-likelihood -0.99973, finite
+                    P1 = 0.000179695,
+                    P2 = 0.999820305
+                ;   kind(Occluder):t+1 ~= mug
+                ->  % n = 1497 (weight 4133), log-likelihood -0.999637, finite
+                    P1 = 0.000241838,
+                    P2 = 0.999758162
+                ;   kind(Occluder):t+1 ~= skin
+                ->  % n = 501 (weight 641), log-likelihood -0.997666, finite
+                    P1 = 0.00155521,
+                    P2 = 0.99844479
+                ;   \+ kind(Occluder):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance4], [-90.8115, -0.586077], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 12785 (weight 42645), log-likelihood -0.999965, finite
+                P1 = 2.34483e-5,
+                P2 = 0.9999765517
+            ;   \+ kind(Occluded):t+1 ~= _
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance4], [-8.90324, -0.885601], P1),
+                P2 is 1-P1
+            )
+        ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+            P1 = 0.0582182,
+            P2 = 0.9417818
+        )
+    ).
+% Transitive occlusion (section 5.3 of the paper; remove this clause to switch it off): an
+% object whose occluder is itself hidden stays with it, under whatever hides the occluder (or,
+% while the occluder is under nothing, where the occluder is believed to be: a box lowered
+% over a mug hides the mug a few frames before it covers it).
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, hidden(A):t+1, hidden(O):t+1.
+
+% ------------------------------------------------------------------ positions
+% A perceived object's position is the same in every particle: its filtered estimate, a point
+% (val) rather than a sample.  One filter carries all objects, so a particle's weight is the
+% product of every perceived object's predictive density; were the perceived positions sampled
+% per particle (e.g. from the Kalman posterior, the optimal proposal), every frame's weights
+% would differ only by those objects' own measurement noise, the effective sample size would
+% fall below the threshold nearly every frame, and each resampling would randomly thin the
+% modes of hidden objects whose particles carry no information of their own (genetic drift:
+% the shell game's ball lost its mode under the right container before it was lifted).  A
+% perceived object's posterior hardly depends on which occlusion hypothesis a particle holds,
+% so it is marginalised out of the particles (the Rao-Blackwellisation of section 2.2 of the
+% paper: keep analytically what needs no sampling); its point is the mean of that Gaussian
+% posterior.  Its measurement still weights every particle with the Gaussian predictive
+% density below; the density is simply the same in every particle that agrees on where the
+% object was, so the weights only move when the particles disagree: when a hidden object is
+% seen again, at the positions the particles had believed it to be (the informative event
+% that selects the right mode).
+% First sighting: at the perceived position.
+pos(A):t+1 ~ val((X, Y, Z)) :=
+    observed(A), observation(pos(A)) ~= (X, Y, Z), \+ pos(A):t ~= _.
+% Perceived in the previous frame too: the mean of the posterior of (motion prior x
+% measurement) (a Kalman step with a fixed gain).
+pos(A):t+1 ~ val((MX, MY, MZ)) :=
+    observed(A), seen(A):t, observation(pos(A)) ~= (OX, OY, OZ), pos(A):t ~= (X, Y, Z),
+    prior_var(A, P):t+1, obs_var(R), K is P / (P + R),
+    MX is X + K*(OX-X), MY is Y + K*(OY-Y), MZ is Z + K*(OZ-Z).
+% Seen again after being hidden: at the perceived position, in every particle (the particle's
+% weight already says how well its belief predicted the position; from here on the particles
+% agree again).
+pos(A):t+1 ~ val((X, Y, Z)) :=
+    observed(A), \+ seen(A):t, pos(A):t ~= _, observation(pos(A)) ~= (X, Y, Z).
+% Hidden under the same occluder as before: moves with it (in the table plane; a carrier
+% such as a hand also lifts it).  Its offset from the occluder's centre is kept with
+% follow_keep and jittered with follow_var, so the belief settles within the occluder's
+% footprint (spread sqrt(follow_var / (1 - follow_keep^2)), 6 mm) instead of wandering
+% further off frame after frame; its height hardly jitters (an object under a container stays
+% on the table).
+pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
+    hidden(A):t+1, occluded_by(A, O):t, occluded_by(A, O):t+1,
+    pos(O):t ~= (X0, Y0, Z0), pos(O):t+1 ~= (X1, Y1, Z1), pos(A):t ~= (X, Y, Z),
+    follow_keep(K), MX is X1 + K*(X - X0), MY is Y1 + K*(Y - Y0),
+    (   category(O, CO), carrier(CO) -> MZ is Z + Z1 - Z0 ; MZ = Z ),
+    follow_var(V), VZ is V / 100.
+% Hidden under an occluder that has just been picked: under it, at the object's own height.
+pos(A):t+1 ~ gaussian([XO, YO, Z], C) :=
+    hidden(A):t+1, occluded_by(A, O):t+1, \+ occluded_by(A, O):t,
+    pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (_, _, Z),
+    follow_var(V), diagonal(V, C).
+% Hidden under nothing (behind something, or left on the table): it may be moved while unseen
+% (a mug carried behind a box, a container swapped while merged with another in the image).
+% It coasts on with the velocity it had when it vanished, slowing down (coast_keep per frame,
+% so at most 1 / (1 - coast_keep) frames' worth of its last motion: a static object stays),
+% and its belief spreads by wander_var per frame in the table plane; a reappearance then
+% weights the particles by where they had it, and matching finds the particles near it.
+pos(A):t+1 ~ gaussian([MX, MY, Z], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
+    hidden(A):t+1, \+ occluded_by(A, _):t+1, pos(A):t ~= (X, Y, Z),
+    velocity(A, VX, VY):t+1, MX is X + VX, MY is Y + VY,
+    wander_var(V), VZ is V / 100.
+
+% The velocity (metres per frame, in the table plane) of a perceived object: the change of its
+% filtered position; of a hidden object under nothing: the last one, slowing down; else none.
+vel(A):t+1 ~ val((VX, VY)) :=
+    observed(A), seen(A):t, pos(A):t ~= (X0, Y0, _), pos(A):t+1 ~= (X1, Y1, _),
+    VX is X1 - X0, VY is Y1 - Y0.
+vel(A):t+1 ~ val((VX, VY)) :=
+    hidden(A):t+1, \+ occluded_by(A, _):t+1, velocity(A, VX, VY):t+1.
+velocity(A, VX, VY):t+1 :=
+    vel(A):t ~= (VX0, VY0), coast_keep(K), VX is K * VX0, VY is K * VY0.
+velocity(A, 0.0, 0.0):t+1 := object(A), \+ vel(A):t ~= _.
+
+% ------------------------------------------------------------------ observation model
+% A perceived position weights each particle by its predictive density: motion + noise for an
+% object that was perceived in the previous frame, a wider one for an object that reappears.
+observation(pos(A)):t+1 ~ gaussian([X, Y, Z], C) :=
+    pos(A):t ~= (X, Y, Z), predictive_var(A, V):t+1, diagonal(V, C).
+% A new object: nothing to compare with (weight 1).
+observation(pos(A)):t+1 ~ val(_) :=
+    object(A), \+ pos(A):t ~= _.
+
+prior_var(A, P):t+1 := object(A), seen(A):t, motion_var(P).
+prior_var(A, P):t+1 := object(A), \+ seen(A):t, reappear_var(P).
+predictive_var(A, V):t+1 := prior_var(A, P):t+1, obs_var(R), V is P + R.
+
+diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V]).

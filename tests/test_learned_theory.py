@@ -1,0 +1,146 @@
+"""The learned theory of occlusion: written from too.pl with its hand-written occlusion rules
+replaced, loaded before it replaces anything, run by the filter; and ``anchoring collect`` /
+``anchoring learn-theory`` end to end on a short generated game."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+import bridge
+from app.collect import CollectError, CollectOptions, collect
+from app.learned_theory import BEGIN, END, TheoryError, learn_theory, theory_text
+from app.occlusion_data import LabelOptions
+from app.reasoning import DEFAULT_THEORY
+from app.theories import THEORIES, theory_path
+from ddc_cli_helpers import Run
+
+ROOT = Path(__file__).resolve().parents[1]
+
+LEARNED = """% learned (a header of the learner's)
+
+occluder(A, O):t+1 ~ finite([0.9:true, 0.1:false]) :=
+    pair(A, O):t+1, occluded_by(A, O):t.
+occluder(A, O):t+1 ~ finite([0.2:true, 0.8:false]) :=
+    pair(A, O):t+1, \\+ occluded_by(A, O):t.
+"""
+
+
+def test_the_hand_written_occlusion_rules_are_replaced() -> None:
+    base = DEFAULT_THEORY.read_text()
+    text = theory_text(base, LEARNED, "% header\n")
+    assert BEGIN not in text and END not in text
+    for gone in ("cannot_occlude(ball)", "covers(O, A):t+1 :=", "lowered_over(O, A):t+1 :="):
+        assert gone in base and gone not in text
+    for kept in ("occluded_by(A, O):t, hidden(A):t+1, hidden(O):t+1.",   # transitive
+                 "pos(A):t+1 ~ gaussian", "lost_anywhere(A):t+1 :=", "carrier(skin) := true."):
+        assert kept in text
+    assert "occluder_candidate(A, O):t+1 :=\n    pair(A, O):t+1" in text
+    assert text.index("occluder(A, O):t+1 ~ finite([0.9:true") > text.index("pick_occluder")
+
+
+def test_a_base_without_marked_rules_is_an_error() -> None:
+    with pytest.raises(TheoryError, match="hand-written occlusion rules"):
+        theory_text("x ~ val(1).\n", LEARNED, "")
+
+
+def test_the_assembled_theory_loads_and_filters(tmp_path: Path) -> None:
+    path = tmp_path / "too_learned.pl"
+    path.write_text(theory_text(DEFAULT_THEORY.read_text(), LEARNED, ""))
+    f = bridge.Filter(path, particles=200, seed=1, threads=1)
+    f.step(["observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)",
+            "observed(mug_1)", "observation(pos(mug_1)) ~= (0.0, 0.0, 0.05)"],
+           actions=["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
+                    "category(mug_1, mug)"])
+    f.step(["observed(mug_1)", "observation(pos(mug_1)) ~= (0.0, 0.0, 0.05)"],
+           actions=["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
+                    "category(mug_1, mug)"])
+    # just vanished: candidates drawn with 0.2 each, then a uniform pick with `behind`
+    p = f.probability("occluded_by(ball_1, mug_1):t")
+    assert 0.1 * 0.5 < p < 0.2                # 0.2 * 1/2, within sampling error at N = 200
+    f.close()
+
+
+def test_shipped_theories_by_name() -> None:
+    assert theory_path("hand") == DEFAULT_THEORY
+    assert theory_path("learned") == THEORIES["learned"]
+    assert theory_path("prolog/examples/x.pl") == Path("prolog/examples/x.pl")
+    for name in ("learned", "hindsight"):
+        assert THEORIES[name].is_file(), f"{THEORIES[name]} ships (make learned-theory)"
+        bridge.load(THEORIES[name])                    # it loads in the engine
+
+
+@pytest.fixture(scope="module")
+def game_data(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """One short generated game, collected with ground-truth labels (perception included)."""
+    folder = tmp_path_factory.mktemp("collect")
+    out = folder / "data.pl"
+    report = collect(CollectOptions(out=out, games=1, seed=22, cache=folder / "cache",
+                                    labels=LabelOptions(source="truth")))
+    assert report.episodes == 1 and report.pairs > 0 and report.positive > 0
+    assert report.agreement is not None and 0.5 < report.agreement <= 1.0
+    return out
+
+
+def test_learn_theory_writes_a_theory_that_loads(game_data: Path, tmp_path: Path) -> None:
+    out = tmp_path / "too_learned.pl"
+    result = learn_theory([game_data], out, seed=0, command="anchoring learn-theory ...")
+    text = out.read_text()
+    assert text.startswith("/*  too_learned.pl -- the theory of occlusion with rules learned")
+    assert "occluder(Occluded, Occluder):t+1 ~ finite(" in text
+    assert "pair(Occluded, Occluder):t+1" in text
+    assert result.result.targets[0].clauses >= 1
+    bridge.load(out)
+
+
+def test_a_failed_learn_theory_keeps_the_previous_file(game_data: Path, tmp_path: Path) -> None:
+    out = tmp_path / "too_learned.pl"
+    out.write_text("% the previous theory\n")
+    bad = tmp_path / "bad.pl"
+    bad.write_text(game_data.read_text() + "category(ball_1_e0_f3, ball, extra).\n"
+                   "distance(x, y):t+1 ~= near.\n")
+    with pytest.raises(bridge.DDCError, match=rf"{bad}:\d+: .*not a number"):
+        learn_theory([bad], out)
+    assert out.read_text() == "% the previous theory\n"
+    broken_base = tmp_path / "base.pl"
+    broken_base.write_text(DEFAULT_THEORY.read_text().replace(
+        "diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V]).", "diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V)."))
+    with pytest.raises(TheoryError, match="does not load: .*syntax error"):
+        learn_theory([game_data], out, base=broken_base)
+    assert out.read_text() == "% the previous theory\n"
+    assert list(tmp_path.glob(".too_learned.pl.*")) == []
+
+
+def test_an_empty_collection_is_an_error(tmp_path: Path) -> None:
+    out = tmp_path / "data.pl"
+    with pytest.raises(CollectError, match="no occlusion happened"):
+        collect(CollectOptions(out=out, scenarios=[ROOT / "scenarios" / "static.yaml"],
+                               cache=tmp_path / "cache"))
+    assert not out.exists()
+    with pytest.raises(CollectError, match="nothing to collect"):
+        collect(CollectOptions(out=out, cache=tmp_path / "cache"))
+
+
+def test_the_commands(game_data: Path, tmp_path: Path) -> None:
+    import io
+    from contextlib import redirect_stderr, redirect_stdout
+
+    from cli.anchoring_cli import main
+
+    def anchoring(*args: str | Path) -> Run:
+        out, err = io.StringIO(), io.StringIO()
+        with redirect_stdout(out), redirect_stderr(err):
+            code = main([str(a) for a in args])
+        return Run(code, out.getvalue(), err.getvalue())
+
+    theory = tmp_path / "learned.pl"
+    run = anchoring("learn-theory", game_data, "--out", theory, "--plots", tmp_path, "--json")
+    assert run.returncode == 0, run.stderr
+    report = json.loads(run.stdout)
+    assert report["clauses"] >= 1 and theory.is_file()
+    assert (tmp_path / "learned_tree.png").stat().st_size > 1000
+    assert (tmp_path / "learned_distance.png").stat().st_size > 1000
+    bad = anchoring("collect", "--out", tmp_path / "x.pl")
+    assert bad.returncode == 1 and "nothing to collect" in bad.stderr
