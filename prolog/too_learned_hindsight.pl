@@ -2,8 +2,8 @@
 
     Written by `anchoring learn-theory`: the hand-written occlusion rules of
     too.pl are replaced by a tree learned (ddc learn) from data_hindsight.pl:
-    30802 groundings of occluder(A, O):t+1, 69 clauses,
-    training log-likelihood -11596.6; search seed 0.
+    28680 groundings of occluder(A, O):t+1, 38 clauses,
+    training log-likelihood -9704.59; search seed 0.
     Command: anchoring learn-theory out/learn/data_hindsight.pl --seed 0 --out prolog/too_learned_hindsight.pl --plots docs/images
     Everything else is too.pl's (motion, observations, blind frames, the
     transitive clause). Regenerate it rather than edit it; edit
@@ -87,322 +87,190 @@ rise(A, O):t+1 ~ val(H) :=
     pos(A):t ~= (_, _, Z),
     pos(O):t+1 ~= (_, _, ZO),
     H is ZO-Z.
+lift(O):t+1 ~ val(H) :=
+    pos(O):t ~= (_, _, Z0),
+    pos(O):t+1 ~= (_, _, Z1),
+    H is Z1-Z0.
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 69 clauses, 30802 groundings, training log-likelihood -11596.6 (mean -0.14569 per grounding), 112 parameters.
+% occluder(Occluded, Occluder):t+1: 38 clauses, 28680 groundings, training log-likelihood -9704.59 (mean -0.128821 per grounding), 67 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   occluded_by(Occluded, Occluder):t
-        ->  % n = 2772 (weight 8835.63), log-likelihood -43.0818, logistic
-            logistic([Distance], [-73.0883, 7.75027], P1),
+        ->  % n = 2403 (weight 8081.35), log-likelihood -28.428, logistic
+            logistic([Distance], [-74.0756, 7.93398], P1),
             P2 is 1-P1
-        ;   (   kind(Occluder):t+1 ~= ball
-            ->  % n = 2148 (weight 6636.37), log-likelihood -88.151, logistic
-                logistic([Distance], [-45.165, 0.790038], P1),
-                P2 is 1-P1
-            ;   kind(Occluder):t+1 ~= box
-            ->  (   kind(Occluded):t+1 ~= ball
+        ;   (   kind(Occluded):t+1 ~= ball
+            ->  (   kind(Occluder):t+1 ~= ball
                 ->  (   rise(Occluded, Occluder):t+1 ~= Rise
                     ->  (   Rise < 0.0
-                        ->  % n = 8 (weight 28), log-likelihood -0.949243, finite
-                            P1 = 0.0333333,
-                            P2 = 0.9666667
+                        ->  % n = 593 (weight 2117), log-likelihood -0.999292, finite
+                            P1 = 0.000471921,
+                            P2 = 0.999528079
                         ;   Rise < 0.1
-                        ->  % n = 4882 (weight 13462), log-likelihood -1696.33, logistic
-                            logistic([Distance], [-24.8374, 1.84494], P1),
+                        ->  % n = 450 (weight 1478), log-likelihood -3.92495, logistic
+                            logistic([Distance], [-46.2047, 2.3389], P1),
                             P2 is 1-P1
-                        ;   % n = 449 (weight 605), log-likelihood -15.3005, logistic
-                            logistic([Distance], [-64.2382, 6.57997], P1),
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-36.1381, 0.00167557], P1),
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-25.5551, 1.92628], P1),
+                        logistic([Distance], [-36.1381, 0.00167557], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 366 (weight 676.192), log-likelihood -332.09, logistic
-                    logistic([Distance], [-8.35196, -0.166164], P1),
+                ;   kind(Occluder):t+1 ~= box
+                ->  (   lost_anywhere(Occluded):t
+                    ->  (   seen(Occluder):t
+                        ->  % n = 211 (weight 807), log-likelihood -0.998145, finite
+                            P1 = 0.00123609,
+                            P2 = 0.99876391
+                        ;   % n = 15 (weight 31), log-likelihood -4.59763, logistic
+                            logistic([Distance], [-15.1434, 0.709852], P1),
+                            P2 is 1-P1
+                        )
+                    ;   % n = 4864 (weight 13240), log-likelihood -1744.81, logistic
+                        logistic([Distance], [-23.6978, 1.44386], P1),
+                        P2 is 1-P1
+                    )
+                ;   kind(Occluder):t+1 ~= can
+                ->  % n = 1194 (weight 4878), log-likelihood -2.80907, logistic
+                    logistic([Distance], [-58.3217, 2.23953], P1),
                     P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 692 (weight 1304), log-likelihood -6.67704, logistic
-                    logistic([Distance], [-65.2735, 7.74784], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= cup
+                ;   kind(Occluder):t+1 ~= cup
                 ->  (   rise(Occluded, Occluder):t+1 ~= Rise4
                     ->  (   Rise4 < 0.0
-                        ->  % n = 48 (weight 112), log-likelihood -26.237, finite
-                            P1 = 0.0701754,
-                            P2 = 0.9298246
-                        ;   Rise4 < 0.1
-                        ->  % n = 281 (weight 621), log-likelihood -238.705, logistic
-                            logistic([Distance], [-6.8548, -0.605699], P1),
+                        ->  % n = 174 (weight 534), log-likelihood -29.3431, logistic
+                            logistic([Distance], [-55.8784, -1.47062], P1),
                             P2 is 1-P1
-                        ;   (   seen(Occluded):t
-                            ->  % n = 10, log-likelihood -6.73585, finite
-                                P1 = 0.583333,
-                                P2 = 0.416667
-                            ;   % n = 50 (weight 74), log-likelihood -11.213, logistic
-                                logistic([Distance], [-142.137, 8.16861], P1),
+                        ;   Rise4 < 0.1
+                        ->  % n = 4662 (weight 10898), log-likelihood -3823.28, logistic
+                            logistic([Distance], [-11.9924, 0.962265], P1),
+                            P2 is 1-P1
+                        ;   (   lift(Occluder):t+1 ~= Lift
+                            ->  % n = 221 (weight 253), log-likelihood -36.9343, logistic
+                                logistic([Distance, Lift], [-19.8593, 76.6907, 1.67714], P1),
+                                P2 is 1-P1
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Distance], [-17.3878, 1.61301], P1),
                                 P2 is 1-P1
                             )
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-9.04483, -0.276256], P1),
+                        logistic([Distance], [-11.4484, 0.742631], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluded):t+1 ~= mug
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise8
-                    ->  (   Rise8 < 0.0
-                        ->  % n = 83 (weight 251), log-likelihood -59.5489, finite
-                            P1 = 0.0671937,
-                            P2 = 0.9328063
-                        ;   Rise8 < 0.1
-                        ->  % n = 919 (weight 1799), log-likelihood -695.133, logistic
-                            logistic([Distance], [-14.0218, 1.36846], P1),
-                            P2 is 1-P1
-                        ;   % n = 71 (weight 91), log-likelihood -4.81054, logistic
-                            logistic([Distance], [-26.2954, 2.18246], P1),
+                ;   kind(Occluder):t+1 ~= mug
+                ->  (   lost_anywhere(Occluded):t
+                    ->  (   seen(Occluder):t
+                        ->  % n = 227 (weight 863), log-likelihood -0.998265, finite
+                            P1 = 0.00115607,
+                            P2 = 0.99884393
+                        ;   % n = 15 (weight 23), log-likelihood -8.73935, logistic
+                            logistic([Distance], [-13.9312, 1.58054], P1),
                             P2 is 1-P1
                         )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-12.0529, 0.771649], P1),
-                        P2 is 1-P1
+                    ;   (   rise(Occluded, Occluder):t+1 ~= Rise8
+                        ->  (   Rise8 < 0.0
+                            ->  % n = 45 (weight 105), log-likelihood -0.985923, finite
+                                P1 = 0.00934579,
+                                P2 = 0.99065421
+                            ;   Rise8 < 0.1
+                            ->  % n = 4631 (weight 10731), log-likelihood -2893.53, logistic
+                                logistic([Distance], [-18.5087, 1.68891], P1),
+                                P2 is 1-P1
+                            ;   % n = 201 (weight 233), log-likelihood -55.7819, logistic
+                                logistic([Distance], [-15.2393, 0.394433], P1),
+                                P2 is 1-P1
+                            )
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-18.3173, 1.61318], P1),
+                            P2 is 1-P1
+                        )
                     )
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 207 (weight 599), log-likelihood -0.997502, finite
-                    P1 = 0.00166389,
-                    P2 = 0.99833611
-                ;   \+ kind(Occluded):t+1 ~= _
+                ;   kind(Occluder):t+1 ~= skin
+                ->  % n = 1020 (weight 1392), log-likelihood -228.842, logistic
+                    logistic([Distance], [-11.455, -0.81872], P1),
+                    P2 is 1-P1
+                ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-21.4607, 1.54204], P1),
+                    logistic([Distance], [-17.0032, 0.977975], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluder):t+1 ~= can
-            ->  % n = 1606 (weight 6182), log-likelihood -8.93759, logistic
-                logistic([Distance], [-60.05, 1.88126], P1),
+            ;   kind(Occluded):t+1 ~= box
+            ->  (   seen(Occluded):t
+                ->  % n = 301 (weight 300), log-likelihood -10.0772, logistic
+                    logistic([Distance], [-39.5877, 2.64281], P1),
+                    P2 is 1-P1
+                ;   % n = 808 (weight 2491.4), log-likelihood -68.8348, logistic
+                    logistic([Distance], [-35.3112, -0.681842], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= can
+            ->  % n = 1538 (weight 3942), log-likelihood -66.789, logistic
+                logistic([Distance], [-84.8801, 5.48785], P1),
                 P2 is 1-P1
-            ;   kind(Occluder):t+1 ~= cup
+            ;   kind(Occluded):t+1 ~= cup
             ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
                 ->  (   Rise12 < 0.0
-                    ->  (   kind(Occluded):t+1 ~= ball
-                        ->  % n = 176 (weight 544), log-likelihood -28.9474, logistic
-                            logistic([Distance], [-67.4281, -1.36588], P1),
-                            P2 is 1-P1
-                        ;   kind(Occluded):t+1 ~= box
-                        ->  % n = 209 (weight 709), log-likelihood -12.251, logistic
-                            logistic([Distance], [-25.8762, 0.485414], P1),
-                            P2 is 1-P1
-                        ;   kind(Occluded):t+1 ~= can
-                        ->  % n = 169 (weight 673), log-likelihood -12.8174, logistic
-                            logistic([Distance], [-83.9149, 8.70475], P1),
-                            P2 is 1-P1
-                        ;   kind(Occluded):t+1 ~= cup
-                        ->  % n = 46 (weight 102), log-likelihood -0.985515, finite
-                            P1 = 0.00961538,
-                            P2 = 0.99038462
-                        ;   kind(Occluded):t+1 ~= mug
-                        ->  (   lost_anywhere(Occluded):t
-                            ->  % n = 61 (weight 189), log-likelihood -0.992128, finite
-                                P1 = 0.0052356,
-                                P2 = 0.9947644
-                            ;   % n = 497 (weight 1533), log-likelihood -95.248, logistic
-                                logistic([Distance], [-21.2843, -1.31229], P1),
-                                P2 is 1-P1
-                            )
-                        ;   kind(Occluded):t+1 ~= skin
-                        ->  (   lost_anywhere(Occluded):t
-                            ->  % n = 69 (weight 229), log-likelihood -0.993494, finite
-                                P1 = 0.004329,
-                                P2 = 0.995671
-                            ;   % n = 200 (weight 612), log-likelihood -124.158, logistic
-                                logistic([Distance], [-13.0371, 0.530511], P1),
-                                P2 is 1-P1
-                            )
-                        ;   \+ kind(Occluded):t+1 ~= _
-                        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-12.5587, -1.65288], P1),
-                            P2 is 1-P1
-                        )
+                    ->  % n = 292 (weight 568), log-likelihood -18.6501, logistic
+                        logistic([Distance], [-40.5102, 1.27272], P1),
+                        P2 is 1-P1
                     ;   Rise12 < 0.1
-                    ->  (   kind(Occluded):t+1 ~= ball
-                        ->  % n = 4740 (weight 11192), log-likelihood -3848.92, logistic
-                            logistic([Distance], [-12.1522, 0.98927], P1),
-                            P2 is 1-P1
-                        ;   kind(Occluded):t+1 ~= box
-                        ->  % n = 27 (weight 63), log-likelihood -0.976764, finite
-                            P1 = 0.0153846,
-                            P2 = 0.9846154
-                        ;   kind(Occluded):t+1 ~= can
-                        ->  % n = 75 (weight 255), log-likelihood -6.38297, logistic
-                            logistic([Distance], [-57.0276, 3.33301], P1),
-                            P2 is 1-P1
-                        ;   kind(Occluded):t+1 ~= cup
-                        ->  % n = 68 (weight 176), log-likelihood -0.991552, finite
-                            P1 = 0.00561798,
-                            P2 = 0.99438202
-                        ;   kind(Occluded):t+1 ~= mug
-                        ->  % n = 167 (weight 463), log-likelihood -27.3053, logistic
-                            logistic([Distance], [-21.8186, 0.597226], P1),
-                            P2 is 1-P1
-                        ;   kind(Occluded):t+1 ~= skin
-                        ->  % n = 11 (weight 27), log-likelihood -0.947466, finite
-                            P1 = 0.0344828,
-                            P2 = 0.9655172
-                        ;   \+ kind(Occluded):t+1 ~= _
-                        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-12.4081, 0.917559], P1),
-                            P2 is 1-P1
-                        )
-                    ;   % n = 239 (weight 271), log-likelihood -48.9648, logistic
-                        logistic([Distance], [-19.4581, 1.95707], P1),
+                    ->  % n = 810 (weight 1873.26), log-likelihood -156.721, logistic
+                        logistic([Distance], [-27.3905, -0.635948], P1),
+                        P2 is 1-P1
+                    ;   % n = 186 (weight 262), log-likelihood -10.2214, logistic
+                        logistic([Distance], [-106.531, 5.89834], P1),
                         P2 is 1-P1
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-12.1177, 0.437228], P1),
+                    logistic([Distance], [-35.7471, 0.185195], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluder):t+1 ~= mug
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise16
-                    ->  (   Rise16 < 0.0
-                        ->  % n = 45 (weight 97), log-likelihood -0.98478, finite
-                            P1 = 0.010101,
-                            P2 = 0.989899
-                        ;   Rise16 < 0.1
-                        ->  (   lost_anywhere(Occluded):t
-                            ->  (   seen(Occluder):t
-                                ->  % n = 136 (weight 612), log-likelihood -0.997555, finite
-                                    P1 = 0.00162866,
-                                    P2 = 0.99837134
-                                ;   % n = 14 (weight 22), log-likelihood -8.30717, logistic
-                                    logistic([Distance], [-13.8142, 1.68842], P1),
-                                    P2 is 1-P1
-                                )
-                            ;   % n = 4837 (weight 11557), log-likelihood -3000.5, logistic
-                                logistic([Distance], [-18.9219, 1.65062], P1),
-                                P2 is 1-P1
-                            )
-                        ;   % n = 263 (weight 311), log-likelihood -61.5888, logistic
-                            logistic([Distance], [-21.4356, 1.1602], P1),
+            ;   kind(Occluded):t+1 ~= mug
+            ->  (   rise(Occluded, Occluder):t+1 ~= Rise16
+                ->  (   Rise16 < 0.0
+                    ->  (   lost_anywhere(Occluded):t
+                        ->  % n = 189 (weight 725), log-likelihood -0.997935, finite
+                            P1 = 0.00137552,
+                            P2 = 0.99862448
+                        ;   % n = 770 (weight 2127.63), log-likelihood -128.191, logistic
+                            logistic([Distance], [-21.7112, -1.59806], P1),
                             P2 is 1-P1
                         )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-19.3071, 1.59613], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 357 (weight 921.396), log-likelihood -64.6509, logistic
-                    logistic([Distance], [-47.5652, 5.04365], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 448 (weight 1336), log-likelihood -4.45849, logistic
-                    logistic([Distance], [-91.0212, 7.4146], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 332 (weight 805.752), log-likelihood -40.7991, logistic
-                    logistic([Distance], [-43.6432, 1.87652], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= mug
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise20
-                    ->  (   Rise20 < 0.0
-                        ->  (   lost_anywhere(Occluded):t
-                            ->  % n = 9 (weight 45), log-likelihood -0.967779, finite
-                                P1 = 0.0212766,
-                                P2 = 0.9787234
-                            ;   % n = 265 (weight 478.635), log-likelihood -293.871, logistic
-                                logistic([Distance], [-2.65976, -0.124827], P1),
-                                P2 is 1-P1
-                            )
-                        ;   Rise20 < 0.1
-                        ->  % n = 248 (weight 756), log-likelihood -38.0428, logistic
-                            logistic([Distance], [-24.9147, 0.198828], P1),
+                    ;   Rise16 < 0.1
+                    ->  (   lost_anywhere(Occluded):t
+                        ->  % n = 39 (weight 131), log-likelihood -0.988684, finite
+                            P1 = 0.0075188,
+                            P2 = 0.9924812
+                        ;   % n = 1324 (weight 3164), log-likelihood -236.897, logistic
+                            logistic([Distance], [-54.1036, 2.34804], P1),
                             P2 is 1-P1
-                        ;   % n = 114 (weight 146), log-likelihood -0.989834, finite
-                            P1 = 0.00675676,
-                            P2 = 0.99324324
                         )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-5.85591, -0.546934], P1),
+                    ;   % n = 390 (weight 510.365), log-likelihood -103.27, logistic
+                        logistic([Distance], [-14.8417, 0.149202], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluded):t+1 ~= skin
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise24
-                    ->  (   Rise24 < 0.0
-                        ->  % n = 347 (weight 1407), log-likelihood -8.55465, finite
-                            P1 = 0.00141945,
-                            P2 = 0.99858055
-                        ;   Rise24 < 0.1
-                        ->  % n = 10 (weight 14), log-likelihood -5.83963, finite
-                            P1 = 0.1875,
-                            P2 = 0.8125
-                        ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                            P1 = 0.00281096,
-                            P2 = 0.99718904
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                        P1 = 0.00281096,
-                        P2 = 0.99718904
-                    )
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-19.6387, 1.44953], P1),
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-36.6751, 0.536176], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluder):t+1 ~= skin
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise28
-                    ->  (   Rise28 < 0.0
-                        ->  % n = 40 (weight 56), log-likelihood -0.973938, finite
-                            P1 = 0.0172414,
-                            P2 = 0.9827586
-                        ;   Rise28 < 0.1
-                        ->  % n = 394 (weight 466), log-likelihood -156.701, finite
-                            P1 = 0.106838,
-                            P2 = 0.893162
-                        ;   % n = 669 (weight 973), log-likelihood -263.851, logistic
-                            logistic([Distance], [-11.6438, 0.0474778], P1),
-                            P2 is 1-P1
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-7.51998, -0.655742], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 84 (weight 87.8297), log-likelihood -8.90769, finite
-                    P1 = 0.0309952,
-                    P2 = 0.9690048
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 58 (weight 90), log-likelihood -5.78476, finite
-                    P1 = 0.0217391,
-                    P2 = 0.9782609
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 256 (weight 311.829), log-likelihood -27.7958, logistic
-                    logistic([Distance], [-46.2958, 2.14204], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 372 (weight 476.365), log-likelihood -144.021, logistic
-                    logistic([Distance], [-13.6397, 0.00919763], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 208 (weight 304), log-likelihood -12.2253, finite
-                    P1 = 0.00980392,
-                    P2 = 0.99019608
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-8.69386, -0.860849], P1),
-                    P2 is 1-P1
-                )
-            ;   \+ kind(Occluder):t+1 ~= _
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 1135 (weight 3575), log-likelihood -37.9459, finite
+                P1 = 0.00167738,
+                P2 = 0.99832262
+            ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-18.3593, 1.03951], P1),
+                logistic([Distance], [-18.2921, 0.76382], P1),
                 P2 is 1-P1
             )
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.220216,
-        P2 = 0.779784
+        P1 = 0.205644,
+        P2 = 0.794356
     ).
 % Transitive occlusion (section 5.3 of the paper; remove this clause to switch it off): an
 % object whose occluder is itself hidden stays with it, under whatever hides the occluder (or,
