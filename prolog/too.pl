@@ -26,22 +26,20 @@ cover_height(0.12).         % a container whose centre rises more than this abov
                             % centre no longer covers it (it was lifted)
 
 % ------------------------------------------------------------------ background knowledge
-% -- begin hand-written occlusion rules (anchoring learn-theory replaces them with learned ones)
+% Affordances (anchoring learn-theory keeps them beside the learned rules, as the paper's
+% experiments keep them, section 5.2).
 % What cannot hide anything: a ball does not afford occluding.
 cannot_occlude(ball) := true.
 % What cannot be hidden by other objects: hands (skin) are not anchored inside anything.
 cannot_be_occluded(skin) := true.
 cannot_be_occluded(hand) := true.
-% -- end hand-written occlusion rules
 % What carries what it hides through space (a hand lifts a grasped object); containers slide
 % over the table and what they cover stays on the table.
 carrier(skin) := true.
 carrier(hand) := true.
 
-% -- begin hand-written occlusion rules (anchoring learn-theory replaces them with learned ones)
 can_occlude(O) := category(O, C), \+ cannot_occlude(C).
 can_be_occluded(A) := category(A, C), \+ cannot_be_occluded(C).
-% -- end hand-written occlusion rules
 
 % ------------------------------------------------------------------ seen and hidden
 seen(A):t+1 := observed(A).

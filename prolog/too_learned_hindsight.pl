@@ -38,11 +38,20 @@ cover_height(0.12).         % a container whose centre rises more than this abov
                             % centre no longer covers it (it was lifted)
 
 % ------------------------------------------------------------------ background knowledge
+% Affordances (anchoring learn-theory keeps them beside the learned rules, as the paper's
+% experiments keep them, section 5.2).
+% What cannot hide anything: a ball does not afford occluding.
+cannot_occlude(ball) := true.
+% What cannot be hidden by other objects: hands (skin) are not anchored inside anything.
+cannot_be_occluded(skin) := true.
+cannot_be_occluded(hand) := true.
 % What carries what it hides through space (a hand lifts a grasped object); containers slide
 % over the table and what they cover stays on the table.
 carrier(skin) := true.
 carrier(hand) := true.
 
+can_occlude(O) := category(O, C), \+ cannot_occlude(C).
+can_be_occluded(A) := category(A, C), \+ cannot_be_occluded(C).
 
 % ------------------------------------------------------------------ seen and hidden
 seen(A):t+1 := observed(A).
@@ -58,12 +67,17 @@ lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):
 % ------------------------------------------------------------------ occlusion
 % ------------------------------------------------------------------ learned occlusion rules
 % How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
-% (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples);
+% (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples)
+% that the affordances above allow (a ball hides nothing, a hand is never hidden: the paper's
+% experiments keep that knowledge too; the tree gives a ball as occluder a probability of
+% about 1e-4 per frame, and one particle of a hidden ball under the other, identical ball is
+% enough for the matching, which takes the best particle, to swap them);
 % O is a candidate occluder of the hidden A when the particle
 % draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
 % when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
 % occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
-pair(A, O):t+1 := hidden(A):t+1, observed(O), O \== A.
+pair(A, O):t+1 :=
+    hidden(A):t+1, observed(O), O \== A, can_be_occluded(A), can_occlude(O).
 occluder_candidate(A, O):t+1 :=
     pair(A, O):t+1, \+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
 pick_occluder(A):t+1 ~ uniform(Os) :=

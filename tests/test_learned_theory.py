@@ -7,11 +7,20 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import bridge
 from app.collect import CollectError, CollectOptions, collect
-from app.learned_theory import BEGIN, END, TheoryError, learn_theory, theory_text
+from app.learned_theory import (
+    BEGIN,
+    END,
+    TheoryError,
+    along_distance,
+    learn_theory,
+    probability_at,
+    theory_text,
+)
 from app.occlusion_data import LabelOptions
 from app.reasoning import DEFAULT_THEORY
 from app.theories import THEORIES, theory_path
@@ -32,9 +41,10 @@ def test_the_hand_written_occlusion_rules_are_replaced() -> None:
     base = DEFAULT_THEORY.read_text()
     text = theory_text(base, LEARNED, "% header\n")
     assert BEGIN not in text and END not in text
-    for gone in ("cannot_occlude(ball)", "covers(O, A):t+1 :=", "lowered_over(O, A):t+1 :="):
+    for gone in ("covers(O, A):t+1 :=", "lowered_over(O, A):t+1 :="):
         assert gone in base and gone not in text
     for kept in ("occluded_by(A, O):t, hidden(A):t+1, hidden(O):t+1.",   # transitive
+                 "cannot_occlude(ball) := true.",                        # affordances
                  "pos(A):t+1 ~ gaussian", "lost_anywhere(A):t+1 :=", "carrier(skin) := true."):
         assert kept in text
     assert "occluder_candidate(A, O):t+1 :=\n    pair(A, O):t+1" in text
@@ -50,17 +60,29 @@ def test_the_assembled_theory_loads_and_filters(tmp_path: Path) -> None:
     path = tmp_path / "too_learned.pl"
     path.write_text(theory_text(DEFAULT_THEORY.read_text(), LEARNED, ""))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
+    actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
+               "category(mug_1, mug)", "object(ball_2)", "category(ball_2, ball)"]
+    ball_2 = ["observed(ball_2)", "observation(pos(ball_2)) ~= (0.02, 0.0, 0.03)"]
     f.step(["observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)",
-            "observed(mug_1)", "observation(pos(mug_1)) ~= (0.0, 0.0, 0.05)"],
-           actions=["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
-                    "category(mug_1, mug)"])
-    f.step(["observed(mug_1)", "observation(pos(mug_1)) ~= (0.0, 0.0, 0.05)"],
-           actions=["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
-                    "category(mug_1, mug)"])
+            "observed(mug_1)", "observation(pos(mug_1)) ~= (0.0, 0.0, 0.05)", *ball_2],
+           actions=actions)
+    f.step(["observed(mug_1)", "observation(pos(mug_1)) ~= (0.0, 0.0, 0.05)", *ball_2],
+           actions=actions)
     # just vanished: candidates drawn with 0.2 each, then a uniform pick with `behind`
     p = f.probability("occluded_by(ball_1, mug_1):t")
     assert 0.1 * 0.5 < p < 0.2                # 0.2 * 1/2, within sampling error at N = 200
+    # the other ball is no candidate (a ball affords hiding nothing), however near it is
+    assert f.probability("occluded_by(ball_1, ball_2):t") == 0.0
     f.close()
+
+
+def test_a_leaf_along_the_distance_sums_its_distance_weights() -> None:
+    """Both distances of a leaf (table plane and 3-D, equal at equal heights) make its slope;
+    other regressors (lift) are at 0; the bias is the last weight."""
+    leaf = {"regressors": ["Lift", "Distance4", "Distance32"], "weights": [5.0, -10.0, -4.0, 1.5]}
+    assert along_distance(leaf) == (-14.0, 1.5)
+    d = np.array([0.0, 0.1])
+    assert probability_at(leaf, d) == pytest.approx(1 / (1 + np.exp(-(1.5 - 14.0 * d))))
 
 
 def test_shipped_theories_by_name() -> None:
@@ -142,5 +164,13 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
     assert report["clauses"] >= 1 and theory.is_file()
     assert (tmp_path / "learned_tree.png").stat().st_size > 1000
     assert (tmp_path / "learned_distance.png").stat().st_size > 1000
+    table = (tmp_path / "learned_coefficients.md").read_text().splitlines()
+    assert table[2] == "| paper (section 4) |  | -16.9 | 0.80 | 0.69 | 0.49 | 0.29 |"
+    learned = [line for line in table if line.startswith("| learned")]
+    heaviest = sorted(report["logistic_leaves"], key=lambda leaf: -leaf["weight"])[:6]
+    assert len(learned) == len(heaviest)
+    for line, leaf in zip(learned, heaviest, strict=True):
+        slope, bias = along_distance(leaf)
+        assert line.split(" | ")[2:4] == [f"{slope:.1f}", f"{bias:.2f}"]
     bad = anchoring("collect", "--out", tmp_path / "x.pl")
     assert bad.returncode == 1 and "nothing to collect" in bad.stderr

@@ -33,8 +33,8 @@ from ddclearn.files import write_atomically
 from ddclearn.learner import Form
 
 __all__ = ["DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError", "along_distance",
-           "learn_theory",
-           "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
+           "coefficient_table",
+           "learn_theory", "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
 
 BEGIN = "% -- begin hand-written occlusion rules"
 END = "% -- end hand-written occlusion rules"
@@ -47,12 +47,17 @@ DEPLOYED = (-16.488, 1.948)
 GLUE = """\
 % ------------------------------------------------------------------ learned occlusion rules
 % How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
-% (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples);
+% (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples)
+% that the affordances above allow (a ball hides nothing, a hand is never hidden: the paper's
+% experiments keep that knowledge too; the tree gives a ball as occluder a probability of
+% about 1e-4 per frame, and one particle of a hidden ball under the other, identical ball is
+% enough for the matching, which takes the best particle, to swap them);
 % O is a candidate occluder of the hidden A when the particle
 % draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
 % when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
 % occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
-pair(A, O):t+1 := hidden(A):t+1, observed(O), O \\== A.
+pair(A, O):t+1 :=
+    hidden(A):t+1, observed(O), O \\== A, can_be_occluded(A), can_occlude(O).
 occluder_candidate(A, O):t+1 :=
     pair(A, O):t+1, \\+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
 pick_occluder(A):t+1 ~ uniform(Os) :=
@@ -181,8 +186,8 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
 
 def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:
     """The leaves of the learned tree whose model is a logistic regression with a distance
-    among its regressors (see :func:`along_distance`): path (the tested literals), regressors (their variables' names),
-    weights (one per regressor, the bias last), rows, weight."""
+    among its regressors (see :func:`along_distance`): path (the tested literals), regressors
+    (their variables' names), weights (one per regressor, the bias last), rows, weight."""
     out: list[dict[str, object]] = []
     for leaf in result.targets[0].leaves:
         lf = leaf.leaf
@@ -250,12 +255,9 @@ def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Pa
     for label, (w, b), style in (("paper: sigmoid(0.8 - 16.9 d)", PAPER, "k--"),
                                  ("original system: sigmoid(1.948 - 16.488 d)", DEPLOYED, "k:")):
         ax.plot(d, 1.0 / (1.0 + np.exp(-(w * d + b))), style, label=label)
-    leaves = sorted(theory.logistic, key=lambda leaf: -float(leaf["weight"]))[:6]  # type: ignore[arg-type]
-    for leaf in leaves:
-        path = [p for p in leaf["path"] if "~= Distance" not in p]  # type: ignore[union-attr]
-        label = ", ".join(p.replace("(Occluded, Occluder)", "").replace("(Occluded)", "(A)")
-                          .replace("(Occluder)", "(O)") for p in path)
-        ax.plot(d, probability_at(leaf, d), label=f"learned ({leaf['rows']} rows): {label}")
+    for leaf in _heaviest(theory):
+        ax.plot(d, probability_at(leaf, d),
+                label=f"learned ({leaf['rows']} rows): {_path_label(leaf)}")
     ax.set_xlabel("distance d in the table plane (m)")
     ax.set_ylabel("P(occluder)")
     ax.set_ylim(0, 1)
@@ -264,4 +266,37 @@ def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Pa
     curve = folder / f"{name}_distance.png"
     fig.tight_layout()
     fig.savefig(curve, dpi=110)
-    return [tree, curve]
+    table = folder / f"{name}_coefficients.md"
+    table.write_text(coefficient_table(theory), encoding="utf-8")
+    return [tree, curve, table]
+
+
+def _heaviest(theory: LearnedTheory, k: int = 6) -> list[dict[str, object]]:
+    """The ``k`` logistic leaves with the most (weighted) groundings."""
+    return sorted(theory.logistic, key=lambda leaf: -float(leaf["weight"]))[:k]  # type: ignore[arg-type]
+
+
+def _path_label(leaf: dict[str, object]) -> str:
+    path = [p for p in leaf["path"] if "~= Distance" not in p]  # type: ignore[union-attr]
+    return ", ".join(p.replace("(Occluded, Occluder)", "").replace("(Occluded)", "(A)")
+                     .replace("(Occluder)", "(O)") for p in path)
+
+
+def coefficient_table(theory: LearnedTheory, k: int = 6) -> str:
+    """A Markdown table: the paper's and the original system's P(occluder | distance) and the
+    ``k`` heaviest learned logistic leaves as sigmoid(bias + slope d) (:func:`along_distance`),
+    with P at 0, 5 and 10 cm."""
+    def row(name: str, n: str, slope: float, bias: float) -> str:
+        ps = " | ".join(f"{1.0 / (1.0 + np.exp(-(bias + slope * d))):.2f}"
+                        for d in (0.0, 0.05, 0.1))
+        return f"| {name} | {n} | {slope:.1f} | {bias:.2f} | {ps} |"
+
+    lines = ["| clause | groundings | slope | bias | P(0 cm) | P(5 cm) | P(10 cm) |",
+             "|---|---:|---:|---:|---:|---:|---:|",
+             row("paper (section 4)", "", *PAPER),
+             row("original system (deployed)", "", *DEPLOYED)]
+    for leaf in _heaviest(theory, k):
+        slope, bias = along_distance(leaf)
+        lines.append(row(f"learned: {_path_label(leaf) or '(root)'}".replace("|", "\\|"),
+                         str(leaf["rows"]), slope, bias))
+    return "\n".join(lines) + "\n"

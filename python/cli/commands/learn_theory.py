@@ -31,7 +31,9 @@ def register(sub: Any) -> None:
                              "(default prolog/too.pl)")
     parser.add_argument("--seed", type=int, default=0, help="the learner's seed (default 0)")
     parser.add_argument("--plots", type=Path, default=None, metavar="DIR",
-                        help="write DIR/<name>_tree.png and DIR/<name>_distance.png")
+                        help="write DIR/<name>_tree.png, DIR/<name>_distance.png and "
+                             "DIR/<name>_coefficients.md (the heaviest logistic leaves beside "
+                             "the paper's)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     parser.set_defaults(func=main)
 
