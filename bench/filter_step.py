@@ -25,7 +25,7 @@ The engine steps the particles in ``--threads`` Prolog threads (default 2, as
 profiler and prints the K most-called predicates per particle and step; with the per-particle
 engine also the lookups in the value tables (``store_get``) per particle, step and object.
 
-Target (issue 4): N = 1000, M = 10 in at most 33 ms per step (30 Hz).
+Target: N = 1000, M = 10 in at most 33 ms per step (30 Hz).
 """
 
 from __future__ import annotations

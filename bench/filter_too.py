@@ -8,7 +8,7 @@ Each step gets what ``OcclusionReasoner.step`` (python/app/reasoning.py) sends: 
 ``observation(pos(a)) ~= (X,Y,Z)``.  Scene: M mugs/boxes/balls spread over a 0.6 m x 0.4 m
 table, moving slowly; balls are hidden for a few frames at times (occluder picking and
 following) and every 10th frame is blind (no observations).  Resampling is done by the
-bridge as usual.  Target (issue 4): N = 1000, M = 10 in at most 33 ms per step.
+bridge as usual.  Target: N = 1000, M = 10 in at most 33 ms per step.
 
 ``--engine`` picks the engine timed, as ``bridge.Filter``'s (default auto: the batched one,
 too.pl being in its fragment); the reference column, timed in the same run, is the

@@ -467,7 +467,7 @@ list_tuple([X|Xs], (X, T)) :-
 %!  belief_run(+Belief, +File, :OnStep) is det.
 %
 %   Steps the belief once per frame of File, a JSONL file in the format of
-%   `ddc filter` (README, "`ddc filter` and the JSONL frame format"): one
+%   `ddc filter` (docs/filter.md, the JSONL frame format): one
 %   JSON object per line with optional "observations" and "actions" lists
 %   (term text, or {"observation": TERM, "value": V} for `observation(TERM)
 %   ~= V`, a JSON array as a tuple), blank lines skipped.  call(OnStep,

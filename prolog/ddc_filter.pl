@@ -1,4 +1,4 @@
-/*  ddc_filter.pl -- the particle filter of the DDC engine (issue 4).
+/*  ddc_filter.pl -- the particle filter of the DDC engine.
 
     Included by ddc.pl (this file is part of module ddc).  Python owns the
     weights and the resampling choices; Prolog owns the particles: N

@@ -1,4 +1,4 @@
-"""The experiment behind the README's measured table, on a tiny scale."""
+"""The experiment behind the measured table (docs/evaluation.md), on a tiny scale."""
 
 from __future__ import annotations
 

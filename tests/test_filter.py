@@ -1,4 +1,4 @@
-"""The DDC particle filter driven from Python (issue 4), against the real engine.
+"""The DDC particle filter driven from Python against the real engine.
 
 Exact answers come from the models by hand (prolog/examples/filter/*.pl state them) or from a
 Kalman filter computed here; tolerances are a few standard errors derived from the number of

@@ -1,6 +1,6 @@
 """The anchor: a symbol and the attributes of one physical object, maintained over time.
 
-Update rules on re-acquire (documented in the README):
+Update rules on re-acquire (docs/anchoring.md):
 
 - position: *replaced* by the percept's position (deterministic again, particles dropped): the
   newest measurement is the best estimate of where a moving object is;

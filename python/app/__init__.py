@@ -1,4 +1,4 @@
-"""The application that wires perception, anchoring and reasoning together (issue 7).
+"""The application that wires perception, anchoring and reasoning together.
 
 It stands apart from the layers it connects: perception knows nothing of anchors, anchoring
 knows nothing of Prolog, and only :mod:`app.reasoning` (through :mod:`bridge`) talks to the

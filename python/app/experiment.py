@@ -1,4 +1,4 @@
-"""The measured table of the README: identity kept, ID switches and IDF1 for every shipped
+"""The measured table (docs/evaluation.md): identity kept, ID switches and IDF1 for every shipped
 scenario over several seeds and for random shell games, with reasoning, without it, and for
 published multi-object trackers run on the same percepts.
 

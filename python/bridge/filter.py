@@ -1,4 +1,4 @@
-"""The DDC particle filter seen from Python (issue 4).
+"""The DDC particle filter seen from Python.
 
 Prolog (``prolog/ddc.pl``) owns the semantics: the particles live there between steps and one
 call per step samples the transition and weights every particle. Python owns the bookkeeping:

@@ -2,7 +2,7 @@
 summary (``summary.json``), baseline trackers and the results table.
 
 A runner fills one :class:`TrackingRecord` per frame; everything else is computed from a list
-of records. See the README section "Evaluation".
+of records. See docs/evaluation.md.
 """
 
 from evaluation.metrics import (

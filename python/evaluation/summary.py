@@ -1,4 +1,4 @@
-"""The run summary (``DIR/summary.json``): what issue 7 asks a run to write.
+"""The run summary (``DIR/summary.json``): what a run writes.
 
 Fields, exactly: ``frames``; ``objects`` (a list of ``{"id", "symbols", "identity_kept"}``);
 ``id_switches``; ``idf1`` (``null`` when undefined: no ground truth and no hypothesis);

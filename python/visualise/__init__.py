@@ -1,5 +1,5 @@
 """Pictures of a run: anchors and particles over the camera image (PNG per frame, GIF) and a
-top-down plot of the beliefs over the table. See the README section "Evaluation"."""
+top-down plot of the beliefs over the table. See docs/evaluation.md."""
 
 from visualise.camera import CameraView
 from visualise.output import save_png, write_gif

@@ -1,5 +1,6 @@
-"""`anchoring evaluate`: the README's measured table (shipped scenarios over seeds, random
-shell games; with reasoning, without, and published trackers on the same percepts)."""
+"""`anchoring evaluate`: the measured table of docs/evaluation.md (shipped scenarios over
+seeds, random shell games; with reasoning, the learned theories, without reasoning, and
+published trackers on the same percepts)."""
 
 from __future__ import annotations
 
