@@ -1,0 +1,137 @@
+"""Learning curve of the learned theory of occlusion: identity kept against collected episodes.
+
+    .venv/bin/python bench/theory_learning_curve.py [--episodes 5,20,80] [--seeds 5]
+        [--labels truth,hindsight] [--particles 1000] [--jobs 2] [--out out/curve] [--md FILE]
+
+For each number of episodes n and each kind of labels, the first n generated occlusion games
+(seeds 0..n-1, as ``make learned-theory`` collects them; percept streams cached) are collected
+(``anchoring collect``) and a theory is learned from them (``anchoring learn-theory``); each
+theory then runs the four shipped scenarios over ``--seeds`` seeds (the simulator's noise and
+the filter's seed, percept streams cached as ``anchoring evaluate`` caches them) with
+``--particles`` particles. It prints, and with ``--md`` writes, a Markdown table: labels,
+episodes, collected pairs, the seconds of collecting (perception included, summed over workers)
+and of learning, and the identity kept (objects and runs) of the shipped runs; the
+hand-written theory's row on the same runs comes last, for reference.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import multiprocessing
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+from typing import Any
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+sys.path.insert(0, str(ROOT / "python"))
+
+SHIPPED = ("shell_game", "can_under_box", "ball_under_box_two_balls", "transitive")
+
+
+def _run(theory: str, scenario: str, seed: int, particles: int, cache: str) -> dict[str, Any]:
+    from app.experiment import percept_stream
+    from app.runner import RunOptions, run
+
+    stream = percept_stream(ROOT / "scenarios" / f"{scenario}.yaml", seed, Path(cache))
+    out = run(RunOptions(percepts=stream, particles=particles, seed=seed, theory=Path(theory),
+                         progress=False))
+    objects = out.summary["objects"]
+    return {"scenario": scenario, "seed": seed, "kept": sum(o["identity_kept"] for o in objects),
+            "objects": len(objects)}
+
+
+def identity(theory: Path, seeds: int, particles: int, cache: Path, jobs: int
+             ) -> tuple[int, int, int, int]:
+    """Objects kept, objects, runs kept, runs over the shipped scenarios and seeds."""
+    args = [(str(theory), s, k, particles, str(cache)) for s in SHIPPED for k in range(seeds)]
+    context = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
+        rows = list(pool.map(_run, *zip(*args, strict=True)))
+    kept = sum(r["kept"] for r in rows)
+    objects = sum(r["objects"] for r in rows)
+    runs_kept = sum(r["kept"] == r["objects"] for r in rows)
+    return kept, objects, runs_kept, len(rows)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--episodes", default="5,20,80")
+    parser.add_argument("--seeds", type=int, default=5)
+    parser.add_argument("--labels", default="truth,hindsight")
+    parser.add_argument("--particles", type=int, default=1000)
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--out", type=Path, default=ROOT / "out" / "curve")
+    parser.add_argument("--collect-cache", type=Path, default=ROOT / "out" / "collect")
+    parser.add_argument("--percepts", type=Path, default=ROOT / "results" / "percepts",
+                        help="the shipped scenarios' percept streams (anchoring evaluate's)")
+    parser.add_argument("--md", type=Path, default=None, help="write the table here")
+    parser.add_argument("--json", action="store_true")
+    args = parser.parse_args(argv)
+
+    from app.collect import CollectOptions, collect
+    from app.learned_theory import learn_theory
+    from app.occlusion_data import LabelOptions
+    from app.reasoning import DEFAULT_THEORY
+
+    args.out.mkdir(parents=True, exist_ok=True)
+    rows: list[dict[str, Any]] = []
+    for labels in args.labels.split(","):
+        for n in (int(x) for x in args.episodes.split(",")):
+            data = args.out / f"data_{labels}_{n}.pl"
+            theory = args.out / f"too_{labels}_{n}.pl"
+            started = time.perf_counter()
+            report = collect(CollectOptions(out=data, games=n, seed=0, jobs=args.jobs,
+                                            cache=args.collect_cache,
+                                            labels=LabelOptions(source=labels)))
+            collected = time.perf_counter() - started
+            learned = learn_theory([data], theory, seed=0)
+            kept, objects, runs_kept, runs = identity(theory, args.seeds, args.particles,
+                                                      args.percepts, args.jobs)
+            rows.append({"labels": labels, "episodes": n, "pairs": report.pairs,
+                         "collect_s": round(collected, 1),
+                         "perception_s": round(report.seconds_perception, 1),
+                         "learn_s": round(learned.result.targets[0].seconds, 1),
+                         "clauses": learned.result.targets[0].clauses,
+                         "objects_kept": kept, "objects": objects, "runs_kept": runs_kept,
+                         "runs": runs})
+            print(json.dumps(rows[-1]), flush=True)
+    kept, objects, runs_kept, runs = identity(DEFAULT_THEORY, args.seeds, args.particles,
+                                              args.percepts, args.jobs)
+    rows.append({"labels": "hand-written (prolog/too.pl)", "episodes": "-", "pairs": "-",
+                 "collect_s": "-", "perception_s": "-", "learn_s": "-", "clauses": "-",
+                 "objects_kept": kept, "objects": objects, "runs_kept": runs_kept,
+                 "runs": runs})
+    table = _table(rows, args)
+    print(table)
+    if args.md is not None:
+        args.md.write_text(table + "\n", encoding="utf-8")
+    if args.json:
+        print(json.dumps(rows))
+    return 0
+
+
+def _table(rows: list[dict[str, Any]], args: argparse.Namespace) -> str:
+    head = (f"<!-- made by `.venv/bin/python bench/theory_learning_curve.py --episodes "
+            f"{args.episodes} --seeds {args.seeds} --labels {args.labels} --particles "
+            f"{args.particles}` -->\n\n"
+            "| labels | episodes | pairs | collecting s (perception s) | learning s | clauses "
+            "| identity kept (objects) | identity kept (runs) |\n"
+            "|---|---:|---:|---:|---:|---:|---:|---:|")
+    lines = [head]
+    for r in rows:
+        pct_o = 100 * r["objects_kept"] / max(r["objects"], 1)
+        pct_r = 100 * r["runs_kept"] / max(r["runs"], 1)
+        coll = (f"{r['collect_s']} ({r['perception_s']})" if r["collect_s"] != "-" else "-")
+        lines.append(f"| {r['labels']} | {r['episodes']} | {r['pairs']} | {coll} "
+                     f"| {r['learn_s']} | {r['clauses']} "
+                     f"| {r['objects_kept']}/{r['objects']} ({pct_o:.0f} %) "
+                     f"| {r['runs_kept']}/{r['runs']} ({pct_r:.0f} %) |")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
