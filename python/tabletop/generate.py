@@ -9,6 +9,7 @@ The same seed gives the same game.
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -86,6 +87,32 @@ SCENE_COLOURS = ["red", "orange", "yellow", "green", "cyan", "blue", "purple", "
                  "white", "gray", "black"]
 
 
+def _place_objects(b: ScenarioBuilder, rng: np.random.Generator,
+                   free: Callable[[], tuple[float, float]], chosen: Sequence[str],
+                   colours: Sequence[str]
+                   ) -> tuple[dict[str, list[str]], dict[str, tuple[float, float]]]:
+    """Add one object per chosen category at a free spot, sized as its kind is: the ids per
+    category and each object's position."""
+    ids: dict[str, list[str]] = {}
+    where: dict[str, tuple[float, float]] = {}
+    for k, (cat, col) in enumerate(zip(chosen, colours, strict=True)):
+        oid = f"{cat}_{k}"
+        ids.setdefault(cat, []).append(oid)
+        xy = free()
+        where[oid] = xy
+        if cat == "ball":
+            b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.025, 0.035)))
+        elif cat in ("mug", "cup"):
+            b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.04, 0.045)),
+                  height=float(rng.uniform(0.09, 0.11)))
+        elif cat == "can":
+            b.add(oid, cat, col, position=xy, radius=0.033, height=0.12)
+        else:
+            side = float(rng.uniform(0.13, 0.16))
+            b.add(oid, cat, col, position=xy, size=[side, side, side])
+    return ids, where
+
+
 def random_scene(seed: int) -> Scenario:
     """A random table scene with the events the scenarios use: objects pushed around (also past
     each other), balls and cans put under containers, containers swapped, moved and lifted, the
@@ -102,24 +129,7 @@ def random_scene(seed: int) -> Scenario:
             colours[j] = colours[i]
         spots: list[tuple[float, float]] = []
         free = functools.partial(_free_spot, rng, spots)
-
-        ids: dict[str, list[str]] = {}
-        where: dict[str, tuple[float, float]] = {}  # rough positions, for "front"
-        for k, (cat, col) in enumerate(zip(chosen, colours, strict=True)):
-            oid = f"{cat}_{k}"
-            ids.setdefault(cat, []).append(oid)
-            xy = free()
-            where[oid] = xy
-            if cat == "ball":
-                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.025, 0.035)))
-            elif cat in ("mug", "cup"):
-                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.04, 0.045)),
-                      height=float(rng.uniform(0.09, 0.11)))
-            elif cat == "can":
-                b.add(oid, cat, col, position=xy, radius=0.033, height=0.12)
-            else:
-                side = float(rng.uniform(0.13, 0.16))
-                b.add(oid, cat, col, position=xy, size=[side, side, side])
+        ids, where = _place_objects(b, rng, free, chosen, colours)  # where: rough, for "front"
         containers = ids.get("mug", []) + ids.get("box", []) + ids.get("cup", [])
         small = ids.get("ball", []) + ids.get("can", [])
         t = 1.0
@@ -211,23 +221,7 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
         colours = list(rng.choice(SCENE_COLOURS, n, replace=True))
         spots: list[tuple[float, float]] = []
         free = functools.partial(_free_spot, rng, spots)
-        ids: dict[str, list[str]] = {}
-        where: dict[str, tuple[float, float]] = {}
-        for k, (cat, col) in enumerate(zip(chosen, colours, strict=True)):
-            oid = f"{cat}_{k}"
-            ids.setdefault(cat, []).append(oid)
-            xy = free()
-            where[oid] = xy
-            if cat == "ball":
-                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.025, 0.035)))
-            elif cat in ("mug", "cup"):
-                b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.04, 0.045)),
-                      height=float(rng.uniform(0.09, 0.11)))
-            elif cat == "can":
-                b.add(oid, cat, col, position=xy, radius=0.033, height=0.12)
-            else:
-                side = float(rng.uniform(0.13, 0.16))
-                b.add(oid, cat, col, position=xy, size=[side, side, side])
+        ids, where = _place_objects(b, rng, free, chosen, colours)  # where: rough, for "front"
         containers = ids.get("mug", []) + ids.get("box", []) + ids.get("cup", [])
         small = ids.get("ball", []) + ids.get("can", [])
         t = 1.0
