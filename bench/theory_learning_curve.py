@@ -8,7 +8,8 @@ For each number of episodes n and each kind of labels, the first n generated occ
 (``anchoring collect``) and a theory is learned from them (``anchoring learn-theory``); each
 theory then runs the four shipped scenarios over ``--seeds`` seeds (the simulator's noise and
 the filter's seed, percept streams cached as ``anchoring evaluate`` caches them) with
-``--particles`` particles. It prints, and with ``--md`` writes, a Markdown table: labels,
+``--particles`` particles in one thread per run (as ``anchoring evaluate --threads 1``). It
+prints, and with ``--md`` writes, a Markdown table: labels,
 episodes, collected pairs, the seconds of collecting (perception included, summed over workers)
 and of learning, and the identity kept (objects and runs) of the shipped runs; the
 hand-written theory's row on the same runs comes last, for reference.
@@ -38,7 +39,7 @@ def _run(theory: str, scenario: str, seed: int, particles: int, cache: str) -> d
 
     stream = percept_stream(ROOT / "scenarios" / f"{scenario}.yaml", seed, Path(cache))
     out = run(RunOptions(percepts=stream, particles=particles, seed=seed, theory=Path(theory),
-                         progress=False))
+                         threads=1, progress=False))
     objects = out.summary["objects"]
     return {"scenario": scenario, "seed": seed, "kept": sum(o["identity_kept"] for o in objects),
             "objects": len(objects)}
