@@ -234,10 +234,10 @@ TREE_PICTURE_DEPTH = 3
 
 
 def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Path]:
-    """The learned tree (``<name>_tree.png``, its first levels) and P(occluder | distance) of its
-    logistic leaves
-    beside the paper's sigmoid(0.8 - 16.9 d) and the original system's deployed
-    sigmoid(1.948 - 16.488 d) (``<name>_distance.png``)."""
+    """The learned tree (``<name>_tree.png``, its first levels), P(occluder | distance) of its
+    heaviest logistic leaves beside the paper's sigmoid(0.8 - 16.9 d) and the original system's
+    deployed sigmoid(1.948 - 16.488 d) (``<name>_distance.png``), and their coefficients
+    (``<name>_coefficients.md``, :func:`coefficient_table`)."""
     import matplotlib
 
     matplotlib.use("Agg")

@@ -7,7 +7,8 @@ Learns the occluder rule (may O start hiding A?) and the tracking rule (does the
 on?) as one distributional logic tree for ``occluder(A, O):t+1`` (``ddc learn``) and writes the
 complete theory: prolog/too.pl with its hand-written occlusion rules replaced. ``--out`` is
 replaced only once the new theory loads. ``--plots DIR`` draws the tree and P(occluder |
-distance) beside the paper's and the original system's.
+distance) beside the paper's and the original system's, and writes the table of the learned
+coefficients beside theirs.
 """
 
 from __future__ import annotations
