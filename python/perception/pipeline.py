@@ -4,11 +4,11 @@
     percepts = pipeline.process(frame)          # frame: tabletop.Frame or anything alike
 
 Steps: depth -> world points (camera intrinsics and pose); table plane by a seeded RANSAC on a
-subsample (the same plane on every run); above-table mask; skin segments by an HSV window; object segments by connected
-components cut at depth jumps; per segment position and size (3-D box), HSV histogram and
-colour names, top-3 categories from the shape classifier. ``truth_id`` is filled from the
-frame's ground-truth segmentation when the frame carries one (for training and evaluation
-only: no attribute is computed from it).
+subsample (the same plane on every run); above-table mask; skin segments by an HSV window;
+object segments by connected components cut at depth jumps; per segment position and size
+(3-D box), HSV histogram and colour names, top-3 categories from the shape classifier.
+``truth_id`` is filled from the frame's ground-truth segmentation when the frame carries one
+(for training and evaluation only: no attribute is computed from it).
 """
 
 from __future__ import annotations
