@@ -12,6 +12,7 @@ from anchoring.anchor import Anchor
 from anchoring.attribute import Attribute, AttributeValueError
 from anchoring.features import pair_features
 from anchoring.manager import (
+    Ambiguity,
     AnchorManager,
     AnchorManagerError,
     Assignment,
@@ -26,6 +27,7 @@ from anchoring.views import Withheld
 __all__ = [
     "DEFAULT_MODEL",
     "FEATURES",
+    "Ambiguity",
     "Anchor",
     "AnchorManager",
     "AnchorManagerError",

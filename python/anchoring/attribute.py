@@ -107,6 +107,15 @@ class Attribute:
             self.__dict__["_support"] = cached
         return cached
 
+    def support_weights(self) -> np.ndarray:
+        """The weights of :meth:`support`'s samples (they still sum to 1)."""
+        cached = self.__dict__.get("_support_weights")
+        if cached is None:
+            positive = self.weights > 0
+            cached = self.weights if positive.all() else self.weights[positive]
+            self.__dict__["_support_weights"] = cached
+        return cached
+
     def augmented_support(self) -> np.ndarray:
         """(D + 1, N) support samples transposed with their squared norms (cached)."""
         cached = self.__dict__.get("_augmented")

@@ -9,17 +9,29 @@ Per frame (:meth:`AnchorManager.process`):
 3. every (anchor, percept) pair gets its similarity vector and the learned matcher's score;
    pairs where the percept is a merged view of two objects are refused
    (:func:`anchoring.views.merged_views`);
-4. percepts and anchors are assigned jointly, one to one, by the Hungarian method
+4. an anchor whose position is a belief (the reasoning's particles) may be re-acquired only
+   where that belief has a mass of at least ``belief_gate`` near the percept
+   (:func:`anchoring.similarity.position_evidence`), unless it has not been perceived since a
+   frame with no percept at all (the camera was covered: its belief no longer says where it
+   is);
+5. percepts and anchors are assigned jointly, one to one, by the Hungarian method
    (``scipy.optimize.linear_sum_assignment``): as many pairs as possible among those the
    matcher accepts (decision > 0), and among such assignments the one with the largest total
    mean similarity (monotone in every attribute; an RBF SVM's decision value is not, and it
-   saturates for clear matches);
-5. what is left unmatched may still be re-identified by appearance, when it is the only
+   saturates for clear matches); with ``position_match="mass"`` (the default) the position
+   term of an anchor with a belief is the belief's mass near the percept, so a weak mode
+   counts as little as it weighs and two anchors with a particle each at the percept are not
+   tied; ``"max"`` takes the best particle's similarity, as the paper's Algorithm 1;
+6. what is left unmatched may still be re-identified by appearance, when it is the only
    look-alike of an anchor not perceived for a while (:mod:`anchoring.reidentify`; ``score`` 0);
-6. matched percepts re-acquire their anchor, unmatched percepts acquire a new anchor, and the
+   the belief gate of step 4 holds there too;
+7. matched percepts re-acquire their anchor, unmatched percepts acquire a new anchor, and the
    anchors that were not perceived are *tracked* (their position is whatever the reasoning
    later supplies through :meth:`AnchorManager.set_position_particles`, else the last value);
-7. except that an unmatched percept that is a plausible *partial or merged view* of anchors
+   a re-acquisition by an anchor with a belief where a look-alike anchor's belief has at least
+   ``ambiguity_ratio`` times its mass near the percept is reported as ambiguous, with each
+   candidate's probability (its share of the mass), in ``result.ambiguous``;
+8. except that an unmatched percept that is a plausible *partial or merged view* of anchors
    not perceived this frame is *withheld* (no symbol, reported in ``result.withheld``; for at
    most ``withhold_seconds`` in a row per anchor; :mod:`anchoring.views`).
 
@@ -45,7 +57,7 @@ from scipy.optimize import linear_sum_assignment
 
 from anchoring.anchor import Anchor
 from anchoring.blas import single_threaded_blas
-from anchoring.features import pair_features
+from anchoring.features import pair_evidence
 from anchoring.matcher import Matcher, load_default_matcher
 from anchoring.reidentify import unique_lookalikes
 from anchoring.validation import histogram_bins, invalid_reason
@@ -69,6 +81,16 @@ class Assignment:
 
 
 @dataclass
+class Ambiguity:
+    """Percept ``percept_index`` could be any of several look-alike anchors: ``candidates``
+    maps each symbol to its probability (its share of the beliefs' mass near the percept), the
+    one given first."""
+
+    percept_index: int
+    candidates: dict[str, float]
+
+
+@dataclass
 class Rejection:
     percept_index: int
     reason: str
@@ -82,6 +104,7 @@ class FrameResult:
     dropped: list[str] = field(default_factory=list)  # glitches removed this frame
     rejected: list[Rejection] = field(default_factory=list)
     withheld: list[Withheld] = field(default_factory=list)  # partial / merged views, no symbol
+    ambiguous: list[Ambiguity] = field(default_factory=list)  # look-alike re-acquisitions
     # the similarity vectors of this frame: (A, P, 5), rows the anchors ``compared`` (in that
     # order), columns the valid percepts in input order (``rejected`` ones left out)
     features: np.ndarray | None = field(default=None, repr=False)
@@ -138,6 +161,10 @@ class AnchorManager:
         merge_seconds: float = 0.5,
         reid_seconds: float = 0.3,
         reid_similarity: tuple[float, float, float] = (0.5, 0.9, 0.7),
+        position_match: Literal["mass", "max"] = "mass",
+        belief_radius: float = 0.05,
+        belief_gate: float = 0.01,
+        ambiguity_ratio: float = 0.5,
     ) -> None:
         self.matcher: Matcher = matcher if matcher is not None else load_default_matcher()
         self.glitch_seconds = float(glitch_seconds)
@@ -151,6 +178,20 @@ class AnchorManager:
         # re-identification of a unique look-alike (anchoring.reidentify); <= 0: off
         self.reid_seconds = float(reid_seconds)
         self.reid_similarity = tuple(float(v) for v in reid_similarity)
+        # anchors whose position is a belief (anchoring.similarity.position_evidence): the
+        # assignment's position term, the kernel's standard deviation (metres), the least mass
+        # near a percept for re-acquiring (<= 0: no gate), the mass ratio that is ambiguous
+        if position_match not in ("mass", "max"):
+            raise ValueError(f"position_match must be 'mass' or 'max', not {position_match!r}")
+        if belief_radius <= 0:
+            raise ValueError(f"belief_radius must be positive, not {belief_radius!r}")
+        if not 0 < ambiguity_ratio <= 1:
+            raise ValueError(f"ambiguity_ratio must be in (0, 1], not {ambiguity_ratio!r}")
+        self.position_match: Literal["mass", "max"] = position_match
+        self.belief_radius = float(belief_radius)
+        self.belief_gate = float(belief_gate)
+        self.ambiguity_ratio = float(ambiguity_ratio)
+        self.blind_time: float | None = None  # the last frame with no valid percept
         self._withholding: dict[str, float] = {}  # anchor symbol -> since when it withholds
         self.symbols = SymbolTable()
         self.time: float | None = None
@@ -213,24 +254,31 @@ class AnchorManager:
 
         anchors = list(self._anchors.values())
         frame = [percepts[i] for i in valid]
-        features = pair_features(anchors, frame)
+        features, mass = pair_evidence(anchors, frame, self.belief_radius)
+        assert mass is not None
         result.features = features
         result.compared = [a.symbol for a in anchors]
         matched_anchor: dict[int, int] = {}  # index in frame -> index in anchors
         merged: dict[int, list[int]] = {}  # index in frame -> anchors seen as one segment
         refuse = np.zeros((len(anchors), len(frame)), bool)
         scores = np.zeros((len(anchors), len(frame)))
+        believed = np.array([a.position.is_probabilistic for a in anchors], bool)
         if anchors and frame:
             scores = np.asarray(self.matcher.decision(features), dtype=float)
             refuse, merged = merged_views(anchors, frame, time,
                                           self.merge_ratio, self.merge_seconds)
+            refuse |= self._outside_belief(anchors, believed, mass)
             accept = (scores > 0) & ~refuse
             if accept.any():
                 # the matcher decides which pairs may match; the assignment takes as many
                 # accepted pairs as possible (1e9 per refused pair) and among those maximises
                 # the total mean similarity: monotone in every attribute, unlike an RBF SVM's
                 # decision value, which saturates and can rank a worse-fitting anchor higher
-                cost = np.where(accept, -features.mean(axis=-1), 1e9)
+                fit = features
+                if self.position_match == "mass" and believed.any():
+                    fit = features.copy()
+                    fit[believed, :, 2] = mass[believed]
+                cost = np.where(accept, -fit.mean(axis=-1), 1e9)
                 rows, cols = linear_sum_assignment(cost)
                 for r, c in zip(rows, cols, strict=True):
                     if accept[r, c]:
@@ -241,6 +289,10 @@ class AnchorManager:
         for j, k in lookalikes.items():
             matched_anchor[j] = k
             scores[k, j] = 0.0  # re-identified by appearance, not accepted by the matcher
+        if not frame:
+            self.blind_time = time
+        result.ambiguous = self._ambiguities(anchors, believed, features, mass,
+                                             matched_anchor, valid)
         matched = {anchors[r].symbol for r in matched_anchor.values()}
         views, self._withholding = withheld_views(
             anchors, frame, features, matched_anchor, matched, merged, time,
@@ -265,6 +317,41 @@ class AnchorManager:
         result.tracked = [a.symbol for a in anchors if a.symbol not in perceived]
         return result
 
+    def _outside_belief(self, anchors: list[Anchor], believed: np.ndarray,
+                        mass: np.ndarray) -> np.ndarray:
+        """(A, P) pairs refused because the anchor's belief puts less than ``belief_gate`` of
+        its mass near the percept (step 4 of the module docstring)."""
+        if self.belief_gate <= 0 or not believed.any():
+            return np.zeros(mass.shape, bool)
+        blind = self.blind_time
+        informed = np.array([b and (blind is None or a.last_seen > blind)
+                             for a, b in zip(anchors, believed, strict=True)], bool)
+        return informed[:, None] & (mass < self.belief_gate)
+
+    def _ambiguities(self, anchors: list[Anchor], believed: np.ndarray, features: np.ndarray,
+                     mass: np.ndarray, matched_anchor: dict[int, int],
+                     valid: list[int]) -> list[Ambiguity]:
+        """Re-acquisitions that the beliefs cannot tell from a look-alike's (step 7)."""
+        out: list[Ambiguity] = []
+        if not believed.any():
+            return out
+        cat, col, size = self.reid_similarity
+        for j, k in matched_anchor.items():
+            if not believed[k] or mass[k, j] <= 0:
+                continue
+            alike = (believed & (features[:, j, 0] >= cat) & (features[:, j, 1] >= col)
+                     & (features[:, j, 3] >= size)
+                     & (mass[:, j] >= self.ambiguity_ratio * mass[k, j]))
+            alike[k] = False
+            if alike.any():
+                others = np.nonzero(alike)[0]
+                total = mass[k, j] + mass[others, j].sum()
+                candidates = {anchors[k].symbol: float(mass[k, j] / total)}
+                candidates.update((anchors[o].symbol, float(mass[o, j] / total))
+                                  for o in others)
+                out.append(Ambiguity(valid[j], candidates))
+        return out
+
     # --- persistence ----------------------------------------------------------------------
     def to_json(self) -> dict[str, Any]:
         return {
@@ -279,6 +366,11 @@ class AnchorManager:
             "merge_seconds": self.merge_seconds,
             "reid_seconds": self.reid_seconds,
             "reid_similarity": list(self.reid_similarity),
+            "position_match": self.position_match,
+            "belief_radius": self.belief_radius,
+            "belief_gate": self.belief_gate,
+            "ambiguity_ratio": self.ambiguity_ratio,
+            "blind_time": self.blind_time,
             "symbol_counters": self.symbols.counters,
             "anchors": [a.to_json() for a in self._anchors.values()],
         }
@@ -314,7 +406,13 @@ class AnchorManager:
                 merge_seconds=float(record.get("merge_seconds", 0.5)),
                 reid_seconds=float(record.get("reid_seconds", 0.3)),
                 reid_similarity=tuple(record.get("reid_similarity", (0.5, 0.9, 0.7))),
+                position_match=record.get("position_match", "mass"),
+                belief_radius=float(record.get("belief_radius", 0.05)),
+                belief_gate=float(record.get("belief_gate", 0.01)),
+                ambiguity_ratio=float(record.get("ambiguity_ratio", 0.5)),
             )
+            blind = record.get("blind_time")
+            manager.blind_time = None if blind is None else float(blind)
             manager.time = None if record.get("time") is None else float(record["time"])
             manager.symbols = SymbolTable(
                 {str(k): int(v) for k, v in record["symbol_counters"].items()}

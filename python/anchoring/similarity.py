@@ -63,9 +63,27 @@ def position_similarity_augmented(
     all anchors into a reused buffer, a segmented minimum along its rows, then ``||x||^2`` on
     the small result. No per-particle Python loop, two passes over the big matrix.
     """
+    return position_evidence(anchor_augmented, None, percept_positions)[0]
+
+
+def position_evidence(
+    anchor_augmented: Sequence[np.ndarray], anchor_weights: Sequence[np.ndarray] | None,
+    percept_positions: np.ndarray, radius: float = 0.05,
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """The best particle's similarity and the belief's mass near each percept, (A, P) each.
+
+    Similarity (Algorithm 1 of the paper): ``exp(-min_i ||s_i - x||)``. Mass (with
+    ``anchor_weights``, else None): ``sum_i w_i exp(-||s_i - x||^2 / (2 radius^2))``, the
+    predictive density of a percept at x under the particles blurred by an isotropic Gaussian
+    of standard deviation ``radius``, divided by that Gaussian's peak: 1 when the whole belief
+    sits at x, the weight of a mode at x when the belief has several, about 0 where no particle
+    is within a few ``radius``. A deterministic position (one sample) is a point belief.
+    Both come from one matrix of squared distances (see :func:`position_similarity_augmented`).
+    """
     x = np.asarray(percept_positions, dtype=float).reshape(-1, 3)
     if len(anchor_augmented) == 0 or x.shape[0] == 0:
-        return np.zeros((len(anchor_augmented), x.shape[0]))
+        empty = np.zeros((len(anchor_augmented), x.shape[0]))
+        return empty, (None if anchor_weights is None else empty.copy())
     counts = np.fromiter((s.shape[1] for s in anchor_augmented), dtype=np.intp)
     s_aug = np.concatenate(anchor_augmented, axis=1)  # (4, M)
     x_aug = np.empty((x.shape[0], 4))
@@ -74,8 +92,18 @@ def position_similarity_augmented(
     d2 = _WORKSPACE.get("d2", (x.shape[0], s_aug.shape[1]))  # (P, M): reduce along rows
     np.matmul(x_aug, s_aug, out=d2)
     starts = np.concatenate(([0], np.cumsum(counts)[:-1]))
-    nearest = np.minimum.reduceat(d2, starts, axis=1).T + (x * x).sum(axis=1)
-    return np.exp(-np.sqrt(np.maximum(nearest, 0.0)))
+    xx = (x * x).sum(axis=1)
+    nearest = np.minimum.reduceat(d2, starts, axis=1).T + xx
+    similarity = np.exp(-np.sqrt(np.maximum(nearest, 0.0)))
+    if anchor_weights is None:
+        return similarity, None
+    d2 += xx[:, None]
+    np.maximum(d2, 0.0, out=d2)
+    d2 *= -0.5 / (radius * radius)
+    np.exp(d2, out=d2)
+    d2 *= np.concatenate(anchor_weights)
+    mass = np.add.reduceat(d2, starts, axis=1).T
+    return similarity, np.minimum(mass, 1.0)
 
 
 def colour_similarity(anchor_hists: np.ndarray, percept_hists: np.ndarray) -> np.ndarray:

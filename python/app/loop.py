@@ -135,6 +135,8 @@ class AnchoringLoop:
             [(frame.percepts[a.percept_index], a.symbol) for a in result.assignments],
             step.timings,
             rejected_percepts=step.rejected,
+            ambiguous={result.symbols[a.percept_index]: a.candidates
+                       for a in result.ambiguous},
         )
         return FrameOutcome(step.source, result, record, step.hidden)
 

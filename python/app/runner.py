@@ -120,7 +120,8 @@ def format_summary(summary: dict[str, Any]) -> str:
     idf1 = summary.get("idf1")
     lines.append(f"  ID switches {summary['id_switches']}, IDF1 "
                  f"{'n/a' if idf1 is None else f'{idf1:.3f}'}, rejected percepts "
-                 f"{summary.get('rejected_percepts', 0)}")
+                 f"{summary.get('rejected_percepts', 0)}, ambiguous re-acquisitions "
+                 f"{summary.get('ambiguous_reacquisitions', 0)}")
     ms = summary["ms_per_frame"]
     fps = 1000.0 / ms["total"] if ms["total"] > 0 else float("inf")
     lines.append(f"  ms per frame: perception {ms['perception']:.1f}, anchoring "

@@ -94,6 +94,9 @@ class TrackingRecord:
       position metrics), not the object changing its identity.
     - ``timings``: where the time of this frame went.
     - ``rejected_percepts``: percepts of this frame dropped as bad input (NaN, empty histogram).
+    - ``ambiguous``: re-acquisitions the beliefs could not tell from a look-alike's: the symbol
+      given -> each candidate symbol's probability (``{"ball-2": {"ball-2": 0.52, "ball-1":
+      0.48}}``).
     """
 
     frame: int
@@ -103,6 +106,7 @@ class TrackingRecord:
     assignments: dict[str, str] = field(default_factory=dict)
     timings: FrameTimings = field(default_factory=FrameTimings)
     rejected_percepts: int = 0
+    ambiguous: dict[str, dict[str, float]] = field(default_factory=dict)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -125,6 +129,7 @@ class TrackingRecord:
                 "total": self.timings.total,
             },
             "rejected_percepts": self.rejected_percepts,
+            "ambiguous": {k: dict(v) for k, v in self.ambiguous.items()},
         }
 
     @classmethod
@@ -148,6 +153,8 @@ class TrackingRecord:
                     None if t.get("total") is None else float(t["total"]),
                 ),
                 rejected_percepts=int(data.get("rejected_percepts", 0)),
+                ambiguous={str(k): {str(s): float(p) for s, p in v.items()}
+                           for k, v in data.get("ambiguous", {}).items()},
             )
         except KeyError as exc:
             raise RecordError(f"missing field {exc.args[0]!r}") from exc
@@ -194,13 +201,15 @@ def record_for_frame(
     timings: FrameTimings | None = None,
     ignore: Iterable[str] = (),
     rejected_percepts: int | None = None,
+    ambiguous: Mapping[str, Mapping[str, float]] | None = None,
 ) -> TrackingRecord:
     """The record of one ``percepts.PerceptFrame`` as a runner has processed it.
 
     ``matches`` are the ``(percept, symbol)`` pairs the runner decided this frame (acquired,
     re-acquired or tracked); percepts without ``truth_id`` are left out of the assignments.
     Ground truth comes from ``frame.truth`` (see :func:`truth_from_dict`); ``rejected_percepts``
-    defaults to ``len(frame.rejected)``.
+    defaults to ``len(frame.rejected)``; ``ambiguous`` is the frame's ambiguous
+    re-acquisitions (see :class:`TrackingRecord`).
     """
     skip = set(ignore)
     main_view: dict[str, tuple[float, str]] = {}  # truth id -> (view area, symbol)
@@ -224,6 +233,8 @@ def record_for_frame(
         assignments=assignments,
         timings=timings if timings is not None else FrameTimings(),
         rejected_percepts=len(frame.rejected) if rejected_percepts is None else rejected_percepts,
+        ambiguous={str(k): {str(s): float(p) for s, p in v.items()}
+                   for k, v in (ambiguous or {}).items()},
     )
 
 

@@ -3,7 +3,9 @@
 Fields, exactly: ``frames``; ``objects`` (a list of ``{"id", "symbols", "identity_kept"}``);
 ``id_switches``; ``idf1`` (``null`` when undefined: no ground truth and no hypothesis);
 ``ms_per_frame`` with ``perception``, ``anchoring``, ``filter``, ``total`` (means over frames);
-``rejected_percepts`` (bad percepts dropped over the run). A caller may add its own fields
+``rejected_percepts`` (bad percepts dropped over the run); ``ambiguous_reacquisitions`` (how
+many times a hidden anchor was re-acquired where a look-alike's belief was about as strong,
+``TrackingRecord.ambiguous``). A caller may add its own fields
 through ``extra`` (they never replace these).
 """
 
@@ -18,7 +20,8 @@ from typing import Any
 from evaluation.metrics import DEFAULT_THRESHOLD_M, Evaluation, evaluate
 from evaluation.record import TrackingRecord
 
-SUMMARY_FIELDS = ("frames", "objects", "id_switches", "idf1", "ms_per_frame", "rejected_percepts")
+SUMMARY_FIELDS = ("frames", "objects", "id_switches", "idf1", "ms_per_frame", "rejected_percepts",
+                  "ambiguous_reacquisitions")
 
 
 def _finite_or_none(x: float) -> float | None:
@@ -59,6 +62,7 @@ def make_summary(
         "idf1": _finite_or_none(ev.mot.idf1),
         "ms_per_frame": ms_per_frame(records),
         "rejected_percepts": int(sum(r.rejected_percepts for r in records)),
+        "ambiguous_reacquisitions": int(sum(len(r.ambiguous) for r in records)),
     }
     for key, value in (extra or {}).items():
         if key in summary:

@@ -1,0 +1,166 @@
+"""Identity governed by belief: the mass of a hidden anchor's particles near a percept decides
+between look-alikes, gates re-acquisition, and says when the beliefs cannot tell."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from anchoring import AnchorManager
+from anchoring.similarity import augment, position_evidence
+from test_anchoring_manager import percept
+
+A = np.array([0.3, 0.3, 0.03])
+B = np.array([0.0, 0.3, 0.03])
+FAR = np.array([-0.3, -0.2, 0.03])
+
+
+def box(t: float):
+    """A box on the table: the frames where balls are hidden are not blind."""
+    return percept(t, [0.3, -0.2, 0.06], "box", hue=3, size=(0.12, 0.12, 0.12))
+
+
+def cloud(rng: np.random.Generator, centre: np.ndarray, n: int, spread: float = 0.004
+          ) -> np.ndarray:
+    return centre + rng.normal(0, spread, (n, 3))
+
+
+def test_mass_is_the_weight_of_the_mode_at_the_percept():
+    rng = np.random.default_rng(0)
+    n = 4000
+    samples = np.concatenate([cloud(rng, A, 3 * n // 10), cloud(rng, B, 7 * n // 10)])
+    weights = np.full(n, 1.0 / n)
+    similarity, mass = position_evidence([augment(samples)], [weights],
+                                         np.stack([A, B, FAR]), radius=0.05)
+    assert mass is not None
+    # the particles sit within 4 mm of the mode's centre: the kernel there is > 0.99
+    assert mass[0] == pytest.approx([0.3, 0.7, 0.0], abs=0.01)
+    assert similarity[0, :2] == pytest.approx([1.0, 1.0], abs=0.02)  # max: both modes alike
+    # against the definition, particle by particle
+    d2 = ((samples[None] - np.stack([A, B, FAR])[:, None]) ** 2).sum(-1)
+    direct = (weights * np.exp(-d2 / (2 * 0.05**2))).sum(1)
+    assert mass[0] == pytest.approx(direct, rel=1e-9, abs=1e-12)
+
+
+def test_a_point_is_a_point_belief():
+    x = np.array([[0.0, 0.0, 0.0], [0.05, 0.0, 0.0]])
+    _, mass = position_evidence([augment(np.zeros((1, 3)))], [np.ones(1)], x, radius=0.05)
+    assert mass is not None
+    assert mass[0] == pytest.approx([1.0, np.exp(-0.5)])
+
+
+def two_hidden_balls(rng: np.random.Generator, share_of_first_at_a: float,
+                     share_of_second_at_a: float, **options) -> AnchorManager:
+    """ball-1 and ball-2, identical, both hidden; their particles split between A and B."""
+    m = AnchorManager(**options)
+    for k in range(3):
+        m.process(k / 15, [percept(k / 15, A), percept(k / 15, B), box(k / 15)])
+    m.process(0.2, [box(0.2)])
+    n = 1000
+    for symbol, share in (("ball-1", share_of_first_at_a), ("ball-2", share_of_second_at_a)):
+        at_a = round(share * n)
+        m.set_position_particles(symbol, np.concatenate([cloud(rng, A, at_a),
+                                                         cloud(rng, B, n - at_a)]), np.ones(n))
+    return m
+
+
+def test_the_main_mode_wins_over_a_weak_mode_with_an_equally_good_particle():
+    """ball-1 has a weak mode (10 %) at A, ball-2 its main one (90 %): a ball seen at A is
+    ball-2; the paper's max over particles finds both perfect (whichever particle happens to
+    be nearest decides)."""
+    rng = np.random.default_rng(1)
+    m = two_hidden_balls(rng, 0.1, 0.9)
+    r = m.process(1.0, [percept(1.0, A + [0.003, 0, 0])])
+    assert r.symbols == {0: "ball-2"}
+    assert r.ambiguous == []  # 0.1 / 0.9 is told apart
+    assert r.features is not None
+    assert r.features[:2, 0, 2] == pytest.approx([1.0, 1.0], abs=0.005)  # the two balls
+    # the paper's max over particles: whichever anchor has the nearest particle takes it
+    for seed in range(4):
+        m = two_hidden_balls(np.random.default_rng(seed), 0.1, 0.9, position_match="max")
+        x = A + [0.003, 0, 0]
+        nearest = {a.symbol: np.linalg.norm(a.position.samples - x, axis=1).min()
+                   for a in m.anchors if a.category_average().get("ball")}
+        r = m.process(1.0, [percept(1.0, x)])
+        assert r.symbols == {0: min(nearest, key=nearest.__getitem__)}
+
+
+def test_beliefs_that_cannot_tell_two_look_alikes_apart_are_reported():
+    rng = np.random.default_rng(2)
+    m = two_hidden_balls(rng, 0.48, 0.52)
+    r = m.process(1.0, [percept(1.0, A)])
+    assert r.symbols == {0: "ball-2"}  # chosen by mass
+    assert len(r.ambiguous) == 1 and r.ambiguous[0].percept_index == 0
+    probabilities = r.ambiguous[0].candidates
+    assert list(probabilities) == ["ball-2", "ball-1"]  # the one given first
+    assert probabilities["ball-2"] == pytest.approx(0.52, abs=0.01)
+    assert probabilities["ball-1"] == pytest.approx(0.48, abs=0.01)
+    # a different-looking object is no candidate, however much mass its belief has there
+    rng = np.random.default_rng(2)
+    m = AnchorManager()
+    for k in range(3):
+        m.process(k / 15, [percept(k / 15, A), percept(k / 15, B, hue=5), box(k / 15)])
+    m.process(0.2, [box(0.2)])
+    m.set_position_particles("ball-1", cloud(rng, A, 1000), np.ones(1000))
+    m.set_position_particles("ball-2", cloud(rng, A, 1000), np.ones(1000))
+    r = m.process(1.0, [percept(1.0, A)])
+    assert r.symbols == {0: "ball-1"} and r.ambiguous == []
+
+
+def hidden_under_box(**options) -> AnchorManager:
+    """ball-1 seen, then hidden: every particle under a box at A."""
+    m = AnchorManager(**options)
+    for k in range(3):
+        m.process(k / 15, [percept(k / 15, A), box(k / 15)])
+    m.process(0.2, [box(0.2)])
+    m.set_position_particles("ball-1", cloud(np.random.default_rng(3), A, 1000), np.ones(1000))
+    return m
+
+
+def test_a_look_alike_far_from_the_belief_is_a_new_object():
+    """A second identical ball put down 33 cm from where every particle of ball-1 is: by
+    appearance alone it would be ball-1 (the only red ball left over)."""
+    elsewhere = A + [-0.3, 0.15, 0.0]
+    r = hidden_under_box().process(1.0, [percept(1.0, elsewhere), box(1.0)])
+    assert r.acquired == ["ball-2"]
+    ungated = hidden_under_box(belief_gate=0).process(1.0, [percept(1.0, elsewhere), box(1.0)])
+    assert ungated.symbols[0] == "ball-1" and ungated.assignments[0].score == 0.0
+    # where the belief is, it is ball-1 again
+    assert hidden_under_box().process(1.0, [percept(1.0, A), box(1.0)]).symbols[0] == "ball-1"
+
+
+def test_after_the_camera_was_covered_the_belief_does_not_gate():
+    """While the camera saw nothing, the ball may have been moved anywhere: its belief (where
+    it was) does not stop re-identification by appearance."""
+    m = hidden_under_box()
+    m.process(0.3, [])
+    m.set_position_particles("ball-1", cloud(np.random.default_rng(4), A, 1000), np.ones(1000))
+    assert m.blind_time == pytest.approx(0.3)
+    r = m.process(1.0, [percept(1.0, A + [-0.3, 0.15, 0.0])])
+    assert r.symbols == {0: "ball-1"}
+
+
+def test_anchoring_alone_is_unchanged():
+    """Deterministic positions (no reasoning): the gate and the mass do not apply."""
+    m = AnchorManager()
+    for k in range(3):
+        m.process(k / 15, [percept(k / 15, A)])
+    r = m.process(1.0, [percept(1.0, A + [-0.3, 0.15, 0.0])])
+    assert r.symbols == {0: "ball-1"}  # the unique look-alike, as before
+
+
+@pytest.mark.parametrize("bad", [{"position_match": "mean"}, {"belief_radius": 0.0},
+                                 {"ambiguity_ratio": 0.0}, {"ambiguity_ratio": 1.5}])
+def test_options_are_checked(bad):
+    with pytest.raises(ValueError, match=next(iter(bad))):
+        AnchorManager(**bad)
+
+
+def test_options_survive_save_and_load(tmp_path):
+    m = hidden_under_box(position_match="max", belief_radius=0.03, belief_gate=0.05,
+                         ambiguity_ratio=0.4)
+    m.process(0.5, [])
+    m.save(tmp_path / "w.json")
+    back = AnchorManager.load(tmp_path / "w.json")
+    assert (back.position_match, back.belief_radius, back.belief_gate, back.ambiguity_ratio,
+            back.blind_time) == ("max", 0.03, 0.05, 0.4, 0.5)
