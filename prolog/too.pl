@@ -28,8 +28,10 @@ cover_height(0.12).         % a container whose centre rises more than this abov
 % ------------------------------------------------------------------ background knowledge
 % Affordances (anchoring learn-theory keeps them beside the learned rules, as the paper's
 % experiments keep them, section 5.2).
-% What cannot hide anything: a ball does not afford occluding.
+% What cannot hide anything: a ball does not afford occluding, nor does a can (closed, it
+% stands upright and contains nothing that could be put under it).
 cannot_occlude(ball) := true.
+cannot_occlude(can) := true.
 % What cannot be hidden by other objects: hands (skin) are not anchored inside anything.
 cannot_be_occluded(skin) := true.
 cannot_be_occluded(hand) := true.

@@ -158,3 +158,27 @@ def test_a_ball_lost_while_the_camera_is_covered_may_be_under_any_container() ->
         assert abs(mean[0] - 0.2) < 0.02
     finally:
         reasoner.close()
+
+
+@pytest.mark.parametrize("blind", [False, True])
+def test_an_upright_can_hides_nothing(blind: bool) -> None:
+    """A ball vanishes 5 cm from a can and 10 cm from a mug (or while the camera saw nothing,
+    when any covering occluder on the table could explain it): only the mug is a candidate."""
+    n = 60
+    can, mug, ball = (0.05, 0.0, 0.06), (0.0, 0.1, 0.05), (0.0, 0.0, 0.03)
+    reasoner = OcclusionReasoner(particles=n, seed=2)
+    try:
+        for _ in range(2):
+            step(reasoner, {"can-1": ("can", can), "mug-1": ("mug", mug),
+                            "ball-1": ("ball", ball)})
+        if blind:
+            step(reasoner, {"can-1": ("can", None), "mug-1": ("mug", None),
+                            "ball-1": ("ball", None)})
+        for _ in range(3):
+            step(reasoner, {"can-1": ("can", can), "mug-1": ("mug", mug),
+                            "ball-1": ("ball", None)})
+        occluders = reasoner.occluders("ball-1")
+        assert [s for _, s in occluders] == ["mug-1"]
+        assert reasoner.probability("occluded_by(ball_1, can_1):t") == 0.0
+    finally:
+        reasoner.close()
