@@ -2,8 +2,8 @@
 
     Written by `anchoring learn-theory`: the hand-written occlusion rules of
     too.pl are replaced by a tree learned (ddc learn) from data_truth.pl:
-    78097 groundings of occluder(A, O):t+1, 85 clauses,
-    training log-likelihood -24832; search seed 0.
+    78093 groundings of occluder(A, O):t+1, 85 clauses,
+    training log-likelihood -24831.9; search seed 0.
     Command: anchoring learn-theory out/learn/data_truth.pl --seed 0 --out prolog/too_learned.pl --plots docs/images
     Everything else is too.pl's (motion, observations, blind frames, the
     transitive clause). Regenerate it rather than edit it; edit
@@ -40,8 +40,10 @@ cover_height(0.12).         % a container whose centre rises more than this abov
 % ------------------------------------------------------------------ background knowledge
 % Affordances (anchoring learn-theory keeps them beside the learned rules, as the paper's
 % experiments keep them, section 5.2).
-% What cannot hide anything: a ball does not afford occluding.
+% What cannot hide anything: a ball does not afford occluding, nor does a can (closed, it
+% stands upright and contains nothing that could be put under it).
 cannot_occlude(ball) := true.
+cannot_occlude(can) := true.
 % What cannot be hidden by other objects: hands (skin) are not anchored inside anything.
 cannot_be_occluded(skin) := true.
 cannot_be_occluded(hand) := true.
@@ -108,7 +110,7 @@ lift(O):t+1 ~ val(H) :=
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 85 clauses, 78097 groundings, training log-likelihood -24832 (mean -0.108257 per grounding), 125 parameters.
+% occluder(Occluded, Occluder):t+1: 85 clauses, 78093 groundings, training log-likelihood -24831.9 (mean -0.108256 per grounding), 125 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   occluded_by(Occluded, Occluder):t
@@ -122,32 +124,32 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                 ->  (   kind(Occluded):t+1 ~= ball
                     ->  (   kind(Occluder):t+1 ~= ball
                         ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Lift], [-113.793, 5.34458], P1),
+                            logistic([Lift], [-113.799, 5.34454], P1),
                             P2 is 1-P1
                         ;   kind(Occluder):t+1 ~= box
                         ->  (   distance(Occluded, Occluder):t+1 ~= Distance
-                            ->  % n = 643 (weight 2223), log-likelihood -65.1078, logistic
-                                logistic([Lift, Distance], [-570.165, 905.243, 5.61433], P1),
+                            ->  % n = 643 (weight 2223), log-likelihood -65.0611, logistic
+                                logistic([Lift, Distance], [-570.391, 905.637, 5.61594], P1),
                                 P2 is 1-P1
                             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Lift], [-421.92, 5.46561], P1),
+                                logistic([Lift], [-422.136, 5.46676], P1),
                                 P2 is 1-P1
                             )
                         ;   kind(Occluder):t+1 ~= can
                         ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Lift], [-113.793, 5.34458], P1),
+                            logistic([Lift], [-113.799, 5.34454], P1),
                             P2 is 1-P1
                         ;   kind(Occluder):t+1 ~= cup
-                        ->  % n = 1089 (weight 3573), log-likelihood -76.921, logistic
-                            logistic([Lift], [-144.832, 5.76312], P1),
+                        ->  % n = 1089 (weight 3573), log-likelihood -76.9197, logistic
+                            logistic([Lift], [-144.834, 5.76303], P1),
                             P2 is 1-P1
                         ;   kind(Occluder):t+1 ~= mug
                         ->  (   distance(Occluded, Occluder):t+1 ~= Distance2
-                            ->  % n = 939 (weight 3311), log-likelihood -63.8267, logistic
-                                logistic([Lift, Distance2], [-605.239, 1182.8, 5.30133], P1),
+                            ->  % n = 939 (weight 3311), log-likelihood -63.9198, logistic
+                                logistic([Lift, Distance2], [-604.091, 1180.09, 5.29976], P1),
                                 P2 is 1-P1
                             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Lift], [-308.877, 5.60712], P1),
+                                logistic([Lift], [-308.477, 5.60647], P1),
                                 P2 is 1-P1
                             )
                         ;   kind(Occluder):t+1 ~= skin
@@ -156,20 +158,20 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                             P2 = 0.0357143
                         ;   \+ kind(Occluder):t+1 ~= _
                         ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Lift], [-113.793, 5.34458], P1),
+                            logistic([Lift], [-113.799, 5.34454], P1),
                             P2 is 1-P1
                         )
                     ;   kind(Occluded):t+1 ~= box
                     ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Lift], [-147.694, 5.21662], P1),
+                        logistic([Lift], [-147.7, 5.21651], P1),
                         P2 is 1-P1
                     ;   kind(Occluded):t+1 ~= can
-                    ->  % n = 577 (weight 1349), log-likelihood -39.6814, logistic
-                        logistic([Lift], [-452.032, 6.64937], P1),
+                    ->  % n = 577 (weight 1349), log-likelihood -39.6806, logistic
+                        logistic([Lift], [-452.058, 6.64955], P1),
                         P2 is 1-P1
                     ;   kind(Occluded):t+1 ~= cup
-                    ->  % n = 5, too few groundings for a model of its own: the parent's model, log-likelihood -0.00298719, logistic
-                        logistic([Lift], [-147.694, 5.21662], P1),
+                    ->  % n = 5, too few groundings for a model of its own: the parent's model, log-likelihood -0.00298734, logistic
+                        logistic([Lift], [-147.7, 5.21651], P1),
                         P2 is 1-P1
                     ;   kind(Occluded):t+1 ~= mug
                     ->  % n = 83 (weight 367), log-likelihood -7.20678, finite
@@ -177,11 +179,11 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                         P2 = 0.00542005
                     ;   kind(Occluded):t+1 ~= skin
                     ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Lift], [-147.694, 5.21662], P1),
+                        logistic([Lift], [-147.7, 5.21651], P1),
                         P2 is 1-P1
                     ;   \+ kind(Occluded):t+1 ~= _
                     ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Lift], [-147.694, 5.21662], P1),
+                        logistic([Lift], [-147.7, 5.21651], P1),
                         P2 is 1-P1
                     )
                 ;   % n = 802 (weight 1306), log-likelihood -101.2, logistic
@@ -189,7 +191,7 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                     P2 is 1-P1
                 )
             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Lift], [-85.2523, 5.05166], P1),
+                logistic([Lift], [-85.2481, 5.05158], P1),
                 P2 is 1-P1
             )
         ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
@@ -218,7 +220,7 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                                     P1 = 0.00826446,
                                     P2 = 0.99173554
                                 ;   % n = 7094 (weight 20578), log-likelihood -4372.83, logistic
-                                    logistic([Distance4], [-13.9051, 0.411775], P1),
+                                    logistic([Distance4], [-13.9051, 0.411773], P1),
                                     P2 is 1-P1
                                 )
                             )
@@ -227,7 +229,7 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance4], [-14.4202, 0.360346], P1),
+                        logistic([Distance4], [-14.4202, 0.360344], P1),
                         P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= can
@@ -256,11 +258,11 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                                     P2 = 0.647059
                                 )
                             ;   (   seen(Occluded):t
-                                ->  % n = 98, log-likelihood -5.69517, logistic
-                                    logistic([Distance4], [-31.822, 2.07908], P1),
+                                ->  % n = 98, log-likelihood -5.69509, logistic
+                                    logistic([Distance4], [-31.823, 2.07911], P1),
                                     P2 is 1-P1
-                                ;   % n = 7269 (weight 18841), log-likelihood -7894.32, logistic
-                                    logistic([Distance4], [-5.24623, -0.423102], P1),
+                                ;   % n = 7268 (weight 18836), log-likelihood -7894.06, logistic
+                                    logistic([Distance4], [-5.24457, -0.423311], P1),
                                     P2 is 1-P1
                                 )
                             )
@@ -269,7 +271,7 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance4], [-5.1201, -0.567952], P1),
+                        logistic([Distance4], [-5.11868, -0.568126], P1),
                         P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= mug
@@ -283,16 +285,16 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                             ->  % n = 124 (weight 364), log-likelihood -9.96381, logistic
                                 logistic([Distance4], [-48.4227, 1.05198], P1),
                                 P2 is 1-P1
-                            ;   % n = 7435 (weight 18055), log-likelihood -7247.76, logistic
-                                logistic([Distance4], [-7.83001, 0.18033], P1),
+                            ;   % n = 7436 (weight 18060), log-likelihood -7247.9, logistic
+                                logistic([Distance4], [-7.83112, 0.180452], P1),
                                 P2 is 1-P1
                             )
-                        ;   % n = 339 (weight 399), log-likelihood -42.5161, logistic
-                            logistic([Distance4], [-15.2828, -0.419902], P1),
+                        ;   % n = 339 (weight 399), log-likelihood -42.5162, logistic
+                            logistic([Distance4], [-15.2828, -0.419905], P1),
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance4], [-8.04683, 0.0816828], P1),
+                        logistic([Distance4], [-8.04772, 0.08178], P1),
                         P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= skin
@@ -320,7 +322,7 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                     )
                 ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance4], [-8.67329, -0.22457], P1),
+                    logistic([Distance4], [-8.67328, -0.224571], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= box
@@ -330,12 +332,12 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
             ;   kind(Occluded):t+1 ~= can
             ->  (   kind(Occluder):t+1 ~= ball
                 ->  (   seen(Occluder):t
-                    ->  % n = 1147 (weight 4799), log-likelihood -25.2684, finite
-                        P1 = 0.00083316,
-                        P2 = 0.99916684
+                    ->  % n = 1146 (weight 4794), log-likelihood -25.2652, finite
+                        P1 = 0.000834028,
+                        P2 = 0.999165972
                     ;   (   lift(Occluder):t+1 ~= Lift2
-                        ->  % n = 70 (weight 90), log-likelihood -15.9823, logistic
-                            logistic([Distance4, Lift2], [1.59872, 38.4099, -3.55372], P1),
+                        ->  % n = 70 (weight 90), log-likelihood -15.9822, logistic
+                            logistic([Distance4, Lift2], [1.59874, 38.41, -3.55372], P1),
                             P2 is 1-P1
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
                             P1 = 0.108696,
@@ -345,16 +347,16 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                 ;   kind(Occluder):t+1 ~= box
                 ->  (   rise(Occluded, Occluder):t+1 ~= Rise20
                     ->  (   Rise20 < 0.0
-                        ->  % n = 485 (weight 1005), log-likelihood -25.7498, logistic
-                            logistic([Distance4], [-58.1408, 4.28134], P1),
+                        ->  % n = 484 (weight 1004), log-likelihood -25.733, logistic
+                            logistic([Distance4], [-58.206, 4.28248], P1),
                             P2 is 1-P1
                         ;   Rise20 < 0.1
                         ->  (   lost_anywhere(Occluded):t
                             ->  % n = 62 (weight 154), log-likelihood -12.0061, logistic
                                 logistic([Distance4], [-19.4899, 0.501112], P1),
                                 P2 is 1-P1
-                            ;   % n = 2119 (weight 4891), log-likelihood -2013.89, logistic
-                                logistic([Distance4], [-9.29782, 0.828266], P1),
+                            ;   % n = 2120 (weight 4892), log-likelihood -2013.91, logistic
+                                logistic([Distance4], [-9.29869, 0.828388], P1),
                                 P2 is 1-P1
                             )
                         ;   % n = 446 (weight 630), log-likelihood -51.3961, finite
@@ -370,9 +372,9 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                     P1 = 0.000343997,
                     P2 = 0.999656003
                 ;   kind(Occluder):t+1 ~= cup
-                ->  % n = 2261 (weight 8273), log-likelihood -0.999819, finite
-                    P1 = 0.000120846,
-                    P2 = 0.999879154
+                ->  % n = 2261 (weight 8277), log-likelihood -0.999819, finite
+                    P1 = 0.000120788,
+                    P2 = 0.999879212
                 ;   kind(Occluder):t+1 ~= mug
                 ->  % n = 2253 (weight 7513), log-likelihood -0.9998, finite
                     P1 = 0.000133067,
@@ -385,8 +387,8 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                             P2 = 0.96875
                         ;   Rise24 < 0.1
                         ->  (   lift(Occluder):t+1 ~= Lift4
-                            ->  % n = 415 (weight 419), log-likelihood -208.804, logistic
-                                logistic([Distance4, Lift4], [-3.12979, -41.0541, 2.05132], P1),
+                            ->  % n = 415 (weight 419), log-likelihood -208.809, logistic
+                                logistic([Distance4, Lift4], [-3.12978, -41.0483, 2.05129], P1),
                                 P2 is 1-P1
                             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
                                 logistic([Distance4], [-3.32992, 2.1457], P1),
@@ -399,7 +401,7 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                                     P2 = 0.9
                                 ;   (   lift(Occluder):t+1 ~= Lift6
                                     ->  % n = 988 (weight 1012), log-likelihood -426.772, logistic
-                                        logistic([Distance4, Lift6], [-5.72537, -23.5349, 3.20191], P1),
+                                        logistic([Distance4, Lift6], [-5.72537, -23.5366, 3.20192], P1),
                                         P2 is 1-P1
                                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
                                         logistic([Distance4], [-5.28312, 2.98427], P1),
@@ -417,26 +419,26 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                     )
                 ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance4], [-8.57319, -0.445492], P1),
+                    logistic([Distance4], [-8.57333, -0.445478], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= cup
             ->  (   kind(Occluder):t+1 ~= ball
-                ->  % n = 850 (weight 3154), log-likelihood -0.999525, finite
-                    P1 = 0.000316857,
-                    P2 = 0.999683143
+                ->  % n = 848 (weight 3144), log-likelihood -0.999523, finite
+                    P1 = 0.000317864,
+                    P2 = 0.999682136
                 ;   kind(Occluder):t+1 ~= box
                 ->  % n = 1468 (weight 4880), log-likelihood -0.999693, finite
                     P1 = 0.000204834,
                     P2 = 0.999795166
                 ;   kind(Occluder):t+1 ~= can
-                ->  % n = 601 (weight 2469), log-likelihood -0.999393, finite
-                    P1 = 0.000404694,
-                    P2 = 0.999595306
+                ->  % n = 602 (weight 2474), log-likelihood -0.999394, finite
+                    P1 = 0.000403877,
+                    P2 = 0.999596123
                 ;   kind(Occluder):t+1 ~= cup
-                ->  % n = 1238 (weight 4002), log-likelihood -0.999625, finite
-                    P1 = 0.00024975,
-                    P2 = 0.99975025
+                ->  % n = 1237 (weight 4005), log-likelihood -0.999626, finite
+                    P1 = 0.000249563,
+                    P2 = 0.999750437
                 ;   kind(Occluder):t+1 ~= mug
                 ->  % n = 1529 (weight 5225), log-likelihood -0.999713, finite
                     P1 = 0.000191314,
@@ -447,7 +449,7 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                     P2 is 1-P1
                 ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance4], [-10.2088, -5.37789], P1),
+                    logistic([Distance4], [-10.2078, -5.37812], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= mug
@@ -482,16 +484,16 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                     P2 = 0.99844479
                 ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance4], [-90.8115, -0.586077], P1),
+                    logistic([Distance4], [-90.8124, -0.586072], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 12785 (weight 42645), log-likelihood -0.999965, finite
-                P1 = 2.34483e-5,
-                P2 = 0.9999765517
+            ->  % n = 12784 (weight 42648), log-likelihood -0.999965, finite
+                P1 = 2.34467e-5,
+                P2 = 0.9999765533
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance4], [-8.90324, -0.885601], P1),
+                logistic([Distance4], [-8.90334, -0.885625], P1),
                 P2 is 1-P1
             )
         ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
