@@ -100,20 +100,19 @@ class Attribute:
 
     def support(self) -> np.ndarray:
         """Samples with positive weight: the candidates for the max-over-particles estimate."""
-        cached = self.__dict__.get("_support")
-        if cached is None:
-            positive = self.weights > 0
-            cached = self.samples if positive.all() else self.samples[positive]
-            self.__dict__["_support"] = cached
-        return cached
+        return self._positive_part()[0]
 
     def support_weights(self) -> np.ndarray:
         """The weights of :meth:`support`'s samples (they still sum to 1)."""
-        cached = self.__dict__.get("_support_weights")
+        return self._positive_part()[1]
+
+    def _positive_part(self) -> tuple[np.ndarray, np.ndarray]:
+        cached = self.__dict__.get("_support")
         if cached is None:
             positive = self.weights > 0
-            cached = self.weights if positive.all() else self.weights[positive]
-            self.__dict__["_support_weights"] = cached
+            cached = ((self.samples, self.weights) if positive.all()
+                      else (self.samples[positive], self.weights[positive]))
+            self.__dict__["_support"] = cached
         return cached
 
     def augmented_support(self) -> np.ndarray:
