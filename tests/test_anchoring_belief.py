@@ -164,3 +164,22 @@ def test_options_survive_save_and_load(tmp_path):
     back = AnchorManager.load(tmp_path / "w.json")
     assert (back.position_match, back.belief_radius, back.belief_gate, back.ambiguity_ratio,
             back.blind_time) == ("max", 0.03, 0.05, 0.4, 0.5)
+
+
+def test_look_alikes_lost_while_the_camera_saw_nothing_are_reported_ambiguous():
+    """Two identical cups; the camera is covered; both are seen again. They may have been
+    exchanged unseen: each re-acquisition is reported with both cups equally likely. A
+    different-looking cup is not a candidate."""
+    cups = lambda t, hue_b=0.0: [percept(t, A, "cup", size=(0.08, 0.08, 0.1)),  # noqa: E731
+                                 percept(t, B, "cup", hue=hue_b, size=(0.08, 0.08, 0.1))]
+    for hue_b, expected in ((0.0, 2), (5.0, 0)):
+        m = AnchorManager()
+        for k in range(3):
+            m.process(k / 15, cups(k / 15, hue_b))
+        m.process(0.3, [])
+        r = m.process(0.4, cups(0.4, hue_b))
+        assert r.symbols == {0: "cup-1", 1: "cup-2"}  # still named by position
+        assert len(r.ambiguous) == expected
+        for ambiguity in r.ambiguous:
+            assert sorted(ambiguity.candidates.values()) == [0.5, 0.5]
+        assert m.process(0.5, cups(0.5, hue_b)).ambiguous == []  # seen since: settled

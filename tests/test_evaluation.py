@@ -266,7 +266,8 @@ def test_results_table_groups_runs_by_scenario_and_method(tmp_path):
 
     rows = [
         ("shell_game", "reasoning", summary_of([True, True, True], 0, 1.0)),
-        ("shell_game", "reasoning", summary_of([True, False, True], 2, 0.8)),
+        ("shell_game", "reasoning", {**summary_of([True, False, True], 2, 0.8),
+                                     "ambiguous_reacquisitions": 3}),
         ("shell_game", "SORT", switch_run()),  # records are evaluated on the spot
         ("transitive", "reasoning", summary_of([], 0, None)),
     ]
@@ -282,8 +283,9 @@ def test_results_table_groups_runs_by_scenario_and_method(tmp_path):
     text = results_table(rows)
     lines = text.splitlines()
     assert lines[0].startswith("| scenario | method | runs | identity kept (objects)")
-    assert lines[2] == "| shell_game | reasoning | 2 | 5/6 (83 %) | 1/2 (50 %) | 1.00 | 0.900 |"
-    assert lines[4] == "| transitive | reasoning | 1 | - | 0/1 (0 %) | 0.00 | - |"
+    assert lines[2] == ("| shell_game | reasoning | 2 | 5/6 (83 %) | 1/2 (50 %) | 1.00 | 0.900 "
+                        "| 1/2 |")
+    assert lines[4] == "| transitive | reasoning | 1 | - | 0/1 (0 %) | 0.00 | - | 0/1 |"
 
     # From saved summaries: names from the summary's own fields, else from the folders.
     a = tmp_path / "shell_game" / "SORT" / "summary.json"

@@ -30,7 +30,9 @@ Per frame (:meth:`AnchorManager.process`):
    later supplies through :meth:`AnchorManager.set_position_particles`, else the last value);
    a re-acquisition by an anchor with a belief where a look-alike anchor's belief has at least
    ``ambiguity_ratio`` times its mass near the percept is reported as ambiguous, with each
-   candidate's probability (its share of the mass), in ``result.ambiguous``;
+   candidate's probability (its share of the mass), in ``result.ambiguous``; so is one by an
+   anchor not perceived since the camera last saw nothing while a look-alike is in the same
+   case (they may have been exchanged unseen: equal probabilities);
 8. except that an unmatched percept that is a plausible *partial or merged view* of anchors
    not perceived this frame is *withheld* (no symbol, reported in ``result.withheld``; for at
    most ``withhold_seconds`` in a row per anchor; :mod:`anchoring.views`).
@@ -291,12 +293,13 @@ class AnchorManager:
             scores[k, j] = 0.0  # re-identified by appearance, not accepted by the matcher
         if not frame:
             self.blind_time = time
-        result.ambiguous = self._ambiguities(anchors, believed, features, mass,
-                                             matched_anchor, valid)
         matched = {anchors[r].symbol for r in matched_anchor.values()}
         views, self._withholding = withheld_views(
             anchors, frame, features, matched_anchor, matched, merged, time,
             self._withholding, self.withhold_seconds, self.view_margin, self.view_colour)
+        result.ambiguous = self._ambiguities(
+            anchors, believed, features, mass,
+            {j: k for j, k in matched_anchor.items() if j not in views}, valid)
         perceived: set[str] = set()
         for j, i in enumerate(valid):
             percept = percepts[i]
@@ -331,24 +334,33 @@ class AnchorManager:
     def _ambiguities(self, anchors: list[Anchor], believed: np.ndarray, features: np.ndarray,
                      mass: np.ndarray, matched_anchor: dict[int, int],
                      valid: list[int]) -> list[Ambiguity]:
-        """Re-acquisitions that the beliefs cannot tell from a look-alike's (step 7)."""
+        """Re-acquisitions that nothing the robot saw tells from a look-alike's (step 7): by
+        the beliefs' masses within ``ambiguity_ratio``; or, for an anchor not perceived since
+        the camera last saw nothing, any look-alike in the same case (the two may have been
+        exchanged unseen; each is then equally likely)."""
         out: list[Ambiguity] = []
-        if not believed.any():
-            return out
         cat, col, size = self.reid_similarity
+        blind = self.blind_time
+        lost_blind = np.array([blind is not None and a.confirmed and a.last_seen < blind
+                               for a in anchors], bool)
         for j, k in matched_anchor.items():
-            if not believed[k] or mass[k, j] <= 0:
+            looks = ((features[:, j, 0] >= cat) & (features[:, j, 1] >= col)
+                     & (features[:, j, 3] >= size))
+            looks[k] = False
+            if lost_blind[k]:
+                others = np.nonzero(looks & lost_blind)[0]
+                share = np.ones(len(others) + 1)
+            elif believed[k] and mass[k, j] > 0:
+                others = np.nonzero(looks & believed
+                                    & (mass[:, j] >= self.ambiguity_ratio * mass[k, j]))[0]
+                share = np.concatenate(([mass[k, j]], mass[others, j]))
+            else:
                 continue
-            alike = (believed & (features[:, j, 0] >= cat) & (features[:, j, 1] >= col)
-                     & (features[:, j, 3] >= size)
-                     & (mass[:, j] >= self.ambiguity_ratio * mass[k, j]))
-            alike[k] = False
-            if alike.any():
-                others = np.nonzero(alike)[0]
-                total = mass[k, j] + mass[others, j].sum()
-                candidates = {anchors[k].symbol: float(mass[k, j] / total)}
-                candidates.update((anchors[o].symbol, float(mass[o, j] / total))
-                                  for o in others)
+            if len(others):
+                share = share / share.sum()
+                candidates = {anchors[k].symbol: float(share[0])}
+                candidates.update((anchors[o].symbol, float(p))
+                                  for o, p in zip(others, share[1:], strict=True))
                 out.append(Ambiguity(valid[j], candidates))
         return out
 

@@ -9,7 +9,10 @@ games under one scenario name) make one line of the table:
 - identity kept, objects: objects that kept their identity / objects, over all the runs;
 - identity kept, runs: runs in which every object kept its identity / runs;
 - ID switches: mean per run (motmetrics);
-- IDF1: mean over the runs that define it.
+- IDF1: mean over the runs that define it;
+- ambiguous: runs that reported at least one ambiguous re-acquisition (``summary.json``'s
+  ``ambiguous_reacquisitions``: a hidden object seen again that nothing observed tells from a
+  look-alike's) / runs.
 """
 
 from __future__ import annotations
@@ -38,6 +41,7 @@ class TableRow:
     objects_kept: int
     id_switches_mean: float
     idf1_mean: float | None
+    runs_ambiguous: int = 0
 
 
 def _as_summary(run: Run, threshold: float) -> dict[str, Any]:
@@ -51,6 +55,7 @@ def _as_summary(run: Run, threshold: float) -> dict[str, Any]:
             "objects": [{"id": o.id, "identity_kept": o.identity_kept} for o in run.objects],
             "id_switches": run.mot.id_switches,
             "idf1": run.mot.idf1,
+            "ambiguous_reacquisitions": 0,
         }
     return make_summary(list(run), threshold=threshold)
 
@@ -85,6 +90,8 @@ def aggregate(
                 objects_kept=kept,
                 id_switches_mean=sum(int(s["id_switches"]) for s in summaries) / len(summaries),
                 idf1_mean=sum(idf1s) / len(idf1s) if idf1s else None,
+                runs_ambiguous=sum(int(s.get("ambiguous_reacquisitions", 0)) > 0
+                                   for s in summaries),
             )
         )
     return table
@@ -98,14 +105,15 @@ def format_table(table: Sequence[TableRow]) -> str:
     """Markdown for rows made by :func:`aggregate`."""
     lines = [
         "| scenario | method | runs | identity kept (objects) | identity kept (runs) "
-        "| ID switches per run | IDF1 |",
-        "|---|---|---:|---:|---:|---:|---:|",
+        "| ID switches per run | IDF1 | ambiguous (runs) |",
+        "|---|---|---:|---:|---:|---:|---:|---:|",
     ]
     for r in table:
         idf1 = "-" if r.idf1_mean is None else f"{r.idf1_mean:.3f}"
         lines.append(
             f"| {r.scenario} | {r.method} | {r.runs} | {_fraction(r.objects_kept, r.objects)} "
-            f"| {_fraction(r.runs_kept, r.runs)} | {r.id_switches_mean:.2f} | {idf1} |"
+            f"| {_fraction(r.runs_kept, r.runs)} | {r.id_switches_mean:.2f} | {idf1} "
+            f"| {r.runs_ambiguous}/{r.runs} |"
         )
     return "\n".join(lines) + "\n"
 
