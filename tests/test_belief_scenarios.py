@@ -51,3 +51,15 @@ def test_look_alikes_swapped_unseen_are_reported_ambiguous() -> None:
     assert {frozenset(c) for c in reported} == {frozenset({"mug-1", "mug-2"}),
                                                frozenset({"ball-1", "ball-2"})}
     assert all(sorted(c.values()) == [0.5, 0.5] for c in reported)
+
+
+def test_a_look_alike_uncovered_while_the_original_is_hidden_is_a_new_object() -> None:
+    """scenarios/lookalike_while_hidden.yaml: ball_2 appears 33 cm from where every particle of
+    the boxed ball_1 is; it gets a symbol of its own, and ball_1 keeps its symbol."""
+    from app.runner import run
+
+    output = run(RunOptions(scenario=ROOT / "scenarios" / "lookalike_while_hidden.yaml",
+                            particles=200, seed=0, threads=1, progress=False))
+    objects = {o["id"]: o for o in output.summary["objects"]}
+    assert all(o["identity_kept"] for o in objects.values())
+    assert objects["ball_1"]["symbols"] != objects["ball_2"]["symbols"]
