@@ -14,6 +14,8 @@
         ?- occluders(ball_1, Dist).
         ?- hidden_under(Obj, Occ, P).
         ?- prob((pos(ball_1, (X,_,_)), X > 0.1), P).
+        ?- prob(identity(percept(141, 0), ball_1), P).
+        ?- ambiguous(Percept, Dist).
 */
 
 :- module(world,
@@ -23,6 +25,7 @@
             where/3,            % +Atom, -Mean, -Spread
             occluders/2,        % +Atom, -Dist
             hidden_under/3,     % ?Object, ?Occluder, -P
+            ambiguous/2,        % ?Percept, -Dist
             banner/0
           ]).
 
@@ -30,7 +33,8 @@
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 
-:- dynamic user:anchor/5, user:attribute/3, user:particle/2, user:particle_fact/2.
+:- dynamic user:anchor/5, user:attribute/3, user:particle/2, user:particle_fact/2,
+   user:identity/3.
 
 %!  load_world(+File) is det.
 %
@@ -40,6 +44,7 @@ load_world(File) :-
     retractall(user:attribute(_, _, _)),
     retractall(user:particle(_, _)),
     retractall(user:particle_fact(_, _)),
+    retractall(user:identity(_, _, _)),
     load_files(user:File, [if(true)]).
 
 %!  anchors(-Atoms) is det.
@@ -54,6 +59,19 @@ anchors(As) :-
 %   particle facts (pos(Atom, (X,Y,Z)), occluded_by(Atom, Occ)) and Prolog tests.  Every
 %   anchor the filter knows has a position in every particle; perceived ones are tight
 %   around the perceived position.
+%
+%   identity(percept(Frame, Index), Atom) is the probability that the Index-th percept of
+%   frame Frame was the anchor Atom, for the re-acquisitions the run reported ambiguous
+%   (identity/3 facts: nothing it saw told Atom from a look-alike there); 0 for an anchor that
+%   was no candidate.
+%
+%   @error existence_error(ambiguous_percept, Percept) if Percept was not ambiguous.
+prob(identity(Percept, A), P) :-
+    !,
+    (   user:identity(Percept, _, _)
+    ->  (   user:identity(Percept, A, P0) -> P = P0 ; P = 0.0 )
+    ;   existence_error(ambiguous_percept, Percept)
+    ).
 prob(Goal, P) :-
     aggregate_all(sum(W), user:particle(_, W), Total),
     (   Total =:= 0
@@ -102,6 +120,17 @@ hidden_under(A, O, P) :-
     member(A-O, Pairs),
     prob(occluded_by(A, O), P),
     P > 0.
+
+%!  ambiguous(?Percept, -Dist) is nondet.
+%
+%   Percept (percept(Frame, Index)) was re-acquired ambiguously; Dist is a list P-Atom of the
+%   candidates, most probable first (the first is the symbol it was given).
+ambiguous(Percept, Dist) :-
+    findall(Pc, user:identity(Pc, _, _), Ps0),
+    sort(Ps0, Ps),
+    member(Percept, Ps),
+    findall(P-A, user:identity(Percept, A, P), D0),
+    sort(1, @>=, D0, Dist).
 
 %!  banner is det.
 %

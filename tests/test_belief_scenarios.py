@@ -63,3 +63,30 @@ def test_a_look_alike_uncovered_while_the_original_is_hidden_is_a_new_object() -
     objects = {o["id"]: o for o in output.summary["objects"]}
     assert all(o["identity_kept"] for o in objects.values())
     assert objects["ball_1"]["symbols"] != objects["ball_2"]["symbols"]
+
+
+def test_the_world_model_answers_the_probability_of_an_identity(tmp_path) -> None:
+    """After the unseen swap, world.pl answers prob(identity(Percept, Atom), P) for each
+    ambiguous re-acquisition, and refuses a percept that was not ambiguous."""
+    import subprocess
+
+    from app.runner import run
+    from plunit_runner import swipl_executable
+
+    output = run(RunOptions(scenario=ROOT / "scenarios" / "lookalikes_swapped_unseen.yaml",
+                            particles=100, seed=0, threads=1, progress=False, out=tmp_path,
+                            picture_every=1000))
+    ball = next(r for r in output.records for s in r.ambiguous if s.startswith("ball"))
+    symbol = next(s for s in ball.ambiguous if s.startswith("ball"))
+    query = (f"ambiguous(percept({ball.frame}, I), D), member(_-{symbol.replace('-', '_')}, D),"
+             f" prob(identity(percept({ball.frame}, I), ball_1), P1),"
+             f" prob(identity(percept({ball.frame}, I), mug_1), P0),"
+             " catch(prob(identity(percept(0, 0), ball_1), _), E, true),"
+             " format('~w ~w ~w~n', [P1, P0, E]), halt")
+    done = subprocess.run([swipl_executable(), "-q", "-g", query, "-t", "halt(1)",
+                           str(ROOT / "prolog" / "world.pl"), str(tmp_path / "world.pl")],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    p1, p0, error = done.stdout.split(maxsplit=2)
+    assert float(p1) == 0.5 and float(p0) == 0.0
+    assert "existence_error(ambiguous_percept" in error

@@ -79,6 +79,8 @@ class AnchoringLoop:
             if config.reasoning else None
         )
         self.rejected_percepts = 0
+        # every ambiguous re-acquisition of the run: (frame, percept index, symbol -> P)
+        self.ambiguities: list[tuple[int, int, dict[str, float]]] = []
 
     def close(self) -> None:
         if self.reasoner is not None:
@@ -129,6 +131,8 @@ class AnchoringLoop:
         """The frame's tracking record (hypotheses and matches for the evaluation), from the
         anchors as :meth:`advance` left them."""
         frame, result = step.source.percepts, step.result
+        self.ambiguities.extend((frame.frame, a.percept_index, a.candidates)
+                                for a in result.ambiguous)
         record = record_for_frame(
             frame,
             self.hypotheses(result),

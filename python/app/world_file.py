@@ -6,7 +6,9 @@ The file holds plain facts:
 - ``attribute(Atom, Name, Value)``: its attributes (position mean, size, colour names,
   category probabilities);
 - ``particle(I, Weight)`` and ``particle_fact(I, Fact)``: the particle set of the filter, each
-  particle's facts being ``pos(Atom, (X,Y,Z))`` and ``occluded_by(Atom, Occluder)``.
+  particle's facts being ``pos(Atom, (X,Y,Z))`` and ``occluded_by(Atom, Occluder)``;
+- ``identity(percept(Frame, Index), Atom, P)``: for each re-acquisition the run reported
+  ambiguous, the probability of each candidate anchor.
 """
 
 from __future__ import annotations
@@ -27,7 +29,7 @@ def _fmt(x: float) -> str:
 def world_facts(loop: AnchoringLoop, perceived: set[str]) -> list[str]:
     lines = [
         "% World state written by `anchoring run`; load with: swipl prolog/world.pl THIS_FILE",
-        ":- dynamic anchor/5, attribute/3, particle/2, particle_fact/2.",
+        ":- dynamic anchor/5, attribute/3, particle/2, particle_fact/2, identity/3.",
     ]
     for anchor in loop.manager.anchors:
         atom = symbol_atom(anchor.symbol)
@@ -45,6 +47,9 @@ def world_facts(loop: AnchoringLoop, perceived: set[str]) -> list[str]:
         categories = sorted(anchor.category.items(), key=lambda kv: -kv[1])
         pairs = ", ".join(f"{_fmt(p)}-{category_atom(c)}" for c, p in categories)
         lines.append(f"attribute({atom}, category, [{pairs}]).")
+    for frame, index, candidates in loop.ambiguities:
+        lines.extend(f"identity(percept({frame}, {index}), {symbol_atom(symbol)}, {_fmt(p)})."
+                     for symbol, p in candidates.items())
     if loop.reasoner is not None:
         lines.extend(particle_facts(loop))
     return lines
