@@ -156,3 +156,42 @@ def test_the_same_command_and_seed_give_the_same_run(scenario: Path, reasoning_r
     first.pop("ms_per_frame")
     second.pop("ms_per_frame")
     assert first == second
+
+
+def _ball_stream(tmp_path: Path, frames: int = 8, truth_of: dict | None = None) -> Path:
+    from percept_helpers import ball_percept as ball
+    from percepts import PerceptFrame, write_percepts
+
+    stream = tmp_path / "stream.jsonl"
+    write_percepts(stream, [PerceptFrame(k, k / 5, [ball(k / 5, 0.1)],
+                                         (truth_of or {}).get(k, {}))
+                            for k in range(frames)])
+    return stream
+
+
+def test_lines_that_are_not_frames_are_skipped_counted_and_the_run_goes_on(
+        tmp_path: Path, caplog: pytest.LogCaptureFixture) -> None:
+    stream = _ball_stream(tmp_path)
+    lines = stream.read_text().splitlines()
+    lines.insert(3, "this is not JSON")
+    stream.write_text("\n".join(lines) + "\n" + lines[-1][:25])  # a truncated last line
+    output = run(RunOptions(percepts=stream, particles=20, progress=False, out=tmp_path / "o"))
+    assert output.summary["frames"] == 8
+    assert output.summary["skipped_frames"] == 2
+    assert f"{stream}:4" in caplog.text and f"{stream}:10" in caplog.text
+    assert (tmp_path / "o" / "summary.json").exists()
+
+
+def test_a_run_stopped_by_an_error_writes_what_it_did(tmp_path: Path) -> None:
+    """A malformed ground truth in frame 5 stops the run: the error is raised, and the summary
+    and the records of frames 0-4 are written first, the summary saying why it stopped."""
+    from evaluation import RecordError
+
+    bad = {5: {"objects": {"ball_1": {"visible": True}}}}  # no position
+    stream = _ball_stream(tmp_path, truth_of=bad)
+    out = tmp_path / "o"
+    with pytest.raises(RecordError, match="frame 5"):
+        run(RunOptions(percepts=stream, particles=20, progress=False, out=out))
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["frames"] == 5 and "after 5 frames: RecordError" in summary["stopped"]
+    assert len((out / "records.jsonl").read_text().splitlines()) == 5

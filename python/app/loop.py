@@ -160,8 +160,11 @@ class AnchoringLoop:
 
 def run_frames(frames: Iterable[PendingFrame], loop: AnchoringLoop,
                on_frame: Callable[[FrameOutcome, AnchoringLoop], None] | None = None,
-               overlap: bool = True) -> list[TrackingRecord]:
+               overlap: bool = True, records: list[TrackingRecord] | None = None
+               ) -> list[TrackingRecord]:
     """Play frames through ``loop``; ``on_frame`` sees each outcome (pictures, progress).
+    The records are appended to ``records`` (a new list if None) as the frames are done, so
+    a caller keeps those of the frames before an error.
 
     With ``overlap``, the next frame is perceived (in a second Python thread) while the loop
     anchors and reasons about the current one: perception needs nothing of the anchors, and
@@ -176,7 +179,7 @@ def run_frames(frames: Iterable[PendingFrame], loop: AnchoringLoop,
     total is the sum of the parts.  Rendering (the simulator), the records (bookkeeping for
     the evaluation) and ``on_frame`` (pictures) are outside every stage.
     """
-    records: list[TrackingRecord] = []
+    records = [] if records is None else records
     pending = iter(frames)
     first = next(pending, None)
     if first is None:

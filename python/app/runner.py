@@ -59,6 +59,9 @@ def run(options: RunOptions) -> RunOutput:
 
 
 def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
+    """Play the frames; what was done is written even when an error stops the run (its summary
+    then says ``stopped``: the error), and the error is raised again."""
+    skipped: list[str] = []  # lines of a percept stream that are not frames
     if options.scenario is not None:
         frames = scenario_frames(options.scenario, seed=options.seed, width=options.width,
                                  height=options.height)
@@ -66,7 +69,7 @@ def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
         name = options.scenario.stem
     else:
         assert options.percepts is not None
-        frames = stream_frames(options.percepts)
+        frames = stream_frames(options.percepts, skipped)
         total = None
         name = options.percepts.stem
     pictures = None
@@ -80,10 +83,25 @@ def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
             pictures(outcome, loop)
         bar.update(1)
 
+    records: list[TrackingRecord] = []
+    stopped: BaseException | None = None
     try:
-        records = run_frames(frames, loop, on_frame, overlap=options.overlap)
+        run_frames(frames, loop, on_frame, overlap=options.overlap, records=records)
+    except Exception as exc:  # written below with the frames done, then raised again
+        stopped = exc
     finally:
         bar.close()
+    for message in skipped:
+        logger.warning("skipped: %s", message)
+    output = _finish(options, loop, name, records, skipped, stopped, pictures)
+    if stopped is not None:
+        raise stopped
+    return output
+
+
+def _finish(options: RunOptions, loop: AnchoringLoop, name: str,
+            records: list[TrackingRecord], skipped: list[str], stopped: BaseException | None,
+            pictures: FramePictures | None) -> RunOutput:
     evaluation = evaluate(records)
     extra = {
         "scenario": name,
@@ -94,7 +112,10 @@ def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
         "seed": options.seed,
         "zero_weight_events": (loop.reasoner.filter.zero_weight_events
                                if loop.reasoner is not None else 0),
+        "skipped_frames": len(skipped),
     }
+    if stopped is not None:
+        extra["stopped"] = f"after {len(records)} frames: {type(stopped).__name__}: {stopped}"
     if options.out is None:
         return RunOutput(make_summary(records, evaluation, extra=extra), records, None)
     summary = write_summary(options.out / "summary.json", records, evaluation, extra=extra)
@@ -103,7 +124,7 @@ def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
     perceived = {s for s, h in records[-1].hypotheses.items() if h.perceived} \
         if records else set()
     write_world(options.out / "world.pl", loop, perceived)
-    if pictures is not None:
+    if pictures is not None and stopped is None:
         output.pictures = pictures.paths
         output.gif = pictures.finish(options.out / "run.gif")
     return output

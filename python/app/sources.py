@@ -66,7 +66,9 @@ def scenario_length(path: str | Path, fps: float | None = None) -> int | None:
         return None
 
 
-def stream_frames(path: str | Path) -> Iterator[PendingFrame]:
-    """A recorded percept stream: no images, perception time 0."""
-    for frame in read_percepts(path):
+def stream_frames(path: str | Path, skipped: list[str] | None = None
+                  ) -> Iterator[PendingFrame]:
+    """A recorded percept stream: no images, perception time 0. With ``skipped``, a line that
+    is not a frame is skipped and its error appended there (``percepts.read_percepts``)."""
+    for frame in read_percepts(path, skipped):
         yield partial(SourceFrame, frame, 0.0)

@@ -38,10 +38,13 @@ def write_percepts(path: str | Path, frames: Iterable[PerceptFrame]) -> None:
             out.write(json.dumps(line) + "\n")
 
 
-def read_percepts(path: str | Path) -> Iterator[PerceptFrame]:
+def read_percepts(path: str | Path, skipped: list[str] | None = None
+                  ) -> Iterator[PerceptFrame]:
     """Yield frames; a bad percept is dropped with its reason in ``frame.rejected``.
 
-    A line that is not JSON, or not a frame, raises :class:`PerceptError` naming file and line.
+    A line that is not JSON, or not a frame (a truncated last line), raises
+    :class:`PerceptError` naming file and line; with ``skipped``, that message is appended to
+    it instead and the line is skipped.
     """
     with open(path, encoding="utf-8") as src:
         for lineno, text in enumerate(src, start=1):
@@ -53,7 +56,11 @@ def read_percepts(path: str | Path) -> Iterator[PerceptFrame]:
                 time = float(record["time"])
                 raw = record["percepts"]
             except (json.JSONDecodeError, KeyError, TypeError, ValueError) as exc:
-                raise PerceptError(f"{path}:{lineno}: not a percept frame: {exc}") from exc
+                error = PerceptError(f"{path}:{lineno}: not a percept frame: {exc}")
+                if skipped is None:
+                    raise error from exc
+                skipped.append(str(error))
+                continue
             kept: list[Percept] = []
             rejected: list[str] = []
             for i, item in enumerate(raw):
