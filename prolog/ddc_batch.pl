@@ -1255,8 +1255,10 @@ sweep(M, K, E, T, All) :-
 %   (Ps is all when the prefix is static: every particle.  A head whose
 %   key reads a column, x(K):t+1 := k:t ~= K, ..., gives a key per group
 %   of particles with the same value.)
+%   A head the whole body leaves non-ground is an error, as in ddc.pl (a
+%   prefix that is not the whole body may leave it to the rest).
 sweep_head(M, K, E, All, X, Ps) :-
-    M:'$b_rv'(H, K, _, B, _), H \= observation(_),
+    M:'$b_rv'(H, K, _, B, at(L, _, _)), H \= observation(_),
     copy_term(H-B, X0-B1),
     sweep_prefix(B1, M, P),
     (   static_conj(P, M)
@@ -1264,7 +1266,12 @@ sweep_head(M, K, E, All, X, Ps) :-
     ;   beval(P, E, All, Ps0),
         split(X0, Ps0, X, Ps)
     ),
-    ground(X).
+    (   ground(X)
+    ->  true
+    ;   P == B1
+    ->  throw(error(ddc(non_ground_head(X), M:L), _))
+    ;   fail
+    ).
 
 static_conj(true, _) :- !.
 static_conj((A, B), M) :- !, static_goal(A, M), static_conj(B, M).

@@ -148,3 +148,17 @@ def test_the_commands_default_to_the_bridge_thread_count() -> None:
     assert build_parser().parse_args(["filter", "p.pl", "o.jsonl"]).threads == DEFAULT_THREADS
     for command in (["run", "s.yaml"], ["evaluate"]):
         assert anchoring_parser().parse_args(command).threads == DEFAULT_THREADS
+
+
+@pytest.mark.parametrize("engine", ["batched", "per_particle"])
+def test_a_head_its_body_leaves_non_ground_is_an_error_on_both_engines(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], engine: str) -> None:
+    """The batched engine used to skip such a clause silently and run to the end."""
+    program = tmp_path / "flag.pl"
+    program.write_text("x:t+1 ~ val(1) := true.\nflag(W):t+1 ~ val(1) := true.\n")
+    frames = tmp_path / "frames.jsonl"
+    frames.write_text('{"observations": [], "actions": []}\n' * 2)
+    code = main(["filter", str(program), str(frames), "--engine", engine, "--particles", "10"])
+    err = capsys.readouterr().err
+    assert code != 0
+    assert f"{program}:2: the head flag(" in err and "is not ground after its body" in err
