@@ -1109,9 +1109,9 @@ time_code(E, _, _, _) :-
 %     Mode: normal or sweep (non-ground reads enumerate recorded values only).
 %     Facts: Name/Arity-[Fact, ...] groups of the facts asserted into W.
 %     Check: true if overlapping clauses are checked in this world (the
-%     first overlap_checked_worlds/1 samples of a query, the first 20
-%     particles of each filter step; a check proves the later clauses'
-%     bodies, so it is not done in every world).
+%     first overlap_checked_worlds/1 samples of a query, the first
+%     overlap_checked_particles/1 particles of each filter step; a check
+%     proves the later clauses' bodies, so it is not done in every world).
 %     Shared: none, or (a particle, during a filter step or query)
 %     sh(SharedStore, ImpureKeys, _, _), the values all particles agree on
 %     (see "Shared values" below).
@@ -1505,7 +1505,8 @@ group_facts(Facts, Groups) :-
 %!  overlap_checked_worlds(-N) is det.
 %
 %   Overlapping clauses are looked for in the first N sampled worlds of a
-%   query (and in the first 20 particles of every filter step).
+%   query (and in the first overlap_checked_particles/1 particles of every
+%   filter step).
 overlap_checked_worlds(200).
 
 '$memo'(W, G, Call) :-
@@ -1763,7 +1764,8 @@ ddc_run(M, Ev0, Q, X, Options, Mode, R) :-
 %   one_sample(+M, +Id, +Time, +Ev, -s(W, DX, QW, X)): fails when the
 %   evidence fails or has weight 0; QW is 0.0 when the query fails.
 one_sample(M, Id, Time, Ev, I, s(W, DX, QW, X)) :-
-    (   I =< 200 -> Check = true ; Check = false ),   % overlap_checked_worlds/1
+    overlap_checked_worlds(Checked),
+    (   I =< Checked -> Check = true ; Check = false ),
     new_world(M, Time, -1, Ev, Check, Wd),
     M:'$ddc_tmp'(Id, s, Wd, Out),       % evidence, then the query (prepare_query/8)
     arg(6, Wd, LW),

@@ -50,7 +50,8 @@
             batch_time/2,               % +State, -T
             batch_size/2,               % +State, -N
             batch_keep/2,               % +State, -Kept
-            batch_module/2              % +State, -Module
+            batch_module/2,             % +State, -Module
+            overlap_checked_particles/1 % -N
           ]).
 
 :- use_module(library(apply)).
@@ -1323,7 +1324,14 @@ batch_step(groups([G1|Gs]), Obs, Facts, step(groups([S1|Ss]), LWs)) :- !,
 batch_step(State0, Obs, Facts, Result) :-
     group_step(State0, Obs, Facts, true, Result).
 
-check_list(true, N, Ck) :- !, K is min(N, 20), numlist(1, K, Ck).
+%!  overlap_checked_particles(-N) is det.
+%
+%   Overlapping clauses are looked for in the first N particles of every
+%   filter step, by both engines (ddc_filter.pl's step_range_at/10 too).
+overlap_checked_particles(20).
+
+check_list(true, N, Ck) :- !,
+    overlap_checked_particles(K0), K is min(N, K0), numlist(1, K, Ck).
 check_list(false, _, []).
 
 %   group_step(+State0, +Obs, +Facts, +Check, -Result): batch_step/4 of

@@ -512,16 +512,18 @@ own_copy(Ws, I, K, V) :-
 
 %   step_range(+Lo, +Hi, +Ws, ...): steps particles Lo..Hi of the step's
 %   scratch vector Ws (each copied from the filter's before it changes);
-%   the first 20 particles of the filter check for overlapping clauses.
+%   the first overlap_checked_particles/1 particles of the filter check for
+%   overlapping clauses.
 step_range(Lo, Hi, Ws, _, T1, Keys, Facts, Sh, LWs) :-
     step_range_at(Lo, Hi, 1, own, Ws, T1, Keys, Facts, Sh, LWs).
 
 %   (First: the filter's index of Ws's particle 1; Copy: own to copy each
 %   particle first, held if Ws holds copies already.)
 step_range_at(Lo, Hi, First, Copy, Ws, T1, Keys, Facts, Sh, LWs) :-
+    overlap_checked_particles(Checked),
     findall(LW, ( between(Lo, Hi, I),
                   ( Copy == own -> own_particle(Ws, I, W) ; arg(I, Ws, W) ),
-                  ( I+First =< 21 -> Check = true ; Check = false ),
+                  ( I+First-1 =< Checked -> Check = true ; Check = false ),
                   nb_setarg(13, W, Check),
                   step_particle(W, T1, Keys, Facts, Sh, LW) ), LWs).
 
