@@ -889,30 +889,23 @@ current_time_goal(G, _, _, _, G).
 %   variable's values) is read straight from the particles' stores, without
 %   building the values, when every particle holds one.
 filter_rows(F, Template, Goal, Width, Floats, Values) :-
-    batch_filter(F, _), !,
+    \+ batch_filter(F, _),
+    filter_state(F, filter(M, N, T, Ws, _, _, Sh)),
+    M:'$ddc_info'(Info),
+    stored_read(Goal, Template, ctx(_, T, Info, query), Key, V, Tmpl),
+    Tmpl == V,
+    shared_store(Sh, SS),
+    first_row_width(1, N, Ws, SS, Key, Width0),
+    stored_rows(1, N, Ws, SS, Key, Width0, Floats0),
+    !,
+    Width = Width0, Floats = Floats0, Values = [].
+filter_rows(F, Template, Goal, Width, Floats, Values) :-
     filter_values(F, value(Template), Goal, Values0),
     (   once(member(value(V1), Values0)),
         row_width(V1, Width1),
         value_rows(Values0, Width1, Floats1)
     ->  Width = Width1, Floats = Floats1, Values = []
     ;   Width = 0, Floats = [], Values = Values0
-    ).
-filter_rows(F, Template, Goal, Width, Floats, Values) :-
-    filter_state(F, filter(M, N, T, Ws, _, _, Sh)),
-    M:'$ddc_info'(Info),
-    (   stored_read(Goal, Template, ctx(_, T, Info, query), Key, V, Tmpl),
-        Tmpl == V,
-        shared_store(Sh, SS),
-        first_row_width(1, N, Ws, SS, Key, Width0),
-        stored_rows(1, N, Ws, SS, Key, Width0, Floats0)
-    ->  Width = Width0, Floats = Floats0, Values = []
-    ;   filter_values(F, value(Template), Goal, Values0),
-        (   once(member(value(V1), Values0)),
-            row_width(V1, Width1),
-            value_rows(Values0, Width1, Floats1)
-        ->  Width = Width1, Floats = Floats1, Values = []
-        ;   Width = 0, Floats = [], Values = Values0
-        )
     ).
 
 value_rows([], _, []).
