@@ -85,8 +85,8 @@ class Assignment:
 @dataclass
 class Ambiguity:
     """Percept ``percept_index`` could be any of several look-alike anchors: ``candidates``
-    maps each symbol to its probability (its share of the beliefs' mass near the percept), the
-    one given first."""
+    maps each symbol to its probability (its share of the beliefs' mass near the percept, or
+    an equal share after the camera saw nothing), the one given first."""
 
     percept_index: int
     candidates: dict[str, float]
