@@ -312,6 +312,15 @@ def test_constructor_errors_are_clear(tmp_path: Path) -> None:
     broken.write_text("x:0 ~ gaussian(0.0, 1.0).\nx:t+1 ~ gaussian(X, 0.5 := x:t ~= X.\n")
     with pytest.raises(FilterError, match="broken.pl"):
         Filter(broken, particles=10)
+    for bad in (1.5, "10", True):  # int() would quietly take each of them
+        with pytest.raises(TypeError, match="particles must be an integer"):
+            Filter(WUMPUS, particles=bad)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="threads"):
+        Filter(WUMPUS, threads=2.0)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="seed"):
+        Filter(WUMPUS, seed="1")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="particles must be >= 1"):
+        Filter(WUMPUS, particles=0)
 
 
 @pytest.mark.parametrize("scheme", ["multinomial", "residual"])

@@ -340,10 +340,14 @@ class Filter:
         other particles from the same seed (the draws come in another order); the batched one
         ignores ``share``. After construction ``engine`` is the one that steps the particles
         (auto resolved)."""
-        if int(particles) < 1:
-            raise ValueError(f"particles must be >= 1, got {particles}")
-        if int(threads) < 1:
-            raise ValueError(f"threads must be >= 1, got {threads}")
+        for name, value in (("particles", particles), ("threads", threads)):
+            # an integer, not a bool, float or string that int() would quietly convert
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+                raise TypeError(f"{name} must be an integer, got {value!r}")
+            if value < 1:
+                raise ValueError(f"{name} must be >= 1, got {value}")
+        if seed is not None and (isinstance(seed, bool) or not isinstance(seed, (int, np.integer))):
+            raise TypeError(f"seed must be an integer or None, got {seed!r}")
         if not 0.0 <= float(resample_threshold) <= 1.0:
             raise ValueError(f"resample_threshold must be in [0, 1], got {resample_threshold}")
         if engine not in ENGINES:
