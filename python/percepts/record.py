@@ -85,6 +85,11 @@ class Percept:
 
     @classmethod
     def from_json(cls, record: dict[str, Any]) -> Percept:
+        if not isinstance(record, dict):
+            raise PerceptError(f"a percept is a JSON object, not {type(record).__name__}")
+        if not isinstance(record.get("category"), dict):
+            raise PerceptError("'category' must be an object of category -> probability, not "
+                               f"{type(record.get('category')).__name__}")
         try:
             return cls(
                 time=float(record["time"]),

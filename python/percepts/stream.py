@@ -55,6 +55,8 @@ def read_percepts(path: str | Path, skipped: list[str] | None = None
                 frame = int(record["frame"])
                 time = float(record["time"])
                 raw = record["percepts"]
+                if not isinstance(raw, list):
+                    raise TypeError(f"'percepts' must be a list, not {type(raw).__name__}")
             except (json.JSONDecodeError, KeyError, TypeError, ValueError) as exc:
                 error = PerceptError(f"{path}:{lineno}: not a percept frame: {exc}")
                 if skipped is None:
