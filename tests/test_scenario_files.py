@@ -75,6 +75,21 @@ def test_yaml_syntax_error_has_a_line(tmp_path: Path) -> None:
     assert info.value.line is not None and "not valid YAML" in str(info.value)
 
 
+def test_a_file_that_is_not_utf8_names_its_line(tmp_path: Path) -> None:
+    path = tmp_path / "latin1.yaml"
+    path.write_bytes(b"name: x\nfps: 5\n# caf\xe9\n")
+    with pytest.raises(ScenarioError, match="not UTF-8 text: byte 0xe9") as info:
+        load_scenario(path)
+    assert info.value.line == 3
+
+
+def test_yaml_nested_ten_thousand_deep_is_a_scenario_error(tmp_path: Path) -> None:
+    path = tmp_path / "deep.yaml"
+    path.write_text("name: x\nobjects: " + "[" * 10000 + "]" * 10000 + "\n")
+    with pytest.raises(ScenarioError, match="nested too deeply"):
+        load_scenario(path)
+
+
 def test_object_too_big_for_its_container(tmp_path: Path) -> None:
     text = GOOD.replace("category: ball, colour: red,", "category: ball, colour: red, "
                         "radius: 0.05,")

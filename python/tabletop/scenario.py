@@ -531,12 +531,21 @@ def load_scenario(path: str | Path) -> Scenario:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise ScenarioError(f"cannot read: {exc.strerror}", str(path)) from exc
+    except UnicodeDecodeError as exc:
+        line = path.read_bytes()[:exc.start].count(b"\n") + 1
+        raise ScenarioError(f"not UTF-8 text: byte {exc.object[exc.start]:#04x}", str(path),
+                            line) from exc
     try:
         data = yaml.load(text, Loader=_LineLoader)  # noqa: S506 - a SafeLoader subclass
     except yaml.MarkedYAMLError as exc:
         line = exc.problem_mark.line + 1 if exc.problem_mark else None
         raise ScenarioError(f"not valid YAML: {exc.problem}", str(path), line) from exc
-    return parse_scenario(data, str(path), path.parent)
+    except RecursionError as exc:
+        raise ScenarioError("nested too deeply to be a scenario", str(path)) from exc
+    try:
+        return parse_scenario(data, str(path), path.parent)
+    except RecursionError as exc:
+        raise ScenarioError("nested too deeply to be a scenario", str(path)) from exc
 
 
 # --------------------------------------------------------------------------------------------
