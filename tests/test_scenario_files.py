@@ -110,3 +110,14 @@ def test_builder_round_trips_through_yaml(tmp_path: Path) -> None:
     with pytest.raises(ScenarioError, match="unknown object 'cup_7'"):
         ScenarioBuilder("bad").add("ball_1", "ball", "red", position=(0, 0)).lift(
             1.0, "cup_7").build()
+
+
+@pytest.mark.parametrize(("change", "cause"), [
+    ("fps: 1000000\n", "'fps' must be at most 240"),
+    ("camera: {width: 100000, height: 100000}\n", "'width' must be at most 4096"),
+    ("camera: {position: [0, 0, 1], target: [0, 0, 0]}\n", "looks along its 'up' vector"),
+])
+def test_limits_of_the_camera_and_the_frame_rate(tmp_path: Path, change: str,
+                                                 cause: str) -> None:
+    with pytest.raises(ScenarioError, match=cause):
+        load_scenario(write(tmp_path, change + GOOD))

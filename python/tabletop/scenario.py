@@ -45,6 +45,8 @@ EVENT_KINDS = (
 )
 WALL = 0.004  # wall thickness of cups, mugs and containers (m)
 HANDLE = 0.025  # how far a mug's handle sticks out (m); a mug's origin is its box centre
+MAX_FPS = 240.0  # frames per second a scenario may ask for (more only multiplies frames)
+MAX_IMAGE_SIDE = 4096  # pixels, the camera image's width and height at most
 
 
 @dataclass
@@ -289,7 +291,8 @@ class _Reader:
     def has(self, key: str) -> bool:
         return key in self.node
 
-    def number(self, key: str, default: float | None = None, positive: bool = False) -> float:
+    def number(self, key: str, default: float | None = None, positive: bool = False,
+               at_most: float | None = None) -> float:
         if key not in self.node:
             if default is None:
                 raise self.fail(f"missing '{key}'")
@@ -301,6 +304,8 @@ class _Reader:
             raise self.fail(f"'{key}' is {value} (NaN or infinite)", key)
         if positive and value <= 0:
             raise self.fail(f"'{key}' must be positive, got {value}", key)
+        if at_most is not None and value > at_most:
+            raise self.fail(f"'{key}' must be at most {at_most:g}, got {value}", key)
         return float(value)
 
     def vector(self, key: str, lengths: tuple[int, ...], default: Any = None) -> tuple[float, ...]:
@@ -467,8 +472,9 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
     if top.has("camera"):
         c = _Reader(source, data["camera"], "camera")
         c.unknown_keys(_CAMERA_KEYS)
-        camera.width = int(c.number("width", camera.width, positive=True))
-        camera.height = int(c.number("height", camera.height, positive=True))
+        camera.width = int(c.number("width", camera.width, positive=True, at_most=MAX_IMAGE_SIDE))
+        camera.height = int(c.number("height", camera.height, positive=True,
+                                     at_most=MAX_IMAGE_SIDE))
         camera.fov_y = c.number("fov_y", camera.fov_y, positive=True)
         for key in ("fx", "fy", "cx", "cy"):
             if c.has(key):
@@ -480,6 +486,12 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
             setattr(camera, key, c.number(key, getattr(camera, key), positive=True))
         if camera.position == camera.target:
             raise c.fail("camera position equals its target", "target")
+        view = [t - p for t, p in zip(camera.target, camera.position, strict=True)]
+        cross = (view[1] * camera.up[2] - view[2] * camera.up[1],
+                 view[2] * camera.up[0] - view[0] * camera.up[2],
+                 view[0] * camera.up[1] - view[1] * camera.up[0])
+        if math.hypot(*cross) <= 1e-9 * math.hypot(*view) * max(math.hypot(*camera.up), 1e-300):
+            raise c.fail("the camera looks along its 'up' vector (no image orientation)", "up")
     noise = NoiseSpec()
     if top.has("noise"):
         if data["noise"] is False:
@@ -511,7 +523,7 @@ def parse_scenario(data: Any, source: str = "<scenario>", base_dir: Path | None 
         events=events,
         camera=camera,
         noise=noise,
-        fps=top.number("fps", 15.0, positive=True),
+        fps=top.number("fps", 15.0, positive=True, at_most=MAX_FPS),
         duration=top.number("duration", positive=True) if top.has("duration") else None,
         table_size=table_size,
         table_colour=table_colour,
