@@ -8,6 +8,7 @@ import numpy as np
 
 from anchoring.anchor import Anchor
 from anchoring.similarity import (
+    BELIEF_RADIUS,
     FEATURES,
     category_similarity,
     colour_similarity,
@@ -47,7 +48,7 @@ def pair_evidence(anchors: Sequence[Anchor], percepts: Sequence[Percept],
         [an.position.augmented_support() for an in anchors],
         None if mass_radius is None else [an.position.support_weights() for an in anchors],
         np.array([pc.position for pc in percepts]),
-        radius=0.05 if mass_radius is None else mass_radius,
+        radius=BELIEF_RADIUS if mass_radius is None else mass_radius,
     )
     out[..., 3] = size_similarity(
         np.array([an.size.samples[0] for an in anchors]), np.array([pc.size for pc in percepts])

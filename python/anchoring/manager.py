@@ -61,7 +61,8 @@ from anchoring.anchor import Anchor
 from anchoring.blas import single_threaded_blas
 from anchoring.features import pair_evidence
 from anchoring.matcher import Matcher, load_default_matcher
-from anchoring.reidentify import unique_lookalikes
+from anchoring.reidentify import looks_alike, unique_lookalikes
+from anchoring.similarity import BELIEF_RADIUS
 from anchoring.validation import histogram_bins, invalid_reason
 from anchoring.views import Withheld, merged_views, withheld_views
 from percepts import Percept, PerceptError
@@ -164,7 +165,7 @@ class AnchorManager:
         reid_seconds: float = 0.3,
         reid_similarity: tuple[float, float, float] = (0.5, 0.9, 0.7),
         position_match: Literal["mass", "max"] = "mass",
-        belief_radius: float = 0.05,
+        belief_radius: float = BELIEF_RADIUS,
         belief_gate: float = 0.01,
         ambiguity_ratio: float = 0.5,
     ) -> None:
@@ -265,11 +266,14 @@ class AnchorManager:
         refuse = np.zeros((len(anchors), len(frame)), bool)
         scores = np.zeros((len(anchors), len(frame)))
         believed = np.array([a.position.is_probabilistic for a in anchors], bool)
+        # not perceived since the camera last saw nothing: the belief says where it was only
+        lost_blind = np.array([self.blind_time is not None and a.last_seen < self.blind_time
+                               for a in anchors], bool)
         if anchors and frame:
             scores = np.asarray(self.matcher.decision(features), dtype=float)
             refuse, merged = merged_views(anchors, frame, time,
                                           self.merge_ratio, self.merge_seconds)
-            refuse |= self._outside_belief(anchors, believed, mass)
+            refuse |= self._outside_belief(believed & ~lost_blind, mass)
             accept = (scores > 0) & ~refuse
             if accept.any():
                 # the matcher decides which pairs may match; the assignment takes as many
@@ -298,7 +302,8 @@ class AnchorManager:
             anchors, frame, features, matched_anchor, matched, merged, time,
             self._withholding, self.withhold_seconds, self.view_margin, self.view_colour)
         result.ambiguous = self._ambiguities(
-            anchors, believed, features, mass,
+            anchors, believed, lost_blind & np.array([a.confirmed for a in anchors], bool),
+            features, mass,
             {j: k for j, k in matched_anchor.items() if j not in views}, valid)
         perceived: set[str] = set()
         for j, i in enumerate(valid):
@@ -320,32 +325,24 @@ class AnchorManager:
         result.tracked = [a.symbol for a in anchors if a.symbol not in perceived]
         return result
 
-    def _outside_belief(self, anchors: list[Anchor], believed: np.ndarray,
-                        mass: np.ndarray) -> np.ndarray:
-        """(A, P) pairs refused because the anchor's belief puts less than ``belief_gate`` of
-        its mass near the percept (step 4 of the module docstring)."""
-        if self.belief_gate <= 0 or not believed.any():
+    def _outside_belief(self, informed: np.ndarray, mass: np.ndarray) -> np.ndarray:
+        """(A, P) pairs refused because an ``informed`` anchor's belief puts less than
+        ``belief_gate`` of its mass near the percept (step 4 of the module docstring)."""
+        if self.belief_gate <= 0:
             return np.zeros(mass.shape, bool)
-        blind = self.blind_time
-        informed = np.array([b and (blind is None or a.last_seen > blind)
-                             for a, b in zip(anchors, believed, strict=True)], bool)
         return informed[:, None] & (mass < self.belief_gate)
 
-    def _ambiguities(self, anchors: list[Anchor], believed: np.ndarray, features: np.ndarray,
-                     mass: np.ndarray, matched_anchor: dict[int, int],
+    def _ambiguities(self, anchors: list[Anchor], believed: np.ndarray, lost_blind: np.ndarray,
+                     features: np.ndarray, mass: np.ndarray, matched_anchor: dict[int, int],
                      valid: list[int]) -> list[Ambiguity]:
         """Re-acquisitions that nothing the robot saw tells from a look-alike's (step 7): by
         the beliefs' masses within ``ambiguity_ratio``; or, for an anchor not perceived since
         the camera last saw nothing, any look-alike in the same case (the two may have been
         exchanged unseen; each is then equally likely)."""
         out: list[Ambiguity] = []
-        cat, col, size = self.reid_similarity
-        blind = self.blind_time
-        lost_blind = np.array([blind is not None and a.confirmed and a.last_seen < blind
-                               for a in anchors], bool)
+        alike = looks_alike(features, self.reid_similarity)
         for j, k in matched_anchor.items():
-            looks = ((features[:, j, 0] >= cat) & (features[:, j, 1] >= col)
-                     & (features[:, j, 3] >= size))
+            looks = alike[:, j].copy()
             looks[k] = False
             if lost_blind[k]:
                 others = np.nonzero(looks & lost_blind)[0]
@@ -419,7 +416,7 @@ class AnchorManager:
                 reid_seconds=float(record.get("reid_seconds", 0.3)),
                 reid_similarity=tuple(record.get("reid_similarity", (0.5, 0.9, 0.7))),
                 position_match=record.get("position_match", "mass"),
-                belief_radius=float(record.get("belief_radius", 0.05)),
+                belief_radius=float(record.get("belief_radius", BELIEF_RADIUS)),
                 belief_gate=float(record.get("belief_gate", 0.01)),
                 ambiguity_ratio=float(record.get("ambiguity_ratio", 0.5)),
             )

@@ -17,6 +17,13 @@ import numpy as np
 from anchoring.anchor import Anchor
 
 
+def looks_alike(features: np.ndarray, reid_similarity: tuple[float, ...]) -> np.ndarray:
+    """(A, P): the anchor and the percept look alike (category, colour and size similarities
+    of the frame's (A, P, 5) ``features`` at least ``reid_similarity``; position not asked)."""
+    cat, col, size = (float(v) for v in reid_similarity)
+    return (features[..., 0] >= cat) & (features[..., 1] >= col) & (features[..., 3] >= size)
+
+
 def unique_lookalikes(anchors: list[Anchor], features: np.ndarray,
                       matched_anchor: dict[int, int], refuse: np.ndarray, time: float,
                       reid_seconds: float, reid_similarity: tuple[float, ...]
@@ -39,9 +46,7 @@ def unique_lookalikes(anchors: list[Anchor], features: np.ndarray,
                        and time - anchors[k].last_seen >= reid_seconds
                        for k in range(len(anchors))])
     free_p = np.array([j not in matched_anchor for j in range(features.shape[1])])
-    cat, col, size = (np.asarray(reid_similarity, dtype=float))
-    alike = ((features[..., 0] >= cat) & (features[..., 1] >= col)
-             & (features[..., 3] >= size) & ~refuse)
+    alike = looks_alike(features, reid_similarity) & ~refuse
     # uniqueness counts every anchor and percept left over, even one too recent to take
     left_a = np.array([k not in taken for k in range(len(anchors))])
     alike_left = alike & left_a[:, None] & free_p[None, :]

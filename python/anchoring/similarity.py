@@ -12,6 +12,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 FEATURES: tuple[str, ...] = ("category", "colour", "position", "size", "time")
+#: The kernel of a belief's mass near a percept (metres): too.pl's reappear_var is (5 cm)^2.
+BELIEF_RADIUS = 0.05
 
 
 class _Workspace:
@@ -68,7 +70,7 @@ def position_similarity_augmented(
 
 def position_evidence(
     anchor_augmented: Sequence[np.ndarray], anchor_weights: Sequence[np.ndarray] | None,
-    percept_positions: np.ndarray, radius: float = 0.05,
+    percept_positions: np.ndarray, radius: float = BELIEF_RADIUS,
 ) -> tuple[np.ndarray, np.ndarray | None]:
     """The best particle's similarity and the belief's mass near each percept, (A, P) each.
 
