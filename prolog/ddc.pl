@@ -52,6 +52,7 @@
 :- use_module(ddc_dist).
 :- use_module(ddc_store).
 :- use_module(ddc_batch).
+:- use_module(ddc_nesting).
 :- reexport(ddc_models).       % logistic/3, linear/3, softmax/3, mean_list/2, ...
 
 :- op(700, xfx, ~).
@@ -220,21 +221,42 @@ program_items(M, Items) :-
     M:'$ddc_items'(Items).
 
 %   read_program(+File, -Items): Items is a list of t(Term, Line).
+%
+%   The file is read in a temporary module that inherits the engine's
+%   operators (its base module is ddc): an `:- op/3` directive of the file
+%   applies to the rest of that file, from its line on, and to nothing
+%   else, so a program (even one that is refused) cannot change how other
+%   programs or queries are read.
 read_program(File, Items) :-
+    check_file_nesting(File),
+    in_temporary_module(Reader,
+                        set_module(Reader:base(ddc)),
+                        read_program(File, Reader, Items)).
+
+read_program(File, Reader, Items) :-
     setup_call_cleanup(
         open(File, read, S),
-        read_terms(S, File, Items),
+        read_terms(S, File, Reader, Items),
         close(S)).
 
-read_terms(S, File, Items) :-
-    catch(read_term(S, T, [ module(ddc), term_position(P), syntax_errors(error) ]),
+read_terms(S, File, Reader, Items) :-
+    catch(read_term(S, T, [ module(Reader), term_position(P), syntax_errors(error) ]),
           E, syntax_error(E, File)),
     (   T == end_of_file
     ->  Items = []
     ;   stream_position_data(line_count, P, Line),
+        reader_directive(T, Reader, File:Line),
         Items = [t(T, Line)|Rest],
-        read_terms(S, File, Rest)
+        read_terms(S, File, Reader, Rest)
     ).
+
+%   reader_directive(+Term, +Reader, +Where): an op/3 directive takes
+%   effect in the reading module at once; an error of op/3 (a bad priority
+%   or type, redefining `,` or `|`) is the program's error at Where.
+reader_directive(T, Reader, Where) :-
+    nonvar(T), T = (:- D), nonvar(D), D = op(P, Type, Names), !,
+    catch(op(P, Type, Reader:Names), E, load_error(E, op(P, Type, Names), Where)).
+reader_directive(_, _, _).
 
 syntax_error(error(syntax_error(Msg), Ctx), File) :- !,
     (   Ctx = stream(_, Line, _, _) -> true
@@ -255,10 +277,19 @@ install_program(M, File, Clauses, Info) :-
     set_module(M:base(user)),
     set_module(M:class(user)),
     declare_program_preds(M, Info),
-    optimised(forall(member(C, Clauses), assertz(M:C))),
+    optimised(forall(member(C, Clauses), install_clause(M, C))),
     assertz(M:'$ddc_info'(Info)),
     retractall(program_file_(M, _)),
     assertz(program_file_(M, File)).
+
+%   install_clause(+Module, +Clause): a clause compiled from a line of the
+%   program ('$at'(Line, C)) is kept with that line, so that an error at
+%   run time names it (program_error/4).
+install_clause(M, '$at'(L, C)) :- !,
+    assertz(M:C, Ref),
+    assertz(M:'$clause_line'(Ref, L)).
+install_clause(M, C) :-
+    assertz(M:C).
 
 %   optimised(:Goal): Goal (asserting clauses) with arithmetic compiled
 %   inline, as in this file; the caller's flag is restored.
@@ -272,6 +303,7 @@ declare_program_preds(M, Info) :-
     Info = info(DerU, DerT, _, _, _, _, _),
     dynamic(M:'$rv'/9),
     dynamic(M:'$rv_pos'/3),
+    dynamic(M:'$clause_line'/2),
     dynamic(M:'$ddc_info'/1),
     dynamic(M:'$ddc_items'/1),
     dynamic(M:'$ddc_tmp'/4),
@@ -301,13 +333,14 @@ derived_name(N, Kind, Name) :-
 %   Kind is u, state, trans or fixed(N).
 
 compile_program(File, M, Items0, Clauses, Info) :-
+    retractall(undefined_call_(_, _)),
     classify_items(Items0, File, 1, Items1, Dirs),
     directives_options(Dirs, File, M, Opts, DirClauses),
     add_persistence(Opts, Items1, Items),
     program_info(Items, Opts, Info),
     %   '$rv' clauses: tier 1 (untimed, h:0, h:t+1) before tier 2 (h:t)
-    findall(C, ( member(I, Items), \+ state_rv(I), compile_item(I, File, Info, Items, C) ), Cs1),
-    findall(C, ( member(I, Items), state_rv(I), compile_item(I, File, Info, Items, C) ), Cs2),
+    findall(C, ( member(I, Items), \+ state_rv(I), compile_item_at(I, File, Info, Items, C) ), Cs1),
+    findall(C, ( member(I, Items), state_rv(I), compile_item_at(I, File, Info, Items, C) ), Cs2),
     append(Cs1, Cs2, Cs0),
     derived_dispatchers(M, Info, Ds),
     clause_positions(Items, File, Ps),
@@ -338,7 +371,9 @@ compile_program(File, M, Items0, Clauses, Info) :-
     findall(rivals(Id, R), ( member(rv(Id, X, K, _, _, _), Items), tier(K, Tier),
                              rivals(Id, X, K, Tier, Info, Items, R) ), Rivals),
     append(Items, Rivals, BatchItems),
-    append([DirClauses, Cs0, Ds, Ps, Sw1, Sw2, ['$ddc_items'(BatchItems)]], Clauses).
+    append([DirClauses, Cs0, Ds, Ps, Sw1, Sw2, ['$ddc_items'(BatchItems)]], Clauses),
+    b_setval(ddc_compiling, []),
+    warn_undefined(File).
 
 state_rv(rv(_, _, state, _, _, _)).
 
@@ -364,6 +399,10 @@ time_ref(T, X, TE) :- compound(T), arg(_, T, A), time_ref(A, X, TE).
 
 classify_items([], _, _, [], []).
 classify_items([t(T, L)|Ts], File, Id, Items, Dirs) :-
+    (   sub_term(Z, T), compound(Z), compound_name_arity(Z, _, 0)
+    ->  throw(error(ddc(zero_arity_compound(Z), File:L), _))
+    ;   true
+    ),
     (   T = (:- D)
     ->  Items = Items1, Dirs = [D-L|Dirs1], Id1 = Id
     ;   classify(T, Id, L, File, Item)
@@ -381,9 +420,25 @@ classify((H ~ D <- B), Id, L, File, rv(Id, X, K, D1, B, L)) :- !,
 classify((H ~ D), Id, L, File, rv(Id, X, K, D1, true, L)) :- !,
     head_time(H, X, K, File, L), dist_sugar(D, D1).
 classify((H := B), Id, L, File, der(Id, X, K, B, L)) :- !,
-    head_time(H, X, K, File, L).
+    head_time(H, X, K, File, L),
+    check_left_recursion(H, B, File:L).
 classify((H <- B), Id, L, File, der(Id, X, K, B, L)) :- !,
-    head_time(H, X, K, File, L).
+    head_time(H, X, K, File, L),
+    check_left_recursion(H, B, File:L).
+
+%   check_left_recursion(+Head, +Body, +Where): a derived clause whose body
+%   starts by proving its own head again (`p := p.`, `p(X) := p(X), q(X).`,
+%   `h:t+1 := h:t+1.`) never terminates: the program's error at load, not
+%   a stack overflow at run time.
+check_left_recursion(H, B, Where) :-
+    first_goal(B, G),
+    nonvar(G), G == H, !,
+    throw(error(ddc(left_recursion(H), Where), _)).
+check_left_recursion(_, _, _).
+
+first_goal(B, G) :- var(B), !, G = B.
+first_goal((A, _), G) :- !, first_goal(A, G).
+first_goal(B, B).
 
 head_time(H, _, _, File, L) :-
     var(H), !,
@@ -442,9 +497,9 @@ directive(D, _, _, _, O, O, C, C) :-
     compound(D), functor(D, N, 1),
     memberchk(N, [set_options, set_inference, set_query_propagation, set_debug,
                   set_lifted, set_raoblackwellisation, set_current2nextcopy]), !.
-directive(dynamic(_), _, _, _, O, O, C, C) :- !.
+directive(dynamic(S), _, _, _, [facts(S)|O], O, C, C) :- !.   % read from a filter step's facts
 directive(discontiguous(_), _, _, _, O, O, C, C) :- !.
-directive(op(P, T, N), _, _, _, O, O, C, C) :- !, op(P, T, ddc:N).
+directive(op(_, _, _), _, _, _, O, O, C, C) :- !.     % applied while reading (read_program/2)
 directive(D, File, L, _, _, _, _, _) :-
     throw(error(ddc(bad_directive(D), File:L), _)).
 
@@ -498,7 +553,8 @@ program_info(Items, Opts, info(DerU, DerT, RvU, RvT, Plain, Impure, First)) :-
     impure_preds(Items, Impure0),
     append(RvU, RvT, Rvs),
     clean_preds(Items, Rvs, Clean),
-    append(Impure0, Clean, Impure).
+    findall(fact(S), ( member(facts(Spec), Opts), spec_list(Spec, Ss), member(S, Ss) ), Facts),
+    append([Impure0, Clean, Facts], Impure).
 
 clause_head((H :- _), H) :- !.
 clause_head(H, H).
@@ -594,6 +650,72 @@ clause_positions(Items, File, Ps) :-
 
 item_line(rv(_, _, _, _, _, L), L).
 item_line(der(_, _, _, _, L), L).
+
+%   compile_item_at(+Item, +File, +Info, +Items, -Clause) is nondet.
+%
+%   compile_item/5, with any error of compiling or checking the item (an
+%   atom where arithmetic needs a function, a plain clause for a control
+%   construct or a built-in predicate, `observed()`) the program's error at
+%   the item's line.
+compile_item_at(I, File, Info, Items, '$at'(Line, C)) :-
+    item_where(I, File, Where),
+    b_setval(ddc_compiling, Where),
+    catch(compile_item(I, File, Info, Items, C), E, item_error(E, I, File)),
+    check_clause(C, I, File),
+    item_where(I, File, _:Line).
+
+item_error(E, I, File) :-
+    item_where(I, File, Where),
+    load_error(E, I, Where).
+
+item_where(plain(_, L), File, File:L) :- !.
+item_where(I, File, File:L) :- item_line(I, L), !.
+item_where(_, File, File:0).
+
+%   load_error(+Error, +Culprit, +Where): rethrow Error of loading
+%   Culprit as the program's error at Where (an engine error that already
+%   names a line keeps it).
+load_error(error(ddc(C, W0), _), _, Where) :- !,
+    (   W0 = _:L0, integer(L0), L0 > 0 -> W = W0 ; W = Where ),
+    throw(error(ddc(C, W), _)).
+load_error(E, _, Where) :-
+    throw(error(ddc(prolog_error(E), Where), _)).
+
+%   check_clause(+Clause, +Item, +File): the errors assertz/1 would raise
+%   when the program is installed, found before anything is replaced: a
+%   head that is a control construct or a system predicate, and arithmetic
+%   (compiled inline) on an atom that is not an arithmetic function.
+check_clause(C, I, File) :-
+    (   C = (H :- B) -> true ; H = C, B = true ),
+    (   var(H)
+    ->  true
+    ;   ( \+ callable(H) ; timed_plain_head(H) )
+    ->  item_where(I, File, Where),
+        throw(error(ddc(bad_head(H), Where), _))
+    ;   predicate_property(system:H, iso)
+    ->  item_where(I, File, Where),
+        functor(H, N, A),
+        load_error(error(permission_error(modify, static_procedure, N/A), _), I, Where)
+    ;   arithmetic_atom(B, Atom)
+    ->  item_where(I, File, Where),
+        load_error(error(type_error(evaluable, Atom/0), _), I, Where)
+    ;   true
+    ).
+
+%   A plain clause whose head is a time-indexed term (`observed(a):t+1.`, a
+%   line of data rather than of a program) is not a clause of the program.
+timed_plain_head(H) :-
+    (   H = _:_ -> true ; H = (X:_)+_, nonvar(X) -> true ; H = (X:_)-_, nonvar(X) ).
+
+%   arithmetic_atom(+Body, -Atom): Atom appears where Body's arithmetic
+%   (is/2 and the comparisons) needs a number and is not a function.
+arithmetic_atom(B, Atom) :-
+    sub_term(G, B), compound(G),
+    compound_name_arity(G, Op, 2),
+    memberchk(Op, [is, <, >, =<, >=, =:=, =\=]),
+    arg(Side, G, Expr), ( Op == is -> Side == 2 ; true ),
+    sub_term(Atom, Expr), atom(Atom), Atom \== [],
+    \+ current_arithmetic_function(Atom), !.
 
 %   compile_item(+Item, +File, +Info, +Items, -Clause) is nondet.
 compile_item(plain(builtin(_), _), _, _, _, _) :- !, fail.
@@ -1018,9 +1140,14 @@ cb(G, C, Code) :-
     Code = (CA, CB, G1).
 cb(G, C, Code) :-
     timed_atom(G, X, TE), !,
-    C = ctx(W, Tc, Info, _),
+    C = ctx(W, Tc, Info, Kind),
     time_code(TE, Tc, T, TG),
-    timed_call(X, T, W, Info, Call),
+    timed_call(X, T, W, Info, Call0),
+    (   Kind \== query, Call0 = ddc:'$undefined'(W, XT)
+    ->  functor(X, N, A), note_undefined(N/A, Info),
+        Call = ddc:'$fact'(W, XT)
+    ;   Call = Call0
+    ),
     Code = (TG, Call).
 cb(G, C, Code) :-
     callable(G), !,
@@ -1035,10 +1162,36 @@ cb(G, C, Code) :-
     ->  Code = G
     ;   prolog_callable(G)
     ->  Code = G
-    ;   Code = ddc:'$fact'(W, G)
+    ;   Kind == query
+    ->  Code = ddc:'$undefined'(W, G)
+    ;   note_undefined(N/A, Info),
+        Code = ddc:'$fact'(W, G)
     ).
+
 cb(G, _, _) :-
     type_error(callable, G).
+
+%   note_undefined(+PI, +Info): a body calls PI, which the program defines
+%   nowhere and does not declare (`:- dynamic(PI).`, the predicates a
+%   filter step's facts define): remembered with the line of the clause
+%   being compiled, for the warning of warn_undefined/1.
+:- thread_local undefined_call_/2.
+
+note_undefined(PI, info(_, _, _, _, _, Impure, _)) :-
+    (   memberchk(fact(PI), Impure) -> true
+    ;   undefined_call_(PI, _) -> true
+    ;   nb_current(ddc_compiling, Where), Where \== []
+    ->  assertz(undefined_call_(PI, Where))
+    ;   true
+    ).
+
+%   warn_undefined(+File): one warning per predicate called in File's
+%   bodies and defined nowhere: it holds only for the facts of a filter
+%   step, and is false in a static query.
+warn_undefined(_) :-
+    forall(retract(undefined_call_(PI, Where)),
+           print_message(warning, error(ddc(undefined_predicate(PI), Where), _))).
+
 
 rv_operand(X) :- nonvar(X), X = _:_, \+ number(X).
 rv_operand(X) :- nonvar(X), X = (Y:_)+_, nonvar(Y).
@@ -1058,7 +1211,7 @@ timed_call(X, T, W, info(_, DerT, _, _, _, _, _), Call) :-
     (   memberchk(N/A, DerT)
     ->  X =.. [N|Args], derived_name(N, dt, DN),
         append(Args, [T, W], CArgs), Call =.. [DN|CArgs]
-    ;   Call = ddc:'$fact'(W, X:T)
+    ;   Call = ddc:'$undefined'(W, X:T)
     ).
 
 prolog_callable(G) :-
@@ -1275,7 +1428,7 @@ sample_shared(X, T, W, Val) :-
     ).
 
 deterministic(val(_)).
-deterministic('$chk'(val(_), _)).
+deterministic('$chk'(D, _)) :- nonvar(D), D = val(_).
 
 %   Checking for overlapping clauses proves the rivals' bodies; what they
 %   read does not make the value impure (it does not depend on them).
@@ -1315,9 +1468,12 @@ draw(D, _, V) :-
 %   Gaussians, whose check (a Cholesky factorisation) is the sampler's own
 %   work: those are checked only when sampling raises an error.
 cheap_check(D) :-
-    \+ expensive_check(D).
+    (   var(D) -> true ; \+ expensive_check(D) ).    % unbound: checked/3 raises
 
-%   Parameters valid by construction (a common case, tested inline).
+%   Parameters valid by construction (a common case, tested inline).  A
+%   distribution left unbound by its clause's body is not valid (checked/3
+%   names the clause).
+fast_valid(D) :- var(D), !, fail.
 fast_valid(uniform(S)) :-
     (   S = A:C, integer(A), integer(C) -> C >= A
     ;   is_list(S), S \== []
@@ -1327,6 +1483,9 @@ fast_valid(val(_)).
 expensive_check(gaussian(M, _)) :- is_list(M).
 expensive_check(indepGaussians(_)).
 
+checked(D, Id, W) :-
+    var(D), !,
+    '$clause_error'(W, Id, unbound_distribution).
 checked(D, Id, W) :-
     catch(dist_check(D), error(ddc_distribution(D1, Why), _),
           '$clause_error'(W, Id, distribution(D1, Why))).
@@ -1491,10 +1650,31 @@ clause_where(M, _, M:0).
 
 '$fact'(W, G) :-
     arg(12, W, Fs),
-    Fs \== [],
+    is_list(Fs), Fs \== [],
     functor(G, N, A),
     memberchk(N/A-L, Fs),
     member(G, L).
+
+%   '$undefined'(+World, +Goal): a call to a predicate the program does not
+%   define: true for the facts of a filter step that match Goal.
+'$undefined'(W, G) :-
+    arg(12, W, Fs),
+    (   Fs == static
+    ->  undefined_in_static(G)
+    ;   '$fact'(W, G)
+    ).
+
+%   static_world(!World): a world of a static query, which has no facts:
+%   a predicate that the program does not define (read from the facts in
+%   a filter) is an existence error there, named at the clause that calls
+%   it (program_error/4), not a silent failure.
+static_world(W) :-
+    nb_setarg(12, W, static).
+
+undefined_in_static(G) :-
+    (   G = X:_ -> true ; X = G ),
+    functor(X, N, A),
+    existence_error(procedure, N/A).
 
 %   group_facts(+Facts, -Groups): Name/Arity-[Fact, ...]
 group_facts(Facts, Groups) :-
@@ -1733,6 +1913,7 @@ empty_text(none).
 empty_text('None').
 
 text_goal(Text, G) :-
+    check_text_nesting(Text, query),
     catch(term_string(G, Text, [module(ddc)]), error(syntax_error(E), _),
           ( format(atom(A), "~w", [Text]),
             throw(error(ddc(syntax_error(E), text(A)), _)) )).
@@ -1767,6 +1948,7 @@ one_sample(M, Id, Time, Ev, I, s(W, DX, QW, X)) :-
     overlap_checked_worlds(Checked),
     (   I =< Checked -> Check = true ; Check = false ),
     new_world(M, Time, -1, Ev, Check, Wd),
+    static_world(Wd),
     M:'$ddc_tmp'(Id, s, Wd, Out),       % evidence, then the query (prepare_query/8)
     arg(6, Wd, LW),
     (   LW == 0.0 -> W = 1.0
@@ -1900,11 +2082,67 @@ ddc_sample_world(M, Q, Options, Facts) :-
     (   option(seed(Seed), Options) -> set_random(seed(Seed)) ; true ),
     M:'$ddc_info'(Info),
     new_world(M, Time, -1, [], W),
+    static_world(W),
     Ctx = ctx(W, Time, Info, query),
     cb(Q, Ctx, Code),
     once(M:Code),
     arg(1, W, S),
     store_entries(S, Facts).
+
+                 /*******************************
+                 *      ERRORS AT RUN TIME      *
+                 *******************************/
+
+%   An error raised while a program's clause runs (division by zero, a type
+%   error, throw/1 of the program, an undefined procedure) is turned into
+%   error(ddc(prolog_error(E), File:Line), _) naming the innermost clause of
+%   a program between where it was raised and where it is caught.  Nothing
+%   is paid when no exception is raised: the clause is found from the
+%   frames at that moment (program_error/4) and the table of the program's
+%   clause references and lines ('$clause_line'/2, written at load).  An
+%   exception caught inside the program's own clause (its catch/3) is left
+%   as it is, as are the engine's own errors.
+
+:- multifile prolog:prolog_exception_hook/5.
+:- dynamic prolog:prolog_exception_hook/5.
+
+install_exception_hook :-
+    Head = prolog:prolog_exception_hook(E0, E, Frame, Catcher, _),
+    (   clause(Head, ddc:program_error(E0, E, Frame, Catcher))
+    ->  true
+    ;   asserta((Head :- ddc:program_error(E0, E, Frame, Catcher)))
+    ).
+
+:- initialization(install_exception_hook).
+
+%!  program_error(+Error, -ProgramError, +Frame, +Catcher) is semidet.
+program_error(E0, E, Frame, Catcher) :-
+    \+ engine_error(E0),
+    program_frame(Frame, Catcher, 200, M, Ref),
+    M:'$clause_line'(Ref, Line),
+    program_file_(M, File), !,
+    E = error(ddc(prolog_error(E0), File:Line), _).
+
+engine_error(E) :- var(E), !.
+engine_error(error(ddc(_, _), _)).
+engine_error(error(ddc_distribution(_, _), _)).
+engine_error('$aborted').
+engine_error(unwind(_)).
+engine_error(time_limit_exceeded).
+
+%   program_frame(+Frame, +Catcher, +Depth, -Module, -ClauseRef): the first
+%   frame from Frame up (and below the catcher's frame) running a clause of
+%   a loaded program.
+program_frame(Frame, Catcher, D, M, Ref) :-
+    integer(Frame), Frame \== Catcher, D > 0,
+    (   prolog_frame_attribute(Frame, clause, Ref0),
+        prolog_frame_attribute(Frame, predicate_indicator, M0:_),
+        program_file_(M0, _)
+    ->  M = M0, Ref = Ref0
+    ;   prolog_frame_attribute(Frame, parent, Parent),
+        D1 is D-1,
+        program_frame(Parent, Catcher, D1, M, Ref)
+    ).
 
                  /*******************************
                  *            MESSAGES          *
@@ -1917,6 +2155,7 @@ prolog:message(error(ddc(Cause, Where), _)) -->
 where(File:Line) --> { integer(Line) }, !, [ '~w:~w: '-[File, Line] ].
 where(text(T)) --> !, [ 'in "~w": '-[T] ].
 where(query) --> !, [ 'query: ' ].
+where(nowhere) --> !, [].
 where(W) --> [ '~w: '-[W] ].
 
 cause(syntax_error(M)) --> !, [ 'syntax error: ~w'-[M] ].
@@ -1936,7 +2175,8 @@ cause(no_observation_clause(O)) --> !,
     [ 'no clause applies to the observation ~p'-[O] ].
 cause(no_such_file(F)) --> !, [ 'no such file ~w'-[F] ].
 cause(bad_directive(D)) --> !, [ 'unknown directive ~p'-[D] ].
-cause(bad_head(H)) --> !, [ 'not a clause head: ~p'-[H] ].
+cause(bad_head(H)) --> !,
+    [ 'not a clause head: ~p (a random variable is defined by ~~ or :=, e.g. h:t+1 := true)'-[H] ].
 cause(unbound_head) --> !, [ 'the clause head is a variable' ].
 cause(unknown_program(M)) --> !, [ 'no DC program ~p is loaded'-[M] ].
 cause(no_program_loaded) --> !, [ 'no DC program is loaded (use ddc_load/1)' ].
@@ -1949,6 +2189,21 @@ cause(batched_unsupported(What)) --> !,
     [ 'outside what the batched filter evaluates (use engine per_particle): ~p'-[What] ].
 cause(not_ground(X)) --> !, [ 'not ground: ~p'-[X] ].
 cause(bad_time(E)) --> !, [ 'bad time expression ~p (use t, t+K, t-K or an integer)'-[E] ].
+cause(zero_arity_compound(Z)) --> !,
+    { compound_name_arity(Z, Name, 0) },
+    [ '~q has no arguments: write ~q or give it arguments'-[Z, Name] ].
+cause(undefined_predicate(N/A)) --> !,
+    [ '~q/~w is called here but defined nowhere in the program: in a filter it holds for the facts of a step, in a static query it is false (declare it with :- dynamic(~q/~w) to say it comes from facts)'-[N, A, N, A] ].
+cause(too_deep(Max)) --> !,
+    [ 'brackets nest deeper than ~D, the most the reader takes'-[Max] ].
+cause(left_recursion(H)) --> !,
+    [ 'the body of ~p starts by proving ~p itself: its proof would not end (remove the clause)'-[H, H] ].
+cause(unbound_distribution) --> !,
+    [ 'the distribution is unbound after the clause body was proven (x ~~ D := Body must bind D)' ].
+cause(prolog_error(E)) -->
+    { E = error(_, _) }, !,
+    '$messages':translate_message(E).
+cause(prolog_error(E)) --> !, [ 'the program threw ~p'-[E] ].
 cause(unbound_random_variable) --> !, [ 'a random variable term is unbound' ].
 cause(C) --> [ '~p'-[C] ].
 

@@ -1043,9 +1043,7 @@ assign_branch(Any, C, D, Ps) :-
 run_clause(E, X, T, K, B, At, Rest, C, Action) :-
     At = at(L, Id, R),
     E = env(M, _, _, _, _, _, Check),
-    catch(forall(beval(B, E, Rest, Ps), call(Action, Ps)),
-          error(ddc_distribution(D1, Why), _),
-          throw(error(ddc(distribution(D1, Why), M:L), _))),
+    catch(forall(beval(B, E, Rest, Ps), call(Action, Ps)), Err, clause_error(Err, M:L)),
     (   R == true, Check \== []
     ->  ord_intersection(Rest, Check, Watched),
         exclude(uncomputed_at(C), Watched, Given),
@@ -1054,6 +1052,22 @@ run_clause(E, X, T, K, B, At, Rest, C, Action) :-
     ).
 
 uncomputed_at(C, I) :- arg(I, C, V), V == '$u'.
+
+%   clause_error(+Error, +Where): an error raised in the body of the clause
+%   at Where is the program's error there, as the per-particle engine
+%   reports it (ddc.pl, program_error/4): a distribution error, any other
+%   Prolog error or a term the program threw; the engine's own errors (which
+%   name their clause) pass unchanged.
+clause_error(error(ddc(Cause, W), _), Where) :-
+    var(W), !,
+    throw(error(ddc(Cause, Where), _)).
+clause_error(error(ddc_distribution(D, Why), _), Where) :- !,
+    throw(error(ddc(distribution(D, Why), Where), _)).
+clause_error(E, _) :-
+    ddc:engine_error(E), !,
+    throw(E).
+clause_error(E, Where) :-
+    throw(error(ddc(prolog_error(E), Where), _)).
 
 %   check_rivals(+Ps, +E, +X, +T, +K, +Id, +L): no clause of kind K after
 %   clause Id applies to X in the particles Ps (those an earlier one gave
@@ -1068,6 +1082,9 @@ check_rivals(Ps, E, X, T, K, Id, L) :-
     ;   true
     ).
 
+assign(_, _, D) :-
+    var(D), !,
+    throw(error(ddc(unbound_distribution, _), _)).      % clause_error/2 names the clause
 assign(Ps, C, D) :-
     (   D = val(V), \+ has_col(V)
     ->  set_each(Ps, C, V)
@@ -1155,7 +1172,7 @@ derived(G, T, E, Ps0, Ps) :-
     copy_term(H-B0, G1-B),
     G1 = G,
     env_now(E, Now1, E1),
-    beval(B, E1, Ps0, Ps),
+    catch(beval(B, E1, Ps0, Ps), Err, clause_error(Err, M:L)),
     (   has_free_var(G)                 % not range-restricted: as ddc.pl, an error
     ->  throw(error(ddc(non_ground_head(G), M:L), _))
     ;   true
@@ -1382,6 +1399,9 @@ weigh_clause(E, H, T, K, B, D, At, V, Ps, Done, LW) :-
     ;   run_clause(E, H, T, K, B, At, Rest, Done, weigh_branch(D, V, Done, LW))
     ).
 
+weigh_branch(D, _, _, _, _) :-
+    var(D), !,
+    throw(error(ddc(unbound_distribution, _), _)).
 weigh_branch(D, V, Done, LW, Ps) :-
     plan(D, Tmpl, Bs),
     dist_prepare(Tmpl, P),

@@ -48,6 +48,7 @@
 :- use_module(library(pairs)).
 :- use_module(library(readutil)).
 :- use_module(library(http/json)).
+:- use_module(ddc_nesting).
 
 :- meta_predicate belief_run(+, +, 1).
 
@@ -543,6 +544,7 @@ observation_term(Item, T) :-
 
 text_term(Text, T) :-
     (   string(Text) -> true ; throw(error(frame_syntax(not_term_text(Text)), _)) ),
+    catch(check_text_nesting(Text, nowhere), _, throw(error(frame_syntax(too_deep), _))),
     catch(term_string(T, Text, [module(ddc)]), E,
           throw(error(frame_syntax(term(Text, E)), _))),
     (   ground(T) -> true ; throw(error(frame_syntax(not_ground(Text)), _)) ).
@@ -587,6 +589,9 @@ frame_syntax(not_a_list(K)) --> !, [ '~w must be a list'-[K] ].
 frame_syntax(bad_observation(I)) --> !,
     [ 'an observation is term text or {"observation": TERM, "value": V}, not ~q'-[I] ].
 frame_syntax(not_term_text(X)) --> !, [ 'not term text: ~q'-[X] ].
+frame_syntax(too_deep) --> !,
+    { max_nesting(Max) },
+    [ 'a term whose brackets nest deeper than ~D, the most the reader takes'-[Max] ].
 frame_syntax(term(Text, _)) --> !, [ 'syntax error in ~q'-[Text] ].
 frame_syntax(not_ground(Text)) --> !, [ 'not ground: ~q'-[Text] ].
 frame_syntax(bad_value(V)) --> [ 'cannot use ~q as an observed value'-[V] ].

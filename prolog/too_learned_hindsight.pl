@@ -23,6 +23,11 @@
     What it reads back, per particle: pos(A):t ~= (X,Y,Z) and occluded_by(A, O):t.
 */
 
+% ------------------------------------------------------------------ facts
+% What the runner asserts at every step (above): declared, so that reading them is not taken
+% for a call to a predicate defined nowhere.
+:- dynamic((object/1, category/2, observed/1)).
+
 % ------------------------------------------------------------------ parameters
 % Variances are per axis, in square metres; one step is one camera frame.
 obs_var(0.0001).            % measurement noise of a perceived position: (1 cm)^2

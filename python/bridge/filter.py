@@ -173,18 +173,29 @@ error_text(E, S) :- format(string(S), "~q", [E]).
 guarded(Goal, Err) :-
     catch((Goal, Err = ""), E, (error_text(E, Msg), bridge_error(E, Msg, Err))).
 
-bridge_error(bridge(goal, _, Text, Msg), _, Err) :- !,
+bridge_error(bridge(goal, _, Text0, Msg), _, Err) :- !,
+    shown_text(Text0, Text),
     format(string(Err), "goal ~w: ~w", [Text, Msg]).
-bridge_error(bridge(Kind, I, Text, Msg), _, Err) :- !,
+bridge_error(bridge(Kind, I, Text0, Msg), _, Err) :- !,
+    shown_text(Text0, Text),
     format(string(Err), "~w ~w (~w): ~w", [Kind, I, Text, Msg]).
 bridge_error(_, Msg, Msg).
+
+% shown_text(+Text, -Shown): a text as an error message shows it (at most 200 characters)
+shown_text(Text, Shown) :-
+    string_length(Text, N),
+    (   N =< 200 -> Shown = Text
+    ;   sub_string(Text, 0, 120, _, Head), sub_string(Text, _, 40, 0, Tail),
+        format(string(Shown), "~w ... ~w, ~D characters", [Head, Tail, N])
+    ).
 
 parse_terms(Kind, Texts, Terms) :-
     foldl(parse_term(Kind), Texts, Terms, 1, _).
 
 parse_term(Kind, Text, Term, I, I1) :-
     I1 is I + 1,
-    catch(term_string(Term, Text, [module(ddc)]), E,
+    catch(( ddc_nesting:check_text_nesting(Text, nowhere),
+            term_string(Term, Text, [module(ddc)]) ), E,
           ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(Kind, I, Text, Msg)) )),
     (   ground(Term) -> true
     ;   throw(bridge(Kind, I, Text, "not ground (observations and actions must be)"))
@@ -194,7 +205,8 @@ clean(Msg0, Msg) :- split_string(Msg0, "\n", " ", [Msg|_]), !.
 clean(Msg, Msg).
 
 parse_goal(Text, Goal) :-
-    catch(term_string(Goal, Text, [module(ddc)]), E,
+    catch(( ddc_nesting:check_text_nesting(Text, nowhere),
+            term_string(Goal, Text, [module(ddc)]) ), E,
           ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(goal, "", Text, Msg)) )).
 
 new(Program, N, Seed, Share, Threads, Engine, Key, Used, Err) :-

@@ -8,6 +8,8 @@
 % Per frame: observed(O) for each object seen, and observation(pos(O)) ~= (X,Y,Z) for its
 % position (metres).  Query e.g.  occluded_by(ball_1, box_1):t  or  pos(ball_1):t.
 
+:- dynamic(observed/1).          % a fact of each step (the filter's actions / facts)
+
 object(ball_1) := true.
 object(box_1) := true.
 

@@ -12,6 +12,8 @@
 %   (pit,pit,pit) 1/29 = 0.0345; (pit,pit,free), (pit,free,pit), (free,pit,pit) 4/29 = 0.1379;
 %   (free,pit,free) 16/29 = 0.5517; P(free) at (1,1) = 4/29 = 0.1379, at (2,0) = 20/29 = 0.6897.
 
+:- dynamic(action/1).          % a fact of each step (the filter's actions / facts)
+
 cell(X, Y) := between(-1, 2, X), between(-1, 2, Y).
 
 next_to(up, (X, Y), (X, Y1)) := Y1 is Y + 1.

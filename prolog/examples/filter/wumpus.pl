@@ -12,6 +12,8 @@
 % Run:  ddc filter prolog/examples/filter/wumpus.pl prolog/examples/filter/wumpus.jsonl \
 %           --query 'maze(0,1):t ~= wall'
 
+:- dynamic(action/1).          % a fact of each step (the filter's actions / facts)
+
 cell(X, Y) := between(-2, 2, X), between(-2, 2, Y).
 
 neighbour(up, (X, Y), (X, Y1)) := Y1 is Y + 1.
