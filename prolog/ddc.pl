@@ -399,7 +399,11 @@ time_ref(T, X, TE) :- compound(T), arg(_, T, A), time_ref(A, X, TE).
 
 classify_items([], _, _, [], []).
 classify_items([t(T, L)|Ts], File, Id, Items, Dirs) :-
-    (   sub_term(Z, T), compound(Z), compound_name_arity(Z, _, 0)
+    (   var(T)
+    ->  throw(error(ddc(unbound_head, File:L), _))
+    ;   ( T = (:- D) ; T = (_ :- D) ), var(D)
+    ->  throw(error(ddc(unbound_body, File:L), _))
+    ;   sub_term(Z, T), compound(Z), compound_name_arity(Z, _, 0)
     ->  throw(error(ddc(zero_arity_compound(Z), File:L), _))
     ;   true
     ),
@@ -699,8 +703,39 @@ check_clause(C, I, File) :-
     ;   arithmetic_atom(B, Atom)
     ->  item_where(I, File, Where),
         load_error(error(type_error(evaluable, Atom/0), _), I, Where)
+    ;   term_variables(H, Seen),
+        \+ fresh_arithmetic(B, Seen, _)
+    ->  item_where(I, File, Where),
+        throw(error(ddc(fresh_arithmetic, Where), _))
     ;   true
     ).
+
+%   fresh_arithmetic(+Body, +Seen0, -Seen) fails when an arithmetic goal
+%   that the compiler inlines (is/2 or a comparison, in a conjunction,
+%   disjunction, if-then-else or negation) reads a variable that occurs
+%   nowhere before it in the clause: assertz/1 would refuse the clause.
+fresh_arithmetic(G, Seen0, Seen) :-
+    var(G), !, Seen = [G|Seen0].
+fresh_arithmetic(G, Seen0, Seen) :-
+    compound(G), compound_name_arity(G, Op, 2),
+    memberchk(Op, [',', ;, ->, *->]), !,
+    arg(1, G, A), arg(2, G, B),
+    fresh_arithmetic(A, Seen0, Seen1),
+    fresh_arithmetic(B, Seen1, Seen).
+fresh_arithmetic(\+ G, Seen0, Seen) :- !,
+    fresh_arithmetic(G, Seen0, Seen).
+fresh_arithmetic(G, Seen0, Seen) :-
+    compound(G), compound_name_arity(G, Op, 2),
+    memberchk(Op, [is, <, >, =<, >=, =:=, =\=]), !,
+    arg(2, G, R), arg(1, G, L),
+    (   Op == is -> Read = R ; Read = L-R ),
+    term_variables(Read, Vs),
+    forall(member(V, Vs), memberchk_eq(V, Seen0)),
+    term_variables(L, Ls),
+    append(Ls, Seen0, Seen).
+fresh_arithmetic(G, Seen0, Seen) :-
+    term_variables(G, Vs),
+    append(Vs, Seen0, Seen).
 
 %   A plain clause whose head is a time-indexed term (`observed(a):t+1.`, a
 %   line of data rather than of a program) is not a clause of the program.
@@ -2177,7 +2212,10 @@ cause(no_such_file(F)) --> !, [ 'no such file ~w'-[F] ].
 cause(bad_directive(D)) --> !, [ 'unknown directive ~p'-[D] ].
 cause(bad_head(H)) --> !,
     [ 'not a clause head: ~p (a random variable is defined by ~~ or :=, e.g. h:t+1 := true)'-[H] ].
+cause(fresh_arithmetic) --> !,
+    [ 'arithmetic (is/2 or a comparison) reads a variable that nothing before it binds' ].
 cause(unbound_head) --> !, [ 'the clause head is a variable' ].
+cause(unbound_body) --> !, [ 'the directive or clause body is a variable' ].
 cause(unknown_program(M)) --> !, [ 'no DC program ~p is loaded'-[M] ].
 cause(no_program_loaded) --> !, [ 'no DC program is loaded (use ddc_load/1)' ].
 cause(query_never_holds(Q)) --> !, [ 'the query ~p never holds in a sample that counts'-[Q] ].

@@ -45,3 +45,32 @@ def test_a_bad_percept_is_dropped_with_its_line_and_cause(tmp_path: Path, bad: d
     assert len(frame.rejected) == 2
     assert f"{path}:1: percept 1:" in frame.rejected[0] and cause in frame.rejected[0]
     assert "a percept is a JSON object, not int" in frame.rejected[1]
+
+
+@pytest.mark.parametrize(("bad", "cause"), [
+    ({"category": {"ball": 0.9, "cup": 0.9, "box": 0.9}}, "category probabilities sum to 2.7"),
+    ({"colour_names": "blue"}, "'colour_names' must be a list of names, not str"),
+])
+def test_a_percept_that_claims_too_much_is_dropped(tmp_path: Path, bad: dict,
+                                                   cause: str) -> None:
+    path = stream(tmp_path, {"frame": 0, "time": 0,
+                             "percepts": [good_percept(), {**good_percept(), **bad}]})
+    (frame,) = read_percepts(path)
+    assert len(frame.percepts) == 1 and cause in frame.rejected[0], frame.rejected
+
+
+@pytest.mark.parametrize(("second", "cause"), [
+    ({"frame": 0, "time": 0.0}, "frame 0 follows frame 0: frame numbers must increase"),
+    ({"frame": 1, "time": -0.1}, "time -0.1 is before the previous frame's 0.0"),
+    ({"frame": 1, "time": "NaN"}, "time is nan"),
+])
+def test_a_duplicated_or_reordered_frame_is_skipped_with_its_line(
+        tmp_path: Path, second: dict, cause: str) -> None:
+    path = stream(tmp_path, {"frame": 0, "time": 0.0, "percepts": [good_percept()]},
+                  {**second, "percepts": [good_percept()]},
+                  {"frame": 2, "time": 0.2, "percepts": [good_percept()]})
+    with pytest.raises(PerceptError, match=rf"{path}:2: not a percept frame: {cause}"):
+        list(read_percepts(path))
+    skipped: list[str] = []
+    assert [f.frame for f in read_percepts(path, skipped)] == [0, 2]
+    assert len(skipped) == 1 and cause in skipped[0]

@@ -8,6 +8,9 @@ from typing import Any
 
 import numpy as np
 
+#: how far above 1 the category probabilities of a percept may sum (a writer that rounds them)
+CATEGORY_SUM_TOLERANCE = 0.01
+
 
 class PerceptError(ValueError):
     """A percept that cannot be used (NaN, empty histogram, wrong shape...)."""
@@ -66,6 +69,9 @@ class Percept:
         for name, p in self.category.items():
             if not (isinstance(p, (int, float)) and math.isfinite(p) and 0 <= p <= 1):
                 raise PerceptError(f"category {name!r} has probability {p!r}")
+        total = math.fsum(self.category.values())
+        if total > 1 + CATEGORY_SUM_TOLERANCE:
+            raise PerceptError(f"category probabilities sum to {total:g}, more than 1")
 
     def to_json(self) -> dict[str, Any]:
         record: dict[str, Any] = {
@@ -87,6 +93,9 @@ class Percept:
     def from_json(cls, record: dict[str, Any]) -> Percept:
         if not isinstance(record, dict):
             raise PerceptError(f"a percept is a JSON object, not {type(record).__name__}")
+        if not isinstance(record.get("colour_names", []), list):
+            raise PerceptError("'colour_names' must be a list of names, not "
+                               f"{type(record.get('colour_names')).__name__}")
         if not isinstance(record.get("category"), dict):
             raise PerceptError("'category' must be an object of category -> probability, not "
                                f"{type(record.get('category')).__name__}")
