@@ -633,21 +633,25 @@ blocks_sample([(M, C)|Bs], Xs) :-
 %   same random draws).  A 1-D gaussian with a numeric variance and a 3-D
 %   one with a ground covariance are prepared (the variance's root, the
 %   covariance's Cholesky factor and the log normaliser are computed here,
-%   once, after dist_check/1 on the covariance); any other Dist is kept as
-%   it is and checked at each use.
+%   once, when dist_check/1 accepts them); any other Dist is kept as it is
+%   and checked at each use.
 dist_prepare(gaussian(M, V), gauss1(M, V, SD, LogNorm)) :-
-    \+ is_list(M), (var(M) ; number(M)), number(V), !,
-    dist_check(gaussian(0.0, V)),
+    \+ is_list(M), (var(M) ; number(M)), number(V),
+    valid(gaussian(0.0, V)), !,
     SD is sqrt(V),
     LogNorm is -0.5*(log(V) + 1.8378770664093453).
 dist_prepare(gaussian(Ms, Cs), gauss3(M1, M2, M3, Cs, L11, L21, L22, L31, L32, L33, LogNorm)) :-
     is_list(Ms), Ms = [M1, M2, M3], ground(Cs), is_list(Cs),
-    maplist(mean_slot, Ms), !,
-    dist_check(gaussian([0.0, 0.0, 0.0], Cs)),
+    maplist(mean_slot, Ms),
+    valid(gaussian([0.0, 0.0, 0.0], Cs)), !,
     Cs = [C11, _, _, C21, C22, _, C31, C32, C33],
     chol3(C11, C21, C22, C31, C32, C33, L11, L21, L22, L31, L32, L33),
     LogNorm is -log(L11*L22*L33) - 1.5*1.8378770664093453.
-dist_prepare(D, any(D)).
+dist_prepare(D, any(D)).        % (invalid parameters: each use raises dist_check/1's error,
+                                %  showing the distribution with its mean bound)
+
+valid(D) :-
+    catch(dist_check(D), error(ddc_distribution(_, _), _), fail).
 
 mean_slot(M) :- ( var(M) -> true ; number(M) ).
 

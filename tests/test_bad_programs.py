@@ -101,6 +101,12 @@ FILTER_CASES = [
     ("x:0 ~ val(1).\nflag(W):t+1 ~ val(1) := true.\n", 2, r"is not ground"),
     ("x:0 ~ val(1).\nbad:t+1 := x:t ~= X, Y is X/0, Y > 0.\n"
      "x:t+1 ~ val(X) := x:t ~= X, \\+ bad:t+1.\n", 2, r"zero_divisor"),
+    ("x:0 ~ val(1).\nx:t+1 ~ gaussian(X, V) := x:t ~= X, V is X - 2.\n", 2,
+     r"Invalid distribution gaussian\(1,-1\): the variance is negative"),
+    ("x:0 ~ val(1).\nx:t+1 ~ finite([P:a, 0.6:b]) := x:t ~= 1, P is 0.5.\n", 2,
+     r"the probabilities sum to 1.1"),
+    ("x:0 ~ val(1).\nx:t+1 ~ val(2) := x:t ~= 1.\nx:t+1 ~ val(3) := x:t ~= X, X > 0.\n", 2,
+     r"two clauses define x:1 in the same world: this one and the one at .*:3"),
 ]
 
 
