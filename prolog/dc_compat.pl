@@ -169,7 +169,7 @@ set_debug(X) :- setter(set_debug(X)).
 set_current2nextcopy(X) :- setter(set_current2nextcopy(X)).
 
 setter(D) :-
-    (   original_directive(D, goal:0) -> true
+    (   original_directive(D, goal:0, _) -> true
     ;   domain_error(original_option, D)
     ).
 
@@ -278,7 +278,7 @@ init_particle(N) :-
     retractall(current_belief_(_, _)),
     retractall(ll_offset_(_)),
     Seed is random(1 << 30),
-    belief_new(File, [particles(N), seed(Seed), resample_threshold(0.9)], B),
+    belief_new(File, [particles(N), seed(Seed), engine(per_particle)], B),
     assertz(current_belief_(B, N)),
     assertz(ll_offset_(0.0)),
     bb_put(dcpf:offset, 0).

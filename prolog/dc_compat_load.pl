@@ -10,7 +10,7 @@
 */
 
 :- module(dc_compat_load,
-          [ original_directive/2,       % +Directive, +File:Line
+          [ original_directive/3,       % +Directive, +File:Line, -Options
             original_arithmetic/2       % +Term0, -Term
           ]).
 
@@ -38,19 +38,25 @@ answers are this engine's (docs/dc-compat.md lists the differences).  An
 option value the original did not know is an error.
 */
 
-%!  original_directive(+Directive:callable, +Where:compound) is semidet.
+%!  original_directive(+Directive:callable, +Where:compound, -Options:list) is semidet.
 %
 %   Directive is one of the original's option setters, or a conjunction of
 %   them; Where is File:Line of the directive.  Prints a warning for each
-%   option that changes nothing here.  Fails for any other directive.
-%   Throws error(ddc(bad_directive(D), Where), _) for an option setter
-%   with a value the original did not accept.
-original_directive(D, Where) :-
+%   option that changes nothing here.  Options are the program options of
+%   ddc.pl it stands for: set_options/1 (which every program of the
+%   original calls) gives [first(all)], the original's rule that the first
+%   clause (in file order) whose body holds defines a variable, where
+%   ddc.pl would otherwise refuse two clauses that apply in one world.
+%   Fails for any other directive.  Throws error(ddc(bad_directive(D),
+%   Where), _) for an option setter with a value the original did not
+%   accept.
+original_directive(D, Where, Options) :-
     must_be(compound, Where),
     nonvar(D),
     conjuncts(D, Ds),
     forall(member(D1, Ds), option_setter(D1)),
-    forall(member(D1, Ds), check_option(D1, Where)).
+    forall(member(D1, Ds), check_option(D1, Where)),
+    (   memberchk(set_options(_), Ds) -> Options = [first(all)] ; Options = [] ).
 
 conjuncts(D, _) :- var(D), !, fail.
 conjuncts((A, B), Ds) :- !,

@@ -501,8 +501,9 @@ directive(use_module(_, _), _, _, _, O, O, C, C) :- !.
 directive(ensure_loaded(_), _, _, _, O, O, C, C) :- !.
 directive(initialization(_), _, _, _, O, O, C, C) :- !.        % the originals' test runners
 directive(initialization(_, _), _, _, _, O, O, C, C) :- !.
-directive(D, File, L, _, O, O, C, C) :-
-    original_directive(D, File:L), !.          % set_options/1, ... (dc_compat_load.pl)
+directive(D, File, L, _, O0, O, C, C) :-
+    original_directive(D, File:L, Os), !,      % set_options/1, ... (dc_compat_load.pl)
+    append(Os, O, O0).
 directive(dynamic(S), _, _, _, [facts(S)|O], O, C, C) :- !.   % read from a filter step's facts
 directive(discontiguous(_), _, _, _, O, O, C, C) :- !.
 directive(op(_, _, _), _, _, _, O, O, C, C) :- !.     % applied while reading (read_program/2)
