@@ -25,6 +25,7 @@
             eval_query_distribution/8,  % ?X, +PosEv, +NegEv, +Query, +N, -P, -Succ, -Sum
             eval_query_valuelist/7,     % +PosEv, +NegEv, +Query, ?X, +N, -P, -Sum
             test_query/6,               % +PosEv, +NegEv, +Query, ?X, +N, -P
+            generate_backward/2,        % +Query, -Facts
             init_particle/1,            % +N
             init_particle/2,            % +Obs, +N
             init_particle/3,            % +Actions, +Obs, +N
@@ -238,6 +239,22 @@ test_query(PosEv, NegEv, Q, X, N, P) :-
     call_time(query(PosEv, NegEv, Q, X, N, P, S, Sum), Time),
     format("lw(~w,~w,~w)  % ~3f s~n", [P, S, Sum, Time.cpu]).
 
+%!  generate_backward(+Query, -Facts:list) is semidet.
+%
+%   Proves Query in one sampled world of the program loaded last; Facts is
+%   what the world holds: `h ~= V` for untimed, `h:T ~= V` for time-indexed
+%   values (derived atoms as `h ~= true`).  Fails if Query fails in the
+%   world drawn.
+generate_backward(Q, Facts) :-
+    (   ddc_program(M) -> true ; throw(error(ddc(no_program_loaded, query), _)) ),
+    ddc:ddc_sample_world(M, Q, [], Entries),
+    foldl(world_fact, Entries, Facts, []).
+
+%   (A variable found undefined in the world, '$undef', is left out.)
+world_fact(_-_-V, Fs, Fs) :- V == '$undef', !.
+world_fact(X-u-V, [X ~= V|Fs], Fs) :- !.
+world_fact(X-T-V, [X:T ~= V|Fs], Fs).
+
 evidence(PosEv, NegEv, Ev) :-
     must_be(list, PosEv),
     must_be(list, NegEv),
@@ -248,7 +265,8 @@ evidence(PosEv, NegEv, Ev) :-
 %
 %   The density of N(Mean, Var) (Var the variance) at X.
 densityGaussian(M, V, X, D) :-
-    must_be(number, M), must_be(positive_number, V), must_be(number, X),
+    must_be(number, M), must_be(number, V), must_be(number, X),
+    (   V > 0 -> true ; domain_error(positive_variance, V) ),
     D is exp(-((X-M)**2)/(2*V)) / sqrt(2*pi*V).
 
 %!  remove_duplicates(+List:list, -Set:list) is det.

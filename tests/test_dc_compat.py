@@ -131,6 +131,25 @@ def test_dcpf_wumpus_step_particle_and_eval_query_particle() -> None:
     assert abs(printed(out, "loglikelihood") - math.log(0.42 * 0.58)) < 0.05
 
 
+def test_probabilistic_graph_and_generate_backward() -> None:
+    n = 10000
+    out = run_old("exampleproblog.pl", f"test({n})").stdout
+    assert abs(printed(out, "p(1,4)") - 0.125) <= 3 * binomial_se(0.125, n)
+    assert abs(printed(out, "p(1,5)") - 0.25) <= 3 * binomial_se(0.25, n)
+    assert printed(out, "path(1,5)") == pytest.approx(1.0)
+    world = out.split("one world:")[1]
+    assert "e(1,6)~=true" in world and "e(6,5)~=true" in world and "$undef" not in world
+
+
+def test_forward_inference_is_accepted_with_a_warning_and_answers_the_same() -> None:
+    n = 2000
+    result = run_old("forwarddcpfwumpus.pl", f"test1({n})")
+    assert re.search(r"forwarddcpfwumpus\.pl:20: set_inference\(false\): forward sampling is not "
+                     r"implemented", result.stderr)
+    exact = 0.4 * 0.9 / (0.4 * 0.9 + 0.6 * 0.1)
+    assert abs(printed(result.stdout, "P(maze(0,1)=wall)") - exact) <= 3 * binomial_se(exact, n)
+
+
 def test_dcpf_pit_world_unittest() -> None:
     out = run_old("dcpfwumpus2.pl", "unittest").stdout
     n = 10000
