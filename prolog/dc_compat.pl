@@ -81,7 +81,7 @@ original was wrong (docs/dc-compat.md has the table).
 */
 
 :- dynamic
-    dc_source_/1,                  % a file loaded through the original's header
+    dc_source_/2,                  % dc_source_(File, LoadStream): loaded through the original's header
     current_belief_/2,             % current_belief_(Belief, N)
     ll_offset_/1.                  % log-likelihood before reset_loglikelihood/0
 
@@ -99,13 +99,16 @@ original was wrong (docs/dc-compat.md has the table).
 %   get the original's arithmetic.
 original_term((:- use_module(S)), F, []) :-
     original_library(S), !,
-    (   dc_source_(F)
-    ->  true
-    ;   assertz(dc_source_(F)),
+    style_check(-singleton),        % (the original's programs are full of them; for this file only)
+    prolog_load_context(stream, In),
+    (   dc_source_(F, In)
+    ->  true                        % the header's second line, this load
+    ;   retractall(dc_source_(F, _)),
+        assertz(dc_source_(F, In)),
         catch(ddc_load(F), E, print_message(error, E))
     ).
 original_term(T, F, X) :-
-    dc_source_(F),
+    dc_source_(F, _),
     (   dc_clause(T)
     ->  X = []
     ;   T = (:- D), original_directive_quiet(D)
@@ -318,19 +321,25 @@ init_particle(Actions, Obs, N) :-
 %   One filter step to t+1 with the actions (`action(null)`, ...) and the
 %   observations (`observation(up) ~= wall`, ...): predict, weigh by the
 %   observations, resample when the effective sample size falls below
-%   0.9 N (ddc_belief:belief_step/4).  Delta and Constraints were ignored
-%   by the original's examples and are here.  N must be the number of
-%   particles of init_particle/1.
+%   0.9 N (ddc_belief:belief_step/4).  As in the original, `deltaT(Delta)`
+%   holds during the step (default 1), unless the program defines deltaT/1
+%   itself; Constraints are ignored, as they were.  N must be the number
+%   of particles of init_particle/1.
 step_particle(Obs, N) :-
     step_particle([], Obs, [], N, 1).
 step_particle(Actions, Obs, N) :-
     step_particle(Actions, Obs, [], N, 1).
 step_particle(Actions, Obs, N, Delta) :-
     step_particle(Actions, Obs, [], N, Delta).
-step_particle(Actions, Obs, _Constraints, N, _Delta) :-
-    must_be(list, Actions), must_be(list, Obs),
+step_particle(Actions, Obs, _Constraints, N, Delta) :-
+    must_be(list, Actions), must_be(list, Obs), must_be(number, Delta),
     belief(N, B),
-    belief_step(B, Obs, Actions).
+    ddc_program(M),
+    (   current_predicate(M:deltaT/1)
+    ->  Facts = Actions             % the program's own deltaT/1 stays (the original wiped it)
+    ;   Facts = [deltaT(Delta)|Actions]
+    ),
+    belief_step(B, Obs, Facts).
 
 %!  step_particle_aux(+Actions:list, +Obs:list, +N:integer) is det.
 %!  step_particle_ps(+Obs:list, +N:integer) is det.

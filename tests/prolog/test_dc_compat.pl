@@ -132,4 +132,28 @@ test(density_gaussian) :-
     densityGaussian(0, 0.01, 0.0, D),
     assertion(abs(D - 3.98942280401433) < 1e-9).
 
+test(delta_t_and_eval_average_particle) :-
+    header(H),
+    append(H, [':- set_options(default).',
+               'x:0 ~ val(0.0).',
+               'x:t+1 ~ val(Y) := x:t ~= X, deltaT(D), Y is X + D.'], Ls),
+    program(Ls, F),
+    ddc_load(F),
+    init_particle(10),
+    step_particle([], [], 10, 0.5),
+    step_particle([], [], [], 10, 0.25),
+    eval_average_particle([A:k], k, current(x), 10, [P:k]),
+    assertion(abs(A - 0.75) < 1e-9),
+    assertion(abs(P - 1.0) < 1e-9),
+    get_loglikelihood(LL), assertion(abs(LL) < 1e-9).
+
+test(wrong_particle_count_is_a_domain_error) :-
+    header(H),
+    append(H, [':- set_options(default).', 'x:0 ~ val(0.0).'], Ls),
+    program(Ls, F),
+    ddc_load(F),
+    init_particle(10),
+    catch(step_particle([], [], 20), error(E, _), true),
+    assertion(E == domain_error(particles(10), 20)).
+
 :- end_tests(dc_compat_entry_points).
