@@ -26,8 +26,9 @@ COMPAT = ROOT / "prolog" / "dc_compat.pl"
 H10 = sum(1.0 / k for k in range(1, 11))
 
 
-def run_old(program: str, goal: str, seed: int = 1) -> subprocess.CompletedProcess[str]:
-    """``swipl prolog/dc_compat.pl FILE`` with ``goal`` after a fixed seed; the run must succeed."""
+def run_old(program: str | Path, goal: str, seed: int = 1) -> subprocess.CompletedProcess[str]:
+    """``swipl prolog/dc_compat.pl FILE`` (a name in ``prolog/examples/dc`` or a path) with
+    ``goal`` after a fixed seed; the run must succeed."""
     result = subprocess.run(
         [swipl_executable(), "-q", "-g", f"set_random(seed({seed})), {goal}", "-t", "halt",
          str(COMPAT), str(DC / program)],
@@ -85,6 +86,21 @@ def test_example1_runs_its_test_on_load_and_its_other_tests() -> None:
     sd = math.sqrt(1 / (2 * math.pi * v * math.sqrt(3)) - mean ** 2)
     assert abs(printed(out, "density g2=0.0") - mean) <= 3 * sd / math.sqrt(n)
     assert printed(out, "density g2=0.1|g=0.1") == pytest.approx(3.98942280401433, rel=1e-9)
+
+
+def test_example1_with_query_propagation_is_the_original_test_pl(tmp_path: Path) -> None:
+    # the original's test.pl: example1 with set_query_propagation(true), test(10000) on load
+    text = (DC / "example1.pl").read_text()
+    program = tmp_path / "test.pl"
+    program.write_text(text.replace("set_inference(backward(lw)).",
+                                    "set_inference(backward(lw)),set_query_propagation(true)."))
+    n = 10000
+    result = run_old(program, "true")
+    assert "set_query_propagation(true)" in result.stderr
+    for k in (1, 2, 3):
+        exact = 0.1 * (H10 - sum(1.0 / j for j in range(1, k)))
+        error = printed(result.stdout, f"Absolute error drawn(1) ~= {k}")
+        assert error <= 3 * binomial_se(exact, n)
 
 
 def test_church_examples() -> None:
@@ -148,12 +164,7 @@ def test_forward_inference_is_accepted_with_a_warning_and_answers_the_same(tmp_p
     forward.write_text(text.replace(":- set_options(default).",
                                     ":- set_options(default),set_inference(false)."))
     n = 2000
-    result = subprocess.run(
-        [swipl_executable(), "-q", "-g", f"set_random(seed(1)), test1({n})", "-t", "halt",
-         str(COMPAT), str(forward)],
-        cwd=ROOT, capture_output=True, text=True, timeout=300,
-    )
-    assert result.returncode == 0, result.stderr
+    result = run_old(forward, f"test1({n})")
     assert re.search(r"forwarddcpfwumpus\.pl:\d+: set_inference\(false\): forward sampling is "
                      r"not implemented", result.stderr)
     exact = 0.4 * 0.9 / (0.4 * 0.9 + 0.6 * 0.1)
