@@ -299,6 +299,9 @@ init_particle(N) :-
     retractall(current_belief_(_, _)),
     retractall(ll_offset_(_)),
     Seed is random(1 << 30),
+    %   the per-particle engine: the batched one answers some of the
+    %   original's queries differently (a findall over a non-ground
+    %   random variable)
     belief_new(File, [particles(N), seed(Seed), engine(per_particle)], B),
     assertz(current_belief_(B, N)),
     assertz(ll_offset_(0.0)),
@@ -367,7 +370,8 @@ belief(N, B) :-
 %   (`current(h) ~= V` or `h:t ~= V`).
 eval_query_particle(Q, N, P) :-
     belief(N, B),
-    belief_probability(B, Q, P).
+    timed_goal(Q, G),
+    belief_probability(B, G, P).
 
 %!  eval_query_particle2(?X, +Query, +N:integer, -List:list) is det.
 %
@@ -378,7 +382,8 @@ eval_query_particle(Q, N, P) :-
 eval_query_particle2(X, Q, N, L) :-
     belief(N, B),
     belief_filter(B, F),
-    filter_values(F, Xs, findall(X, Q, Xs), Values),
+    timed_goal(Q, G),
+    filter_values(F, Xs, findall(X, G, Xs), Values),
     belief_weights(B, Ws),
     findall(V-W, ( nth1(I, Values, Xs1), nth1(I, Ws, W),
                    sort(Xs1, Set), member(V, Set) ), VWs0),
@@ -395,13 +400,25 @@ eval_query_particle2(X, Q, N, L) :-
 eval_average_particle(Avg, X, Q, N, P) :-
     belief(N, B),
     belief_filter(B, F),
-    filter_values(F, Ps, findall(X-V, Q ~= V, Ps), Values),
+    timed_goal(Q ~= V, G),
+    filter_values(F, Ps, findall(X-V, G, Ps), Values),
     belief_weights(B, Ws),
     findall(Xv-(W-V), ( nth1(I, Values, Ps1), nth1(I, Ws, W), member(Xv-V, Ps1) ), Es0),
     keysort(Es0, Es),
     group_pairs_by_key(Es, Groups),
     findall(M:Xv, ( member(Xv-WVs, Groups), weighted_mean(WVs, M) ), Avg),
     findall(S:Xv, ( member(Xv-WVs, Groups), pairs_keys(WVs, Ws1), sum_list(Ws1, S) ), P).
+
+%   timed_goal(+Goal0, -Goal): the original's current(h) written h:t, as
+%   both of the filter's engines read it (Goal shares Goal0's variables).
+timed_goal(V, V) :- var(V), !.
+timed_goal(current(X), X:t) :- nonvar(X), !.
+timed_goal(T0, T) :-
+    compound(T0), !,
+    compound_name_arguments(T0, N, As0),
+    maplist(timed_goal, As0, As),
+    compound_name_arguments(T, N, As).
+timed_goal(T, T).
 
 weighted_mean(WVs, M) :-
     foldl(add_weighted, WVs, 0.0-0.0, SW-SWV),
@@ -443,10 +460,12 @@ particle_goal(I, Goal) :-
     current_belief_(B, N), !,
     (   I =< N -> true ; domain_error(particle(1, N), I) ),
     belief_filter(B, F),
-    copy_term(Goal, G),
+    timed_goal(Goal, G0),
+    copy_term(Goal-G0, Goal1-G),
     filter_values(F, some(G), G, Values),
     nth1(I, Values, some(G1)),
-    Goal = G1.
+    G = G1,
+    Goal = Goal1.
 
                  /*******************************
                  *          BLACKBOARD          *
