@@ -44,9 +44,11 @@ option value the original did not know is an error.
 %   them; Where is File:Line of the directive.  Prints a warning for each
 %   option that changes nothing here.  Options are the program options of
 %   ddc.pl it stands for: set_options/1 (which every program of the
-%   original calls) gives [first(all)], the original's rule that the first
+%   original calls) gives first(all), the original's rule that the first
 %   clause (in file order) whose body holds defines a variable, where
-%   ddc.pl would otherwise refuse two clauses that apply in one world.
+%   ddc.pl would otherwise refuse two clauses that apply in one world, and
+%   facts([action/1, deltaT/1]), the facts the original's filter asserts
+%   at each step (as `:- dynamic(action/1).` would declare them).
 %   Fails for any other directive.  Throws error(ddc(bad_directive(D),
 %   Where), _) for an option setter with a value the original did not
 %   accept.
@@ -56,7 +58,10 @@ original_directive(D, Where, Options) :-
     conjuncts(D, Ds),
     forall(member(D1, Ds), option_setter(D1)),
     forall(member(D1, Ds), check_option(D1, Where)),
-    (   memberchk(set_options(_), Ds) -> Options = [first(all)] ; Options = [] ).
+    (   memberchk(set_options(_), Ds)
+    ->  Options = [first(all), facts([action/1, deltaT/1])]
+    ;   Options = []
+    ).
 
 conjuncts(D, _) :- var(D), !, fail.
 conjuncts((A, B), Ds) :- !,
