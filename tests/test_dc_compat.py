@@ -28,10 +28,12 @@ H10 = sum(1.0 / k for k in range(1, 11))
 
 def run_old(program: str | Path, goal: str, seed: int = 1) -> subprocess.CompletedProcess[str]:
     """``swipl prolog/dc_compat.pl FILE`` (a name in ``prolog/examples/dc`` or a path) with
-    ``goal`` after a fixed seed; the run must succeed."""
+    ``goal``; the seed is fixed before FILE is consulted (its initialization/1 goals run then)
+    and the run must succeed."""
+    path = str(DC / program).replace("'", "\\'")
     result = subprocess.run(
-        [swipl_executable(), "-q", "-g", f"set_random(seed({seed})), {goal}", "-t", "halt",
-         str(COMPAT), str(DC / program)],
+        [swipl_executable(), "-q", "-g", f"set_random(seed({seed})), consult('{path}'), {goal}",
+         "-t", "halt", str(COMPAT)],
         cwd=ROOT, capture_output=True, text=True, timeout=300,
     )
     assert result.returncode == 0, result.stderr
