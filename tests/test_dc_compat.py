@@ -40,6 +40,15 @@ def run_old(program: str | Path, goal: str, seed: int = 1) -> subprocess.Complet
     return result
 
 
+def variant(tmp_path: Path, program: str, name: str, old: str, new: str) -> Path:
+    """A copy of ``prolog/examples/dc/PROGRAM`` named ``name`` with one directive changed."""
+    text = (DC / program).read_text()
+    assert old in text
+    path = tmp_path / name
+    path.write_text(text.replace(old, new))
+    return path
+
+
 def printed(text: str, label: str) -> float:
     """The number printed after ``label`` (a line ``label N`` or a term ``label(N)``)."""
     match = re.search(re.escape(label) + r"[:( ]\s*([-0-9.eE]+)", text)
@@ -92,10 +101,8 @@ def test_example1_runs_its_test_on_load_and_its_other_tests() -> None:
 
 def test_example1_with_query_propagation_is_the_original_test_pl(tmp_path: Path) -> None:
     # the original's test.pl: example1 with set_query_propagation(true), test(10000) on load
-    text = (DC / "example1.pl").read_text()
-    program = tmp_path / "test.pl"
-    program.write_text(text.replace("set_inference(backward(lw)).",
-                                    "set_inference(backward(lw)),set_query_propagation(true)."))
+    program = variant(tmp_path, "example1.pl", "test.pl", "set_inference(backward(lw)).",
+                      "set_inference(backward(lw)),set_query_propagation(true).")
     n = 10000
     result = run_old(program, "true")
     assert "set_query_propagation(true)" in result.stderr
@@ -161,10 +168,8 @@ def test_probabilistic_graph_and_generate_backward() -> None:
 
 def test_forward_inference_is_accepted_with_a_warning_and_answers_the_same(tmp_path: Path) -> None:
     # the original's forwarddcpfwumpus.pl: the wumpus maze with forward inference
-    text = (DC / "dcpfwumpus.pl").read_text()
-    forward = tmp_path / "forwarddcpfwumpus.pl"
-    forward.write_text(text.replace(":- set_options(default).",
-                                    ":- set_options(default),set_inference(false)."))
+    forward = variant(tmp_path, "dcpfwumpus.pl", "forwarddcpfwumpus.pl",
+                      ":- set_options(default).", ":- set_options(default),set_inference(false).")
     n = 2000
     result = run_old(forward, f"test1({n})")
     assert re.search(r"forwarddcpfwumpus\.pl:\d+: set_inference\(false\): forward sampling is "
