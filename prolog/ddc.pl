@@ -53,6 +53,7 @@
 :- use_module(ddc_store).
 :- use_module(ddc_batch).
 :- use_module(ddc_nesting).
+:- use_module(dc_compat_load).   % the original DC's option directives and arithmetic
 :- reexport(ddc_models).       % logistic/3, linear/3, softmax/3, mean_list/2, ...
 
 :- op(700, xfx, ~).
@@ -332,7 +333,8 @@ derived_name(N, Kind, Name) :-
 %     dir(Directive, Line)
 %   Kind is u, state, trans or fixed(N).
 
-compile_program(File, M, Items0, Clauses, Info) :-
+compile_program(File, M, Items00, Clauses, Info) :-
+    maplist(original_item, Items00, Items0),   % `X is random` (dc_compat_load.pl)
     retractall(undefined_call_(_, _)),
     classify_items(Items0, File, 1, Items1, Dirs),
     directives_options(Dirs, File, M, Opts, DirClauses),
@@ -376,6 +378,8 @@ compile_program(File, M, Items0, Clauses, Info) :-
     warn_undefined(File).
 
 state_rv(rv(_, _, state, _, _, _)).
+
+original_item(t(T0, L), t(T, L)) :- original_arithmetic(T0, T).
 
 %   lookback_preds(+Items, -Preds): the N/A read in some body at a time
 %   other than t+1 (t, t-K, a number, a variable, current/prior), i.e.
@@ -497,10 +501,9 @@ directive(use_module(_, _), _, _, _, O, O, C, C) :- !.
 directive(ensure_loaded(_), _, _, _, O, O, C, C) :- !.
 directive(initialization(_), _, _, _, O, O, C, C) :- !.        % the originals' test runners
 directive(initialization(_, _), _, _, _, O, O, C, C) :- !.
-directive(D, _, _, _, O, O, C, C) :-
-    compound(D), functor(D, N, 1),
-    memberchk(N, [set_options, set_inference, set_query_propagation, set_debug,
-                  set_lifted, set_raoblackwellisation, set_current2nextcopy]), !.
+directive(D, File, L, _, O0, O, C, C) :-
+    original_directive(D, File:L, Os), !,      % set_options/1, ... (dc_compat_load.pl)
+    append(Os, O, O0).
 directive(dynamic(S), _, _, _, [facts(S)|O], O, C, C) :- !.   % read from a filter step's facts
 directive(discontiguous(_), _, _, _, O, O, C, C) :- !.
 directive(op(_, _, _), _, _, _, O, O, C, C) :- !.     % applied while reading (read_program/2)

@@ -1,0 +1,220 @@
+"""Programs written for the original DC/DCPF system run unmodified.
+
+The files in ``prolog/examples/dc/`` are written as the original's users wrote them (its header
+``use_module('../distributionalclause.pl')`` or ``'../dcpf.pl'``, ``set_options/1`` and the other
+option setters, ``:- initialization(...)``, test predicates that call the original's entry
+points). Each is run in ``swipl`` through ``prolog/dc_compat.pl``, its test predicates print
+their answers, and the answers are asserted within 3 standard errors of the exact ones of
+``../shared/dc-reference.md`` section 4 (fixed seeds). The same files load with ``ddc query``.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import subprocess
+from pathlib import Path
+
+import pytest
+from scipy import stats
+
+from ddc_cli_helpers import ddc
+from plunit_runner import ROOT, swipl_executable
+
+DC = ROOT / "prolog" / "examples" / "dc"
+COMPAT = ROOT / "prolog" / "dc_compat.pl"
+H10 = sum(1.0 / k for k in range(1, 11))
+
+
+def run_old(program: str | Path, goal: str, seed: int = 1) -> subprocess.CompletedProcess[str]:
+    """``swipl prolog/dc_compat.pl FILE`` (a name in ``prolog/examples/dc`` or a path) with
+    ``goal``; the seed is fixed before FILE is consulted (its initialization/1 goals run then)
+    and the run must succeed."""
+    path = str(DC / program).replace("'", "\\'")
+    result = subprocess.run(
+        [swipl_executable(), "-q", "-g", f"set_random(seed({seed})), consult('{path}'), {goal}",
+         "-t", "halt", str(COMPAT)],
+        cwd=ROOT, capture_output=True, text=True, timeout=300,
+    )
+    assert result.returncode == 0, result.stderr
+    return result
+
+
+def variant(tmp_path: Path, program: str, name: str, old: str, new: str) -> Path:
+    """A copy of ``prolog/examples/dc/PROGRAM`` named ``name`` with one directive changed."""
+    text = (DC / program).read_text()
+    assert old in text
+    path = tmp_path / name
+    path.write_text(text.replace(old, new))
+    return path
+
+
+def printed(text: str, label: str) -> float:
+    """The number printed after ``label`` (a line ``label N`` or a term ``label(N)``)."""
+    match = re.search(re.escape(label) + r"[:( ]\s*([-0-9.eE]+)", text)
+    assert match, (label, text)
+    return float(match.group(1))
+
+
+def binomial_se(p: float, n: float) -> float:
+    return math.sqrt(p * (1.0 - p) / n)
+
+
+def test_tutorial_prints_the_exact_answers() -> None:
+    n = 10000
+    out = run_old("tutorial.pl", f"test_coin({n}), test_color({n}), test_balls({n}), "
+                                 f"test_balls2({n})").stdout
+    assert printed(out, "probability coin=true") == pytest.approx(0.2)      # weighted: exact
+    assert printed(out, "probability color=black") == pytest.approx(0.1)
+    assert printed(out, "probability nballs=4") == pytest.approx(0.1)
+    assert abs(printed(out, "probability nballs>5") - 0.5) <= 3 * binomial_se(0.5, n)
+    exact = 0.7 / 3 + 0.3 / 2
+    assert abs(printed(out, "probability first drawn ball is black") - exact) \
+        <= 3 * binomial_se(exact, n)
+
+
+def test_example1_runs_its_test_on_load_and_its_other_tests() -> None:
+    n = 10000
+    result = run_old("example1.pl", f"testpoisson({n}), test_random({n}), test2({n})")
+    out = result.stdout
+    # test(10000), run by the file's own initialization/1, prints absolute errors
+    for k, label in ((1, "drawn(1) ~= 1"), (2, "drawn(1) ~= 2"), (3, "drawn(1) ~= 3")):
+        exact = 0.1 * (H10 - sum(1.0 / j for j in range(1, k)))
+        assert printed(out, f"Absolute error {label}") <= 3 * binomial_se(exact, n)
+    assert printed(out, "Absolute error average g") <= 3 * 0.1 / math.sqrt(n)
+    # test_query/6 prints the estimate and the program goes on (the original halted)
+    poisson = stats.poisson.pmf(4, 4)
+    assert abs(printed(out, "lw") - poisson) <= 3 * binomial_se(poisson, n)
+    for label in ("n3", "n3_2"):     # n3_2 draws with the original's `X is random`
+        assert abs(printed(out, label) - 0.45) <= 3 * binomial_se(0.45, n)
+    assert abs(printed(out, "g<0.0") - 0.5) <= 3 * binomial_se(0.5, n)
+    assert abs(printed(out, "0.0<g<0.1") - 0.341345) <= 3 * binomial_se(0.341345, n)
+    assert abs(printed(out, "g<0.1 | g>0.0") - 0.68269) <= 3 * binomial_se(0.68269, n / 2)
+    assert printed(out, "density g=0.0") == pytest.approx(3.98942280401433, rel=1e-9)
+    # g2 = 0 is weighted by N(0; g, v) at g ~ N(0, v), v = 0.01: the mean is the N(0, 2v)
+    # density, the second moment 1 / (2 pi v sqrt(3))
+    v, mean = 0.01, 2.82094791773878
+    sd = math.sqrt(1 / (2 * math.pi * v * math.sqrt(3)) - mean ** 2)
+    assert abs(printed(out, "density g2=0.0") - mean) <= 3 * sd / math.sqrt(n)
+    assert printed(out, "density g2=0.1|g=0.1") == pytest.approx(3.98942280401433, rel=1e-9)
+
+
+def test_example1_with_query_propagation_is_the_original_test_pl(tmp_path: Path) -> None:
+    # the original's test.pl: example1 with set_query_propagation(true), test(10000) on load
+    program = variant(tmp_path, "example1.pl", "test.pl", "set_inference(backward(lw)).",
+                      "set_inference(backward(lw)),set_query_propagation(true).")
+    n = 10000
+    result = run_old(program, "true")
+    assert "set_query_propagation(true)" in result.stderr
+    for k in (1, 2, 3):
+        exact = 0.1 * (H10 - sum(1.0 / j for j in range(1, k)))
+        error = printed(result.stdout, f"Absolute error drawn(1) ~= {k}")
+        assert error <= 3 * binomial_se(exact, n)
+
+
+def test_church_examples() -> None:
+    n = 10000
+    out = run_old("church.pl", f"test_all({n})").stdout
+    for label, exact in (("coin", 0.5), ("flip", 0.5), ("trickcoin", 0.95), ("bent_coin", 0.4),
+                         ("cough", 0.208)):
+        assert abs(printed(out, label) - exact) <= 3 * binomial_se(exact, n) + 1e-9, label
+    # weighted by the mammogram: about n * 0.103 samples' worth of information
+    assert abs(printed(out, "breast_cancer") - 0.077640) <= 3 * binomial_se(0.07764, 0.103 * n)
+    # eval_query_distribution/8 with evidence d >= 2 by rejection (P = 0.028)
+    pairs = dict(re.findall(r"([0-9.]+):([01])", out.split("a_given_d")[1]))
+    by_value = {int(v): float(p) for p, v in pairs.items()}
+    assert abs(by_value[1] - 0.678571) <= 3 * binomial_se(0.678571, 0.028 * n)
+    assert by_value[0] + by_value[1] == pytest.approx(1.0)
+
+
+def gpa_exact(g: float) -> float:
+    """P(nation = a | gpa = g), with the Jacobians of V is A*4.0 and V is A*10.0."""
+    american = 0.25 * 0.95 * stats.beta.pdf(g / 4.0, 8, 2) / 4.0
+    indian = 0.75 * 0.99 * stats.beta.pdf(g / 10.0, 5, 5) / 10.0
+    return american / (american + indian)
+
+
+def test_indian_gpa_warns_about_query_propagation_and_is_right() -> None:
+    n = 10000
+    result = run_old("indian_gpa.pl", f"test_gpa({n})")
+    assert re.search(r"indian_gpa\.pl:13: set_query_propagation\(true\): .*Jacobian", result.stderr)
+    assert result.stderr.count("set_query_propagation") == 1
+    for g in (3.0, 3.9):
+        p = printed(result.stdout, f"p(nation=a|student_gpa={g})")
+        assert abs(p - gpa_exact(g)) <= 3 * binomial_se(gpa_exact(g), n / 4), g
+    assert printed(result.stdout, "p(nation=a|student_gpa=4.0)") == pytest.approx(1.0)
+
+
+def test_dcpf_wumpus_step_particle_and_eval_query_particle() -> None:
+    n = 2000
+    out = run_old("dcpfwumpus.pl", f"test1({n}), plotdata(1), get_loglikelihood(L), "
+                                   "format('loglikelihood ~w~n', [L])").stdout
+    exact = 0.4 * 0.9 / (0.4 * 0.9 + 0.6 * 0.1)
+    assert abs(printed(out, "P(maze(0,1)=wall)") - exact) <= 3 * binomial_se(exact, n)
+    assert "AA" in out                          # plotdata/1 found the agent in particle 1
+    # P(up = wall, right = free) = 0.42 * 0.58
+    assert abs(printed(out, "loglikelihood") - math.log(0.42 * 0.58)) < 0.05
+
+
+def test_probabilistic_graph_and_generate_backward() -> None:
+    n = 10000
+    out = run_old("exampleproblog.pl", f"test({n})").stdout
+    assert abs(printed(out, "p(1,4)") - 0.125) <= 3 * binomial_se(0.125, n)
+    assert abs(printed(out, "p(1,5)") - 0.25) <= 3 * binomial_se(0.25, n)
+    assert printed(out, "path(1,5)") == pytest.approx(1.0)
+    world = out.split("one world:")[1]
+    assert "e(1,6)~=true" in world and "e(6,5)~=true" in world and "$undef" not in world
+
+
+def test_forward_inference_is_accepted_with_a_warning_and_answers_the_same(tmp_path: Path) -> None:
+    # the original's forwarddcpfwumpus.pl: the wumpus maze with forward inference
+    forward = variant(tmp_path, "dcpfwumpus.pl", "forwarddcpfwumpus.pl",
+                      ":- set_options(default).", ":- set_options(default),set_inference(false).")
+    n = 2000
+    result = run_old(forward, f"test1({n})")
+    assert re.search(r"forwarddcpfwumpus\.pl:\d+: set_inference\(false\): forward sampling is "
+                     r"not implemented", result.stderr)
+    exact = 0.4 * 0.9 / (0.4 * 0.9 + 0.6 * 0.1)
+    assert abs(printed(result.stdout, "P(maze(0,1)=wall)") - exact) <= 3 * binomial_se(exact, n)
+
+
+def test_dcpf_pit_world_unittest() -> None:
+    out = run_old("dcpfwumpus2.pl", "unittest").stdout
+    n = 10000
+    # five joint entries over 10,000 particles, resampled at each of four steps: allow for
+    # an effective sample size of a quarter of the particles
+    assert printed(out, "total absolute difference") <= 5 * 3 * binomial_se(0.5, n / 4)
+    got = out.split("Got:")[1]
+    marginals = {(int(x), int(y)): float(p)
+                 for p, x, y in re.findall(r"([0-9.]+):\((\d),(\d)\)", got)}
+    for cell, exact in (((1, 1), 0.137931), ((2, 0), 0.689655), ((0, 2), 0.689655),
+                        ((0, 0), 1.0), ((1, 0), 1.0), ((0, 1), 1.0)):
+        assert abs(marginals[cell] - exact) <= 3 * binomial_se(exact, n / 4) + 1e-9, cell
+
+
+@pytest.mark.parametrize(("program", "query", "evidence", "exact"), [
+    ("tutorial.pl", "drawn(1) ~= X, color(X) ~= black", None, 0.7 / 3 + 0.3 / 2),
+    ("example1.pl", "drawn(1) ~= 1", None, 0.1 * H10),
+    ("church.pl", "cough(bob)", None, 0.208),
+    ("indian_gpa.pl", "nation ~= a", "student_gpa ~= 3.0", gpa_exact(3.0)),
+    ("dcpfwumpus.pl", "position:0 ~= (0,0)", None, 1.0),
+])
+def test_the_same_files_load_with_ddc_query(program: str, query: str, evidence: str | None,
+                                           exact: float) -> None:
+    args = [DC / program, query, "--samples", "4000", "--seed", "3", "--json"]
+    if evidence:
+        args += ["--evidence", evidence]
+    run = ddc("query", *args, check=True)
+    p = float(re.search(r'"probability": ([-0-9.eE]+)', run.stdout).group(1))
+    se = float(re.search(r'"stderr": ([-0-9.eE]+)', run.stdout).group(1))
+    assert abs(p - exact) <= 3 * se + 1e-9, (p, se, exact)
+
+
+def test_an_option_value_the_original_did_not_know_names_file_and_line(tmp_path: Path) -> None:
+    program = tmp_path / "bad.pl"
+    program.write_text(":- use_module('../distributionalclause.pl').\n"
+                       ":- set_options(default), set_inference(backward(magic)).\n"
+                       "coin ~ finite([0.5:true,0.5:false]).\n")
+    run = ddc("query", program, "coin ~= true")
+    assert run.returncode != 0
+    assert f"{program}:2: unknown directive set_inference(backward(magic))" in run.stderr
