@@ -21,11 +21,12 @@ class ClusterError(ValueError):
 class JobsFailed(RuntimeError):
     """Some jobs failed (the others finished and were handed on); names each with its cause."""
 
-    def __init__(self, failed: Sequence[Outcome], total: int) -> None:
+    def __init__(self, failed: Sequence[Outcome], total: int, note: str = "") -> None:
         self.failed = list(failed)
         causes = "; ".join(f"{o.job.name}: {o.error}" for o in self.failed[:5])
         more = f"; and {len(self.failed) - 5} more" if len(self.failed) > 5 else ""
-        super().__init__(f"{len(self.failed)} of {total} jobs failed: {causes}{more}")
+        super().__init__(f"{len(self.failed)} of {total} jobs failed: {causes}{more}"
+                         + (f" ({note})" if note else ""))
 
 
 @dataclass(frozen=True)
@@ -203,8 +204,16 @@ def run_jobs(jobs: Sequence[Job], cluster: Cluster, *, retries: int = DEFAULT_RE
         tally.close()
 
 
-def raise_failures(outcomes: Sequence[Outcome], total: int | None = None) -> None:
-    """Raise :class:`JobsFailed` naming the failed ``outcomes`` (nothing when all are ok)."""
+def raise_failures(outcomes: Sequence[Outcome], note: str = "") -> None:
+    """Raise :class:`JobsFailed` naming the failed ``outcomes`` (nothing when all are ok).
+
+    Parameters
+    ----------
+    outcomes : sequence of Outcome
+        Every job's outcome.
+    note : str
+        What became of the finished ones, added to the message.
+    """
     failed = [o for o in outcomes if not o.ok]
     if failed:
-        raise JobsFailed(failed, len(outcomes) if total is None else total)
+        raise JobsFailed(failed, len(outcomes), note)
