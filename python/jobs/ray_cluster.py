@@ -22,8 +22,8 @@ def _ray() -> Any:
     try:
         import ray
     except ImportError as error:
-        raise ClusterError("--cluster ray needs Ray, an optional extra: "
-                           "pip install '.[cluster]' (or pip install 'ray>=2.9')") from error
+        raise ClusterError("--cluster ray needs Ray, an optional extra: pip install "
+                           "'.[cluster]' (or pip install 'ray[client]>=2.9')") from error
     return ray
 
 
