@@ -2,7 +2,7 @@
 per job: when does Ray pay off?
 
     .venv/bin/python bench/cluster_jobs.py [--scenarios can_under_box,transitive] [--seeds 3]
-        [--particles 300] [--noop 200] [--backends local,ray] [--out out/bench_jobs]
+        [--particles 300] [--noop 1000] [--backends local,ray] [--out out/bench_jobs]
 
 The sweep is ``anchoring evaluate``'s: one job per (scenario, seed), reasoning with the
 hand-written theory in one Prolog thread per filter, on percept streams perceived once before
@@ -10,8 +10,8 @@ the clock starts (as a re-run finds them in the results folder). Each back end r
 and with 2 workers, its start-up included (spawning the pool, or starting a local Ray); the
 reference is the same sweep run one job after the other in this process, measured in the same
 run. Start-up and the overhead per job are measured on empty jobs with 2 workers: the time of
-two (plus, for Ray, starting it), and ``--noop`` more against two, so that the start-up
-cancels. It also checks that every back end gave the same summaries.
+two (plus, for Ray, starting it), and the median of three measures of ``--noop`` more against
+two, so that the start-up cancels. It also checks that every back end gave the same summaries.
 """
 
 from __future__ import annotations
@@ -54,34 +54,42 @@ def sweep(cluster: Any, work: list[Any]) -> tuple[float, list[str]]:
     return seconds, sorted(lines)
 
 
-def overhead(backend: str, count: int) -> tuple[float, float]:
-    """Start-up seconds of 2 workers and seconds per further empty job.
+def empty_jobs(cluster: Any, count: int) -> float:
+    """Seconds of ``count`` empty jobs on ``cluster``."""
+    from jobs import Job, run_jobs
 
-    Local: two empty jobs (a pool of two spawned processes) against ``2 + count``. Ray: the
-    start of a local Ray with two CPUs, then two empty jobs against ``2 + count`` on it."""
-    from jobs import Job, parse_cluster, run_jobs
+    started = time.perf_counter()
+    outcomes = list(run_jobs([Job(f"noop {i}", noop) for i in range(count)], cluster))
+    seconds = time.perf_counter() - started
+    assert all(o.ok for o in outcomes), [o.error for o in outcomes if not o.ok]
+    return seconds
+
+
+def overhead(backend: str, count: int, repeat: int = 3) -> tuple[float, float]:
+    """Start-up seconds of 2 workers, and seconds per further empty job (the median of
+    ``repeat`` measures of ``2 + count`` empty jobs against 2).
+
+    Local: every measure starts its own pool of two spawned processes. Ray: a local Ray with
+    two CPUs is started once (its start is the start-up), warmed up with two empty jobs, and
+    kept for the measures."""
+    from jobs import parse_cluster
 
     cluster = parse_cluster(backend, 2)
     ray = None
-    start = 0.0
+    started = time.perf_counter()
     if backend == "ray":
         import ray
 
-        started = time.perf_counter()
         ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False,
                  logging_level=logging.ERROR)
-        start = time.perf_counter() - started
     try:
-        timings = []
-        for n in (2, 2 + count):
-            started = time.perf_counter()
-            outcomes = list(run_jobs([Job(f"noop {i}", noop) for i in range(n)], cluster))
-            timings.append(time.perf_counter() - started)
-            assert all(o.ok for o in outcomes), [o.error for o in outcomes if not o.ok]
+        start = time.perf_counter() - started + empty_jobs(cluster, 2)
+        per_job = sorted((empty_jobs(cluster, 2 + count) - empty_jobs(cluster, 2)) / count
+                         for _ in range(repeat))
     finally:
         if ray is not None:
             ray.shutdown()
-    return start + timings[0], (timings[1] - timings[0]) / count
+    return start, per_job[len(per_job) // 2]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -89,7 +97,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--scenarios", default="can_under_box,transitive")
     parser.add_argument("--seeds", type=int, default=3)
     parser.add_argument("--particles", type=int, default=300)
-    parser.add_argument("--noop", type=int, default=200, help="empty jobs for the overhead")
+    parser.add_argument("--noop", type=int, default=1000, help="empty jobs for the overhead")
     parser.add_argument("--backends", default="local,ray")
     parser.add_argument("--out", type=Path, default=ROOT / "out" / "bench_jobs",
                         help="where the percept streams are cached")
