@@ -143,6 +143,7 @@ def collect(options: CollectOptions,
         streams of the finished ones stay cached for the next try.
     """
     started = time.perf_counter()
+    cluster = parse_cluster(options.cluster, options.jobs)
     scenarios = [Path(p) for p in options.scenarios]
     for p in scenarios:
         if not p.is_file():
@@ -151,7 +152,6 @@ def collect(options: CollectOptions,
         scenarios += game_files(options.cache / "games", options.games, options.seed)
     if not scenarios:
         raise CollectError("nothing to collect: give scenario files or --games K")
-    cluster = parse_cluster(options.cluster, options.jobs)
     streams = options.cache / "percepts"
     work = [Job(s.stem, _episode, (s, options.seed, streams, i, options.labels))
             for i, s in enumerate(scenarios)]
