@@ -39,9 +39,10 @@ def _start(ray: Any, cluster: Cluster) -> bool:
         else:
             ray.init(address=cluster.address, **options)
     except (ConnectionError, RuntimeError, ValueError) as error:
-        where = cluster.address or "a local Ray"
-        raise ClusterError(f"--cluster {cluster.address or 'ray'}: cannot start or reach "
-                           f"{where}: {cause(error)}") from error
+        what = ("cannot start a local Ray" if cluster.address is None
+                else "cannot reach the cluster")
+        raise ClusterError(f"--cluster {cluster.address or 'ray'}: {what}: "
+                           f"{cause(error)}") from error
     return True
 
 
