@@ -1,7 +1,8 @@
 """Learning curve of the learned theory of occlusion: identity kept against collected episodes.
 
     .venv/bin/python bench/theory_learning_curve.py [--episodes 5,20,80] [--seeds 5]
-        [--labels truth,hindsight] [--particles 1000] [--jobs 2] [--out out/curve] [--md FILE]
+        [--labels truth,hindsight] [--particles 1000] [--jobs 2] [--cluster BACKEND]
+        [--out out/curve] [--md FILE]
 
 For each number of episodes n and each kind of labels, the first n generated occlusion games
 (seeds 0..n-1, as ``make learned-theory`` collects them; percept streams cached) are collected
@@ -12,23 +13,26 @@ the filter's seed, percept streams cached as ``anchoring evaluate`` caches them)
 prints, and with ``--md`` writes, a Markdown table: labels,
 episodes, collected pairs, the seconds of collecting (perception included, summed over workers)
 and of learning, and the identity kept (objects and runs) of the shipped runs; the
-hand-written theory's row on the same runs comes last, for reference.
+hand-written theory's row on the same runs comes last, for reference. The collection episodes
+and the theories' runs are jobs (``python/jobs``) on ``--jobs`` spawned processes or, with
+``--cluster ray|auto|ray://HOST:PORT``, on Ray; the figures are the same on either.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import multiprocessing
 import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(ROOT / "python"))
+# Not this folder: Ray puts the script's folder first on its workers' import path, where
+# bench/perception.py would hide the perception package.
+sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != HERE]
 
 SHIPPED = ("shell_game", "can_under_box", "ball_under_box_two_balls", "transitive")
 
@@ -45,13 +49,17 @@ def _run(theory: str, scenario: str, seed: int, particles: int, cache: str) -> d
             "objects": len(objects)}
 
 
-def identity(theory: Path, seeds: int, particles: int, cache: Path, jobs: int
-             ) -> tuple[int, int, int, int]:
+def identity(theory: Path, seeds: int, particles: int, cache: Path, jobs: int,
+             cluster: str | None = None) -> tuple[int, int, int, int]:
     """Objects kept, objects, runs kept, runs over the shipped scenarios and seeds."""
-    args = [(str(theory), s, k, particles, str(cache)) for s in SHIPPED for k in range(seeds)]
-    context = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
-        rows = list(pool.map(_run, *zip(*args, strict=True)))
+    from jobs import Job, parse_cluster, raise_failures, run_jobs
+
+    work = [Job(f"{theory.stem} {s} seed {k}", _run, (str(theory), s, k, particles, str(cache)))
+            for s in SHIPPED for k in range(seeds)]
+    outcomes = list(run_jobs(work, parse_cluster(cluster, jobs), desc=theory.stem,
+                             bar=sys.stderr.isatty()))
+    raise_failures(outcomes)
+    rows = [o.value for o in outcomes]
     kept = sum(r["kept"] for r in rows)
     objects = sum(r["objects"] for r in rows)
     runs_kept = sum(r["kept"] == r["objects"] for r in rows)
@@ -65,6 +73,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--labels", default="truth,hindsight")
     parser.add_argument("--particles", type=int, default=1000)
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--cluster", default=None,
+                        help="local (default), ray, auto or ray://HOST:PORT")
     parser.add_argument("--out", type=Path, default=ROOT / "out" / "curve")
     parser.add_argument("--collect-cache", type=Path, default=ROOT / "out" / "collect")
     parser.add_argument("--percepts", type=Path, default=ROOT / "results" / "percepts",
@@ -86,12 +96,12 @@ def main(argv: list[str] | None = None) -> int:
             theory = args.out / f"too_{labels}_{n}.pl"
             started = time.perf_counter()
             report = collect(CollectOptions(out=data, games=n, seed=0, jobs=args.jobs,
-                                            cache=args.collect_cache,
+                                            cluster=args.cluster, cache=args.collect_cache,
                                             labels=LabelOptions(source=labels)))
             collected = time.perf_counter() - started
             learned = learn_theory([data], theory, seed=0)
             kept, objects, runs_kept, runs = identity(theory, args.seeds, args.particles,
-                                                      args.percepts, args.jobs)
+                                                      args.percepts, args.jobs, args.cluster)
             rows.append({"labels": labels, "episodes": n, "pairs": report.pairs,
                          "collect_s": round(collected, 1),
                          "perception_s": round(report.seconds_perception, 1),
@@ -101,7 +111,7 @@ def main(argv: list[str] | None = None) -> int:
                          "runs": runs})
             print(json.dumps(rows[-1]), flush=True)
     kept, objects, runs_kept, runs = identity(DEFAULT_THEORY, args.seeds, args.particles,
-                                              args.percepts, args.jobs)
+                                              args.percepts, args.jobs, args.cluster)
     rows.append({"labels": "hand-written (prolog/too.pl)", "episodes": "-", "pairs": "-",
                  "collect_s": "-", "perception_s": "-", "learn_s": "-", "clauses": "-",
                  "objects_kept": kept, "objects": objects, "runs_kept": runs_kept,

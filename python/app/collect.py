@@ -4,23 +4,24 @@ input, before/after facts of occlusions (:mod:`app.occlusion_data`).
 Episodes are scenario files (the shipped ones, or any) and generated occlusion games
 (:func:`tabletop.generate.occlusion_game`). Each is perceived once (the percept stream is cached,
 as ``anchoring evaluate`` caches its streams) and anchored with anchoring alone; the episodes
-run in worker processes (spawned: a forked child of a process that has janus loaded can hang).
+are independent jobs (:mod:`jobs`): on worker processes (spawned: a forked child of a process
+that has janus loaded can hang) or on a Ray cluster, combined in the order of the episodes
+whichever finished first.
 The data file is written only once every episode is done (atomically), and an empty collection
 (no occlusion happened) is an error that writes nothing.
 """
 
 from __future__ import annotations
 
-import multiprocessing
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from app.occlusion_data import Collection, LabelOptions, data_text, episode_facts
 from app.occlusion_data import hindsight_agreement as _agreement
 from ddclearn.files import write_atomically
+from jobs import Job, parse_cluster, raise_failures, run_jobs
 
 __all__ = ["CollectError", "CollectOptions", "CollectReport", "collect", "game_files"]
 
@@ -48,7 +49,14 @@ class CollectOptions:
     cache : Path
         Where percept streams and generated games are kept.
     jobs : int, default=1
-        Worker processes.
+        Worker processes (or the CPUs of a local Ray).
+    cluster : str, optional
+        Where the episodes run: None or ``"local"``, ``"ray"``, ``"auto"``,
+        ``"ray://HOST:PORT"`` (:func:`jobs.parse_cluster`).
+    command : str, optional
+        The command line, recorded in the data file.
+    progress : bool, default=False
+        Draw one progress bar over the episodes.
     """
 
     out: Path
@@ -58,7 +66,9 @@ class CollectOptions:
     labels: LabelOptions = field(default_factory=LabelOptions)
     cache: Path = Path("out/collect")
     jobs: int = 1
+    cluster: str | None = None
     command: str | None = None
+    progress: bool = False
 
 
 @dataclass
@@ -113,12 +123,27 @@ def collect(options: CollectOptions,
             progress: Callable[[str], None] | None = None) -> CollectReport:
     """Play every episode, write the data file, return the report.
 
+    Parameters
+    ----------
+    options : CollectOptions
+        What to collect, where to run it and where to write it.
+    progress : callable, optional
+        Called with one line per episode, in the order of the episodes, once all are done.
+
+    Returns
+    -------
+    CollectReport
+
     Raises
     ------
     CollectError
         No episode given, or no data point (no occlusion happened in any episode).
+    jobs.JobsFailed
+        Some episodes failed (each named with its cause); nothing is written, and the percept
+        streams of the finished ones stay cached for the next try.
     """
     started = time.perf_counter()
+    cluster = parse_cluster(options.cluster, options.jobs)
     scenarios = [Path(p) for p in options.scenarios]
     for p in scenarios:
         if not p.is_file():
@@ -128,14 +153,13 @@ def collect(options: CollectOptions,
     if not scenarios:
         raise CollectError("nothing to collect: give scenario files or --games K")
     streams = options.cache / "percepts"
-    jobs = max(1, min(options.jobs, len(scenarios)))
-    args = [(s, options.seed, streams, i, options.labels) for i, s in enumerate(scenarios)]
-    if jobs == 1:
-        results = [_episode(*a) for a in args]
-    else:
-        context = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
-            results = list(pool.map(_episode, *zip(*args, strict=True)))
+    work = [Job(s.stem, _episode, (s, options.seed, streams, i, options.labels))
+            for i, s in enumerate(scenarios)]
+    outcomes = {o.job.args[3]: o
+                for o in run_jobs(work, cluster, desc="collect", bar=options.progress)}
+    raise_failures(list(outcomes.values()), "nothing written; the finished episodes' percept "
+                   "streams are cached for the next try")
+    results = [outcomes[i].value for i in range(len(scenarios))]
     total = Collection()
     seconds_p = seconds_f = agree = 0.0
     n_agree = 0

@@ -3,17 +3,18 @@ scenario over several seeds and for random shell games, with reasoning, without 
 published multi-object trackers run on the same percepts.
 
 Each (scenario, seed) is perceived once (the stream is cached as JSON Lines in the output
-directory) and every method runs on that same stream. The (scenario, seed) units run in
-``jobs`` worker processes; a unit whose every method is already in ``OUT/summaries.jsonl``
-(an interrupted or extended run) is not run again.
+directory) and every method runs on that same stream. The (scenario, seed) units are
+independent jobs (:mod:`jobs`): on ``jobs`` spawned worker processes, or on a Ray cluster
+(``cluster``); each unit's lines go into ``OUT/summaries.jsonl`` the moment it finishes, and a
+unit whose every method is already there (an interrupted, failed or extended run) is not run
+again. The table is made from those lines, so it is the same whichever back end ran them.
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
-from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -26,6 +27,7 @@ from app.theories import theory_path
 from bridge.filter import Engine
 from evaluation import evaluate, make_summary, results_table
 from evaluation.baselines import BASELINES, run_baseline
+from jobs import Job, JobsFailed, parse_cluster, run_jobs
 from percepts import read_percepts, write_percepts
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -46,7 +48,8 @@ class ExperimentOptions:
     methods: Sequence[str] = METHODS
     scenarios: Sequence[str] = SHIPPED
     first_game_seed: int = 0
-    jobs: int = 1
+    jobs: int = 1                   # worker processes (local), or the local Ray's CPUs
+    cluster: str | None = None      # None or "local", "ray", "auto", "ray://HOST:PORT"
     threads: int = DEFAULT_THREADS  # Prolog threads per filter (the particles depend on it)
     engine: Engine = "auto"         # the filter's engine (bridge.Filter's; the particles too)
 
@@ -122,13 +125,32 @@ def read_summaries(path: Path) -> list[dict[str, Any]]:
         return [json.loads(line) for line in lines if line.strip()]
 
 
-def run_experiment(options: ExperimentOptions,
-                   progress: Callable[[str], None] | None = None) -> str:
+def run_experiment(options: ExperimentOptions, progress: bool = False) -> str:
     """Run everything, write ``OUT/summaries.jsonl`` and ``OUT/results.md``; return the table.
 
     Runs already in ``OUT/summaries.jsonl`` with the same particle count (and, with reasoning,
     the same thread count: lines without one were made with one thread) are kept, not run
-    again; the table covers exactly the units of ``options``."""
+    again; the table covers exactly the units of ``options``.
+
+    Parameters
+    ----------
+    options : ExperimentOptions
+        What to run, and where (``jobs``, ``cluster``).
+    progress : bool
+        Draw one progress bar over the units (on standard error).
+
+    Returns
+    -------
+    str
+        The Markdown table (also written to ``OUT/results.md``).
+
+    Raises
+    ------
+    jobs.JobsFailed
+        Some units failed (each named with its cause); the finished ones are recorded in
+        ``OUT/summaries.jsonl``, and running again runs only what is missing.
+    """
+    cluster = parse_cluster(options.cluster, options.jobs)
     out = options.out
     out.mkdir(parents=True, exist_ok=True)
     units: list[tuple[str, Path, int]] = []
@@ -155,26 +177,23 @@ def run_experiment(options: ExperimentOptions,
     todo = [(label, scenario, seed,
              [m for m in options.methods if (scenario.stem, seed, m) not in done])
             for label, scenario, seed in units]
-    todo = [unit for unit in todo if unit[3]]
+    work = [Job(f"{scenario.stem} seed {seed}", run_unit,
+                (label, scenario, seed, methods, options.particles, out / "percepts",
+                 options.threads, options.engine))
+            for label, scenario, seed, methods in todo if methods]
+    failed = []
     with open(log_path, "a", encoding="utf-8") as log:
-        def record(lines: list[dict[str, Any]]) -> None:
-            for line in lines:
+        for outcome in run_jobs(work, cluster, desc="evaluate", bar=progress):
+            if not outcome.ok:
+                failed.append(outcome)
+                continue
+            for line in outcome.value:
                 done[(line["scenario"], line["seed"], line["method"])] = line
                 log.write(json.dumps(line) + "\n")
             log.flush()
-            if progress is not None and lines:
-                progress(f"{lines[0]['scenario']} seed {lines[0]['seed']}: done "
-                         f"({len(done)} runs recorded)")
-
-        args = [(label, scenario, seed, methods, options.particles, out / "percepts",
-                 options.threads, options.engine) for label, scenario, seed, methods in todo]
-        if options.jobs > 1 and len(args) > 1:
-            with ProcessPoolExecutor(max_workers=options.jobs) as pool:
-                for lines in pool.map(run_unit, *zip(*args, strict=True)):
-                    record(lines)
-        else:
-            for a in args:
-                record(run_unit(*a))
+    if failed:
+        raise JobsFailed(failed, len(work), f"the {len(work) - len(failed)} finished are in "
+                         f"{log_path}; the same command again runs only what is missing")
 
     rows = [(label, method, done[(scenario.stem, seed, method)]["summary"])
             for label, scenario, seed in units for method in options.methods]

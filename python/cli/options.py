@@ -18,6 +18,17 @@ def add_engine_option(parser: argparse.ArgumentParser, what: str) -> None:
                              f"when the program is in its fragment){what}")
 
 
+def add_cluster_options(parser: argparse.ArgumentParser, what: str, extra: str = "") -> None:
+    """``--jobs`` and ``--cluster``: where the independent jobs run (:mod:`jobs`)."""
+    parser.add_argument("--jobs", type=int, default=1,
+                        help=f"worker processes, one {what} each (default 1: in this process); "
+                             f"with --cluster ray, the CPUs of the local Ray{extra}")
+    parser.add_argument("--cluster", default=None, metavar="BACKEND",
+                        help="local (the default: spawned worker processes), ray (a local Ray "
+                             "started for the run), auto or ray://HOST:PORT (an existing Ray "
+                             "cluster); Ray is the optional extra: pip install '.[cluster]'")
+
+
 def add_frame_options(parser: argparse.ArgumentParser) -> None:
     """The scenario argument and how its frames are rendered (render, perceive)."""
     parser.add_argument("scenario", type=Path, help="scenario YAML file")

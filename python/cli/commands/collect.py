@@ -1,7 +1,8 @@
 """`anchoring collect`: before/after facts of occlusions from the robot's own experience.
 
     anchoring collect [SCENARIO ...] [--games K] [--seed S] --out DATA.pl
-                      [--labels truth|hindsight] [--jobs J] [--cache DIR] [--json]
+                      [--labels truth|hindsight] [--jobs J] [--cluster BACKEND]
+                      [--cache DIR] [--json]
 
 Plays scenarios and generated occlusion games through perception and anchoring alone and
 writes the structure learner's input (facts, background knowledge and the declarative bias of
@@ -16,6 +17,8 @@ import shlex
 import sys
 from pathlib import Path
 from typing import Any
+
+from cli.options import add_cluster_options
 
 
 def register(sub: Any) -> None:
@@ -32,7 +35,7 @@ def register(sub: Any) -> None:
                              "hindsight (where re-acquired objects emerged), without it")
     parser.add_argument("--steady-stride", type=int, default=5,
                         help="keep one in N steady data points, with weight N (default 5)")
-    parser.add_argument("--jobs", type=int, default=1, help="worker processes (default 1)")
+    add_cluster_options(parser, "episode")
     parser.add_argument("--cache", type=Path, default=Path("out/collect"),
                         help="percept streams and generated games (default out/collect)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
@@ -47,7 +50,8 @@ def main(args: argparse.Namespace) -> int:
     command = "anchoring " + " ".join(shlex.quote(a) for a in sys.argv[1:])
     report = collect(CollectOptions(out=args.out, scenarios=args.scenarios, games=args.games,
                                     seed=args.seed, labels=labels, cache=args.cache,
-                                    jobs=args.jobs, command=command),
+                                    jobs=args.jobs, cluster=args.cluster, command=command,
+                                    progress=not args.json),
                      progress=None if args.json else (lambda m: print(m, flush=True)))
     figures = {
         "episodes": report.episodes, "pairs": report.pairs, "covered": report.positive,

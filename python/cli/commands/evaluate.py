@@ -8,7 +8,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from cli.options import add_engine_option
+from cli.options import add_cluster_options, add_engine_option
 
 
 def register(sub: Any) -> None:
@@ -31,9 +31,8 @@ def register(sub: Any) -> None:
                              "three trackers)")
     parser.add_argument("--scenarios", default=None,
                         help="comma-separated shipped scenarios (default all four)")
-    parser.add_argument("--jobs", type=int, default=1,
-                        help="worker processes, one (scenario, seed) each (default 1); runs "
-                             "already in OUT/summaries.jsonl are kept, not run again")
+    add_cluster_options(parser, "(scenario, seed)", "; runs already in OUT/summaries.jsonl "
+                        "are kept, not run again")
     parser.set_defaults(func=main)
 
 
@@ -48,8 +47,9 @@ def main(args: argparse.Namespace) -> int:
     table = run_experiment(
         ExperimentOptions(out=args.out, seeds=args.seeds, games=args.games,
                           particles=args.particles, methods=methods, scenarios=scenarios,
-                          jobs=args.jobs, threads=args.threads, engine=args.engine),
-        progress=lambda msg: print(msg, flush=True),
+                          jobs=args.jobs, cluster=args.cluster, threads=args.threads,
+                          engine=args.engine),
+        progress=True,
     )
     print(table)
     print(f"wrote {args.out}/results.md and {args.out}/summaries.jsonl")
