@@ -3,7 +3,9 @@
     Included by ddc.pl (this file is part of module ddc).  Python owns the
     weights and the resampling choices; Prolog owns the particles: N
     worlds, each holding the values of time t (and the untimed ones), kept
-    in a global variable of the calling thread named by the filter handle.
+    in a global variable named by the filter handle, of a Prolog engine of
+    the filter's own that any thread may run (filter_new/5: "Threads and
+    reloads").
 
     Final API (as agreed with the Python side):
 
@@ -157,9 +159,15 @@ filter_server :-
     engine_yield(Reply),
     fail.
 
-%   filter_call(+F, +Goal): Goal (a call of a filter predicate on F) run
-%   in F's engine by this thread, once no other thread runs it.  Errors
-%   name the program's file where they named the filter's module.
+%!  filter_call(+Filter:atom, :Goal) is semidet.
+%
+%   Runs Goal (a call of a filter predicate on Filter, or any goal that
+%   must see its engine, such as the profiler's) in Filter's engine, by
+%   the calling thread, once no other thread runs it; the first solution's
+%   bindings come back (copied).  Errors name the program's file where
+%   they named the filter's module; an unknown Filter is
+%   error(ddc(unknown_filter(Filter), query), _).  Not exported: called as
+%   ddc:filter_call/2.
 filter_call(F, Goal) :-
     (   atom(F)
     ->  with_mutex(F, (   filter_engine_(F, E, M, File)

@@ -437,6 +437,12 @@ class Filter:
         except Exception:
             pass
 
+    @property
+    def handle(self) -> str:
+        """The engine's name of the filter (the text of the atom ``filter_new/5`` gave), for
+        calling the Prolog filter predicates on it directly; valid in every thread."""
+        return self._handle()
+
     def _handle(self) -> str:
         if self._key is None:
             raise FilterError("this filter was closed")
@@ -543,7 +549,7 @@ class Filter:
             f"(event {self.zero_weight_events})"
         )
         logger.warning(message)
-        warnings.warn(message, ZeroWeightWarning, stacklevel=3)
+        warnings.warn(message, ZeroWeightWarning, stacklevel=4)  # the caller of step
         _call("undo(K)", {"K": self._handle()})
         self._log_weights = np.full(self.particles, -math.log(self.particles))
         return self._finish(
