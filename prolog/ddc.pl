@@ -101,7 +101,9 @@ ddc_load/1 reads a program file and compiles it into a module of its own
 (named after the absolute file name; ddc_load/2 names it).  Several
 programs live side by side; loading a file again replaces its program
 atomically: if the new text has an error, the exception names file:line and
-the previously loaded program stays as it was.  A Prolog file may also load
+the previously loaded program stays as it was.  Loads run one at a time
+(load_program/2); a filter compiles its program into a module of its own
+that no later load replaces (filter_new/5).  A Prolog file may also load
 a program as a directive: `:- use_module(library(ddc)). :- ddc_load(model).`
 
 ## Language

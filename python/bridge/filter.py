@@ -33,6 +33,12 @@ Bad input (a term that does not parse, a non-ground observation, an observation 
 applies to, any other Prolog error in a step) raises :class:`FilterError` naming the step, the
 item and the cause; if the engine had already advanced, the step is undone, so the filter stays
 usable with everything it held.
+
+Threads: a filter may be made, stepped, queried and closed in any thread (its particles live in
+a Prolog engine of their own that the calling thread runs for each call); calls on one filter
+are taken one at a time. Its program is compiled into a module of its own: loading the file
+again (:func:`bridge.load`, another filter) does not change a live filter. Every Prolog error
+raised in any thread is a :class:`FilterError`.
 """
 
 from __future__ import annotations
