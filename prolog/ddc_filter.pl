@@ -113,12 +113,21 @@ filter_new(File, N, Seed, Options, F) :-
     resolve_file(File, Abs),
     new_filter_name(F, Id),
     format(atom(M), '~w#filter~w', [Abs, Id]),
-    catch(( load_program(Abs, M),
-            engine_create(_, filter_server, E),
-            assertz(filter_engine_(F, E, M, Abs)),
-            filter_call(F, engine_filter_new(F, M, Abs, N, Seed, Share, K, Engine)) ),
-          Error,
-          ( filter_free(F), unload_program(M), throw(Error) )).
+    (   catch(( load_program(Abs, M),
+                engine_create(_, filter_server, E),
+                assertz(filter_engine_(F, E, M, Abs)),
+                filter_call(F, engine_filter_new(F, M, Abs, N, Seed, Share, K, Engine)) ),
+              Error,
+              ( discard_filter(F, M), throw(Error) ))
+    ->  true
+    ;   discard_filter(F, M),
+        fail
+    ).
+
+%   discard_filter(+F, +M): what a filter_new/5 that did not complete made.
+discard_filter(F, M) :-
+    filter_free(F),
+    unload_program(M).
 
 %   engine_filter_new(+F, +M, +Abs, +N, +Seed, +Share, +K, +Engine): in
 %   F's engine, its particles (a global variable of the engine named F).
