@@ -89,7 +89,9 @@ def time_ddc(particles: int, objects: int, steps: int, seed: int,
 
 
 _CALL_COUNTS = (  # (janus returns every named variable but _-prefixed ones: only Counts)
-    "profile_data(_D), get_dict(nodes, _D, _Nodes), "
+    "atom_string(_F, K), "
+    "ddc:filter_call(_F, (profiler(_, false), profile_data(_D))), "
+    "get_dict(nodes, _D, _Nodes), "
     "findall(_C-_P, ( member(_Node, _Nodes), get_dict(call, _Node, _C), "
     "get_dict(predicate, _Node, _P0), format(string(_P), '~w', [_P0]) ), Counts)"
 )
@@ -98,20 +100,22 @@ _CALL_COUNTS = (  # (janus returns every named variable but _-prefixed ones: onl
 def call_counts(particles: int, objects: int, steps: int, seed: int,
                 engine: str = "auto") -> dict[str, int]:
     """Calls per predicate over ``steps`` steps in one thread, by SWI-Prolog's profiler
-    (switched on around the steps only)."""
+    (switched on around the steps only, in the filter's Prolog engine, where its particles
+    are stepped)."""
     frames = model.scenario(objects, steps, seed=seed)
     names = model.object_names(objects)
     with tempfile.TemporaryDirectory() as tmp:
         program = write_program(tmp, objects)
         with Filter(program, particles=particles, seed=seed, threads=1, engine=engine) as f:
-            bridge_prolog.query_once("use_module(library(statistics)), reset_profiler, "
-                                     "profiler(_, cputime)")
+            handle = {"K": f.handle}
+            bridge_prolog.query_once("use_module(library(statistics)), atom_string(_F, K), "
+                                     "ddc:filter_call(_F, (reset_profiler, "
+                                     "profiler(_, cputime)))", handle)
             try:
                 for frame in frames:
                     f.step(frame.terms(names))
             finally:
-                bridge_prolog.query_once("profiler(_, false)")
-            counts = bridge_prolog.query_once(_CALL_COUNTS)["Counts"]
+                counts = bridge_prolog.query_once(_CALL_COUNTS, handle)["Counts"]
     return {str(name): int(calls) for calls, name in counts}
 
 

@@ -103,7 +103,9 @@ ddc_load/1 reads a program file and compiles it into a module of its own
 (named after the absolute file name; ddc_load/2 names it).  Several
 programs live side by side; loading a file again replaces its program
 atomically: if the new text has an error, the exception names file:line and
-the previously loaded program stays as it was.  A Prolog file may also load
+the previously loaded program stays as it was.  Loads run one at a time
+(load_program/2); a filter compiles its program into a module of its own
+that no later load replaces (filter_new/5).  A Prolog file may also load
 a program as a directive: `:- use_module(library(ddc)). :- ddc_load(model).`
 
 ## Language
@@ -192,11 +194,36 @@ ddc_load(File) :-
 ddc_load(Spec, M) :-
     resolve_file(Spec, File),
     (   var(M) -> M = File ; true ),
-    read_program(File, Items),
-    compile_program(File, M, Items, Clauses, Info),
-    install_program(M, File, Clauses, Info),
-    retractall(current_program_(_)),
-    assertz(current_program_(M)).
+    with_mutex('$ddc_load',
+               (   load_program(File, M),
+                   retractall(current_program_(_)),
+                   assertz(current_program_(M)) )).
+
+%!  load_program(+File:atom, +Module:atom) is det.
+%
+%   Reads and compiles the DC program in File (an absolute file name) and
+%   installs it into Module, replacing what Module held only if File
+%   compiles without error.  Loads run one at a time (mutex '$ddc_load'):
+%   two threads loading into one module do not interleave their clauses.
+%   A filter's program is loaded into a module of the filter's own
+%   (filter_new/5), which no later load replaces.
+load_program(File, M) :-
+    must_be(atom, File),
+    must_be(atom, M),
+    with_mutex('$ddc_load',
+               (   read_program(File, Items),
+                   compile_program(File, M, Items, Clauses, Info),
+                   install_program(M, File, Clauses, Info) )).
+
+%!  unload_program(+Module:atom) is det.
+%
+%   Removes the program loaded into Module (its predicates and its file).
+unload_program(M) :-
+    must_be(atom, M),
+    with_mutex('$ddc_load',
+               (   clear_program_module(M),
+                   retractall(program_file_(M, _)),
+                   retractall(current_program_(M)) )).
 
 resolve_file(Spec, File) :-
     (   absolute_file_name(Spec, File0, [file_type(prolog), access(read), file_errors(fail)])
@@ -269,12 +296,7 @@ syntax_error(E, _) :-
     throw(E).
 
 install_program(M, File, Clauses, Info) :-
-    (   current_module(M), M \== user, M \== ddc, M \== system
-    ->  forall(( current_predicate(M:N/A), functor(H, N, A),
-                 \+ predicate_property(M:H, imported_from(_)) ),
-               abolish(M:N/A))
-    ;   true
-    ),
+    clear_program_module(M),
     set_module(M:base(user)),
     set_module(M:class(user)),
     declare_program_preds(M, Info),
@@ -291,6 +313,15 @@ install_clause(M, '$at'(L, C)) :- !,
     assertz(M:'$clause_line'(Ref, L)).
 install_clause(M, C) :-
     assertz(M:C).
+
+%   clear_program_module(+M): the predicates of a program module gone.
+clear_program_module(M) :-
+    (   current_module(M), M \== user, M \== ddc, M \== system
+    ->  forall(( current_predicate(M:N/A), functor(H, N, A),
+                 \+ predicate_property(M:H, imported_from(_)) ),
+               abolish(M:N/A))
+    ;   true
+    ).
 
 %   optimised(:Goal): Goal (asserting clauses) with arithmetic compiled
 %   inline, as in this file; the caller's flag is restored.

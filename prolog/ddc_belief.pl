@@ -57,8 +57,8 @@
 A Belief is belief(Key); its state (the filter, the normalised log
 weights, the running log-likelihood, the zero-weight events, the
 resampling options and random stream) is a global variable of the calling
-thread named Key, like the filter's own particles, and goes with
-belief_free/1.  A step or query that raises an error leaves the belief as
+thread named Key (the filter inside it, as any filter, may be called from
+any thread: see filter_new/5), and goes with belief_free/1.  A step or query that raises an error leaves the belief as
 it was.
 */
 

@@ -3,7 +3,9 @@
     Included by ddc.pl (this file is part of module ddc).  Python owns the
     weights and the resampling choices; Prolog owns the particles: N
     worlds, each holding the values of time t (and the untimed ones), kept
-    in a global variable of the calling thread named by the filter handle.
+    in a global variable named by the filter handle, of a Prolog engine of
+    the filter's own that any thread may run (filter_new/5: "Threads and
+    reloads").
 
     Final API (as agreed with the Python side):
 
@@ -54,13 +56,15 @@
     particles on any machine.
 */
 
+:- use_module(library(terms), [mapsubterms/3]).
+
 %!  filter_new(+ProgramFile, +N, +Seed, -Filter) is det.
 %
-%   Loads ProgramFile (ddc_load/2 into the module named by its absolute
-%   file name), seeds the random generator with Seed and creates N
-%   particles at time 0: every h:0 clause whose body holds is sampled (and
-%   h:0 derived atoms materialised); h:t clauses stay lazy.  Filter is an
-%   atom.  The filter lives in the calling thread.
+%   Compiles ProgramFile into a module of the filter's own, seeds the
+%   random generator with Seed and creates N particles at time 0: every
+%   h:0 clause whose body holds is sampled (and h:0 derived atoms
+%   materialised); h:t clauses stay lazy.  Filter is an atom, valid in
+%   every thread (see "Threads and reloads" below).
 filter_new(File, N, Seed, F) :-
     filter_new(File, N, Seed, [], F).
 
@@ -84,6 +88,18 @@ filter_new(File, N, Seed, F) :-
 %       The batched engine gives other particles from the same seed (its
 %       draws come clause by clause), ignores share, and splits the
 %       particles into threads(K) groups stepped at the same time.
+%
+%   Threads and reloads: the filter's particles live in a Prolog engine
+%   of their own (engine_create/3), which the thread that calls a filter
+%   predicate runs for the length of the call; so a filter made in one
+%   thread can be stepped and queried in any other, and gives the same
+%   particles whichever thread calls it.  Calls on one filter are taken
+%   one at a time (a mutex named by the filter); calls on different
+%   filters run at the same time.  The filter's program is compiled into
+%   a module of its own (ProgramFile#filterK), so ddc_load/2 of the same
+%   file, or another filter of it, does not change it: a reload takes
+%   effect for the filters made after it.  filter_free/1 frees the engine
+%   and the module.
 filter_new(File, N, Seed, Options, F) :-
     must_be(list, Options),
     option(share(Share), Options, true),
@@ -95,7 +111,27 @@ filter_new(File, N, Seed, Options, F) :-
     must_be(positive_integer, N),
     must_be(integer, Seed),
     resolve_file(File, Abs),
-    ddc_load(Abs, M),
+    new_filter_name(F, Id),
+    format(atom(M), '~w#filter~w', [Abs, Id]),
+    (   catch(( load_program(Abs, M),
+                engine_create(_, filter_server, E),
+                assertz(filter_engine_(F, E, M, Abs)),
+                filter_call(F, engine_filter_new(F, M, Abs, N, Seed, Share, K, Engine)) ),
+              Error,
+              ( discard_filter(F, M), throw(Error) ))
+    ->  true
+    ;   discard_filter(F, M),
+        fail
+    ).
+
+%   discard_filter(+F, +M): what a filter_new/5 that did not complete made.
+discard_filter(F, M) :-
+    filter_free(F),
+    unload_program(M).
+
+%   engine_filter_new(+F, +M, +Abs, +N, +Seed, +Share, +K, +Engine): in
+%   F's engine, its particles (a global variable of the engine named F).
+engine_filter_new(F, M, Abs, N, Seed, Share, K, Engine) :-
     (   Engine \== per_particle,
         program_items(M, Items),
         (   Engine == batched
@@ -103,7 +139,6 @@ filter_new(File, N, Seed, Options, F) :-
         ;   catch(batch_check_program(Items, Abs), error(ddc(batched_unsupported(_), _), _), fail)
         )
     ->  batch_new(M, Items, N, Seed, K, BS),
-        new_filter_name(F),
         nb_setval(F, bfilter(none, none)),
         nb_getval(F, Holder),
         batch_keep(BS, Kept),
@@ -111,9 +146,62 @@ filter_new(File, N, Seed, Options, F) :-
     ;   particle_filter_new(M, N, Seed, Share, K, F)
     ).
 
-new_filter_name(F) :-
+new_filter_name(F, Id) :-
     flag(ddc_filter_id, Id, Id+1),
     atom_concat('$ddc_particles_', Id, F).
+
+%   filter_engine_(?Filter, ?Engine, ?Module, ?File): the engine holding
+%   Filter's particles, the module of its program and the program's file.
+:- dynamic filter_engine_/4.
+
+%   filter_server: the goal of a filter's engine: runs each goal posted to
+%   it (engine_post/3), answering true(Goal) (its first solution), false
+%   or error(E).  The engine's stacks are reclaimed between goals; the
+%   particles are in its global variables.
+filter_server :-
+    repeat,
+    engine_fetch(Goal),
+    (   catch(Goal, E, true)
+    ->  (   var(E) -> Reply = true(Goal) ; Reply = error(E) )
+    ;   Reply = false
+    ),
+    engine_yield(Reply),
+    fail.
+
+%!  filter_call(+Filter:atom, :Goal) is semidet.
+%
+%   Runs Goal (a call of a filter predicate on Filter, or any goal that
+%   must see its engine, such as the profiler's) in Filter's engine, by
+%   the calling thread, once no other thread runs it; the first solution's
+%   bindings come back (copied).  Errors name the program's file where
+%   they named the filter's module; an unknown Filter is
+%   error(ddc(unknown_filter(Filter), query), _).  Not exported: called as
+%   ddc:filter_call/2.
+filter_call(F, Goal) :-
+    (   atom(F)
+    ->  with_mutex(F, (   filter_engine_(F, E, M, File)
+                      ->  engine_post(E, Goal, Reply)
+                      ;   Reply = unknown
+                      ))
+    ;   Reply = unknown
+    ),
+    filter_reply(Reply, F, Goal, M, File).
+
+filter_reply(true(Goal), _, Goal, _, _).
+filter_reply(error(E0), _, _, M, File) :-
+    mapsubterms(module_file(M, File), E0, E),
+    throw(E).
+filter_reply(unknown, F, _, _, _) :-
+    throw(error(ddc(unknown_filter(F), query), _)).
+
+module_file(M, File, X, File) :-
+    X == M.
+
+%   outside_filter(+F): the caller is not F's engine (a filter predicate
+%   called there runs on the particles; called elsewhere, it is posted to
+%   the engine).
+outside_filter(F) :-
+    \+ ( engine_self(E), filter_engine_(F, E, _, _) ).
 
 %   batch_filter(+F, -Holder): F is a batched filter, Holder its
 %   bfilter(State, Previous) (updated in place).
@@ -129,7 +217,6 @@ particle_filter_new(M, N, Seed, Share, K, F) :-
     set_random(seed(Seed)),
     length(L, N),
     new_shared(Share, K, Sh0),
-    new_filter_name(F),
     atom_concat(F, '$new', FN),
     nb_setval(FN, Sh0),
     nb_getval(FN, Sh),                  % global: survives the query, changed in place
@@ -169,6 +256,11 @@ init_particle(M, Sh, W) :-
 particle_store(S) :-
     store_new(S, false).
 
+%   filter_state(+F, -State): a per-particle filter's state; outside F's
+%   engine, a copy of it (for tests that read the particles' stores).
+filter_state(F, S) :-
+    atom(F), outside_filter(F), !,
+    filter_call(F, filter_state(F, S)).
 filter_state(F, S) :-
     (   atom(F), nb_current(F, S0), S0 = filter(_, _, _, _, _, _, _)
     ->  S = S0
@@ -187,11 +279,17 @@ with_rng(R, Goal, R1) :-
 %
 %   The engine that steps Filter's particles: batched or per_particle.
 filter_engine(F, E) :-
+    outside_filter(F), !,
+    filter_call(F, filter_engine(F, E)).
+filter_engine(F, E) :-
     (   batch_filter(F, _) -> E = batched
     ;   filter_state(F, _), E = per_particle
     ).
 
 %!  filter_time(+Filter, -T) is det.
+filter_time(F, T) :-
+    outside_filter(F), !,
+    filter_call(F, filter_time(F, T)).
 filter_time(F, T) :-
     batch_filter(F, bfilter(S, _)), !,
     batch_time(S, T).
@@ -199,6 +297,9 @@ filter_time(F, T) :-
     filter_state(F, filter(_, _, T, _, _, _, _)).
 
 %!  filter_size(+Filter, -N) is det.
+filter_size(F, N) :-
+    outside_filter(F), !,
+    filter_call(F, filter_size(F, N)).
 filter_size(F, N) :-
     batch_filter(F, bfilter(S, _)), !,
     batch_size(S, N).
@@ -212,6 +313,9 @@ filter_size(F, N) :-
 %   values held by the particles themselves (summed over particles), K
 %   steps in which the particles agreed on everything new (computed once).
 %   A batched filter: [particles(N), time(T), engine(batched)].
+filter_statistics(F, S) :-
+    outside_filter(F), !,
+    filter_call(F, filter_statistics(F, S)).
 filter_statistics(F, [particles(N), time(T), engine(batched)]) :-
     batch_filter(F, bfilter(S, _)), !,
     batch_size(S, N),
@@ -222,8 +326,18 @@ filter_statistics(F, [particles(N), time(T), shared(S), own(O), settled_steps(K)
     aggregate_all(sum(C), ( between(1, N, I), arg(I, Ws, W), arg(1, W, St), store_size(St, C) ), O).
 
 %!  filter_free(+Filter) is det.
+%
+%   Frees Filter's particles (its engine) and its program's module; a
+%   filter already freed, or never made, is left alone.
 filter_free(F) :-
-    (   atom(F), nb_current(F, _) -> nb_delete(F) ; true ).
+    (   atom(F), filter_engine_(F, _, _, _)
+    ->  with_mutex(F, (   retract(filter_engine_(F, E, M, _))
+                      ->  engine_destroy(E),
+                          unload_program(M)
+                      ;   true
+                      ))
+    ;   true
+    ).
 
 %!  filter_step(+Filter, +Observations, +Actions, -LogWeights) is det.
 %
@@ -234,6 +348,9 @@ filter_free(F) :-
 %   error(ddc(no_observation_clause(Obs), ...)) if no clause defines an
 %   observation in some particle, and leaves the filter unchanged on any
 %   error.
+filter_step(F, Obs, Acts, LogWs) :-
+    outside_filter(F), !,
+    filter_call(F, filter_step(F, Obs, Acts, LogWs)).
 filter_step(F, Obs, Acts, LogWs) :-
     batch_filter(F, H), !,
     step_input(Obs, Acts, Weighted, Facts),
@@ -774,6 +891,9 @@ sweep_kind(fixed(T), T).
 %   Restores the particles and the time from before the last step (or
 %   resampling).  Only one level is kept.
 filter_undo(F) :-
+    outside_filter(F), !,
+    filter_call(F, filter_undo(F)).
+filter_undo(F) :-
     batch_filter(F, H), !,
     (   H = bfilter(_, S0), S0 \== none
     ->  nb_linkarg(1, H, S0),
@@ -791,6 +911,9 @@ filter_undo(F) :-
 %
 %   Particle i (1-based position in Indices) becomes a copy of particle
 %   Indices[i] (0-based), as chosen by the caller.
+filter_resample(F, Is) :-
+    outside_filter(F), !,
+    filter_call(F, filter_resample(F, Is)).
 filter_resample(F, Is) :-
     batch_filter(F, H), !,
     arg(1, H, S0),
@@ -826,6 +949,9 @@ must_be_indices(Is, N) :-
 %   time index means h at the current time.  Random variables the proof
 %   needs and the particle lacks are sampled and kept in the particle.
 filter_holds(F, Goal, Flags) :-
+    outside_filter(F), !,
+    filter_call(F, filter_holds(F, Goal, Flags)).
+filter_holds(F, Goal, Flags) :-
     batch_filter(F, bfilter(S, _)), !,
     batch_query_goal(S, Goal, G),
     batch_holds(S, G, Flags).
@@ -840,6 +966,9 @@ solution_flag(S, B) :-
 %
 %   Values: for each particle Template instantiated by the first solution
 %   of Goal, or the atom none.
+filter_values(F, Template, Goal, Values) :-
+    outside_filter(F), !,
+    filter_call(F, filter_values(F, Template, Goal, Values)).
 filter_values(F, Template, Goal, Values) :-
     batch_filter(F, bfilter(S, _)), !,
     batch_query_goal(S, Goal, G),
@@ -888,6 +1017,9 @@ current_time_goal(G, _, _, _, G).
 %   value(T) else).  A goal `h ~= V` with template V and ground h (a random
 %   variable's values) is read straight from the particles' stores, without
 %   building the values, when every particle holds one.
+filter_rows(F, Template, Goal, Width, Floats, Values) :-
+    outside_filter(F), !,
+    filter_call(F, filter_rows(F, Template, Goal, Width, Floats, Values)).
 filter_rows(F, Template, Goal, Width, Floats, Values) :-
     \+ batch_filter(F, _),
     filter_state(F, filter(M, N, T, Ws, _, _, Sh)),

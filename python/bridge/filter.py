@@ -33,21 +33,27 @@ Bad input (a term that does not parse, a non-ground observation, an observation 
 applies to, any other Prolog error in a step) raises :class:`FilterError` naming the step, the
 item and the cause; if the engine had already advanced, the step is undone, so the filter stays
 usable with everything it held.
+
+Threads: a filter may be made, stepped, queried and closed in any thread (its particles live in
+a Prolog engine of their own that the calling thread runs for each call); calls on one filter
+are taken one at a time. Its program is compiled into a module of its own: loading the file
+again (:func:`bridge.load`, another filter) does not change a live filter. Every Prolog error
+raised in any thread is a :class:`FilterError`.
 """
 
 from __future__ import annotations
 
-import itertools
 import logging
 import math
 import os
 import threading
 import time as _time
 import warnings
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
+from functools import wraps
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, Concatenate, Literal, ParamSpec, TypeVar
 
 import janus_swi as janus
 import numpy as np
@@ -157,10 +163,10 @@ _HELPER_SOURCE = r"""
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 
+%   The handle Python holds is the text of the engine's filter atom, valid
+%   in every thread (filter_new/5); a freed one raises unknown_filter.
 filter_of(Key, F) :-
-    (   nb_current(Key, F) -> true
-    ;   throw(bridge(none, 0, Key, "no such filter (it was freed)"))
-    ).
+    atom_string(F, Key).
 
 error_text(bridge(_, _, _, Msg), Msg) :- !.
 error_text(E, S) :-
@@ -209,11 +215,10 @@ parse_goal(Text, Goal) :-
             term_string(Goal, Text, [module(ddc)]) ), E,
           ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(goal, "", Text, Msg)) )).
 
-new(Program, N, Seed, Share, Threads, Engine, Key, Used, Err) :-
+new(Program, N, Seed, Share, Threads, Engine, F, Used, Err) :-
     guarded(( ddc:filter_new(Program, N, Seed, [share(Share), threads(Threads), engine(Engine)], F),
-              ddc:filter_engine(F, Used),
-              nb_setval(Key, F) ), Err),
-    ( var(Used) -> Used = none ; true ).
+              ddc:filter_engine(F, Used) ), Err),
+    ( var(Used) -> Used = none, F = none ; true ).
 
 step(Key, ObsTexts, ActTexts, LW, Err) :-
     guarded(( filter_of(Key, F),
@@ -229,7 +234,7 @@ to_float(X, F) :- ( float(X) -> F = X ; F is float(X) ).
 undo(Key) :- filter_of(Key, F), ddc:filter_undo(F).
 resample(Key, Indices) :- filter_of(Key, F), ddc:filter_resample(F, Indices).
 time(Key, T) :- filter_of(Key, F), ddc:filter_time(F, T).
-free(Key) :- ( nb_current(Key, F) -> ddc:filter_free(F), nb_delete(Key) ; true ).
+free(Key) :- filter_of(Key, F), ddc:filter_free(F).
 
 holds(Key, GoalText, Flags, Err) :-
     guarded(( filter_of(Key, F), parse_goal(GoalText, Goal), ddc:filter_holds(F, Goal, Flags) ),
@@ -271,7 +276,6 @@ comma_items(A, [A]).
 
 _helper_lock = threading.Lock()
 _helper_loaded = False
-_keys = itertools.count(1)
 
 
 def _ensure_engine() -> None:
@@ -282,17 +286,27 @@ def _ensure_engine() -> None:
         engine = ENGINE
         if not engine.exists():
             raise FilterError(f"{engine}: the DDC engine is missing")
-        prolog.ensure_loaded(engine)
-        janus.query_once(
-            "open_string(Text, _S), "
-            "call_cleanup(load_files(ddc_filter_bridge_src, [stream(_S), module(M)]), close(_S))",
-            {"Text": _HELPER_SOURCE, "M": _HELPER_MODULE},
-        )
+        try:
+            prolog.ensure_loaded(engine)
+            janus.query_once(
+                "open_string(Text, _S), "
+                "call_cleanup(load_files(ddc_filter_bridge_src, [stream(_S), module(M)]),"
+                " close(_S))",
+                {"Text": _HELPER_SOURCE, "M": _HELPER_MODULE},
+            )
+        except janus.PrologError as error:
+            raise FilterError(f"{engine}: {str(error).strip()}") from None
         _helper_loaded = True
 
 
 def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
-    result = janus.query_once(f"{_HELPER_MODULE}:{goal}", bindings)
+    """Run ``goal`` of the helper module once, in whatever thread calls (the particles live
+    in a Prolog engine of their own, which any thread may run: ``filter_new/5``); a Prolog
+    error or failure is a :class:`FilterError`."""
+    try:
+        result = janus.query_once(f"{_HELPER_MODULE}:{goal}", bindings)
+    except janus.PrologError as error:
+        raise FilterError(str(error).strip()) from None
     if not result.get("truth", False):
         raise FilterError(f"Prolog goal failed: {goal}")
     return result
@@ -313,6 +327,22 @@ class StepResult:
     zero_weight: bool  #: every particle got weight 0; the pre-step particles were kept
     seconds: float  #: wall time of the whole step
     prolog_seconds: float  #: of which in the Prolog call (sampling and weighting)
+
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
+
+
+def _locked(method: Callable[Concatenate[Filter, _P], _R]) -> Callable[Concatenate[Filter, _P], _R]:
+    """``method`` under the filter's lock: a filter used from several threads runs one step or
+    query at a time, each whole (a step is several calls into Prolog and numpy updates)."""
+
+    @wraps(method)
+    def call(self: Filter, *args: _P.args, **kwargs: _P.kwargs) -> _R:
+        with self._lock:
+            return method(self, *args, **kwargs)
+
+    return call
 
 
 def _as_term_text(value: Any) -> str:
@@ -389,28 +419,29 @@ class Filter:
         self.step_prolog_seconds: list[float] = []  #: of which in the Prolog step call
         self.last_step: StepResult | None = None
         self._key: str | None = None
+        #: one call on the filter at a time (a step is several Prolog calls)
+        self._lock = threading.RLock()
         _ensure_engine()
-        key = f"ddc_filter_{os.getpid()}_{next(_keys)}"
         result = _call(
             "new(P, N, S, Sh, Th, E, K, Used, Err)",
             {"P": str(self.program_path), "N": self.particles, "S": self.seed,
-             "Sh": "true" if self.share else "false", "Th": self.threads, "E": engine,
-             "K": key},
+             "Sh": "true" if self.share else "false", "Th": self.threads, "E": engine},
         )
         if result["Err"]:
             error = str(result["Err"])  # usually "file:line: cause" already
             raise FilterError(error if str(path) in error or str(self.program_path) in error
                               else f"{self.program_path}: {error}")
-        self._key = key
+        self._key = str(result["K"])
         #: the engine that steps the particles: "batched" or "per_particle" (``auto`` resolved)
         self.engine = str(result["Used"])
 
     # -- life cycle ---------------------------------------------------------------------------
     def close(self) -> None:
         """Free the particles held in Prolog (also done when the object is collected)."""
-        if self._key is not None:
-            key, self._key = self._key, None
-            janus.query_once(f"{_HELPER_MODULE}:free(K)", {"K": key})
+        with self._lock:
+            if self._key is not None:
+                key, self._key = self._key, None
+                _call("free(K)", {"K": key})
 
     def __enter__(self) -> Filter:
         return self
@@ -424,6 +455,12 @@ class Filter:
         except Exception:
             pass
 
+    @property
+    def handle(self) -> str:
+        """The engine's name of the filter (the text of the atom ``filter_new/5`` gave), for
+        calling the Prolog filter predicates on it directly; valid in every thread."""
+        return self._handle()
+
     def _handle(self) -> str:
         if self._key is None:
             raise FilterError("this filter was closed")
@@ -431,6 +468,7 @@ class Filter:
 
     # -- state --------------------------------------------------------------------------------
     @property
+    @_locked
     def time(self) -> int:
         """The time step of the particles (0 after construction, +1 per non-zero-weight step)."""
         return int(_call("time(K, T)", {"K": self._handle()})["T"])
@@ -451,6 +489,7 @@ class Filter:
         return effective_sample_size(self._log_weights)
 
     # -- stepping -----------------------------------------------------------------------------
+    @_locked
     def step(
         self, observations: Iterable[Any] = (), actions: Iterable[Any] = ()
     ) -> StepResult:
@@ -516,7 +555,7 @@ class Filter:
     def _restore(self, time_before: int) -> None:
         try:
             if self.time != time_before:
-                janus.query_once(f"{_HELPER_MODULE}:undo(K)", {"K": self._handle()})
+                _call("undo(K)", {"K": self._handle()})
         except Exception as exc:  # pragma: no cover - the engine refused to undo
             logger.error("could not undo a failed step: %s", exc)
 
@@ -528,7 +567,7 @@ class Filter:
             f"(event {self.zero_weight_events})"
         )
         logger.warning(message)
-        warnings.warn(message, ZeroWeightWarning, stacklevel=3)
+        warnings.warn(message, ZeroWeightWarning, stacklevel=4)  # the caller of step
         _call("undo(K)", {"K": self._handle()})
         self._log_weights = np.full(self.particles, -math.log(self.particles))
         return self._finish(
@@ -545,6 +584,7 @@ class Filter:
         return result
 
     # -- queries ------------------------------------------------------------------------------
+    @_locked
     def holds(self, goal: Any) -> np.ndarray:
         """Per particle, 1 if ``goal`` holds in it, else 0 (int8 array of N)."""
         result = _call(
@@ -554,10 +594,12 @@ class Filter:
             raise FilterError(f"query: {result['Err']}")
         return np.asarray(result["F"], dtype=np.int8)
 
+    @_locked
     def probability(self, goal: Any) -> float:
         """Weighted fraction of particles in which ``goal`` holds."""
         return float(np.dot(self.weights, self.holds(goal)))
 
+    @_locked
     def values(self, template: Any, goal: Any) -> list[Any]:
         """Per particle, ``template`` at the first solution of ``goal`` (None: no solution)."""
         return list(self._query("values(K, P, V, Err)", template, goal)["V"])
@@ -585,6 +627,7 @@ class Filter:
     def _term_values(self, term: Any, goal: Any | None) -> list[Any]:
         return self.values(*self._template_goal(term, goal))
 
+    @_locked
     def distribution(self, term: Any, goal: Any | None = None) -> list[tuple[float, Any]]:
         """``[(p, value), ...]`` most probable first.
 
@@ -608,6 +651,7 @@ class Filter:
         pairs = [(float(mass[j]), keys[j]) for j in range(len(keys)) if keys[j] is not None]
         return sorted(pairs, key=lambda pv: (-pv[0], repr(pv[1])))
 
+    @_locked
     def samples(self, term: Any, goal: Any | None = None) -> tuple[np.ndarray, np.ndarray]:
         """(values, weights): N rows of values (float, NaN where undefined, when numeric)."""
         # numbers or k-tuples of numbers come flattened from Prolog (no per-particle Python
@@ -619,6 +663,7 @@ class Filter:
         flat = np.asarray(result["F"], dtype=float)
         return (flat if width == 1 else flat.reshape(self.particles, width)), self.weights
 
+    @_locked
     def mean(self, term: Any, goal: Any | None = None) -> tuple[Any, Any]:
         """Weighted (mean, covariance) of a numeric or tuple variable over the particles where
         it is defined: floats for a number, a (k,) and a (k, k) array for a k-tuple."""

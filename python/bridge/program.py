@@ -52,8 +52,10 @@ def _engine() -> None:
 
 
 def _call(goal: str, bindings: dict[str, object]) -> dict[str, object]:
-    _engine()
+    """Run ``goal`` once (one static call at a time, from any thread); a Prolog error,
+    loading the engine's included, is a :class:`DDCError`."""
     try:
+        _engine()
         with _lock:
             result = janus.query_once(goal, bindings)
     except janus.PrologError as error:
