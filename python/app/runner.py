@@ -12,7 +12,7 @@ from tqdm import tqdm
 
 from app.loop import AnchoringLoop, FrameOutcome, LoopConfig, run_frames
 from app.pictures import FramePictures
-from app.sources import scenario_frames, scenario_length, stream_frames
+from app.sources import bag_frames, scenario_frames, scenario_length, stream_frames
 from app.world_file import write_world
 from evaluation import TrackingRecord, evaluate, make_summary, write_records, write_summary
 
@@ -26,6 +26,8 @@ class RunOptions(LoopConfig):
 
     scenario: Path | None = None
     percepts: Path | None = None
+    bag: Path | None = None
+    bag_topics: Any = None  # bags.BagTopics for the bag (the usual topics by default)
     out: Path | None = None
     picture_every: int = 1
     progress: bool = True
@@ -45,8 +47,10 @@ class RunOutput:
 
 
 def run(options: RunOptions) -> RunOutput:
-    if (options.scenario is None) == (options.percepts is None):
-        raise ValueError("give a scenario or a percept stream (--percepts), not both")
+    given = [s for s in (options.scenario, options.percepts, options.bag) if s is not None]
+    if len(given) != 1:
+        raise ValueError("give one of a scenario, a percept stream (--percepts) or a bag "
+                         "(--bag)")
     if options.reasoning and not options.theory.is_file():
         raise FileNotFoundError(f"{options.theory}: no such theory file")
     # The loop's filter loads the theory (once) here, before the first frame: a syntax or
@@ -61,12 +65,20 @@ def run(options: RunOptions) -> RunOutput:
 def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
     """Play the frames; what was done is written even when an error stops the run (its summary
     then says ``stopped``: the error), and the error is raised again."""
-    skipped: list[str] = []  # lines of a percept stream that are not frames
+    skipped: list[str] = []  # lines of a percept stream that are not frames, unpaired images
     if options.scenario is not None:
         frames = scenario_frames(options.scenario, seed=options.seed, width=options.width,
                                  height=options.height)
         total = scenario_length(options.scenario)
         name = options.scenario.stem
+    elif options.bag is not None:
+        from bags import BagTopics
+
+        topics = options.bag_topics or BagTopics()
+        skipped = topics.skipped  # images without a partner, filled in as the bag is read
+        frames = bag_frames(options.bag, topics)
+        total = None
+        name = options.bag.stem
     else:
         assert options.percepts is not None
         frames = stream_frames(options.percepts, skipped)

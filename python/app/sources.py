@@ -1,5 +1,5 @@
-"""Where frames come from: a simulated scenario (rendered and perceived here) or a recorded
-percept stream (JSON Lines, no images).
+"""Where frames come from: a simulated scenario (rendered and perceived here), a recorded
+RGB-D bag (ROS 1 or 2, perceived here) or a recorded percept stream (JSON Lines, no images).
 
 A source yields one *pending frame* per camera frame: the camera's image is there (the
 simulator has rendered it), and calling the pending frame runs perception on it (timed) and
@@ -47,6 +47,35 @@ def scenario_frames(path: str | Path, seed: int = 0, width: int | None = None,
             yield partial(_perceive, pipeline, frame)
 
 
+def perceive_scenario(scenario: Any, width: int | None = None, height: int | None = None,
+                      fps: float | None = None, seed: int = 0,
+                      pipeline: Any = None) -> Iterator[PerceptFrame]:
+    """The percept stream of a simulated scenario.
+
+    Parameters
+    ----------
+    scenario:
+        A :class:`tabletop.Scenario` or the path of a scenario file.
+    width, height, fps, seed:
+        The simulator's image size, frame rate and noise seed (the scenario's by default).
+    pipeline:
+        A :class:`perception.Pipeline` (a new one by default).
+
+    Returns
+    -------
+    The frames' percepts with their ground truth, in order.
+    """
+    from perception import Pipeline
+    from tabletop import Simulation, load_scenario
+
+    if isinstance(scenario, (str, Path)):
+        scenario = load_scenario(scenario)
+    pipe = pipeline or Pipeline()
+    with Simulation(scenario, width=width, height=height, fps=fps, seed=seed) as sim:
+        for frame in sim:
+            yield pipe.percept_frame(frame)
+
+
 def _perceive(pipeline: Any, frame: Any) -> SourceFrame:
     started = time.perf_counter()
     percepts = pipeline.percept_frame(frame)
@@ -64,6 +93,29 @@ def scenario_length(path: str | Path, fps: float | None = None) -> int | None:
         return int(scenario.end_time() * rate + 1e-9) + 1
     except Exception:
         return None
+
+
+def bag_frames(path: str | Path, topics: Any = None) -> Iterator[PendingFrame]:
+    """The frames of a recorded RGB-D bag, at its time stamps; each pending frame runs the
+    perception pipeline on it.
+
+    Parameters
+    ----------
+    path:
+        A ``.bag``, ``.db3`` or ``.mcap`` file (``bags.read_bag``).
+    topics:
+        A :class:`bags.BagTopics` (the usual topic names by default).
+
+    Returns
+    -------
+    Pending frames, in the bag's time order.
+    """
+    from bags import read_bag
+    from perception import Pipeline
+
+    pipeline = Pipeline()
+    for frame in read_bag(path, topics):
+        yield partial(_perceive, pipeline, frame)
 
 
 def stream_frames(path: str | Path, skipped: list[str] | None = None
