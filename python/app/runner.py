@@ -35,6 +35,8 @@ class RunOptions(LoopConfig):
     height: int | None = None
     # perceive the next frame while the current one is reasoned about (run_frames)
     overlap: bool = True
+    rerun: Path | None = None  # log the run to this Rerun .rrd file
+    rerun_spawn: bool = False  # ... and/or to a Rerun viewer started for it
 
 
 @dataclass
@@ -88,11 +90,18 @@ def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
     if options.out is not None:
         options.out.mkdir(parents=True, exist_ok=True)
         pictures = FramePictures(options.out, every=options.picture_every)
+    viewer = None
+    if options.rerun is not None or options.rerun_spawn:
+        from app.rerun_frames import RerunFrames  # rerun-sdk only when asked for
+
+        viewer = RerunFrames(options.rerun, options.rerun_spawn, name)
     bar = tqdm(total=total, unit="frame", desc=name, disable=not options.progress)
 
     def on_frame(outcome: FrameOutcome, loop: AnchoringLoop) -> None:
         if pictures is not None:
             pictures(outcome, loop)
+        if viewer is not None:
+            viewer(outcome, loop)
         bar.update(1)
 
     records: list[TrackingRecord] = []
@@ -103,6 +112,8 @@ def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
         stopped = exc
     finally:
         bar.close()
+        if viewer is not None:
+            viewer.close()
     for message in skipped:
         logger.warning("skipped: %s", message)
     output = _finish(options, loop, name, records, skipped, stopped, pictures)

@@ -27,6 +27,7 @@ class SourceFrame:
     rgb: Any = None  # uint8 HxWx3 when the source renders images
     intrinsics: Any = None
     camera_pose: Any = None  # 4x4 world-from-camera (OpenCV axes)
+    depth: Any = None  # float32 HxW metres when the source renders images
 
 
 PendingFrame = Callable[[], SourceFrame]
@@ -80,7 +81,8 @@ def _perceive(pipeline: Any, frame: Any) -> SourceFrame:
     started = time.perf_counter()
     percepts = pipeline.percept_frame(frame)
     ms = (time.perf_counter() - started) * 1000
-    return SourceFrame(percepts, ms, frame.rgb, frame.intrinsics, frame.camera_pose)
+    return SourceFrame(percepts, ms, frame.rgb, frame.intrinsics, frame.camera_pose,
+                       frame.depth)
 
 
 def scenario_length(path: str | Path, fps: float | None = None) -> int | None:

@@ -94,6 +94,12 @@ def register(sub: Any) -> None:
     parser.add_argument("--no-reid", action="store_true",
                         help="anchoring does not re-identify a percept by appearance alone "
                              "(a unique look-alike of an anchor left over)")
+    parser.add_argument("--rerun", type=Path, default=None, metavar="FILE.rrd",
+                        help="log the run for the Rerun 3-D viewer (rerun FILE.rrd): images, "
+                             "point cloud, anchors as boxes, particles, occlusion "
+                             "probabilities and timings on the frame timeline")
+    parser.add_argument("--rerun-spawn", action="store_true",
+                        help="open the Rerun viewer and stream the run to it")
     add_run_options(parser)
     parser.set_defaults(func=main)
 
@@ -108,10 +114,13 @@ def main(args: argparse.Namespace) -> int:
         theory=args.theory, seed=args.seed, reasoning=not args.no_reasoning,
         resample_threshold=args.resample_threshold, reidentify=not args.no_reid, out=args.out,
         threads=args.threads, engine=args.engine, overlap=not args.sequential,
-        picture_every=args.every, progress=not args.quiet,
+        picture_every=args.every, progress=not args.quiet, rerun=args.rerun,
+        rerun_spawn=args.rerun_spawn,
     ))
     print(format_summary(output.summary))
     if output.out is not None:
         print(f"wrote {output.out}/summary.json, world.pl"
               + (f", {len(output.pictures)} pictures and {output.gif}" if output.gif else ""))
+    if args.rerun is not None:
+        print(f"wrote {args.rerun} (view it with: .venv/bin/rerun {args.rerun})")
     return 0
