@@ -34,10 +34,11 @@ PendingFrame = Callable[[], SourceFrame]
 
 
 def scenario_frames(path: str | Path, seed: int = 0, width: int | None = None,
-                    height: int | None = None, fps: float | None = None
+                    height: int | None = None, fps: float | None = None, start: int = 0
                     ) -> Iterator[PendingFrame]:
     """Render every frame of a scenario; each pending frame runs the perception pipeline on
-    it (the pipeline's frames must be perceived in order, one at a time)."""
+    it (the pipeline's frames must be perceived in order, one at a time). Frames before
+    ``start`` are rendered (the sensor noise follows the frames) but not given."""
     from perception import Pipeline
     from tabletop import Simulation, load_scenario
 
@@ -45,7 +46,8 @@ def scenario_frames(path: str | Path, seed: int = 0, width: int | None = None,
     pipeline = Pipeline()
     with Simulation(scenario, width=width, height=height, fps=fps, seed=seed) as sim:
         for frame in sim:
-            yield partial(_perceive, pipeline, frame)
+            if frame.index >= start:
+                yield partial(_perceive, pipeline, frame)
 
 
 def perceive_scenario(scenario: Any, width: int | None = None, height: int | None = None,
@@ -97,7 +99,8 @@ def scenario_length(path: str | Path, fps: float | None = None) -> int | None:
         return None
 
 
-def bag_frames(path: str | Path, topics: Any = None) -> Iterator[PendingFrame]:
+def bag_frames(path: str | Path, topics: Any = None, start: int = 0
+               ) -> Iterator[PendingFrame]:
     """The frames of a recorded RGB-D bag, at its time stamps; each pending frame runs the
     perception pipeline on it.
 
@@ -107,6 +110,8 @@ def bag_frames(path: str | Path, topics: Any = None) -> Iterator[PendingFrame]:
         A ``.bag``, ``.db3`` or ``.mcap`` file (``bags.read_bag``).
     topics:
         A :class:`bags.BagTopics` (the usual topic names by default).
+    start:
+        The first frame given (the earlier ones are read and skipped).
 
     Returns
     -------
@@ -117,12 +122,15 @@ def bag_frames(path: str | Path, topics: Any = None) -> Iterator[PendingFrame]:
 
     pipeline = Pipeline()
     for frame in read_bag(path, topics):
-        yield partial(_perceive, pipeline, frame)
+        if frame.index >= start:
+            yield partial(_perceive, pipeline, frame)
 
 
-def stream_frames(path: str | Path, skipped: list[str] | None = None
+def stream_frames(path: str | Path, skipped: list[str] | None = None, start: int = 0
                   ) -> Iterator[PendingFrame]:
     """A recorded percept stream: no images, perception time 0. With ``skipped``, a line that
-    is not a frame is skipped and its error appended there (``percepts.read_percepts``)."""
+    is not a frame is skipped and its error appended there (``percepts.read_percepts``).
+    Frames numbered below ``start`` are skipped."""
     for frame in read_percepts(path, skipped):
-        yield partial(SourceFrame, frame, 0.0)
+        if frame.frame >= start:
+            yield partial(SourceFrame, frame, 0.0)

@@ -98,6 +98,12 @@ def register(sub: Any) -> None:
                         help="log the run for the Rerun 3-D viewer (rerun FILE.rrd): images, "
                              "point cloud, anchors as boxes, particles, occlusion "
                              "probabilities and timings on the frame timeline")
+    parser.add_argument("--store", type=Path, default=None, metavar="WORLD.db",
+                        help="keep the world model in this SQLite store, written per frame "
+                             "(anchors, their history, the particles)")
+    parser.add_argument("--resume", type=Path, default=None, metavar="WORLD.db",
+                        help="continue the run kept in this store after a restart (the same "
+                             "source and options; the source may be left out)")
     parser.add_argument("--rerun-spawn", action="store_true",
                         help="open the Rerun viewer and stream the run to it")
     add_run_options(parser)
@@ -115,12 +121,14 @@ def main(args: argparse.Namespace) -> int:
         resample_threshold=args.resample_threshold, reidentify=not args.no_reid, out=args.out,
         threads=args.threads, engine=args.engine, overlap=not args.sequential,
         picture_every=args.every, progress=not args.quiet, rerun=args.rerun,
-        rerun_spawn=args.rerun_spawn,
+        rerun_spawn=args.rerun_spawn, store=args.store, resume=args.resume,
     ))
     print(format_summary(output.summary))
     if output.out is not None:
         print(f"wrote {output.out}/summary.json, world.pl"
               + (f", {len(output.pictures)} pictures and {output.gif}" if output.gif else ""))
+    if args.store or args.resume:
+        print(f"world model in {args.store or args.resume}")
     if args.rerun is not None:
         print(f"wrote {args.rerun} (view it with: .venv/bin/rerun {args.rerun})")
     return 0
