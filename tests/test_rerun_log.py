@@ -46,11 +46,11 @@ def logged(tmp_path_factory: pytest.TempPathFactory):
     scenario.write_text(SCENARIO)
     output = run(RunOptions(scenario=scenario, particles=60, seed=0, progress=False,
                             rerun=root / "run.rrd"))
-    return output, _read(root / "run.rrd")
+    return output, _read(root / "run.rrd"), root / "run.rrd"
 
 
 def test_every_entity_is_on_the_frame_timeline(logged) -> None:
-    output, entities = logged
+    output, entities, _ = logged
     frames = set(range(len(output.records)))
     for entity in ("/world/camera", "/world/camera/image", "/world/camera/depth",
                    "/world/cloud", "/world/anchors", "/timings/perception", "/timings/filter"):
@@ -58,7 +58,7 @@ def test_every_entity_is_on_the_frame_timeline(logged) -> None:
 
 
 def test_anchors_are_labelled_boxes_and_the_hidden_ball_has_particles(logged) -> None:
-    output, entities = logged
+    output, entities, _ = logged
     symbols = {o["id"]: o["symbols"][0] for o in output.summary["objects"]}
     ball, mug = symbols["ball_1"], symbols["mug_1"]
     hidden = [r.frame for r in output.records if not r.hypotheses[ball].perceived]
@@ -87,3 +87,15 @@ def test_anchors_are_labelled_boxes_and_the_hidden_ball_has_particles(logged) ->
 def test_a_log_needs_a_file_or_the_viewer() -> None:
     with pytest.raises(ValueError, match="needs a file or the viewer"):
         RerunLog(None, spawn=False)
+
+
+def test_a_frame_of_the_log_is_drawn_from_the_logged_data(logged, tmp_path: Path) -> None:
+    from visualise.rrd_picture import draw, frame_data
+
+    output, entities, path = logged
+    frame = len(output.records) // 2
+    data = frame_data(path, frame)
+    assert data["/world/anchors"]["Boxes3D:labels"] == \
+        entities["/world/anchors"][frame]["Boxes3D:labels"]
+    png = draw(path, frame, tmp_path / "view.png")
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
