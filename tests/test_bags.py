@@ -17,29 +17,13 @@ from bags import BagError, BagTopics, bag_topics, read_bag, write_bag
 from bags.messages import CAMERA_INFO, IMAGE, TF, MessageFactory, typestore_for
 from cli.anchoring_cli import main as anchoring
 from perception import CameraIntrinsics
+from scenario_helpers import scenario_file
 from tabletop import Simulation, load_scenario
-
-SCENARIO = """\
-name: ball_under_mug_moved
-fps: 5
-objects:
-  - {id: ball_1, category: ball, colour: red, radius: 0.03, position: [-0.1, -0.05]}
-  - {id: mug_1, category: mug, colour: blue, radius: 0.04, height: 0.1, position: [0.05, 0.05]}
-  - {id: ball_2, category: ball, colour: red, radius: 0.03, position: [-0.25, 0.2]}
-  - {id: box_1, category: box, colour: green, size: [0.12, 0.12, 0.12], position: [-0.05, 0.25]}
-events:
-  - {at: 1.0, do: put_under, object: ball_1, container: mug_1, duration: 2.0}
-  - {at: 1.0, do: put_under, object: ball_2, container: box_1, duration: 2.0}
-  - {at: 3.5, do: move, object: mug_1, to: [0.2, 0.1], duration: 2.0}
-  - {at: 6.0, do: lift, container: mug_1, duration: 2.0}
-"""
 
 
 @pytest.fixture(scope="module")
 def scenario(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    path = tmp_path_factory.mktemp("scenario") / "ball_under_mug_moved.yaml"
-    path.write_text(SCENARIO)
-    return path
+    return scenario_file(tmp_path_factory)
 
 
 @pytest.fixture(scope="module")

@@ -12,6 +12,7 @@ import pytest
 from rerun.chunk import RrdReader
 
 from app.runner import RunOptions, run
+from scenario_helpers import scenario_file
 from visualise.rerun_log import RerunLog
 
 SCENARIO = """\
@@ -42,8 +43,7 @@ def _read(path: Path) -> dict[str, dict[int, dict[str, object]]]:
 @pytest.fixture(scope="module")
 def logged(tmp_path_factory: pytest.TempPathFactory):
     root = tmp_path_factory.mktemp("rerun")
-    scenario = root / "ball_under_mug.yaml"
-    scenario.write_text(SCENARIO)
+    scenario = scenario_file(tmp_path_factory, SCENARIO, "ball_under_mug")
     output = run(RunOptions(scenario=scenario, particles=60, seed=0, progress=False,
                             rerun=root / "run.rrd"))
     return output, _read(root / "run.rrd"), root / "run.rrd"

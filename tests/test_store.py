@@ -17,7 +17,7 @@ import pytest
 from app.runner import RunOptions, run
 from app.store import StoreError
 from plunit_runner import ROOT
-from test_bags import SCENARIO
+from scenario_helpers import scenario_file
 
 PARTICLES = 60
 
@@ -37,9 +37,7 @@ def _particles(db: Path) -> tuple[list, list]:
 
 @pytest.fixture(scope="module")
 def scenario(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    path = tmp_path_factory.mktemp("store") / "ball_under_mug_moved.yaml"
-    path.write_text(SCENARIO)
-    return path
+    return scenario_file(tmp_path_factory)
 
 
 @pytest.fixture(scope="module")

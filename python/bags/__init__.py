@@ -1,7 +1,7 @@
 """RGB-D recordings in ROS bags, read and written with ``rosbags`` (no ROS installation).
 
     from bags import BagTopics, read_bag, write_bag
-    for frame in read_bag("run.mcap"):          # perception.RGBDFrame, at the bag's stamps
+    for frame in read_bag("run.mcap"):          # rgbd.RGBDFrame, at the bag's stamps
         ...
     write_bag("out.mcap", frames)               # the simulator's frames and their ground truth
 

@@ -2,7 +2,7 @@
 
 Colour and depth images are paired by their header stamps (the nearest within
 ``BagTopics.max_skew`` seconds; an image left without a partner is skipped and counted); each
-pair is one :class:`perception.RGBDFrame` at the colour image's stamp, in seconds from the
+pair is one :class:`rgbd.RGBDFrame` at the colour image's stamp, in seconds from the
 first pair's. The intrinsics are the first ``CameraInfo`` of the colour camera; the camera
 pose is the chain of ``/tf_static`` and ``/tf`` transforms from the world frame to the colour
 image's ``frame_id`` (each dynamic transform the latest at or before the frame's stamp), or
@@ -38,7 +38,8 @@ from bags.messages import (
     transform_matrix,
     typestore_for,
 )
-from perception.camera import CameraIntrinsics, FrameError, RGBDFrame, check_frame
+from perception.camera import FrameError, check_frame
+from rgbd import CameraIntrinsics, RGBDFrame
 
 logger = logging.getLogger(__name__)
 

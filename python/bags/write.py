@@ -42,7 +42,7 @@ def write_bag(path: str | Path, frames: Iterable[Any]) -> int:
         ``OUT.bag`` (ROS 1), ``OUT.mcap`` or ``OUT.db3`` (ROS 2, one file); it must not
         exist.
     frames:
-        :class:`perception.RGBDFrame` or alike (``tabletop.Frame``); ``truth``,
+        :class:`rgbd.RGBDFrame` or alike (``tabletop.Frame``); ``truth``,
         ``segmentation`` and ``body_names`` are written when there.
 
     Returns

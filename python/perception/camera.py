@@ -1,52 +1,24 @@
 """Any RGB-D camera, as the pipeline sees it: intrinsics, pose and one frame's images.
 
 The pipeline needs nothing of where a frame comes from (the simulator, a recorded bag, a live
-driver): :class:`RGBDFrame` holds what it reads, and :func:`check_frame` says what is wrong
+driver): :class:`rgbd.RGBDFrame` holds what it reads, and :func:`check_frame` says what is wrong
 with a frame that it could not perceive (images of different sizes, intrinsics of another
 image size, a pose that is not a rigid transform).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from rgbd import CameraIntrinsics, RGBDFrame
+
+__all__ = ["CameraIntrinsics", "FrameError", "RGBDFrame", "check_frame"]
+
 
 class FrameError(ValueError):
     """A frame the pipeline cannot perceive; the message names the cause."""
-
-
-@dataclass(frozen=True)
-class CameraIntrinsics:
-    """Pinhole intrinsics in pixels (OpenCV convention: pixel centres at integer coordinates)
-    and the image size they belong to."""
-
-    fx: float
-    fy: float
-    cx: float
-    cy: float
-    width: int
-    height: int
-
-
-@dataclass
-class RGBDFrame:
-    """One registered RGB-D frame: ``rgb`` uint8 HxWx3, ``depth`` float32 HxW metres along the
-    optical axis (0 = no return), ``camera_pose`` 4x4 world-from-camera (OpenCV axes: x right,
-    y down, z forward). ``truth``, ``segmentation`` and ``body_names`` are optional ground
-    truth, used only to label percepts with ``truth_id`` for evaluation."""
-
-    index: int
-    time: float
-    rgb: np.ndarray
-    depth: np.ndarray
-    intrinsics: CameraIntrinsics
-    camera_pose: np.ndarray
-    truth: dict[str, Any] = field(default_factory=dict)
-    segmentation: np.ndarray | None = None
-    body_names: dict[int, str] = field(default_factory=dict)
 
 
 def check_frame(frame: Any) -> None:

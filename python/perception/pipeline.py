@@ -1,7 +1,7 @@
 """The perception pipeline: one RGB-D frame in, a list of percepts out.
 
     pipeline = Pipeline()
-    percepts = pipeline.process(frame)          # frame: perception.RGBDFrame or alike
+    percepts = pipeline.process(frame)          # frame: rgbd.RGBDFrame or alike
 
 Steps: depth -> world points (camera intrinsics and pose); table plane by a seeded RANSAC on a
 subsample (the same plane on every run); above-table mask; skin segments by an HSV window;
@@ -84,7 +84,7 @@ class Pipeline:
         Parameters
         ----------
         frame:
-            An :class:`perception.RGBDFrame` of any camera, or anything alike.
+            An :class:`rgbd.RGBDFrame` of any camera, or anything alike.
 
         Returns
         -------

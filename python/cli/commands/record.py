@@ -12,6 +12,8 @@ import argparse
 import time
 from pathlib import Path
 
+from cli.options import add_render_options
+
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
@@ -20,10 +22,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("scenario", type=Path, help="scenario YAML file")
     parser.add_argument("--bag", type=Path, required=True,
                         help="the bag to write: OUT.mcap or OUT.db3 (ROS 2), OUT.bag (ROS 1)")
-    parser.add_argument("--width", type=int, default=None, help="image width (default 320)")
-    parser.add_argument("--height", type=int, default=None, help="image height (default 240)")
-    parser.add_argument("--fps", type=float, default=None, help="frames per second of time")
-    parser.add_argument("--seed", type=int, default=0, help="sensor noise seed")
+    add_render_options(parser)
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
     parser.set_defaults(func=run)
 
