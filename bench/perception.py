@@ -51,7 +51,7 @@ def open3d_reference(frame, back: Backprojector, voxel: float) -> int:
 
 def accuracy(tables: int, seed: int) -> None:
     """Percepts against ground truth on random tables (any yaw, every category)."""
-    from perception.training import random_scene
+    from app.classifier_data import random_scene
     from tabletop import parse_scenario
 
     rng = np.random.default_rng(seed)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 tabletop = pytest.importorskip("tabletop")
-perception = pytest.importorskip("perception")
+sources = pytest.importorskip("app.sources")
 
 from anchoring import AnchorManager  # noqa: E402
 
@@ -28,7 +28,7 @@ def test_simulated_stream_without_occlusion_keeps_every_symbol():
     manager = AnchorManager()
     used: dict[str, list[str]] = {}
     frames = 0
-    for frame in perception.perceive_scenario(scene(), seed=3):
+    for frame in sources.perceive_scenario(scene(), seed=3):
         frames += 1
         result = manager.process(frame.time, frame.percepts)
         for i, symbol in result.symbols.items():

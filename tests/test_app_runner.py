@@ -11,30 +11,13 @@ import pytest
 
 from app.runner import RunOptions, run
 from plunit_runner import ROOT, swipl_executable
-
-# Two look-alike balls, both hidden when ball_1 is revealed: anchoring cannot tell them apart by
-# appearance, so only where ball_1 is believed to be (the reasoning) keeps its symbol.
-SCENARIO = """\
-name: ball_under_mug_moved
-fps: 5
-objects:
-  - {id: ball_1, category: ball, colour: red, radius: 0.03, position: [-0.1, -0.05]}
-  - {id: mug_1, category: mug, colour: blue, radius: 0.04, height: 0.1, position: [0.05, 0.05]}
-  - {id: ball_2, category: ball, colour: red, radius: 0.03, position: [-0.25, 0.2]}
-  - {id: box_1, category: box, colour: green, size: [0.12, 0.12, 0.12], position: [-0.05, 0.25]}
-events:
-  - {at: 1.0, do: put_under, object: ball_1, container: mug_1, duration: 2.0}
-  - {at: 1.0, do: put_under, object: ball_2, container: box_1, duration: 2.0}
-  - {at: 3.5, do: move, object: mug_1, to: [0.2, 0.1], duration: 2.0}
-  - {at: 6.0, do: lift, container: mug_1, duration: 2.0}
-"""
+from scenario_helpers import BALL_UNDER_MUG_MOVED as SCENARIO
+from scenario_helpers import scenario_file
 
 
 @pytest.fixture(scope="module")
 def scenario(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    path = tmp_path_factory.mktemp("scenario") / "ball_under_mug_moved.yaml"
-    path.write_text(SCENARIO)
-    return path
+    return scenario_file(tmp_path_factory)
 
 
 @pytest.fixture(scope="module")

@@ -8,7 +8,8 @@ import cv2
 import numpy as np
 import pytest
 
-from perception import Pipeline, perceive_scenario
+from app.sources import perceive_scenario
+from perception import Pipeline
 from perception.colour import DEFAULT_BINS, colour_names, histogram, hsv_image
 from percepts import read_percepts, write_percepts
 from tabletop import ScenarioBuilder, Simulation, load_scenario
@@ -184,3 +185,40 @@ def test_bigger_frames_give_the_same_percepts():
         truth = frame.truth["objects"][p.truth_id]
         assert np.linalg.norm(p.position - np.asarray(truth["position"])) < 0.01
         assert np.all(np.abs(p.size / np.asarray(truth["size"]) - 1) < 0.15)
+
+
+def test_perception_never_imports_the_simulator() -> None:
+    """Any camera's frames go through the pipeline: nothing in perception/ imports tabletop."""
+    import ast
+
+    root = Path(__file__).resolve().parents[1] / "python" / "perception"
+    imported = []
+    for path in root.glob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Import):
+                imported += [(path.name, a.name) for a in node.names]
+            elif isinstance(node, ast.ImportFrom) and node.module:
+                imported.append((path.name, node.module))
+    assert imported and not [(f, m) for f, m in imported if m.split(".")[0] == "tabletop"]
+
+
+def test_a_frame_of_another_camera_size_is_perceived_and_a_bad_one_is_a_frame_error() -> None:
+    from perception import CameraIntrinsics, FrameError, RGBDFrame
+
+    scene = ScenarioBuilder("one_ball", duration=0.1).add("ball_1", "ball", "red",
+                                                          position=(0.0, 0.0), radius=0.03)
+    with Simulation(scene.build(), width=400, height=300, seed=0) as sim:
+        frame = sim.step()
+    k = frame.intrinsics
+    own = RGBDFrame(0, 0.0, frame.rgb, frame.depth,
+                    CameraIntrinsics(k.fx, k.fy, k.cx, k.cy, 400, 300), frame.camera_pose)
+    percepts = Pipeline().process(own)
+    assert len(percepts) == 1 and percepts[0].category.get("ball", 0) > 0.5
+    assert np.allclose(percepts[0].position[:2], (0.0, 0.0), atol=0.01)
+    with pytest.raises(FrameError, match="colour image is 400x300 but depth image is 200x150"):
+        Pipeline().process(RGBDFrame(0, 0.0, frame.rgb, frame.depth[:150, :200], own.intrinsics,
+                                     frame.camera_pose))
+    with pytest.raises(FrameError, match="intrinsics are for 320x240 images"):
+        Pipeline().process(RGBDFrame(0, 0.0, frame.rgb, frame.depth,
+                                     CameraIntrinsics(k.fx, k.fy, k.cx, k.cy, 320, 240),
+                                     frame.camera_pose))

@@ -381,6 +381,7 @@ class AnchorManager:
             "ambiguity_ratio": self.ambiguity_ratio,
             "blind_time": self.blind_time,
             "symbol_counters": self.symbols.counters,
+            "withholding": dict(self._withholding),
             "anchors": [a.to_json() for a in self._anchors.values()],
         }
 
@@ -401,6 +402,26 @@ class AnchorManager:
             raise AnchorManagerError(
                 f"{path}:{exc.lineno}: not JSON: {exc.msg}"
             ) from exc
+        return cls.from_json(record, matcher, str(path))
+
+    @classmethod
+    def from_json(cls, record: Any, matcher: Matcher | None = None, path: str = "<json>"
+                  ) -> AnchorManager:
+        """The manager :meth:`to_json` described, anchors and counters as they were.
+
+        Parameters
+        ----------
+        record:
+            The decoded JSON.
+        matcher:
+            The matching model (the shipped one by default).
+        path:
+            Where the record came from, for the errors.
+
+        Returns
+        -------
+        The manager; an :class:`AnchorManagerError` naming ``path`` for a bad record.
+        """
         if not isinstance(record, dict) or record.get("format") != FORMAT:
             raise AnchorManagerError(f"{path}: not an anchoring world file (format {FORMAT})")
         try:
@@ -426,6 +447,8 @@ class AnchorManager:
             manager.symbols = SymbolTable(
                 {str(k): int(v) for k, v in record["symbol_counters"].items()}
             )
+            manager._withholding = {str(k): float(v)
+                                    for k, v in record.get("withholding", {}).items()}
             for i, item in enumerate(record["anchors"]):
                 try:
                     anchor = Anchor.from_json(item)

@@ -73,7 +73,7 @@ def game_scenarios(out: Path, games: int, first_seed: int = 0) -> list[Path]:
 
 def percept_stream(scenario: Path, seed: int, cache: Path) -> Path:
     """The perceived stream of ``scenario`` with noise seed ``seed`` (cached)."""
-    from perception import perceive_scenario
+    from app.sources import perceive_scenario
 
     path = cache / f"{scenario.stem}_seed{seed}.jsonl"
     if not path.exists():

@@ -53,6 +53,7 @@ class FrameStep:
     hidden: dict[str, tuple[np.ndarray, np.ndarray]]
     timings: FrameTimings
     rejected: int
+    states: list[AnchorState] = field(default_factory=list)  # what the filter was given
 
 
 @dataclass
@@ -63,6 +64,8 @@ class FrameOutcome:
     result: FrameResult
     record: TrackingRecord
     hidden_beliefs: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+    # the anchors' states the filter stepped on (empty without reasoning): a store replays them
+    states: list[AnchorState] = field(default_factory=list)
 
 
 class AnchoringLoop:
@@ -104,6 +107,7 @@ class AnchoringLoop:
 
         filter_ms = 0.0
         hidden: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+        states: list[AnchorState] = []
         if self.reasoner is not None:
             started = time.perf_counter()
             perceived = {a.symbol: frame.percepts[a.percept_index].position
@@ -125,7 +129,7 @@ class AnchoringLoop:
         return FrameStep(source, result, hidden,
                          FrameTimings(perception=source.perception_ms, anchoring=anchoring_ms,
                                       filter=filter_ms),
-                         rejected)
+                         rejected, states)
 
     def finish(self, step: FrameStep) -> FrameOutcome:
         """The frame's tracking record (hypotheses and matches for the evaluation), from the
@@ -142,7 +146,7 @@ class AnchoringLoop:
             ambiguous={result.symbols[a.percept_index]: a.candidates
                        for a in result.ambiguous},
         )
-        return FrameOutcome(step.source, result, record, step.hidden)
+        return FrameOutcome(step.source, result, record, step.hidden, step.states)
 
     def hypotheses(self, result: FrameResult) -> dict[str, Hypothesis]:
         perceived = {a.symbol for a in result.assignments}

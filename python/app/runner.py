@@ -12,7 +12,8 @@ from tqdm import tqdm
 
 from app.loop import AnchoringLoop, FrameOutcome, LoopConfig, run_frames
 from app.pictures import FramePictures
-from app.sources import scenario_frames, scenario_length, stream_frames
+from app.sources import bag_frames, scenario_frames, scenario_length, stream_frames
+from app.store import StoredRun, WorldStore, run_meta, store_source, stored_source
 from app.world_file import write_world
 from evaluation import TrackingRecord, evaluate, make_summary, write_records, write_summary
 
@@ -26,6 +27,8 @@ class RunOptions(LoopConfig):
 
     scenario: Path | None = None
     percepts: Path | None = None
+    bag: Path | None = None
+    bag_topics: Any = None  # bags.BagTopics for the bag (the usual topics by default)
     out: Path | None = None
     picture_every: int = 1
     progress: bool = True
@@ -33,6 +36,10 @@ class RunOptions(LoopConfig):
     height: int | None = None
     # perceive the next frame while the current one is reasoned about (run_frames)
     overlap: bool = True
+    rerun: Path | None = None  # log the run to this Rerun .rrd file
+    rerun_spawn: bool = False  # ... and/or to a Rerun viewer started for it
+    store: Path | None = None  # keep the world model in this SQLite store, frame by frame
+    resume: Path | None = None  # continue the run kept in this store
 
 
 @dataclass
@@ -45,45 +52,86 @@ class RunOutput:
 
 
 def run(options: RunOptions) -> RunOutput:
-    if (options.scenario is None) == (options.percepts is None):
-        raise ValueError("give a scenario or a percept stream (--percepts), not both")
-    if options.reasoning and not options.theory.is_file():
-        raise FileNotFoundError(f"{options.theory}: no such theory file")
-    # The loop's filter loads the theory (once) here, before the first frame: a syntax or
-    # distribution error stops the run with the file, line and cause.
-    loop = AnchoringLoop(options)
+    if options.store is not None and options.resume is not None:
+        raise ValueError("give --store (a new run) or --resume (continue one), not both")
+    store = WorldStore.open(options.resume) if options.resume is not None else None
     try:
-        return _run(options, loop)
+        if store is not None and options.scenario is options.percepts is options.bag is None:
+            kind, path = stored_source(store.meta())  # the stored run's own source
+            setattr(options, kind, path)
+        given = [s for s in (options.scenario, options.percepts, options.bag) if s is not None]
+        if len(given) != 1:
+            raise ValueError("give one of a scenario, a percept stream (--percepts) or a bag "
+                             "(--bag)")
+        if options.reasoning and not options.theory.is_file():
+            raise FileNotFoundError(f"{options.theory}: no such theory file")
+        meta = run_meta(store_source(options.scenario, options.bag, options.percepts), options)
+        if store is not None:
+            store.check_resumable(meta)
+        elif options.store is not None:
+            store = WorldStore.create(options.store, meta)
+        # The loop's filter loads the theory (once) here, before the first frame: a syntax or
+        # distribution error stops the run with the file, line and cause.
+        loop = AnchoringLoop(options)
+        try:
+            stored = store.resume(loop) if options.resume is not None and store is not None \
+                else StoredRun(0, [])
+            return _run(options, loop, store, stored)
+        finally:
+            loop.close()
     finally:
-        loop.close()
+        if store is not None:
+            store.close()
 
 
-def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
-    """Play the frames; what was done is written even when an error stops the run (its summary
-    then says ``stopped``: the error), and the error is raised again."""
-    skipped: list[str] = []  # lines of a percept stream that are not frames
+def _run(options: RunOptions, loop: AnchoringLoop, store: WorldStore | None = None,
+         stored: StoredRun | None = None) -> RunOutput:
+    """Play the frames (from ``stored.next_frame`` on, after its records); what was done is
+    written even when an error stops the run (its summary then says ``stopped``: the error),
+    and the error is raised again."""
+    stored = stored or StoredRun(0, [])
+    start = stored.next_frame
+    skipped: list[str] = []  # lines of a percept stream that are not frames, unpaired images
     if options.scenario is not None:
         frames = scenario_frames(options.scenario, seed=options.seed, width=options.width,
-                                 height=options.height)
+                                 height=options.height, start=start)
         total = scenario_length(options.scenario)
         name = options.scenario.stem
+    elif options.bag is not None:
+        from bags import BagTopics
+
+        topics = options.bag_topics or BagTopics()
+        skipped = topics.skipped  # images without a partner, filled in as the bag is read
+        frames = bag_frames(options.bag, topics, start=start)
+        total = None
+        name = options.bag.stem
     else:
         assert options.percepts is not None
-        frames = stream_frames(options.percepts, skipped)
+        frames = stream_frames(options.percepts, skipped, start=start)
         total = None
         name = options.percepts.stem
     pictures = None
     if options.out is not None:
         options.out.mkdir(parents=True, exist_ok=True)
         pictures = FramePictures(options.out, every=options.picture_every)
-    bar = tqdm(total=total, unit="frame", desc=name, disable=not options.progress)
+    viewer = None
+    if options.rerun is not None or options.rerun_spawn:
+        from app.rerun_frames import RerunFrames  # rerun-sdk only when asked for
+
+        viewer = RerunFrames(options.rerun, options.rerun_spawn, name)
+    bar = tqdm(total=None if total is None else max(0, total - start), unit="frame",
+               desc=name, disable=not options.progress)
 
     def on_frame(outcome: FrameOutcome, loop: AnchoringLoop) -> None:
+        if store is not None:
+            store.write_frame(outcome, loop)
         if pictures is not None:
             pictures(outcome, loop)
+        if viewer is not None:
+            viewer(outcome, loop)
         bar.update(1)
 
-    records: list[TrackingRecord] = []
+    records: list[TrackingRecord] = list(stored.records)
     stopped: BaseException | None = None
     try:
         run_frames(frames, loop, on_frame, overlap=options.overlap, records=records)
@@ -91,6 +139,8 @@ def _run(options: RunOptions, loop: AnchoringLoop) -> RunOutput:
         stopped = exc
     finally:
         bar.close()
+        if viewer is not None:
+            viewer.close()
     for message in skipped:
         logger.warning("skipped: %s", message)
     output = _finish(options, loop, name, records, skipped, stopped, pictures)

@@ -1,5 +1,5 @@
-"""Where frames come from: a simulated scenario (rendered and perceived here) or a recorded
-percept stream (JSON Lines, no images).
+"""Where frames come from: a simulated scenario (rendered and perceived here), a recorded
+RGB-D bag (ROS 1 or 2, perceived here) or a recorded percept stream (JSON Lines, no images).
 
 A source yields one *pending frame* per camera frame: the camera's image is there (the
 simulator has rendered it), and calling the pending frame runs perception on it (timed) and
@@ -27,16 +27,18 @@ class SourceFrame:
     rgb: Any = None  # uint8 HxWx3 when the source renders images
     intrinsics: Any = None
     camera_pose: Any = None  # 4x4 world-from-camera (OpenCV axes)
+    depth: Any = None  # float32 HxW metres when the source renders images
 
 
 PendingFrame = Callable[[], SourceFrame]
 
 
 def scenario_frames(path: str | Path, seed: int = 0, width: int | None = None,
-                    height: int | None = None, fps: float | None = None
+                    height: int | None = None, fps: float | None = None, start: int = 0
                     ) -> Iterator[PendingFrame]:
     """Render every frame of a scenario; each pending frame runs the perception pipeline on
-    it (the pipeline's frames must be perceived in order, one at a time)."""
+    it (the pipeline's frames must be perceived in order, one at a time). Frames before
+    ``start`` are rendered (the sensor noise follows the frames) but not given."""
     from perception import Pipeline
     from tabletop import Simulation, load_scenario
 
@@ -44,14 +46,45 @@ def scenario_frames(path: str | Path, seed: int = 0, width: int | None = None,
     pipeline = Pipeline()
     with Simulation(scenario, width=width, height=height, fps=fps, seed=seed) as sim:
         for frame in sim:
-            yield partial(_perceive, pipeline, frame)
+            if frame.index >= start:
+                yield partial(_perceive, pipeline, frame)
+
+
+def perceive_scenario(scenario: Any, width: int | None = None, height: int | None = None,
+                      fps: float | None = None, seed: int = 0,
+                      pipeline: Any = None) -> Iterator[PerceptFrame]:
+    """The percept stream of a simulated scenario.
+
+    Parameters
+    ----------
+    scenario:
+        A :class:`tabletop.Scenario` or the path of a scenario file.
+    width, height, fps, seed:
+        The simulator's image size, frame rate and noise seed (the scenario's by default).
+    pipeline:
+        A :class:`perception.Pipeline` (a new one by default).
+
+    Returns
+    -------
+    The frames' percepts with their ground truth, in order.
+    """
+    from perception import Pipeline
+    from tabletop import Simulation, load_scenario
+
+    if isinstance(scenario, (str, Path)):
+        scenario = load_scenario(scenario)
+    pipe = pipeline or Pipeline()
+    with Simulation(scenario, width=width, height=height, fps=fps, seed=seed) as sim:
+        for frame in sim:
+            yield pipe.percept_frame(frame)
 
 
 def _perceive(pipeline: Any, frame: Any) -> SourceFrame:
     started = time.perf_counter()
     percepts = pipeline.percept_frame(frame)
     ms = (time.perf_counter() - started) * 1000
-    return SourceFrame(percepts, ms, frame.rgb, frame.intrinsics, frame.camera_pose)
+    return SourceFrame(percepts, ms, frame.rgb, frame.intrinsics, frame.camera_pose,
+                       frame.depth)
 
 
 def scenario_length(path: str | Path, fps: float | None = None) -> int | None:
@@ -66,9 +99,38 @@ def scenario_length(path: str | Path, fps: float | None = None) -> int | None:
         return None
 
 
-def stream_frames(path: str | Path, skipped: list[str] | None = None
+def bag_frames(path: str | Path, topics: Any = None, start: int = 0
+               ) -> Iterator[PendingFrame]:
+    """The frames of a recorded RGB-D bag, at its time stamps; each pending frame runs the
+    perception pipeline on it.
+
+    Parameters
+    ----------
+    path:
+        A ``.bag``, ``.db3`` or ``.mcap`` file (``bags.read_bag``).
+    topics:
+        A :class:`bags.BagTopics` (the usual topic names by default).
+    start:
+        The first frame given (the earlier ones are read and skipped).
+
+    Returns
+    -------
+    Pending frames, in the bag's time order.
+    """
+    from bags import read_bag
+    from perception import Pipeline
+
+    pipeline = Pipeline()
+    for frame in read_bag(path, topics):
+        if frame.index >= start:
+            yield partial(_perceive, pipeline, frame)
+
+
+def stream_frames(path: str | Path, skipped: list[str] | None = None, start: int = 0
                   ) -> Iterator[PendingFrame]:
     """A recorded percept stream: no images, perception time 0. With ``skipped``, a line that
-    is not a frame is skipped and its error appended there (``percepts.read_percepts``)."""
+    is not a frame is skipped and its error appended there (``percepts.read_percepts``).
+    Frames numbered below ``start`` are skipped."""
     for frame in read_percepts(path, skipped):
-        yield partial(SourceFrame, frame, 0.0)
+        if frame.frame >= start:
+            yield partial(SourceFrame, frame, 0.0)

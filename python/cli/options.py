@@ -34,6 +34,11 @@ def add_frame_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("scenario", type=Path, help="scenario YAML file")
     parser.add_argument("--out", type=Path, required=True,
                         help="output (a folder for render, a .jsonl file for perceive)")
+    add_render_options(parser)
+
+
+def add_render_options(parser: argparse.ArgumentParser) -> None:
+    """How a scenario's frames are rendered: image size, frame rate, sensor noise seed."""
     parser.add_argument("--width", type=int, default=None, help="image width (default 320)")
     parser.add_argument("--height", type=int, default=None, help="image height (default 240)")
     parser.add_argument("--fps", type=float, default=None, help="frames per second of time")

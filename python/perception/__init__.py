@@ -1,25 +1,31 @@
-"""Perception: RGB-D frames in, percepts out.
+"""Perception: RGB-D frames of any camera in, percepts out.
 
-    from perception import Pipeline, perceive_scenario
+    from perception import Pipeline
     pipeline = Pipeline()                    # PipelineConfig() defaults, the shipped model
     percepts = pipeline.process(frame)       # list[percepts.Percept]; [] when nothing is seen
-    frames = perceive_scenario("scenarios/shell_game.yaml", seed=0)  # Iterator[PerceptFrame]
 
-``frame`` is a :class:`tabletop.Frame` or anything with ``index, time, rgb (HxWx3 uint8),
+``frame`` is an :class:`RGBDFrame` or anything with ``index, time, rgb (HxWx3 uint8),
 depth (HxW float32 metres, 0 = none), intrinsics (fx, fy, cx, cy, width, height),
 camera_pose (4x4 world-from-camera, OpenCV axes)``; ``truth``, ``segmentation`` and
-``body_names`` are optional and used only to fill ``Percept.truth_id``.
+``body_names`` are optional and used only to fill ``Percept.truth_id``. A frame that cannot be
+perceived (images of different sizes, intrinsics of another size) is a :class:`FrameError`.
+Where frames come from (the simulator, a recorded bag) is the caller's business: see
+``app.sources``.
 """
 
+from perception.camera import CameraIntrinsics, FrameError, RGBDFrame, check_frame
 from perception.classifier import CategoryModel
 from perception.colour import colour_names, histogram
-from perception.pipeline import Pipeline, PipelineConfig, perceive_scenario
+from perception.pipeline import Pipeline, PipelineConfig
 
 __all__ = [
+    "CameraIntrinsics",
     "CategoryModel",
+    "FrameError",
     "Pipeline",
     "PipelineConfig",
+    "RGBDFrame",
+    "check_frame",
     "colour_names",
     "histogram",
-    "perceive_scenario",
 ]

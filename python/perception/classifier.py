@@ -1,7 +1,7 @@
 """Category classifier: a small multi-layer perceptron over yaw-invariant shape features.
 
-Trained with scikit-learn (``anchoring train-classifier``, see perception.training) on
-segments of rendered views of each category; the weights are stored as JSON
+Trained with scikit-learn (``anchoring train-classifier``, see perception.training; the data:
+app.classifier_data) on segments of rendered views of each category; the weights are stored as JSON
 (``perception/models/category_mlp.json``) and evaluated here with numpy, so the model file is
 small, needs no pickle and does not depend on the scikit-learn version. It never reads ground
 truth: its input is the segment's points only.

@@ -1,7 +1,7 @@
 """The perception pipeline: one RGB-D frame in, a list of percepts out.
 
     pipeline = Pipeline()
-    percepts = pipeline.process(frame)          # frame: tabletop.Frame or anything alike
+    percepts = pipeline.process(frame)          # frame: rgbd.RGBDFrame or alike
 
 Steps: depth -> world points (camera intrinsics and pose); table plane by a seeded RANSAC on a
 subsample (the same plane on every run); above-table mask; skin segments by an HSV window;
@@ -13,7 +13,6 @@ object segments by connected components cut at depth jumps; per segment position
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -21,6 +20,7 @@ from typing import Any
 import cv2
 import numpy as np
 
+from perception.camera import check_frame
 from perception.classifier import DEFAULT_MODEL, CategoryModel
 from perception.colour import DEFAULT_BINS, colour_names, histogram, hue_shift
 from perception.features import box_attributes, shape_features
@@ -79,7 +79,18 @@ class Pipeline:
 
     # ------------------------------------------------------------------------------ segments
     def segment(self, frame: Any) -> list[Segment]:
-        """Segments of a frame (objects and skin), also kept in ``last_segments``."""
+        """Segments of a frame (objects and skin), also kept in ``last_segments``.
+
+        Parameters
+        ----------
+        frame:
+            An :class:`rgbd.RGBDFrame` of any camera, or anything alike.
+
+        Returns
+        -------
+        The segments; a :class:`perception.FrameError` for a frame that cannot be perceived.
+        """
+        check_frame(frame)
         cfg = self.config
         depth = frame.depth
         h, w = depth.shape
@@ -219,16 +230,3 @@ class Pipeline:
         return PerceptFrame(frame=int(frame.index), time=float(frame.time),
                             percepts=self.process(frame), truth=dict(frame.truth or {}))
 
-
-def perceive_scenario(scenario: Any, width: int | None = None, height: int | None = None,
-                      fps: float | None = None, seed: int = 0,
-                      pipeline: Pipeline | None = None) -> Iterator[PerceptFrame]:
-    """The percept stream of a scenario (a :class:`tabletop.Scenario` or a path to one)."""
-    from tabletop import Simulation, load_scenario
-
-    if isinstance(scenario, (str, Path)):
-        scenario = load_scenario(scenario)
-    pipe = pipeline or Pipeline()
-    with Simulation(scenario, width=width, height=height, fps=fps, seed=seed) as sim:
-        for frame in sim:
-            yield pipe.percept_frame(frame)

@@ -2,28 +2,13 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import pybullet as pb
 
+from rgbd import CameraIntrinsics as Intrinsics
 from tabletop.scenario import CameraSpec
 
-
-@dataclass(frozen=True)
-class Intrinsics:
-    """Pinhole intrinsics in pixels (OpenCV convention: pixel centres at integer coordinates)."""
-
-    fx: float
-    fy: float
-    cx: float
-    cy: float
-    width: int
-    height: int
-
-    @property
-    def K(self) -> np.ndarray:  # noqa: N802 - the usual name
-        return np.array([[self.fx, 0.0, self.cx], [0.0, self.fy, self.cy], [0.0, 0.0, 1.0]])
+__all__ = ["Camera", "Intrinsics", "look_at_pose"]
 
 
 def look_at_pose(position: tuple[float, ...], target: tuple[float, ...], up: tuple[float, ...]

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 import pybullet as pb
 
+from rgbd import RGBDFrame
 from tabletop import bodies
-from tabletop.camera import Camera, Intrinsics
+from tabletop.camera import Camera
 from tabletop.noise import GaussianBank, add_noise
 from tabletop.scenario import Scenario
 from tabletop.timeline import Timeline
@@ -19,23 +19,12 @@ from tabletop.timeline import Timeline
 COVER_DISTANCE = 0.06  # the palm over the lens, metres in front of the camera
 
 
-@dataclass
-class Frame:
-    """One camera frame. ``rgb`` uint8 HxWx3, ``depth`` float32 HxW metres (0 = no return),
-    ``camera_pose`` 4x4 camera-to-world (OpenCV axes). ``truth`` is the JSON-able ground
-    truth (see scenarios/SCHEMA.md); ``segmentation`` (pybullet body per pixel) and
-    ``body_names`` (body -> object id, hand id, ``table`` or ``camera_cover``) are ground truth
-    too: perception uses them only to label percepts with ``truth_id`` for evaluation."""
-
-    index: int
-    time: float
-    rgb: np.ndarray
-    depth: np.ndarray
-    intrinsics: Intrinsics
-    camera_pose: np.ndarray
-    truth: dict[str, Any] = field(default_factory=dict)
-    segmentation: np.ndarray | None = None
-    body_names: dict[int, str] = field(default_factory=dict)
+#: One camera frame: ``rgb`` uint8 HxWx3, ``depth`` float32 HxW metres (0 = no return),
+#: ``camera_pose`` 4x4 camera-to-world (OpenCV axes). ``truth`` is the JSON-able ground truth
+#: (see scenarios/SCHEMA.md); ``segmentation`` (pybullet body per pixel) and ``body_names``
+#: (body -> object id, hand id, ``table`` or ``camera_cover``) are ground truth too:
+#: perception uses them only to label percepts with ``truth_id`` for evaluation.
+Frame = RGBDFrame
 
 
 def _hand_half(scenario: Scenario) -> tuple[float, float, float]:

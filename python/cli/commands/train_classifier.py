@@ -28,11 +28,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from app.classifier_data import build_dataset
     from perception.classifier import DEFAULT_MODEL, CategoryModel
     from perception.training import train
 
     previous = CategoryModel.load(DEFAULT_MODEL) if DEFAULT_MODEL.exists() else None
-    model, report = train(args.scenes, args.seed, hard=args.hard, previous=previous)
+    model, report = train(build_dataset(args.scenes, args.seed, args.hard), args.seed,
+                          previous=previous)
     out = args.out or DEFAULT_MODEL
     out.parent.mkdir(parents=True, exist_ok=True)
     model.save(out)

@@ -287,7 +287,7 @@ def scenes_wanted(args: argparse.Namespace) -> bool:
 
 def _perceive(what: Path | int, seed: int) -> list[PerceptFrame]:
     """Simulate and perceive a scenario file, or random scene number ``what``."""
-    from perception import perceive_scenario
+    from app.sources import perceive_scenario
     from tabletop.generate import random_scene
 
     scenario = what if isinstance(what, Path) else random_scene(1000 * seed + what)
