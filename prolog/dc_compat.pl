@@ -299,10 +299,7 @@ init_particle(N) :-
     retractall(current_belief_(_, _)),
     retractall(ll_offset_(_)),
     Seed is random(1 << 30),
-    %   the per-particle engine: the batched one answers some of the
-    %   original's queries differently (a findall over a non-ground
-    %   random variable)
-    belief_new(File, [particles(N), seed(Seed), engine(per_particle)], B),
+    belief_new(File, [particles(N), seed(Seed)], B),
     assertz(current_belief_(B, N)),
     assertz(ll_offset_(0.0)),
     bb_put(dcpf:offset, 0).
