@@ -26,6 +26,7 @@
             eval_query_valuelist/7,     % +PosEv, +NegEv, +Query, ?X, +N, -P, -Sum
             test_query/6,               % +PosEv, +NegEv, +Query, ?X, +N, -P
             generate_backward/2,        % +Query, -Facts
+            generate_backward/3,        % +Given, +Query, -Facts
             init_particle/1,            % +N
             init_particle/2,            % +Obs, +N
             init_particle/3,            % +Actions, +Obs, +N
@@ -252,6 +253,34 @@ generate_backward(Q, Facts) :-
     (   ddc_program(M) -> true ; throw(error(ddc(no_program_loaded, query), _)) ),
     ddc:ddc_sample_world(M, Q, [], Entries),
     foldl(world_fact, Entries, Facts, []).
+
+%!  generate_backward(+Given:list, +Query, -Facts:list) is semidet.
+%
+%   As generate_backward/2, in a world that holds Given first: values
+%   `h ~= V`, `h:T ~= V`, `current(h) ~= V` (h at time 0), `next(h) ~= V`
+%   (time 1), `prior(h) ~= V`, and plain facts (`action(move(1,1,0))`),
+%   which the program's bodies read as a filter step's actions.  Facts
+%   lists Given's values too, as the original listed every recorded fact.
+generate_backward(Given, Q, Facts) :-
+    must_be(list, Given),
+    (   ddc_program(M) -> true ; throw(error(ddc(no_program_loaded, query), _)) ),
+    foldl(given_entry, Given, Vs-Fs, []-[]),
+    ddc:ddc_sample_world(M, Q, [values(Vs), facts(Fs)], Entries),
+    foldl(world_fact, Entries, Facts, []).
+
+given_entry(G, [X-T-V|Vs]-Fs, Vs-Fs) :-
+    nonvar(G), G = (R ~= V), !,
+    must_be(ground, V),
+    given_key(R, X, T).
+given_entry(G, Vs-[G|Fs], Vs-Fs) :-
+    must_be(callable, G).
+
+given_key(R, _, _) :- var(R), !, instantiation_error(R).
+given_key(current(X), X, 0) :- !.
+given_key(next(X), X, 1) :- !.
+given_key(prior(X), X, 0) :- !.
+given_key(X:T0, X, T) :- !, ( T0 == t -> T = 0 ; T0 == t+1 -> T = 1 ; must_be(integer, T0), T = T0 ).
+given_key(X, X, u).
 
 %   (A variable found undefined in the world, '$undef', is left out.)
 world_fact(_-_-V, Fs, Fs) :- V == '$undef', !.

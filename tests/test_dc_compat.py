@@ -166,6 +166,30 @@ def test_probabilistic_graph_and_generate_backward() -> None:
     assert "e(1,6)~=true" in world and "e(6,5)~=true" in world and "$undef" not in world
 
 
+def test_generatesamples_generate_backward_from_a_given_world() -> None:
+    n = 2000
+    out = run_old("generatesamples.pl", f"test_coin(10000), test_coin2(10000), test_prod, test, "
+                                        f"test_object({n})").stdout
+    assert printed(out, "probability coin=true (exact 0.5)") == pytest.approx(0.5)
+    assert abs(printed(out, "probability fair coin=true (exact 0.5)") - 0.5) <= 3 * binomial_se(
+        0.5, 10000)
+    world = re.search(r"^\[prod~=(\S+),g2~=(\S+),g~=(\S+)\]$", out, re.M)
+    assert world, out
+    prod, g2, g = (float(v) for v in world.groups())
+    assert prod == pytest.approx(g * g2)
+    # the given values are in the world listed, the drawn one at time 1
+    assert "object(1):0~=(0,0,0)" in out and "object(1):1~=(" in out
+    means = re.search(r"mean \(([-0-9.]+),([-0-9.]+),([-0-9.]+)\), standard deviation "
+                      r"\(([-0-9.]+),([-0-9.]+),([-0-9.]+)\)", out)
+    assert means, out
+    values = [float(v) for v in means.groups()]
+    sd = 0.02
+    for got, exact in zip(values[:3], (1.0, 0.0, 0.0)):
+        assert abs(got - exact) <= 3 * sd / math.sqrt(n)
+    for got in values[3:]:          # the sample sd's standard error is about sd / sqrt(2n)
+        assert abs(got - sd) <= 3 * sd / math.sqrt(2 * n)
+
+
 def test_forward_inference_is_accepted_with_a_warning_and_answers_the_same(tmp_path: Path) -> None:
     # the original's forwarddcpfwumpus.pl: the wumpus maze with forward inference
     forward = variant(tmp_path, "dcpfwumpus.pl", "forwarddcpfwumpus.pl",
@@ -198,6 +222,7 @@ def test_dcpf_pit_world_unittest() -> None:
     ("church.pl", "cough(bob)", None, 0.208),
     ("indian_gpa.pl", "nation ~= a", "student_gpa ~= 3.0", gpa_exact(3.0)),
     ("dcpfwumpus.pl", "position:0 ~= (0,0)", None, 1.0),
+    ("generatesamples.pl", "prod ~= P, P > 0", None, 0.5),
 ])
 def test_the_same_files_load_with_ddc_query(program: str, query: str, evidence: str | None,
                                            exact: float) -> None:
