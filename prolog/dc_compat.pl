@@ -40,6 +40,8 @@
             eval_query_particle2/4,     % ?X, +Query, +N, -List
             eval_average_particle/5,    % -Avg, ?X, +Query, +N, -P
             get_loglikelihood/1,        % -LogLikelihood
+            printp/1,                   % +I
+            particle_recorded/3,        % ?Key, ?Term, -Ref
             reset_loglikelihood/0,
             densityGaussian/4,          % +Mean, +Var, +X, -Density
             remove_duplicates/2,        % +List, -Set
@@ -114,9 +116,22 @@ original_term(T, F, X) :-
     ->  X = []
     ;   T = (:- D), original_directive_quiet(D)
     ->  X = []
-    ;   original_arithmetic(T, X),
+    ;   original_arithmetic(T, X1),
+        particle_records(X1, X),
         X \== T
     ).
+
+%   particle_records(+Term0, -Term): recorded/3 goals become
+%   particle_recorded/3 (the original kept particle I under the key I of
+%   YAP's recorded database; the plot predicates of its examples read it).
+particle_records(T, T) :- var(T), !.
+particle_records(recorded(K, G, R), dc_compat:particle_recorded(K, G, R)) :- !.
+particle_records(T0, T) :-
+    compound(T0), !,
+    compound_name_arguments(T0, N, As0),
+    maplist(particle_records, As0, As),
+    compound_name_arguments(T, N, As).
+particle_records(T, T).
 
 original_library(S) :-
     ground(S),
@@ -480,6 +495,45 @@ reset_loglikelihood.
 %   there (the first proof).  For the original's plot predicates.
 distributionalclause:proof_query_backward(I, Goal) :-
     dc_compat:particle_goal(I, Goal).
+
+%!  particle_recorded(?Key, ?Term, -Ref) is nondet.
+%
+%   The original's `recorded(I, current(h) ~= V, _)` for particle I (1..N
+%   of the filter): each solution of Term in particle I, Ref = particle(I);
+%   any other key is SWI-Prolog's recorded database (recorded/3).
+particle_recorded(K, G, Ref) :-
+    integer(K), current_belief_(B, N), K >= 1, K =< N, !,
+    belief_filter(B, F),
+    timed_goal(G, G0),
+    copy_term(G-G0, G1-Q),
+    filter_values(F, L, findall(G1, Q, L), Values),
+    nth1(K, Values, Sols),
+    Ref = particle(K),
+    member(G, Sols).
+particle_recorded(K, G, Ref) :-
+    recorded(K, G, Ref).
+
+%!  printp(+I:integer) is det.
+%
+%   Prints the values particle I holds now (`current(h) ~= V`, one a
+%   line; untimed values `h ~= V`), as the original's printp/1.
+printp(I) :-
+    must_be(positive_integer, I),
+    (   current_belief_(_, N) -> true ; existence_error(filter, init_particle) ),
+    (   I =< N -> true ; domain_error(particle(1, N), I) ),
+    ddc_program(M),
+    M:'$ddc_info'(info(_, _, RvU, RvT, _, _, _)),
+    forall(( member(Na/A, RvT), functor(H, Na, A) ),
+           forall(particle_recorded(I, current(H) ~= V, _),
+                  format("~q~n", [current(H) ~= V]))),
+    forall(( member(Na/A, RvU), \+ memberchk(Na/A, RvT), functor(H, Na, A) ),
+           forall(particle_recorded(I, H ~= V, _),
+                  format("~q~n", [H ~= V]))).
+
+%   dcpf:bb_get(offset, O), as the original's plot predicates call it
+%   (also bb_get(dcpf:offset, O)): O = 0, particle I is key I.
+dcpf:bb_get(K, V) :-
+    (   K == offset -> V = 0 ; dc_compat:bb_get(K, V) ).
 
 particle_goal(I, Goal) :-
     must_be(positive_integer, I),
