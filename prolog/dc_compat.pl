@@ -61,6 +61,7 @@
 :- use_module(library(error)).
 :- use_module(library(pairs)).
 :- use_module(library(statistics)).
+:- use_module(library(terms)).
 
 /** <module> The original DC/DCPF entry points
 
@@ -124,14 +125,11 @@ original_term(T, F, X) :-
 %   particle_records(+Term0, -Term): recorded/3 goals become
 %   particle_recorded/3 (the original kept particle I under the key I of
 %   YAP's recorded database; the plot predicates of its examples read it).
-particle_records(T, T) :- var(T), !.
-particle_records(recorded(K, G, R), dc_compat:particle_recorded(K, G, R)) :- !.
 particle_records(T0, T) :-
-    compound(T0), !,
-    compound_name_arguments(T0, N, As0),
-    maplist(particle_records, As0, As),
-    compound_name_arguments(T, N, As).
-particle_records(T, T).
+    mapsubterms(particle_record, T0, T).
+
+particle_record(T, dc_compat:particle_recorded(K, G, R)) :-
+    nonvar(T), T = recorded(K, G, R).
 
 original_library(S) :-
     ground(S),
@@ -452,14 +450,11 @@ eval_average_particle(Avg, X, Q, N, P) :-
 
 %   timed_goal(+Goal0, -Goal): the original's current(h) written h:t, as
 %   both of the filter's engines read it (Goal shares Goal0's variables).
-timed_goal(V, V) :- var(V), !.
-timed_goal(current(X), X:t) :- nonvar(X), !.
 timed_goal(T0, T) :-
-    compound(T0), !,
-    compound_name_arguments(T0, N, As0),
-    maplist(timed_goal, As0, As),
-    compound_name_arguments(T, N, As).
-timed_goal(T, T).
+    mapsubterms(timed_term, T0, T).
+
+timed_term(T, X:t) :-
+    nonvar(T), T = current(X), nonvar(X).
 
 weighted_mean(WVs, M) :-
     foldl(add_weighted, WVs, 0.0-0.0, SW-SWV),

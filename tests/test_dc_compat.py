@@ -184,7 +184,7 @@ def test_generatesamples_generate_backward_from_a_given_world() -> None:
     assert means, out
     values = [float(v) for v in means.groups()]
     sd = 0.02
-    for got, exact in zip(values[:3], (1.0, 0.0, 0.0)):
+    for got, exact in zip(values[:3], (1.0, 0.0, 0.0), strict=True):
         assert abs(got - exact) <= 3 * sd / math.sqrt(n)
     for got in values[3:]:          # the sample sd's standard error is about sd / sqrt(2n)
         assert abs(got - sd) <= 3 * sd / math.sqrt(2 * n)
