@@ -26,6 +26,7 @@
             eval_query_valuelist/7,     % +PosEv, +NegEv, +Query, ?X, +N, -P, -Sum
             test_query/6,               % +PosEv, +NegEv, +Query, ?X, +N, -P
             generate_backward/2,        % +Query, -Facts
+            generate_backward/3,        % +Given, +Query, -Facts
             init_particle/1,            % +N
             init_particle/2,            % +Obs, +N
             init_particle/3,            % +Actions, +Obs, +N
@@ -39,6 +40,8 @@
             eval_query_particle2/4,     % ?X, +Query, +N, -List
             eval_average_particle/5,    % -Avg, ?X, +Query, +N, -P
             get_loglikelihood/1,        % -LogLikelihood
+            printp/1,                   % +I
+            particle_recorded/3,        % ?Key, ?Term, -Ref
             reset_loglikelihood/0,
             densityGaussian/4,          % +Mean, +Var, +X, -Density
             remove_duplicates/2,        % +List, -Set
@@ -58,6 +61,7 @@
 :- use_module(library(error)).
 :- use_module(library(pairs)).
 :- use_module(library(statistics)).
+:- use_module(library(terms)).
 
 /** <module> The original DC/DCPF entry points
 
@@ -113,9 +117,19 @@ original_term(T, F, X) :-
     ->  X = []
     ;   T = (:- D), original_directive_quiet(D)
     ->  X = []
-    ;   original_arithmetic(T, X),
+    ;   original_arithmetic(T, X1),
+        particle_records(X1, X),
         X \== T
     ).
+
+%   particle_records(+Term0, -Term): recorded/3 goals become
+%   particle_recorded/3 (the original kept particle I under the key I of
+%   YAP's recorded database; the plot predicates of its examples read it).
+particle_records(T0, T) :-
+    mapsubterms(particle_record, T0, T).
+
+particle_record(T, dc_compat:particle_recorded(K, G, R)) :-
+    nonvar(T), T = recorded(K, G, R).
 
 original_library(S) :-
     ground(S),
@@ -253,6 +267,34 @@ generate_backward(Q, Facts) :-
     ddc:ddc_sample_world(M, Q, [], Entries),
     foldl(world_fact, Entries, Facts, []).
 
+%!  generate_backward(+Given:list, +Query, -Facts:list) is semidet.
+%
+%   As generate_backward/2, in a world that holds Given first: values
+%   `h ~= V`, `h:T ~= V`, `current(h) ~= V` (h at time 0), `next(h) ~= V`
+%   (time 1), `prior(h) ~= V`, and plain facts (`action(move(1,1,0))`),
+%   which the program's bodies read as a filter step's actions.  Facts
+%   lists Given's values too, as the original listed every recorded fact.
+generate_backward(Given, Q, Facts) :-
+    must_be(list, Given),
+    (   ddc_program(M) -> true ; throw(error(ddc(no_program_loaded, query), _)) ),
+    foldl(given_entry, Given, Vs-Fs, []-[]),
+    ddc:ddc_sample_world(M, Q, [values(Vs), facts(Fs)], Entries),
+    foldl(world_fact, Entries, Facts, []).
+
+given_entry(G, [X-T-V|Vs]-Fs, Vs-Fs) :-
+    nonvar(G), G = (R ~= V), !,
+    must_be(ground, V),
+    given_key(R, X, T).
+given_entry(G, Vs-[G|Fs], Vs-Fs) :-
+    must_be(callable, G).
+
+given_key(R, _, _) :- var(R), !, instantiation_error(R).
+given_key(current(X), X, 0) :- !.
+given_key(next(X), X, 1) :- !.
+given_key(prior(X), X, 0) :- !.
+given_key(X:T0, X, T) :- !, ( T0 == t -> T = 0 ; T0 == t+1 -> T = 1 ; must_be(integer, T0), T = T0 ).
+given_key(X, X, u).
+
 %   (A variable found undefined in the world, '$undef', is left out.)
 world_fact(_-_-V, Fs, Fs) :- V == '$undef', !.
 world_fact(X-u-V, [X ~= V|Fs], Fs) :- !.
@@ -299,10 +341,7 @@ init_particle(N) :-
     retractall(current_belief_(_, _)),
     retractall(ll_offset_(_)),
     Seed is random(1 << 30),
-    %   the per-particle engine: the batched one answers some of the
-    %   original's queries differently (a findall over a non-ground
-    %   random variable)
-    belief_new(File, [particles(N), seed(Seed), engine(per_particle)], B),
+    belief_new(File, [particles(N), seed(Seed)], B),
     assertz(current_belief_(B, N)),
     assertz(ll_offset_(0.0)),
     bb_put(dcpf:offset, 0).
@@ -411,14 +450,11 @@ eval_average_particle(Avg, X, Q, N, P) :-
 
 %   timed_goal(+Goal0, -Goal): the original's current(h) written h:t, as
 %   both of the filter's engines read it (Goal shares Goal0's variables).
-timed_goal(V, V) :- var(V), !.
-timed_goal(current(X), X:t) :- nonvar(X), !.
 timed_goal(T0, T) :-
-    compound(T0), !,
-    compound_name_arguments(T0, N, As0),
-    maplist(timed_goal, As0, As),
-    compound_name_arguments(T, N, As).
-timed_goal(T, T).
+    mapsubterms(timed_term, T0, T).
+
+timed_term(T, X:t) :-
+    nonvar(T), T = current(X), nonvar(X).
 
 weighted_mean(WVs, M) :-
     foldl(add_weighted, WVs, 0.0-0.0, SW-SWV),
@@ -454,6 +490,45 @@ reset_loglikelihood.
 %   there (the first proof).  For the original's plot predicates.
 distributionalclause:proof_query_backward(I, Goal) :-
     dc_compat:particle_goal(I, Goal).
+
+%!  particle_recorded(?Key, ?Term, -Ref) is nondet.
+%
+%   The original's `recorded(I, current(h) ~= V, _)` for particle I (1..N
+%   of the filter): each solution of Term in particle I, Ref = particle(I);
+%   any other key is SWI-Prolog's recorded database (recorded/3).
+particle_recorded(K, G, Ref) :-
+    integer(K), current_belief_(B, N), K >= 1, K =< N, !,
+    belief_filter(B, F),
+    timed_goal(G, G0),
+    copy_term(G-G0, G1-Q),
+    filter_values(F, L, findall(G1, Q, L), Values),
+    nth1(K, Values, Sols),
+    Ref = particle(K),
+    member(G, Sols).
+particle_recorded(K, G, Ref) :-
+    recorded(K, G, Ref).
+
+%!  printp(+I:integer) is det.
+%
+%   Prints the values particle I holds now (`current(h) ~= V`, one a
+%   line; untimed values `h ~= V`), as the original's printp/1.
+printp(I) :-
+    must_be(positive_integer, I),
+    (   current_belief_(_, N) -> true ; existence_error(filter, init_particle) ),
+    (   I =< N -> true ; domain_error(particle(1, N), I) ),
+    ddc_program(M),
+    M:'$ddc_info'(info(_, _, RvU, RvT, _, _, _)),
+    forall(( member(Na/A, RvT), functor(H, Na, A) ),
+           forall(particle_recorded(I, current(H) ~= V, _),
+                  format("~q~n", [current(H) ~= V]))),
+    forall(( member(Na/A, RvU), \+ memberchk(Na/A, RvT), functor(H, Na, A) ),
+           forall(particle_recorded(I, H ~= V, _),
+                  format("~q~n", [H ~= V]))).
+
+%   dcpf:bb_get(offset, O), as the original's plot predicates call it
+%   (also bb_get(dcpf:offset, O)): O = 0, particle I is key I.
+dcpf:bb_get(K, V) :-
+    (   K == offset -> V = 0 ; dc_compat:bb_get(K, V) ).
 
 particle_goal(I, Goal) :-
     must_be(positive_integer, I),

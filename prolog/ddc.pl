@@ -2145,13 +2145,21 @@ exp_w(L, W) :-
 %
 %   Proves Query in one sampled world (option time(T), seed(S)) and
 %   returns what the world holds as Key-Value pairs (the original's
-%   generate_backward).
+%   generate_backward).  Options values(Vs) (X-Time-Value triples) and
+%   facts(Fs) (atoms, as a filter step's actions) are put into the world
+%   first; with facts, a predicate the program does not define is looked
+%   up among them, as in a filter step.
 ddc_sample_world(M, Q, Options, Facts) :-
     option(time(Time), Options, 0),
+    option(values(Vs), Options, []),
+    option(facts(Fs), Options, []),
+    must_be(list, Vs), must_be(list, Fs),
     (   option(seed(Seed), Options) -> set_random(seed(Seed)) ; true ),
     M:'$ddc_info'(Info),
     new_world(M, Time, -1, [], W),
-    static_world(W),
+    (   Fs == [] -> static_world(W) ; group_facts(Fs, Gs), nb_setarg(12, W, Gs) ),
+    arg(1, W, S0),
+    forall(member(X-T-V, Vs), store_put(S0, X-T, V)),
     Ctx = ctx(W, Time, Info, query),
     cb(Q, Ctx, Code),
     once(M:Code),

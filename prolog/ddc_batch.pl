@@ -32,7 +32,8 @@
     those the per-particle engine materialises); static predicates (facts,
     plain Prolog clauses, untimed derived atoms with static bodies), the
     step's facts (actions, plain observations); bodies of conjunctions,
-    \+, if-then-else, disjunction, reads h:t ~= P, h:t+1 ~= P, h:0 ~= P,
+    \+, if-then-else, disjunction, reads h:t ~= P, h:t+1 ~= P, h:0 ~= P
+    (current(h), next(h), prior(h) alike),
     untimed reads of an observation of the step, is/2, comparisons (a
     random variable h:t as an operand reads it), ==, \==, =, findall/3 and
     findall_forward/3, logistic/3 and linear/3, calls of static predicates
@@ -126,6 +127,7 @@ check_body(\+ A, Is, K, F, L) :- !, check_body(A, Is, K, F, L).
 check_body(findall(_, G, _), Is, K, F, L) :- !, check_body(G, Is, K, F, L).
 check_body(findall_forward(_, G, _), Is, K, F, L) :- !, check_body(G, Is, K, F, L).
 check_body(X:TE ~= _, _, _, F, L) :- !, check_time(X, TE, F, L).
+check_body(R0 ~= _, _, _, F, L) :- timed_read(R0, X, TE), !, check_time(X, TE, F, L).
 check_body(X ~= _, _, _, F, L) :- !,
     (   nonvar(X), X = observation(_) -> true
     ;   unsupported(F, L, untimed_read(X))
@@ -493,6 +495,9 @@ beval(X:TE ~= P, E, Ps0, Ps) :- !,
     split(X, Ps0, X1, Ps1),
     read_key(X1, T, E, Ps1, K, Entry, Ps2),
     unify_read(P, K, Entry, Ps2, Ps).
+beval(R0 ~= P, E, Ps0, Ps) :-                    % the original's current(h) = h:t, ...
+    timed_read(R0, X, TE), !,
+    beval(X:TE ~= P, E, Ps0, Ps).
 beval(X ~= P, E, Ps0, Ps) :- !,                   % an observation of the step
     split(X, Ps0, X1, Ps1),
     E = env(_, _, _, _, _, Obs, _),
@@ -879,21 +884,54 @@ tuple_vars((A, B), [A|Vs]) :- var(A), tuple_vars(B, Vs).
                  *        RANDOM VARIABLES      *
                  *******************************/
 
+%   timed_read(+Read, -X, -TE): the original's current(h), next(h) and
+%   prior(h) are h:t, h:t+1 and h:0 (as in ddc.pl).
+timed_read(R, X, TE) :-
+    nonvar(R),
+    (   R = current(X) -> TE = t
+    ;   R = next(X) -> TE = t+1
+    ;   R = prior(X) -> TE = 0
+    ),
+    nonvar(X).
+
 %   read_key(+X, +T, +E, +Ps0, -Key, -Entry, -Ps): X's entry at T,
-%   computed for the particles of Ps0 that lack it; a non-ground X reads
-%   the keys held (the values already drawn), one branch per key.
+%   computed for the particles of Ps0 that lack it; a non-ground X reads,
+%   one branch per key, the keys held at T and the ground heads that
+%   clauses h:t (and h:0 at time 0) define at T, as the per-particle
+%   engine enumerates them (ddc.pl, read_enum/4); each key is computed for
+%   the particles that lack it and read where it is defined.
 read_key(X, T, E, Ps0, X, Entry, Ps) :-
     ground(X), !,
     value(E, X, T, Ps0, Entry),
     Ps = Ps0.
 read_key(X, T, E, Ps0, X, Entry, Ps) :-
     env_time_table(E, T, Tab),
-    findall(X, tab_match(Tab, X, _), Xs0), sort(Xs0, Xs),
+    findall(X, tab_match(Tab, X, _), Xs0),
+    defined_heads(E, X, T, Ps0, Xs1),
+    append(Xs0, Xs1, Xs2), sort(Xs2, Xs),
     member(X, Xs),
-    tab_get(Tab, X, Entry),
+    value(E, X, T, Ps0, Entry),
     arg(1, Entry, C),
     defined_at(Ps0, C, Ps),
     Ps \== [].
+
+%   defined_heads(+E, ?X, +T, +Ps, -Keys): the ground instances of X that
+%   the bodies of its h:t clauses (h:0 ones at time 0) give at T, when T
+%   is the time being computed (h:t+1 clauses were swept at the step);
+%   found as sweep_head/6 finds them.
+defined_heads(E, X, T, Ps, Keys) :-
+    E = env(M, _, _, t(_, _, T1, _), _, _, _),
+    T1 == T, !,
+    env_now(E, T, ES),
+    (   T =:= 0 -> Kinds = [now, zero] ; Kinds = [now] ),
+    findall(X1,
+            ( member(K, Kinds),
+              ( K == zero -> Now is T-1, env_now(E, Now, EK) ; EK = ES ),
+              copy_term(X, X1),
+              catch(sweep_head(M, K, EK, Ps, X1, _), error(ddc(non_ground_head(_), _), _), fail),
+              subsumes_term(X, X1) ),
+            Keys).
+defined_heads(_, _, _, _, []).
 
 defined_at([], _, []).
 defined_at([I|Is], C, Ps) :-
@@ -1632,6 +1670,9 @@ flags(I, N, Ps, [0|Fs]) :- I1 is I+1, flags(I1, N, Ps, Fs).
 batch_values(groups(Gs), Template, Goal, Values) :- !,
     maplist(group_values(Template-Goal), Gs, Vss),
     append(Vss, Values).
+batch_values(S, Template, R0 ~= V, Values) :-
+    timed_read(R0, X, TE), !,
+    batch_values(S, Template, X:TE ~= V, Values).
 batch_values(S, Template, Goal, Values) :-          % a variable's values: read as they are
     nonvar(Goal), Goal = (X:TE ~= V), var(V), ground(X),
     (   Template == V -> Wrap = plain ; Template == value(V) -> Wrap = value ),

@@ -166,6 +166,89 @@ def test_probabilistic_graph_and_generate_backward() -> None:
     assert "e(1,6)~=true" in world and "e(6,5)~=true" in world and "$undef" not in world
 
 
+def test_generatesamples_generate_backward_from_a_given_world() -> None:
+    n = 2000
+    out = run_old("generatesamples.pl", f"test_coin(10000), test_coin2(10000), test_prod, test, "
+                                        f"test_object({n})").stdout
+    assert printed(out, "probability coin=true (exact 0.5)") == pytest.approx(0.5)
+    assert abs(printed(out, "probability fair coin=true (exact 0.5)") - 0.5) <= 3 * binomial_se(
+        0.5, 10000)
+    world = re.search(r"^\[prod~=(\S+),g2~=(\S+),g~=(\S+)\]$", out, re.M)
+    assert world, out
+    prod, g2, g = (float(v) for v in world.groups())
+    assert prod == pytest.approx(g * g2)
+    # the given values are in the world listed, the drawn one at time 1
+    assert "object(1):0~=(0,0,0)" in out and "object(1):1~=(" in out
+    means = re.search(r"mean \(([-0-9.]+),([-0-9.]+),([-0-9.]+)\), standard deviation "
+                      r"\(([-0-9.]+),([-0-9.]+),([-0-9.]+)\)", out)
+    assert means, out
+    values = [float(v) for v in means.groups()]
+    sd = 0.02
+    for got, exact in zip(values[:3], (1.0, 0.0, 0.0), strict=True):
+        assert abs(got - exact) <= 3 * sd / math.sqrt(n)
+    for got in values[3:]:          # the sample sd's standard error is about sd / sqrt(2n)
+        assert abs(got - sd) <= 3 * sd / math.sqrt(2 * n)
+
+
+RECORDED_PROGRAM = """\
+:- use_module('../dcpf.pl').
+:- use_module('../random/sampling.pl').
+:- use_module(library(lists)).
+:- set_options(default).
+
+position:0 ~ finite([1:(0,0)]) := true.
+position:t+1 ~ finite([1:(X,Y)]) := position:t ~= (X0,Y), action(right), X is X0+1.
+speed:0 ~ gaussian(2.0,1.0) := true.
+speed:t+1 ~ gaussian(S,0.01) := speed:t ~= S.
+
+plotdata(N) :-
+\tdcpf:bb_get(offset,Offset),
+\topen('DATA','write',S),
+\t(
+\t\tbetween(1,N,Pos),
+\t\tI is Offset+Pos,
+\t\trecorded(I,current(position) ~= (X,Y),_),
+\t\twrite(S,X),write(S,' '),write(S,Y),nl(S),
+\t\tfail;
+\t\ttrue
+\t),
+\tclose(S).
+
+averagespeed(N,Mean) :-
+\tbb_put(sum,0.0),
+\t(
+\t\tbetween(1,N,I),
+\t\trecorded(I,current(speed) ~= V,_),
+\t\tbb_get(sum,Old), New is Old+V, bb_put(sum,New),
+\t\tfail;
+\t\ttrue
+\t),
+\tbb_delete(sum,T),
+\tMean is T/N.
+
+run(N) :-
+\tinit_particle(N),
+\tstep_particle([action(right)],[],N),
+\tplotdata(N),
+\taveragespeed(N,M),
+\twrite('mean speed '),writeln(M),
+\tprintp(1).
+"""
+
+
+def test_plot_predicates_read_particles_with_recorded_and_printp(tmp_path: Path) -> None:
+    data = tmp_path / "data.txt"
+    program = tmp_path / "recorded.pl"
+    program.write_text(RECORDED_PROGRAM.replace("DATA", str(data)))
+    n = 500
+    out = run_old(program, f"run({n})").stdout
+    assert data.read_text().splitlines() == ["1 0"] * n
+    # speed ~ N(2, 1) at time 0, then N(S, 0.01): the mean of n particles
+    assert abs(printed(out, "mean speed") - 2.0) <= 3 * math.sqrt(1.01 / n)
+    assert "current(position)~=(1,0)" in out
+    assert re.search(r"^current\(speed\)~=[-0-9.]+$", out, re.M), out
+
+
 def test_forward_inference_is_accepted_with_a_warning_and_answers_the_same(tmp_path: Path) -> None:
     # the original's forwarddcpfwumpus.pl: the wumpus maze with forward inference
     forward = variant(tmp_path, "dcpfwumpus.pl", "forwarddcpfwumpus.pl",
@@ -198,6 +281,7 @@ def test_dcpf_pit_world_unittest() -> None:
     ("church.pl", "cough(bob)", None, 0.208),
     ("indian_gpa.pl", "nation ~= a", "student_gpa ~= 3.0", gpa_exact(3.0)),
     ("dcpfwumpus.pl", "position:0 ~= (0,0)", None, 1.0),
+    ("generatesamples.pl", "prod ~= P, P > 0", None, 0.5),
 ])
 def test_the_same_files_load_with_ddc_query(program: str, query: str, evidence: str | None,
                                            exact: float) -> None:

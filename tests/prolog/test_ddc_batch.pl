@@ -244,4 +244,51 @@ run_walk(File, K, Xs-LW) :-
     values(F, (x:t ~= X)-X, Xs),
     filter_free(F).
 
+%   A non-ground read enumerates the variables defined at t, as in the
+%   per-particle engine (ddc.pl, read_enum/4): those held, and those that
+%   an h:t clause defines though nothing has drawn them yet (a ground
+%   head, a head its static body grounds), in every particle.
+test(non_ground_read_enumerates_the_defined_variables_as_per_particle) :-
+    program([ 'b(2). b(3).',
+              'a(1):t ~ finite([0.5:x, 0.5:y]).',
+              'a(N):t ~ val(z) := b(N).',
+              'k:0 ~ uniform([1, 2]).',
+              'k:t+1 ~ val(K) := k:t ~= K.',
+              'seen:t+1 ~ val(V) := k:t ~= 1, a(1):t ~= V.' ], File),
+    forall(member(Engine, [per_particle, batched]),
+           ( filter_new(File, 40, 3, [engine(Engine)], F),
+             values(F, findall(N, a(N):t ~= _, L0)-L0, Ls0),
+             filter_step(F, [], [], _),
+             values(F, findall(N, a(N):t ~= _, L1)-L1, Ls1),
+             values(F, findall(N-V, a(N):t ~= V, L2)-L2, Ls2),
+             filter_free(F),
+             forall(member(L, Ls0), L == [1, 2, 3]),
+             forall(member(L, Ls1), L == [1, 2, 3]),
+             forall(member(L, Ls2), ( L = [1-V1, 2-z, 3-z], memberchk(V1, [x, y]) )) )).
+
+%   The pit world of the original DCPF after one step without a breeze:
+%   the neighbours of (0,0) are free, and the cells defined at t are
+%   (0,0), (0,1), (1,0) in every particle; current(h) is h:t.
+test(pit_world_non_ground_reads_agree_with_the_per_particle_engine) :-
+    source_file(ddc:ddc_load(_), Ddc),
+    file_directory_name(Ddc, Dir),
+    directory_file_path(Dir, 'examples/dc/dcpfwumpus2.pl', File),
+    forall(member(Engine, [per_particle, batched]),
+           ( filter_new(File, 500, 7, [engine(Engine)], F),
+             filter_engine(F, Engine),
+             filter_step(F, [observation(breeze) ~= false], [action(null)], LW),
+             filter_holds(F, current(maze(1,0)) ~= free, Hs),
+             filter_holds(F, maze(0,1):t ~= free, Hs1),
+             values(F, findall((X,Y), maze(X,Y):t ~= free, L)-L, Ls),
+             values(F, (current(maze(0,1)) ~= V)-V, Vs),
+             filter_free(F),
+             %   (the particles the observation keeps: weight 1)
+             findall(I, ( nth1(I, LW, W), W =:= 0.0 ), Kept),
+             length(Kept, NK), NK > 100,
+             forall(member(I, Kept),
+                    ( nth1(I, Hs, 1), nth1(I, Hs1, 1), nth1(I, Vs, free),
+                      nth1(I, Ls, [(0,0),(0,1),(1,0)]) )),
+             forall(( nth1(I, LW, W), W =\= 0.0 ), W < -1.0e308),
+             forall(nth1(I, Ls, L2), memberchk((0,0), L2)) )).
+
 :- end_tests(ddc_batch).
