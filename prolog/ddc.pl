@@ -695,16 +695,24 @@ drop_unused_time(Guard, Tc, Body, Body1) :-
 %   variable often share the prefix that enumerates their heads
 %   (`object(O)`): the sweep reads each key once, so a clause whose key
 %   enumerator is a variant of an earlier one (same kind) is left out.
-distinct_sweep_keys([], []).
-distinct_sweep_keys([Id-K-C|T], [Id-K-C|Kept]) :-
-    sweep_key_shape(C, S),
-    exclude(same_sweep_key(K, S), T, T1),
-    distinct_sweep_keys(T1, Kept).
+%   The keys kept so far are found by the variant hash of their kind and
+%   shape (variant terms have the same hash), each candidate then compared
+%   with =@=: linear in the number of clauses.
+distinct_sweep_keys(SwKs, Kept) :-
+    empty_assoc(Seen),
+    distinct_sweep_keys(SwKs, Seen, Kept).
 
-same_sweep_key(K, S, _-K2-C2) :-
-    K2 == K,
-    sweep_key_shape(C2, S2),
-    S2 =@= S.
+distinct_sweep_keys([], _, []).
+distinct_sweep_keys([Id-K-C|T], Seen0, Kept) :-
+    sweep_key_shape(C, S),
+    variant_sha1(K-S, Hash),
+    (   get_assoc(Hash, Seen0, Shapes) -> true ; Shapes = [] ),
+    (   member(K0-S0, Shapes), K0-S0 =@= K-S
+    ->  Kept = Kept1, Seen = Seen0
+    ;   Kept = [Id-K-C|Kept1],
+        put_assoc(Hash, Seen0, [K-S|Shapes], Seen)
+    ),
+    distinct_sweep_keys(T, Seen, Kept1).
 
 sweep_key_shape(('$sweep_key'(_, X, T, W) :- B), s(X, T, W, B)).
 

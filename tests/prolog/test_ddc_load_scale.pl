@@ -124,7 +124,25 @@ check_program(File) :-
     findall(K, member(K-_, Edges), Ks0), sort(Ks0, Ks),
     ord_subtract(Ks, Dirty, Clean),
     findall(K, member(clean(K), Impure), GotClean),
-    assertion(GotClean == Clean).
+    assertion(GotClean == Clean),
+    %   the sweep reads each distinct key of the transition clauses once
+    M:'$ddc_info'(Info),
+    findall(Id-K-C, ( member(rv(Id, X, K, _, B, _), Items), K \== u, K \== state,
+                      ddc:sweep_key_clause(Id, X, K, B, Info, C) ), SwKs),
+    reference_distinct(SwKs, Distinct),
+    findall(Id, member(Id-_-_, Distinct), Ids),
+    findall(Id, M:'$sweep'(rv, _, _, Id), GotIds),
+    assertion(GotIds == Ids).
+
+%   The definition of distinct sweep keys: drop every later variant.
+reference_distinct([], []).
+reference_distinct([Id-K-C|T], [Id-K-C|Kept]) :-
+    exclude(same_key(K, C), T, T1),
+    reference_distinct(T1, Kept).
+
+same_key(K, ('$sweep_key'(_, X, T, W) :- B), _-K2-('$sweep_key'(_, X2, T2, W2) :- B2)) :-
+    K2 == K,
+    s(X, T, W, B) =@= s(X2, T2, W2, B2).
 
 :- begin_tests(ddc_load_scale).
 
@@ -157,15 +175,17 @@ test(shipped_programs_compile_to_the_definitions, [forall(shipped_program(File))
     check_program(File).
 
 %   A generated program of N random variable clauses (N/2 variables with
-%   two clauses each, the second the first one's rival) and N derived atoms
-%   in one chain ending at a random variable: the fixpoint over the chain
-%   took one pass per link, the rivals one comparison per pair.
+%   two clauses each, the second the first one's rival), N transitions of
+%   as many variables, and N derived atoms in one chain ending at a random
+%   variable: the fixpoint over the chain took one pass per link, the
+%   rivals and the sweep keys one comparison per pair.
 scale_program(N, File) :-
     tmp_file_stream(text, File, S),
     H is N // 2,
     forall(between(1, N, I),
            ( J is I mod H,
              format(S, "x(~d, A) ~~ gaussian(A, 1.0) := obj(~d, A).~n", [J, I]),
+             format(S, "pos(o~d):t+1 ~~ gaussian(P, 0.1) := pos(o~d):t ~~= P.~n", [I, I]),
              I1 is I + 1,
              format(S, "d~d := d~d.~n", [I, I1]) )),
     N1 is N + 1,
