@@ -14,7 +14,9 @@
     rivals: N/2 random variables with two clauses each (x(J, A) ~ ...);
     derived: N derived clauses over 100 predicates calling each other in a
     ring; timed: N/4 objects, each with a fact, a transition, a timed
-    derived atom and an untimed random variable.  Best of 3.
+    derived atom and an untimed random variable.  Best of 3.  Then the CPU
+    ms of making a batched filter (10 particles) of N/2 objects with an h:0
+    and an h:t+1 clause each, against loading the same program.
 */
 
 :- use_module('../prolog/ddc').
@@ -83,4 +85,21 @@ main :-
              Growth is Ms10 / max(Ms1, 0.001),
              format("~w~t~10| ~d~t~18| ~1f~t~30| ~1f~t~44| ~1f~n", [Shape, 1000, Ms1, Ref1, R1]),
              format("~w~t~10| ~d~t~18| ~1f~t~30| ~1f~t~44| ~1f~t~51| ~1fx~n",
-                    [Shape, 10000, Ms10, Ref10, R10, Growth]) )).
+                    [Shape, 10000, Ms10, Ref10, R10, Growth]) )),
+    format("~nbatched filter: N, filter_new ms, ddc_load ms of the same program~n"),
+    forall(member(N, [1000, 10000]),
+           ( filter_ms(N, FMs, LMs),
+             format("~d~t~8| ~1f~t~20| ~1f~n", [N, FMs, LMs]) )).
+
+filter_clause(N, T) :-
+    H is N // 2, between(1, H, I),
+    (   format(atom(T), "pos(o~d):0 ~~ gaussian(0, 0.1).~n", [I])
+    ;   format(atom(T), "pos(o~d):t+1 ~~ gaussian(P, 0.1) := pos(o~d):t ~~= P.~n", [I, I])
+    ).
+
+filter_ms(N, FMs, LMs) :-
+    tmp_file(filter, F0), atom_concat(F0, '.pl', File),
+    write_program(File, filter_clause(N)),
+    best_ms(ddc_load(File, _), LMs),
+    best_ms(( filter_new(File, 10, 1, [engine(batched)], F), filter_free(F) ), FMs),
+    delete_file(File).
