@@ -118,27 +118,6 @@ def test_an_evaluation_with_a_failed_unit_keeps_the_finished_ones(tmp_path, monk
     assert "| transitive | reasoning | 3 | 3/3 (100 %) |" in table
 
 
-@pytest.fixture(scope="module")
-def ray_two_workers():
-    """A local Ray on 127.0.0.1 with two CPUs, for this module's Ray tests (its workers find
-    this module's job functions through PYTHONPATH, as they find the project's)."""
-    import ray
-
-    here = str(Path(__file__).resolve().parent)
-    before = os.environ.get("PYTHONPATH")
-    os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (here, before) if p)
-    try:
-        ray.init(num_cpus=2, _node_ip_address="127.0.0.1", include_dashboard=False,
-                 log_to_driver=False)
-    finally:
-        if before is None:
-            del os.environ["PYTHONPATH"]
-        else:
-            os.environ["PYTHONPATH"] = before
-    yield ray
-    ray.shutdown()
-
-
 def test_ray_jobs_come_back_raising_ones_reported_dead_workers_retried(
         ray_two_workers, tmp_path: Path) -> None:
     jobs = [Job(f"square {i}", square, (i,)) for i in range(5)]
