@@ -377,11 +377,19 @@ step_particle(Actions, Obs, _Constraints, N, Delta) :-
     must_be(list, Actions), must_be(list, Obs), must_be(number, Delta),
     belief(N, B),
     ddc_program(M),
+    observation_facts(Obs, OFacts),     % the untimed reads (dc_compat_load.pl)
+    append(Actions, OFacts, Facts0),
     (   current_predicate(M:deltaT/1)
-    ->  Facts = Actions             % the program's own deltaT/1 stays (the original wiped it)
-    ;   Facts = [deltaT(Delta)|Actions]
+    ->  Facts = Facts0              % the program's own deltaT/1 stays (the original wiped it)
+    ;   Facts = [deltaT(Delta)|Facts0]
     ),
     belief_step(B, Obs, Facts).
+
+%   observation_facts(+Obs, -Facts): dc_observation(O, V) for each
+%   `observation(O) ~= V` of the step, which the original recorded in the
+%   particles and its programs read untimed in clause bodies.
+observation_facts(Obs, Facts) :-
+    findall(dc_observation(O, V), member(observation(O) ~= V, Obs), Facts).
 
 %!  step_particle_aux(+Actions:list, +Obs:list, +N:integer) is det.
 %!  step_particle_ps(+Obs:list, +N:integer) is det.
