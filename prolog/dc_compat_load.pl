@@ -125,7 +125,10 @@ boolean(B) :- B == true ; B == false.
 %   the particles, so a transition could read them: tracking.pl's birth
 %   of an object where it is first seen) becomes `dc_observation(O, V)`,
 %   a fact of the filter step (dc_compat.pl's step_particle/5 gives one
-%   for each observation).
+%   for each observation), and the original's internal names of the
+%   time-indexed reads, `current(h) ~= V`, `next(h) ~= V` and
+%   `prior(h) ~= V` (minimalexample.pl reads `current(object(A)) ~= O`),
+%   become `h:t ~= V`, `h:t+1 ~= V` and `h:0 ~= V`.
 original_program(Items0, Items) :-
     must_be(list, Items0),
     maplist(original_item, Items0, Items1),
@@ -144,7 +147,7 @@ logweight_item(I, I).
 logweight_clause(T0, T) :-
     (   nonvar(T0), T0 = ':='(C0, B0)
     ->  logweight_head(C0, C),
-        mapsubterms(observation_read, B0, B),
+        mapsubterms(original_read, B0, B),
         T = ':='(C, B)
     ;   logweight_head(T0, T)
     ).
@@ -156,8 +159,17 @@ logweight_head(T0, T) :-
     ;   T = T0
     ).
 
-observation_read(R, dc_observation(O, V)) :-
-    compound(R), R = '~='(X, V), nonvar(X), X = observation(O).
+original_read(R, R1) :-
+    compound(R), R = '~='(X, V), nonvar(X),
+    (   X = observation(O)
+    ->  R1 = dc_observation(O, V)
+    ;   X = current(H)
+    ->  R1 = '~='(H:t, V)
+    ;   X = next(H)
+    ->  R1 = '~='(H:(t+1), V)
+    ;   X = prior(H)
+    ->  R1 = '~='(H:0, V)
+    ).
 
 %!  original_arithmetic(+Term0, -Term) is det.
 %

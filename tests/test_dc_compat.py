@@ -315,6 +315,27 @@ def test_tracking_births_the_object_and_follows_it_with_the_kalman_proposal(
     assert len([ln for ln in rows if ln.startswith("1 ")]) == n     # "ID X Y Z R G B"
 
 
+@pytest.mark.parametrize(("goal", "lines"), [
+    ("t2", ["anchor2 anchor2"]),                    # anchor3 arrives when an object exists
+    ("t3", ["anchor1 anchor1", "anchor2 anchor2"]),  # anchor2 associated with its own object
+    ("t1", ["anchor1 anchor1", "anchor2 anchor2"]),
+])
+def test_minimalexample_associates_anchors_with_one_particle(tmp_path: Path, goal: str,
+                                                            lines: list[str]) -> None:
+    """Its plotdata/1 reads the particle through the original's internals (eraseall/1,
+    proof_query_backward_lazy/3) and writes one "Anchor Object" line per object."""
+    program = tmp_path / "minimalexample.pl"        # plotdata/1 writes data.txt where it runs
+    program.write_text((DC / "minimalexample.pl").read_text())
+    path = str(program).replace("'", "\\'")
+    run = subprocess.run(
+        [swipl_executable(), "-q", "-g", f"consult('{path}'), {goal}", "-t", "halt", str(COMPAT)],
+        cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert "[anchor2]" in run.stdout                 # writeln/1 in the association clause's body
+    written = [ln for ln in (tmp_path / "data.txt").read_text().splitlines() if ln]
+    assert sorted(written) == lines
+
+
 @pytest.mark.parametrize(("program", "query", "evidence", "exact"), [
     ("tutorial.pl", "drawn(1) ~= X, color(X) ~= black", None, 0.7 / 3 + 0.3 / 2),
     ("example1.pl", "drawn(1) ~= 1", None, 0.1 * H10),
@@ -323,6 +344,7 @@ def test_tracking_births_the_object_and_follows_it_with_the_kalman_proposal(
     ("dcpfwumpus.pl", "position:0 ~= (0,0)", None, 1.0),
     ("generatesamples.pl", "prod ~= P, P > 0", None, 0.5),
     ("tracking.pl", "deltaT(D), D =:= 0.2", None, 1.0),
+    ("minimalexample.pl", "associate:0 ~= _", None, 0.0),
 ])
 def test_the_same_files_load_with_ddc_query(program: str, query: str, evidence: str | None,
                                            exact: float) -> None:
