@@ -105,15 +105,17 @@ observation(object(ID)):t+1 ~ logfinite([W:_]) :=
 observation(object(ID)):t+1 ~ finite([1:_]) :=
 	\+(object(ID):t ~= _).
 
-% mean tracked position of object ID over the particles
+% weighted mean tracked position of object ID over the particles
 averageposition(ID,N,(MX,MY,MZ)) :-
-	eval_average_particle([MX:_],ID,current(objectx(ID)),N,_),
-	eval_average_particle([MY:_],ID,current(objecty(ID)),N,_),
-	eval_average_particle([MZ:_],ID,current(objectz(ID)),N,_).
+	eval_query_particle2((X,Y,Z),current(object(ID)) ~= (X,_,Y,_,Z,_),N,L),
+	weightedmean(L,MX,MY,MZ).
 
-objectx(ID):t ~ val(X) := object(ID):t ~= (X,_,_,_,_,_).
-objecty(ID):t ~ val(Y) := object(ID):t ~= (_,_,Y,_,_,_).
-objectz(ID):t ~ val(Z) := object(ID):t ~= (_,_,_,_,Z,_).
+weightedmean(L,MX,MY,MZ) :-
+	findall(P,member(P:_,L),Ps), sum_list(Ps,S),
+	findall(PX,(member(P:(X,_,_),L),PX is P*X),PXs), sum_list(PXs,SX),
+	findall(PY,(member(P:(_,Y,_),L),PY is P*Y),PYs), sum_list(PYs,SY),
+	findall(PZ,(member(P:(_,_,Z),L),PZ is P*Z),PZs), sum_list(PZs,SZ),
+	MX is SX/S, MY is SY/S, MZ is SZ/S.
 
 test_tracking(N) :-
 	init_particle(N),
@@ -134,8 +136,8 @@ plotdata(N) :-
 	open('data.txt','write',S),
 	(   between(1,N,Pos),
 	    I is Offset+Pos,
-	    rgbcolor(ID,(R,G,B)),
 	    search_query(I,current(object(ID)) ~= (X,_,Y,_,Z,_)),
+	    rgbcolor(ID,(R,G,B)),
 	    write(S,ID),write(S,' '),
 	    write(S,X),write(S,' '),write(S,Y),write(S,' '),write(S,Z),write(S,' '),
 	    write(S,R),write(S,' '),write(S,G),write(S,' '),write(S,B),nl(S),
