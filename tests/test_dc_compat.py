@@ -295,7 +295,7 @@ def test_tracking_births_the_object_and_follows_it_with_the_kalman_proposal(
     assert run.returncode == 0, run.stderr
     # birth at the first observation (0.6,1,0): each coordinate ~ N(obs, varQ deltaT^2)
     var_birth = 0.005 * 0.2 ** 2
-    for got, obs in zip(tracked(run.stdout, "after the first"), (0.6, 1.0, 0.0)):
+    for got, obs in zip(tracked(run.stdout, "after the first"), (0.6, 1.0, 0.0), strict=True):
         assert abs(got - obs) <= 3 * math.sqrt(var_birth / n)
     # second observation (0.7,1,0): prior N(0.6, 2 var_birth) in x, measurement variance
     # 0.001, Kalman posterior mean and variance; the particles are weighed by the
