@@ -1180,7 +1180,8 @@ all_numbers([X|Xs]) :-
 %!  dist_discrete(+Dist) is semidet.
 %
 %   True if Dist is a discrete distribution (a mass function): finite,
-%   propfinite, logfinite, uniform (both forms), bool, val and poisson.
+%   propfinite, logfinite, uniform (both forms), bool, val, poisson and
+%   logweight (a weight, counted as a mass).
 
 dist_discrete(finite(_)).
 dist_discrete(propfinite(_)).
