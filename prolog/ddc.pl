@@ -49,6 +49,9 @@
 :- use_module(library(option)).
 :- use_module(library(error)).
 :- use_module(library(pairs)).
+:- use_module(library(assoc)).
+:- use_module(library(ordsets)).
+:- use_module(library(modules)).
 :- use_module(ddc_dist).
 :- use_module(ddc_store).
 :- use_module(ddc_batch).
@@ -372,8 +375,9 @@ compile_program(File, M, Items00, Clauses, Info) :-
     add_persistence(Opts, Items1, Items),
     program_info(Items, Opts, Info),
     %   '$rv' clauses: tier 1 (untimed, h:0, h:t+1) before tier 2 (h:t)
-    findall(C, ( member(I, Items), \+ state_rv(I), compile_item_at(I, File, Info, Items, C) ), Cs1),
-    findall(C, ( member(I, Items), state_rv(I), compile_item_at(I, File, Info, Items, C) ), Cs2),
+    rivals_table(Items, Info, RivalsOf),
+    findall(C, ( member(I, Items), \+ state_rv(I), compile_item_at(I, File, Info, RivalsOf, C) ), Cs1),
+    findall(C, ( member(I, Items), state_rv(I), compile_item_at(I, File, Info, RivalsOf, C) ), Cs2),
     append(Cs1, Cs2, Cs0),
     derived_dispatchers(M, Info, Ds),
     clause_positions(Items, File, Ps),
@@ -401,8 +405,7 @@ compile_program(File, M, Items00, Clauses, Info) :-
               derived_name(N, dt1, DN1), append(Args, [T, W], CArgs), H1 =.. [DN1|CArgs] ),
             Sw2a),
     sort(Sw2a, Sw2),
-    findall(rivals(Id, R), ( member(rv(Id, X, K, _, _, _), Items), tier(K, Tier),
-                             rivals(Id, X, K, Tier, Info, Items, R) ), Rivals),
+    findall(rivals(Id, R), ( member(rv(Id, _, _, _, _, _), Items), rivals(Id, RivalsOf, R) ), Rivals),
     append(Items, Rivals, BatchItems),
     append([DirClauses, Cs0, Ds, Ps, Sw1, Sw2, ['$ddc_items'(BatchItems)]], Clauses),
     b_setval(ddc_compiling, []),
@@ -605,7 +608,7 @@ impure_preds(Items, Impure) :-
             Edges),
     findall(K, ( member(K-Cs, Edges), memberchk(random, Cs) ), Seed0),
     sort(Seed0, Seed),
-    impure_fix(Seed, Edges, Impure).
+    callers_closure(Seed, Edges, Impure).
 
 %   Derived predicates whose truth depends only on the facts asserted into
 %   the world (and on plain Prolog, parameters, other such predicates):
@@ -616,49 +619,70 @@ impure_preds(Items, Impure) :-
 %   (a variable goal, call/N, a random builtin, a term that names a random
 %   variable) makes a predicate particle-dependent.
 clean_preds(Items, Rvs, Clean) :-
+    sort(Rvs, RvSet),
+    pairs_keys_values(RvPairs, RvSet, RvSet),
+    list_to_assoc(RvPairs, RvIndex),
     findall(K-Dirty-Calls,
             ( member(der(_, X, Kind, B, _), Items),
               functor(X, N, A), tkind(Kind, TK), K = TK/N/A,
               body_calls(B, Calls),
-              ( body_dirty(B, Rvs) -> Dirty = true ; Dirty = false ) ),
+              ( body_dirty(B, RvIndex) -> Dirty = true ; Dirty = false ) ),
             Edges),
     findall(K, member(K-_-_, Edges), Ks0), sort(Ks0, Ks),
     findall(K, member(K-true-_, Edges), D0), sort(D0, Dirty0),
-    dirty_fix(Dirty0, Edges, Dirty),
-    findall(clean(K), ( member(K, Ks), \+ memberchk(K, Dirty) ), Clean0),
+    findall(K-Calls, member(K-_-Calls, Edges), CallEdges),
+    callers_closure(Dirty0, CallEdges, Dirty),
+    ord_subtract(Ks, Dirty, CleanKs),
+    findall(clean(K), member(K, CleanKs), Clean0),
     %   clean untimed predicates defined by unit clauses only (`object(o1)
     %   := true.`): a first-argument indexed lookup is cheaper than the
     %   shared table, so they are called directly (der_dispatch_u/5)
-    findall(unit(K), ( member(clean(K), Clean0), K = u/N/A,
-                       \+ ( member(der(_, X, Kind, B, _), Items), tkind(Kind, u),
-                            functor(X, N, A), B \== true ) ), Units),
+    findall(u/N/A, ( member(der(_, X, Kind, B, _), Items), tkind(Kind, u), B \== true,
+                     functor(X, N, A) ), NonUnit0),
+    sort(NonUnit0, NonUnit),
+    ord_subtract(CleanKs, NonUnit, UnitKs),
+    findall(unit(K), ( member(K, UnitKs), K = u/_/_ ), Units),
     append(Clean0, Units, Clean).
 
-dirty_fix(S0, Edges, S) :-
-    findall(K, ( member(K-_-Cs, Edges), \+ memberchk(K, S0),
-                 member(C, Cs), memberchk(C, S0) ), New0),
-    sort(New0, New),
-    (   New == [] -> S = S0 ; append(S0, New, S1), sort(S1, S2), dirty_fix(S2, Edges, S) ).
+%   callers_closure(+Seeds, +Edges, -Closure): Closure (an ordered set) is
+%   Seeds and every key K of Edges (K-Calls pairs, a key may have several)
+%   that calls, directly or through other keys, a key of Seeds.  A search
+%   from the seeds over the reversed calls, each key visited once.
+callers_closure(Seeds, Edges, Closure) :-
+    findall(C-K, ( member(K-Cs, Edges), member(C, Cs) ), Rev0),
+    sort(Rev0, Rev),
+    group_pairs_by_key(Rev, Callers),
+    list_to_assoc(Callers, CallersOf),
+    pairs_keys_values(SeedPairs, Seeds, Seeds),
+    list_to_assoc(SeedPairs, Seen0),
+    callers_visit(Seeds, CallersOf, Seen0, Seen),
+    assoc_to_keys(Seen, Closure).
+
+callers_visit([], _, Seen, Seen).
+callers_visit([K|Ks], CallersOf, Seen0, Seen) :-
+    (   get_assoc(K, CallersOf, Cs) -> true ; Cs = [] ),
+    foldl(callers_new, Cs, Seen0-Ks, Seen1-Ks1),
+    callers_visit(Ks1, CallersOf, Seen1, Seen).
+
+callers_new(C, Seen0-Ks, Seen-Ks1) :-
+    (   get_assoc(C, Seen0, _)
+    ->  Seen = Seen0, Ks1 = Ks
+    ;   put_assoc(C, Seen0, C, Seen), Ks1 = [C|Ks]
+    ).
 
 body_dirty(B, _) :- body_call(B, '$var'), !.
 body_dirty(B, _) :- body_call(B, u/N/_), ( N == call ; sub_atom(N, _, _, _, random) ), !.
-body_dirty(B, Rvs) :-
+body_dirty(B, RvIndex) :-
     sub_term(S, B), nonvar(S),
     (   S = (_ ~= _)
     ;   S = true(_)
     ;   S = sample(_, _)
-    ;   S = X:_, nonvar(X), callable(X), functor(X, N, A), memberchk(N/A, Rvs)
-    ;   callable(S), functor(S, N, A), memberchk(N/A, Rvs)
+    ;   S = X:_, nonvar(X), callable(X), functor(X, N, A), get_assoc(N/A, RvIndex, _)
+    ;   callable(S), functor(S, N, A), get_assoc(N/A, RvIndex, _)
     ), !.
 
 tkind(u, u) :- !.
 tkind(_, t).
-
-impure_fix(S0, Edges, S) :-
-    findall(K, ( member(K-Cs, Edges), \+ memberchk(K, S0),
-                 member(C, Cs), memberchk(C, S0) ), New0),
-    sort(New0, New),
-    (   New == [] -> S = S0 ; append(S0, New, S1), sort(S1, S2), impure_fix(S2, Edges, S) ).
 
 body_calls(B, Calls) :-
     findall(C, body_call(B, C), Calls).
@@ -687,16 +711,16 @@ clause_positions(Items, File, Ps) :-
 item_line(rv(_, _, _, _, _, L), L).
 item_line(der(_, _, _, _, L), L).
 
-%   compile_item_at(+Item, +File, +Info, +Items, -Clause) is nondet.
+%   compile_item_at(+Item, +File, +Info, +RivalsOf, -Clause) is nondet.
 %
 %   compile_item/5, with any error of compiling or checking the item (an
 %   atom where arithmetic needs a function, a plain clause for a control
 %   construct or a built-in predicate, `observed()`) the program's error at
 %   the item's line.
-compile_item_at(I, File, Info, Items, '$at'(Line, C)) :-
+compile_item_at(I, File, Info, RivalsOf, '$at'(Line, C)) :-
     item_where(I, File, Where),
     b_setval(ddc_compiling, Where),
-    catch(compile_item(I, File, Info, Items, C), E, item_error(E, I, File)),
+    catch(compile_item(I, File, Info, RivalsOf, C), E, item_error(E, I, File)),
     check_clause(C, I, File),
     item_where(I, File, _:Line).
 
@@ -784,19 +808,20 @@ arithmetic_atom(B, Atom) :-
     sub_term(Atom, Expr), atom(Atom), Atom \== [],
     \+ current_arithmetic_function(Atom), !.
 
-%   compile_item(+Item, +File, +Info, +Items, -Clause) is nondet.
+%   compile_item(+Item, +File, +Info, +RivalsOf, -Clause) is nondet.
+%   RivalsOf: rivals_table/3 of the program's items.
 compile_item(plain(builtin(_), _), _, _, _, _) :- !, fail.
 compile_item(plain(C, _), _, _, _, C).
-compile_item(rv(Id, X, K, D, B, L), File, Info, Items, Clause) :-
-    compile_rv(Id, X, K, D, B, L, File, Info, Items, Clause).
+compile_item(rv(Id, X, K, D, B, L), File, Info, RivalsOf, Clause) :-
+    compile_rv(Id, X, K, D, B, L, File, Info, RivalsOf, Clause).
 compile_item(der(Id, X, K, B, _), _, Info, _, Clause) :-
     compile_der(Id, X, K, B, Info, Clause).
 
 %   '$rv'(X, T, W, Skip, Ev, Out, Tier, Id, Rivals)
-compile_rv(Id, X, K, D0, B0, L, File, Info, Items, Clause) :-
+compile_rv(Id, X, K, D0, B0, L, File, Info, RivalsOf, Clause) :-
     Head = '$rv'(X, TArg, W, Skip, Ev, Out, Tier, Id, Rivals),
     tier(K, Tier),
-    rivals(Id, X, K, Tier, Info, Items, Rivals),
+    rivals(Id, RivalsOf, Rivals),
     time_guard(K, TArg, W, Tc, Guard),
     Ctx = ctx(W, Tc, Info, clause),
     range_support(X, D0, B0, D, B),
@@ -859,16 +884,24 @@ drop_unused_time(Guard, Tc, Body, Body1) :-
 %   variable often share the prefix that enumerates their heads
 %   (`object(O)`): the sweep reads each key once, so a clause whose key
 %   enumerator is a variant of an earlier one (same kind) is left out.
-distinct_sweep_keys([], []).
-distinct_sweep_keys([Id-K-C|T], [Id-K-C|Kept]) :-
-    sweep_key_shape(C, S),
-    exclude(same_sweep_key(K, S), T, T1),
-    distinct_sweep_keys(T1, Kept).
+%   The keys kept so far are found by the variant hash of their kind and
+%   shape (variant terms have the same hash), each candidate then compared
+%   with =@=: linear in the number of clauses.
+distinct_sweep_keys(SwKs, Kept) :-
+    empty_assoc(Seen),
+    distinct_sweep_keys(SwKs, Seen, Kept).
 
-same_sweep_key(K, S, _-K2-C2) :-
-    K2 == K,
-    sweep_key_shape(C2, S2),
-    S2 =@= S.
+distinct_sweep_keys([], _, []).
+distinct_sweep_keys([Id-K-C|T], Seen0, Kept) :-
+    sweep_key_shape(C, S),
+    variant_sha1(K-S, Hash),
+    (   get_assoc(Hash, Seen0, Shapes) -> true ; Shapes = [] ),
+    (   member(K0-S0, Shapes), K0-S0 =@= K-S
+    ->  Kept = Kept1, Seen = Seen0
+    ;   Kept = [Id-K-C|Kept1],
+        put_assoc(Hash, Seen0, [K-S|Shapes], Seen)
+    ),
+    distinct_sweep_keys(T, Seen, Kept1).
 
 sweep_key_shape(('$sweep_key'(_, X, T, W) :- B), s(X, T, W, B)).
 
@@ -915,21 +948,70 @@ time_guard(trans, T, W, Tc, (integer(T), T >= 1, ddc:'$live'(W, T), Tc is T-1)).
 time_guard(persist, T, W, Tc, (integer(T), T >= 1, ddc:'$live'(W, T), Tc is T-1)).
 time_guard(fixed(N), N, W, N, ddc:'$live'(W, N)).
 
-%   Does a later clause of the same tier define a variable this clause
-%   can also define?
-rivals(Id, X, K, Tier, info(_, _, _, _, _, _, First), Items, R) :-
+%   rivals(+Id, +RivalsOf, -R): R is true if a later clause of the same
+%   tier than random variable clause Id can define a variable that Id can
+%   also define (their heads unify, their kinds of time overlap: the same
+%   kind, or h:t+1 and h:N with N >= 1), false if none can or if Id's
+%   variable is persistent or first_applicable.  RivalsOf is
+%   rivals_table/3's.
+rivals(Id, RivalsOf, R) :-
+    get_assoc(Id, RivalsOf, R).
+
+%   rivals_table(+Items, +Info, -RivalsOf): the assoc from the Id of each
+%   random variable clause of Items to rivals/3's R.  The clauses are
+%   visited from the last to the first: each one asks whether a head
+%   entered so far unifies with its own, then enters its head, so that
+%   only later clauses are asked.  The heads are facts of a temporary
+%   module, one predicate per kind of time and name (rival_entry/3), and
+%   asking is calling them: SWI-Prolog's clause indexing (on any argument,
+%   also inside compound ones) answers without looking at every later
+%   clause, which keeps loading near-linear in the number of clauses.
+rivals_table(Items, info(_, _, _, _, _, _, First), RivalsOf) :-
+    findall(r(Id, X, K), member(rv(Id, X, K, _, _, _), Items), Rvs0),
+    sort(1, @>=, Rvs0, Rvs),
+    in_temporary_module(Later, true, foldl(ddc:rival(First, Later), Rvs, [], Pairs)),
+    list_to_assoc(Pairs, RivalsOf).
+
+rival(First, Later, r(Id, X, K), Pairs, [Id-R|Pairs]) :-
     functor(X, N, A),
     (   ( K == persist ; memberchk(all, First) ; memberchk(N/A, First) )
     ->  R = false
-    ;   member(rv(Id2, X2, K2, _, _, _), Items), Id2 > Id,
-        K2 \== persist, tier(K2, Tier), \+ X2 \= X, kinds_overlap(K, K2)
+    ;   rival_questions(K, Qs),
+        member(QTable-QExtra, Qs),
+        rival_fact(Later, QTable, QExtra, X, G),
+        current_predicate(_, G),
+        \+ \+ call(G)
     ->  R = true
     ;   R = false
+    ),
+    (   K == persist
+    ->  true
+    ;   rival_entry(K, Table, Extra),
+        rival_fact(Later, Table, Extra, X, F),
+        assertz(F)
     ).
 
-kinds_overlap(K, K) :- !.
-kinds_overlap(trans, fixed(N)) :- N >= 1.
-kinds_overlap(fixed(N), trans) :- N >= 1.
+%   rival_entry(+Kind, -Table, -Extra): the table a head of Kind is entered
+%   in, with Extra before the head's arguments.
+rival_entry(u, u, []).
+rival_entry(state, state, []).
+rival_entry(trans, trans, []).
+rival_entry(fixed(N), Table, [N]) :-
+    (   N >= 1 -> Table = later ; Table = early ).
+
+%   rival_questions(+Kind, -Tables): the tables holding the heads that a
+%   clause of Kind overlaps with (h:t+1 overlaps h:N for N >= 1).
+rival_questions(u, [u-[]]).
+rival_questions(state, [state-[]]).
+rival_questions(trans, [trans-[], later-[_]]).
+rival_questions(fixed(N), Qs) :-
+    (   N >= 1 -> Qs = [trans-[], later-[N]] ; Qs = [early-[N]] ).
+
+rival_fact(Later, Table, Extra, X, Later:F) :-
+    X =.. [N|Args],
+    atomic_list_concat(['$rival', Table, N], '|', Name),
+    append(Extra, Args, FArgs),
+    F =.. [Name|FArgs].
 
 %   Distribution code: evaluate arithmetic in the parameters; check at
 %   load time when the parameters are ground, at run time otherwise.

@@ -59,6 +59,7 @@
 :- use_module(library(lists)).
 :- use_module(library(pairs)).
 :- use_module(library(ordsets)).
+:- use_module(library(assoc)).
 :- use_module(ddc_dist).
 :- use_module(ddc_models, []).
 
@@ -172,9 +173,11 @@ compile(M, Items) :-
     forall(lookback(Items, NA), assertz(M:'$b_lookback'(NA))),
     findall(N/A, ( member(rv(_, X, _, _, _, _), Items), functor(X, N, A) ), Rvs0),
     sort(Rvs0, Rvs),
+    findall(Id-R, member(rivals(Id, R), Items), RivalPairs),
+    list_to_assoc(RivalPairs, RivalsOf),
     forall(member(rv(Id, X, K, D0, B0, L), Items),
            (   kind(K, K1),
-               ( memberchk(rivals(Id, R0), Items) -> R = R0 ; R = false ),
+               ( get_assoc(Id, RivalsOf, R0) -> R = R0 ; R = false ),
                param_goals(D0, D, Ps),
                operand_reads(B0, Rvs, B1),
                conj_with(B1, Ps, B),
@@ -1059,10 +1062,11 @@ assign_clauses([c(K, D, B, At)|Cls], EK, ES, X, T, Ps, C, Rest) :-
         assign_clauses(Cls, EK, ES, X, T, Ps1, C, Rest)
     ).
 
+%   rv_clause(+M, ?X, ?K, -D, -B, -At): a clause of X (a called clause is
+%   a fresh copy; calling with X lets the clause index find X's clauses
+%   without looking at every random variable's).
 rv_clause(M, X, K, D, B, At) :-
-    M:'$b_rv'(H, K, D0, B0, At),
-    copy_term(H-D0-B0, X1-D-B),
-    X1 = X.
+    M:'$b_rv'(X, K, D, B, At).
 
 %   A distribution error names the clause (file:line), as in ddc.pl.  The
 %   particles of the env's check list that this clause gave a value are
@@ -1113,8 +1117,7 @@ clause_error(E, Where) :-
 check_rivals([], _, _, _, _, _, _) :- !.
 check_rivals(Ps, E, X, T, K, Id, L) :-
     E = env(M, _, _, _, _, _, _),
-    (   M:'$b_rv'(H, K, _, B0, at(L2, Id2, _)), Id2 > Id,
-        copy_term(H-B0, X1-B), X1 = X,
+    (   M:'$b_rv'(X, K, _, B, at(L2, Id2, _)), Id2 > Id,
         \+ \+ beval(B, E, Ps, _)
     ->  throw(error(ddc(overlapping_clauses(X:T, M:L2), M:L), _))
     ;   true

@@ -10,7 +10,8 @@
 */
 
 :- module(ddc_learn_split,
-          [ learn_split_files/3         % +Files, +Options, -Stats
+          [ learn_split_files/3,        % +Files, +Options, -Stats
+            learn_fold_files/3          % +Files, +Options, -Stats
           ]).
 
 :- use_module(library(lists)).
@@ -143,7 +144,22 @@ check_outputs(Paths, opts(Train, Test, _, _, _)) :-
            throw(error(ddc_learn(no_such_directory(Dir), Out:0), _))).
 
 split_data(Data, Paths, Opts, Stats) :-
-    Opts = opts(_, _, F, Seed, Unit),
+    Opts = opts(Train, Test, F, Seed, Unit),
+    data_units(Data, Paths, Unit, Items, NF, Facts, Graph),
+    Graph = graph(NU, _),
+    choose_test_units(Graph, NF, F, Seed, InTest, K),
+    fact_sides(Facts, Graph, InTest, Sides),
+    side_counts(Sides, NF, NTrain, NTest, NCut),
+    aggregate_all(count, member(it(_, _, _, fact0), Items), NBoth),
+    Stats = _{train: NTrain, test: NTest, cut: NCut, units: NU, test_units: K, both: NBoth},
+    unit_how(Unit, How),
+    format(atom(Settings), '~w, fraction ~w, seed ~w', [How, F, Seed]),
+    write_parts(Items, Sides, Paths, Train-Test, Settings, Stats).
+
+%   data_units(+Data, +Paths, +Unit, -Items, -NF, -Facts, -Graph): the
+%   items of the files (classified, the facts numbered 1..NF), the facts'
+%   constants and their units (units/5).
+data_units(Data, Paths, Unit, Items, NF, Facts, Graph) :-
     maplist(file_dialect(Data), Paths, Dialects),
     same_dialect(Paths, Dialects),
     check_unit_type(Data, Paths, Unit),
@@ -157,14 +173,110 @@ split_data(Data, Paths, Opts, Stats) :-
     ->  true
     ;   Paths = [P0|_], throw(error(ddc_learn(no_facts, P0:0), _))
     ),
-    units(Facts, NF, Unit, ctx(Data, FirstWhere), Graph),
+    units(Facts, NF, Unit, ctx(Data, FirstWhere), Graph).
+
+unit_how(unit(Type), How) :- !, format(atom(How), 'unit ~w', [Type]).
+unit_how(none, 'connected worlds').
+
+%!  learn_fold_files(+Files:list, +Options:list, -Stats:list(dict)) is det.
+%
+%   Split the data of Files into K folds for cross-validation and write,
+%   for each fold, a test file (the fold's units) and a training file (the
+%   other folds' units).  The units are those of learn_split_files/3; they
+%   are shuffled with the seed and dealt out one at a time, each to the
+%   fold that holds the fewest facts so far (the first such fold on a
+%   tie), so that the folds' test files partition the units and hold about
+%   the same number of facts.  Facts whose constants fall in two folds are
+%   cut in those two folds (in neither part) and train the others.
+%   Options:
+%
+%     - parts(+Pairs): Train-Test file pairs, one per fold (at least 2;
+%       created or replaced, each pair only once both are complete).
+%     - seed(+S): the seed of the units' order (default 0).
+%     - unit(+Type): split by the constants of that argument type.
+%
+%   Stats holds per fold `_{fold: I, train: NTrain, test: NTest, cut:
+%   NCut, units: NUnits, test_units: K, both: NBoth}`, as
+%   learn_split_files/3 counts them.
+%
+%   @error ddc_learn(Cause, File:Line) as learn_split_files/3, and
+%          too_few_units(NUnits, K) when there are fewer units than folds.
+%   @error domain_error(at_least_two_folds, Pairs) for fewer than 2 pairs.
+learn_fold_files(Files, Options, Stats) :-
+    must_be(list, Files),
+    must_be(list, Options),
+    (   Files == [] -> domain_error(non_empty_list, Files) ; true ),
+    (   option(parts(Pairs0), Options)
+    ->  must_be(list, Pairs0)
+    ;   throw(error(ddc_learn(missing_option(parts), learn_fold_files/3), _))
+    ),
+    (   Pairs0 = [_, _|_] -> true ; domain_error(at_least_two_folds, Pairs0) ),
+    maplist(fold_pair, Pairs0, Pairs),
+    option(seed(Seed), Options, 0),
+    must_be(integer, Seed),
+    (   option(unit(Type), Options) -> must_be(atom, Type), Unit = unit(Type) ; Unit = none ),
+    maplist(ddc_learn_data:resolve_data_file, Files, Paths),
+    forall(member(Tr-Te, Pairs), check_outputs(Paths, opts(Tr, Te, _, _, _))),
+    setup_call_cleanup(learn_data_load(Paths, [targets(false)], Data),
+                       fold_data(Data, Paths, Pairs, Seed, Unit, Stats),
+                       learn_data_free(Data)).
+
+fold_pair(Pair, Train-Test) :-
+    (   Pair = Tr0-Te0 -> true ; type_error(pair, Pair) ),
+    must_be(text, Tr0),
+    must_be(text, Te0),
+    absolute_file_name(Tr0, Train),
+    absolute_file_name(Te0, Test).
+
+fold_data(Data, Paths, Pairs, Seed, Unit, Stats) :-
+    data_units(Data, Paths, Unit, Items, NF, Facts, Graph),
+    Graph = graph(NU, FU),
+    length(Pairs, K),
+    (   NU < K
+    ->  Paths = [P0|_],
+        throw(error(ddc_learn(too_few_units(NU, K), P0:0), _))
+    ;   true
+    ),
+    deal_units(FU, NF, NU, K, Seed, FoldOf),
+    aggregate_all(count, member(it(_, _, _, fact0), Items), NBoth),
+    unit_how(Unit, How),
+    numlist(1, K, Is),
+    maplist(write_fold(Items, Facts, Graph, FoldOf, Paths, How, K, Seed, NF, NBoth),
+            Is, Pairs, Stats).
+
+%   deal_units(+FU, +NF, +NU, +K, +Seed, -FoldOf): FoldOf (argument U: the
+%   fold of unit U), the units taken in the seeded random order, each to
+%   the fold with the fewest facts (of that unit alone) so far.
+deal_units(FU, NF, NU, K, Seed, FoldOf) :-
+    unit_weights(FU, NF, NU, Single, _),
+    numlist(1, NU, Us),
+    set_random(seed(Seed)),
+    random_permutation(Us, Perm),
+    functor(FoldOf, fold_of, NU),
+    length(Load0, K), maplist(=(0), Load0),
+    foldl(deal_unit(Single, FoldOf), Perm, Load0, _).
+
+deal_unit(Single, FoldOf, U, Load0, Load) :-
+    min_list(Load0, Min),
+    nth1(I, Load0, Min), !,
+    arg(U, FoldOf, I),
+    arg(U, Single, N),
+    New is Min+N,
+    nth1(I, Load0, _, Rest),
+    nth1(I, Load, New, Rest).
+
+write_fold(Items, Facts, Graph, FoldOf, Paths, How, K, Seed, NF, NBoth, I, Train-Test,
+           Stats) :-
     Graph = graph(NU, _),
-    choose_test_units(Graph, NF, F, Seed, InTest, K),
+    functor(InTest, in_test, NU),
+    forall(( between(1, NU, U), arg(U, FoldOf, I) ), nb_setarg(U, InTest, true)),
+    aggregate_all(count, ( between(1, NU, U), arg(U, FoldOf, I) ), KI),
     fact_sides(Facts, Graph, InTest, Sides),
     side_counts(Sides, NF, NTrain, NTest, NCut),
-    aggregate_all(count, member(it(_, _, _, fact0), Items), NBoth),
-    Stats = _{train: NTrain, test: NTest, cut: NCut, units: NU, test_units: K, both: NBoth},
-    write_parts(Items, Sides, Paths, Opts, Stats).
+    Stats = _{fold: I, train: NTrain, test: NTest, cut: NCut, units: NU, test_units: KI,
+              both: NBoth},
+    format(atom(Settings), '~w, fold ~w of ~w, seed ~w', [How, I, K, Seed]),
+    write_parts(Items, Sides, Paths, Train-Test, Settings, Stats).
 
 file_dialect(Data, Path, Dialect) :-
     (   Data:'$ddcl_file'(Path, D) -> Dialect = D ; Dialect = own ).
@@ -512,16 +624,11 @@ side_counts(Sides, NF, NTrain, NTest, NCut) :-
                  *            WRITING           *
                  *******************************/
 
-write_parts(Items, Sides, Paths, opts(Train, Test, F, Seed, Unit), Stats) :-
+write_parts(Items, Sides, Paths, Train-Test, Settings, Stats) :-
     tmp_name(Train, TrainTmp),
     tmp_name(Test, TestTmp),
     maplist(file_base_name, Paths, Bases),
     atomic_list_concat(Bases, ', ', Inputs),
-    (   Unit = unit(Type)
-    ->  format(atom(How), 'unit ~w', [Type])
-    ;   How = 'connected worlds'
-    ),
-    format(atom(Settings), '~w, fraction ~w, seed ~w', [How, F, Seed]),
     setup_call_catcher_cleanup(
         true,
         ( write_part(TrainTmp, train, Items, Sides,
@@ -612,6 +719,8 @@ split_cause(one_unit(Type, C)) --> !,
     [ 'only one constant of type ~w (~q): no unit can be held out'-[Type, C] ].
 split_cause(no_unit_constants(Type)) --> !,
     [ 'no fact has a constant of type ~w: no units to split by'-[Type] ].
+split_cause(too_few_units(NU, K)) --> !,
+    [ 'the facts form ~D units (separate worlds), fewer than the ~D folds asked for'-[NU, K] ].
 split_cause(no_facts) --> !,
     [ 'no facts with constants to split' ].
 split_cause(mixed_dialects(F1, D1, _, D2)) --> !,

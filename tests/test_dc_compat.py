@@ -173,7 +173,7 @@ def test_generatesamples_generate_backward_from_a_given_world() -> None:
     assert printed(out, "probability coin=true (exact 0.5)") == pytest.approx(0.5)
     assert abs(printed(out, "probability fair coin=true (exact 0.5)") - 0.5) <= 3 * binomial_se(
         0.5, 10000)
-    world = re.search(r"^\[prod~=(\S+),g2~=(\S+),g~=(\S+)\]$", out, re.M)
+    world = re.search(r"^\[prod~= ?([^,]+),g2~= ?([^,]+),g~= ?([^\]]+)\]$", out, re.M)
     assert world, out
     prod, g2, g = (float(v) for v in world.groups())
     assert prod == pytest.approx(g * g2)
@@ -246,7 +246,7 @@ def test_plot_predicates_read_particles_with_recorded_and_printp(tmp_path: Path)
     # speed ~ N(2, 1) at time 0, then N(S, 0.01): the mean of n particles
     assert abs(printed(out, "mean speed") - 2.0) <= 3 * math.sqrt(1.01 / n)
     assert "current(position)~=(1,0)" in out
-    assert re.search(r"^current\(speed\)~=[-0-9.]+$", out, re.M), out
+    assert re.search(r"^current\(speed\)~= ?[-0-9.]+$", out, re.M), out
 
 
 def test_forward_inference_is_accepted_with_a_warning_and_answers_the_same(tmp_path: Path) -> None:

@@ -34,6 +34,11 @@ def always_die() -> None:
     os._exit(9)
 
 
+def thread_settings(_: int) -> tuple[str | None, str | None]:
+    """The worker's OpenMP and OpenBLAS thread counts, as its environment gives them."""
+    return os.environ.get("OMP_NUM_THREADS"), os.environ.get("OPENBLAS_NUM_THREADS")
+
+
 def outcomes_of(jobs: list[Job], cluster: str | None, workers: int) -> dict[str, tuple]:
     return {o.job.name: (o.value, o.error)
             for o in run_jobs(jobs, parse_cluster(cluster, workers))}
@@ -58,6 +63,14 @@ def test_local_jobs_all_come_back_and_a_raising_one_is_reported(workers: int) ->
     got = outcomes_of(jobs, "local", workers)
     assert got == {f"square {i}": ((i * i, None) if i != 3 else
                                    (None, "ValueError: three is not welcome")) for i in range(6)}
+
+
+def test_local_workers_run_their_numerical_libraries_on_one_thread(monkeypatch) -> None:
+    monkeypatch.delenv("OMP_NUM_THREADS", raising=False)
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "3")  # a setting of the user's is kept
+    got = outcomes_of([Job(f"threads {i}", thread_settings, (i,)) for i in range(2)], None, 2)
+    assert set(got.values()) == {(("1", "3"), None)}
+    assert "OMP_NUM_THREADS" not in os.environ  # this process's environment is as it was
 
 
 def test_a_local_worker_that_dies_is_replaced_and_its_job_tried_again(tmp_path: Path) -> None:
@@ -116,27 +129,6 @@ def test_an_evaluation_with_a_failed_unit_keeps_the_finished_ones(tmp_path, monk
     table = experiment.run_experiment(options)   # again: only the failed unit runs
     assert ran == [0, 1, 2, 1]
     assert "| transitive | reasoning | 3 | 3/3 (100 %) |" in table
-
-
-@pytest.fixture(scope="module")
-def ray_two_workers():
-    """A local Ray on 127.0.0.1 with two CPUs, for this module's Ray tests (its workers find
-    this module's job functions through PYTHONPATH, as they find the project's)."""
-    import ray
-
-    here = str(Path(__file__).resolve().parent)
-    before = os.environ.get("PYTHONPATH")
-    os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (here, before) if p)
-    try:
-        ray.init(num_cpus=2, _node_ip_address="127.0.0.1", include_dashboard=False,
-                 log_to_driver=False)
-    finally:
-        if before is None:
-            del os.environ["PYTHONPATH"]
-        else:
-            os.environ["PYTHONPATH"] = before
-    yield ray
-    ray.shutdown()
 
 
 def test_ray_jobs_come_back_raising_ones_reported_dead_workers_retried(

@@ -82,6 +82,8 @@ class AnchoringLoop:
             if config.reasoning else None
         )
         self.rejected_percepts = 0
+        # the anchors the reasoning was told about in the last frame
+        self.reasoned_anchors = 0
         # every ambiguous re-acquisition of the run: (frame, percept index, symbol -> P)
         self.ambiguities: list[tuple[int, int, dict[str, float]]] = []
 
@@ -112,14 +114,22 @@ class AnchoringLoop:
             started = time.perf_counter()
             perceived = {a.symbol: frame.percepts[a.percept_index].position
                          for a in result.assignments}
+            # only confirmed anchors (perceived in two frames) are reasoned about: an anchor
+            # seen once may be a spurious percept, and a flood of them would make the theory
+            # of occlusion, pairwise in the objects, cost seconds per frame
+            confirmed = [anchor for anchor in self.manager.anchors if anchor.confirmed]
             states = [
                 AnchorState(anchor.symbol, anchor.best_category,
                             tuple(perceived[anchor.symbol]) if anchor.symbol in perceived
                             else None)
-                for anchor in self.manager.anchors
+                for anchor in confirmed
             ]
             self.reasoner.step(states)
+            self.reasoned_anchors = len(states)
+            reasoned = {anchor.symbol for anchor in confirmed}
             for symbol in result.tracked:
+                if symbol not in reasoned:
+                    continue
                 belief = self.reasoner.belief(symbol)
                 if belief is not None:
                     self.manager.set_position_particles(symbol, belief.positions,

@@ -246,6 +246,21 @@ class LearningData:
         self.free()
 
 
+def _split_call(files: Sequence[str | Path], seed: int,
+                unit: str | None) -> tuple[dict[str, Any], str]:
+    """The bindings (``Fs``, ``S``) and the goal binding ``_Us`` shared by the split's calls."""
+    paths = [str(Path(f).resolve()) for f in files]
+    for p in paths:
+        if not Path(p).is_file():
+            raise DDCError(f"{p}: no such file")
+    prolog.ensure_loaded(prolog.PROLOG_DIR / "ddc_learn_split.pl")
+    bindings: dict[str, Any] = {"Fs": paths, "S": int(seed)}
+    if unit is None:
+        return bindings, "_Us = []"
+    bindings["US"] = str(unit)
+    return bindings, "atom_string(_U, US), _Us = [unit(_U)]"
+
+
 def split_files(
     files: Sequence[str | Path],
     train: str | Path,
@@ -294,20 +309,61 @@ def split_files(
     """
     if not 0.0 < float(fraction) < 1.0:
         raise ValueError(f"the test fraction must be between 0 and 1 (exclusive), got {fraction}")
-    paths = [str(Path(f).resolve()) for f in files]
-    for p in paths:
-        if not Path(p).is_file():
-            raise DDCError(f"{p}: no such file")
-    prolog.ensure_loaded(prolog.PROLOG_DIR / "ddc_learn_split.pl")
-    bindings: dict[str, Any] = {"Fs": paths, "Tr": str(Path(train).resolve()),
-                                "Te": str(Path(test).resolve()), "F": float(fraction),
-                                "S": int(seed)}
-    if unit is None:
-        goal = "_Us = []"
-    else:
-        bindings["US"] = str(unit)
-        goal = "atom_string(_U, US), _Us = [unit(_U)]"
+    bindings, goal = _split_call(files, seed, unit)
+    bindings.update({"Tr": str(Path(train).resolve()), "Te": str(Path(test).resolve()),
+                     "F": float(fraction)})
     goal += (", ddc_learn_split:learn_split_files(Fs, [train(Tr), test(Te), fraction(F), "
              "seed(S)|_Us], St)")
     stats = dict(_call(goal, bindings)["St"])
     return {k: int(stats[k]) for k in ("train", "test", "cut", "both", "units", "test_units")}
+
+
+def fold_files(
+    files: Sequence[str | Path],
+    parts: Sequence[tuple[str | Path, str | Path]],
+    seed: int = 0,
+    unit: str | None = None,
+) -> list[dict[str, int]]:
+    """Split a data set into K folds of separate worlds, one training and test file per fold.
+
+    The units are those of :func:`split_files`; shuffled by ``seed``, each goes to the fold
+    with the fewest facts so far, so the folds' test files partition the units. Fold ``i``'s
+    training file holds every other fold's facts; a fact whose constants fall in two folds is
+    cut in those two. See ``learn_fold_files/3`` in ``prolog/ddc_learn_split.pl``.
+
+    Parameters
+    ----------
+    files : sequence of path
+        The data files (one dialect).
+    parts : sequence of (train, test) paths
+        One pair per fold, at least two; each pair created or replaced once both are complete.
+    seed : int, default=0
+        Seeds the order of the units.
+    unit : str, optional
+        An argument type whose constants are the units.
+
+    Returns
+    -------
+    list of dict
+        Per fold: ``fold`` (1-based), ``train``, ``test``, ``cut``, ``both``, ``units`` and
+        ``test_units``, as :func:`split_files` counts them.
+
+    Raises
+    ------
+    ValueError
+        Fewer than two folds.
+    DDCError
+        A data file is missing or bad, fewer units than folds, or an output is an input.
+    """
+    if len(parts) < 2:
+        raise ValueError(f"cross-validation needs at least 2 folds, got {len(parts)}")
+    bindings, goal = _split_call(files, seed, unit)
+    bindings["Ps"] = [[str(Path(tr).resolve()), str(Path(te).resolve())] for tr, te in parts]
+    goal += ", findall(_Tr-_Te, member([_Tr, _Te], Ps), _Pairs)"
+    # each fold's counts as the values of its dict, in the standard order of the keys
+    goal += (", ddc_learn_split:learn_fold_files(Fs, [parts(_Pairs), seed(S)|_Us], _St), "
+             "findall(_Vs, (member(_D, _St), dict_pairs(_D, _, _KVs), pairs_values(_KVs, _Vs)), "
+             "St)")
+    keys = ("both", "cut", "fold", "test", "test_units", "train", "units")
+    return [dict(zip(keys, map(int, values), strict=True))
+            for values in _call(goal, bindings)["St"]]

@@ -6,6 +6,8 @@
     ddc evaluate LEARNED.pl TEST.pl [MORE.pl ...] [--target NAME]... [--json]
     ddc split DATA.pl [MORE.pl ...] --train TRAIN.pl --test TEST.pl [--fraction F] [--seed S]
               [--unit TYPE] [--json]
+    ddc cross-validate DATA.pl [MORE.pl ...] --out DIR [--folds K] [--seed S] [--unit TYPE]
+              [--jobs N] [--cluster local|ray|auto|ray://HOST:PORT] [learn's search options]
 
 ``ddc learn`` reads background knowledge, training facts and declarative bias from the data
 files, learns one distributional logic tree per target and writes the DC program they make
@@ -16,7 +18,10 @@ target the clauses, groundings, seconds and training log-likelihood (``--json``:
 keyed by target). ``ddc evaluate`` scores a DC program on held-out facts: per target the number of
 test groundings, the mean log-likelihood per grounding (natural log) and the accuracy (discrete)
 or RMSE (continuous). ``ddc split`` writes a training and a test file whose test facts form
-worlds of their own (docs/learning.md, "Held-out data").
+worlds of their own (docs/learning.md, "Held-out data"). ``ddc cross-validate`` splits the data
+into K folds of separate worlds and, one fold per job (local processes or Ray, docs/cluster.md),
+learns on the other folds and scores the held-out one: per fold and over all folds, the columns of
+``ddc evaluate``.
 """
 
 from __future__ import annotations
@@ -31,7 +36,7 @@ from typing import Any
 
 
 def add_learn_commands(sub: Any, positive_int: Any) -> None:
-    """Add ``learn``, ``evaluate`` and ``split`` to the ``ddc`` sub-command parser."""
+    """Add ``learn``, ``evaluate``, ``split`` and ``cross-validate`` to ``ddc``'s parser."""
     learn = sub.add_parser("learn", help="learn a DC program (one tree per target) from data")
     learn.add_argument("data", nargs="+", help="data files: facts, background, bias")
     learn.add_argument("--out", required=True, type=Path, help="the learned program (.pl)")
@@ -42,21 +47,33 @@ def add_learn_commands(sub: Any, positive_int: Any) -> None:
                        help="seed of the samples of continuous uncertain facts (default 0)")
     learn.add_argument("--plot", type=Path, default=None, metavar="TREE.png",
                        help="draw the learned trees (PNG or SVG)")
-    learn.add_argument("--min-leaf", type=float, default=10.0,
-                       help="smallest weight of a branch with a model of its own (default 10)")
-    learn.add_argument("--max-depth", type=int, default=8, help="longest path (default 8)")
-    learn.add_argument("--min-gain", type=float, default=0.0,
-                       help="a split must raise the BIC by more than this (default 0)")
-    learn.add_argument("--smoothing", type=float, default=1.0,
-                       help="pseudo-count per value of a discrete head (default 1)")
-    learn.add_argument("--l2", type=float, default=0.01,
-                       help="L2 penalty on standardised regression weights (default 0.01)")
-    learn.add_argument("--no-lookahead", action="store_true",
-                       help="score literals that introduce variables by themselves")
+    _add_search_options(learn)
     learn.add_argument("--form", choices=["clauses", "tree"], default="clauses",
                        help="one clause per path (default) or per tree (nested if-then-else)")
     learn.add_argument("--quiet", action="store_true", help="no progress bar")
     learn.set_defaults(func=run_learn)
+
+    cv = sub.add_parser("cross-validate",
+                        help="K-fold cross-validation of the learner (one fold per job)")
+    cv.add_argument("data", nargs="+", help="data files: facts, background, bias (one dialect)")
+    cv.add_argument("--folds", type=positive_int, default=5, help="K (at least 2; default 5)")
+    cv.add_argument("--out", required=True, type=Path,
+                    help="a folder: fold-I/{train,test,learned}.pl and cross-validation.json")
+    cv.add_argument("--target", action="append", default=[], metavar="NAME",
+                    help="a target to learn (repeatable; default: every declared target)")
+    cv.add_argument("--seed", type=int, default=0,
+                    help="seed of the folds and of the learner's samples (default 0)")
+    cv.add_argument("--unit", default=None, metavar="TYPE",
+                    help="fold by the constants of this argument type (as ddc split --unit)")
+    cv.add_argument("--form", choices=["clauses", "tree"], default="clauses",
+                    help="the learned programs' form (default clauses)")
+    _add_search_options(cv)
+    from cli.options import add_cluster_options
+
+    add_cluster_options(cv, "fold")
+    cv.add_argument("--json", action="store_true", help="print one JSON object")
+    cv.add_argument("--quiet", action="store_true", help="no progress bar")
+    cv.set_defaults(func=run_cross_validate)
 
     ev = sub.add_parser("evaluate", help="held-out scores of a DC program on test facts")
     ev.add_argument("program", type=Path, help="the DC program (e.g. from ddc learn)")
@@ -80,18 +97,41 @@ def add_learn_commands(sub: Any, positive_int: Any) -> None:
     sp.set_defaults(func=run_split)
 
 
+def _add_search_options(parser: argparse.ArgumentParser) -> None:
+    """The search's settings (:class:`ddclearn.SearchOptions`), for learn and cross-validate."""
+    parser.add_argument("--min-leaf", type=float, default=10.0,
+                        help="smallest weight of a branch with a model of its own (default 10)")
+    parser.add_argument("--max-depth", type=int, default=8, help="longest path (default 8)")
+    parser.add_argument("--min-gain", type=float, default=0.0,
+                        help="a split must raise the BIC by more than this (default 0)")
+    parser.add_argument("--smoothing", type=float, default=1.0,
+                        help="pseudo-count per value of a discrete head (default 1)")
+    parser.add_argument("--l2", type=float, default=0.01,
+                        help="L2 penalty on standardised regression weights (default 0.01)")
+    parser.add_argument("--no-lookahead", action="store_true",
+                        help="score literals that introduce variables by themselves")
+
+
+def _search_options(args: argparse.Namespace) -> Any:
+    """The :class:`ddclearn.SearchOptions` that the options name; CliError when out of range."""
+    from cli.ddc_cli import CliError
+    from ddclearn import LeafOptions, SearchOptions
+
+    try:
+        return SearchOptions(min_leaf=args.min_leaf, max_depth=args.max_depth,
+                             min_gain=args.min_gain, lookahead=not args.no_lookahead,
+                             leaf=LeafOptions(smoothing=args.smoothing, l2=args.l2))
+    except ValueError as exc:
+        raise CliError(str(exc)) from None
+
+
 def run_learn(args: argparse.Namespace) -> int:
     from cli.ddc_cli import CliError
-    from ddclearn import LeafOptions, SearchOptions, learn
+    from ddclearn import learn
 
     if args.plot is not None and args.plot.suffix.lower() not in (".png", ".svg"):
         raise CliError(f"--plot {args.plot}: the picture must be .png or .svg")
-    try:
-        options = SearchOptions(min_leaf=args.min_leaf, max_depth=args.max_depth,
-                                min_gain=args.min_gain, lookahead=not args.no_lookahead,
-                                leaf=LeafOptions(smoothing=args.smoothing, l2=args.l2))
-    except ValueError as exc:
-        raise CliError(str(exc)) from None
+    options = _search_options(args)
     command = "ddc " + " ".join(shlex.quote(a) for a in sys.argv[1:]) if sys.argv else None
     result = learn(args.data, args.target or None, seed=args.seed, options=options,
                    command=command, progress=not args.quiet and sys.stderr.isatty())
@@ -128,11 +168,54 @@ def run_evaluate(args: argparse.Namespace) -> int:
     print(f"{'target':<28} {'n':>8} {'mean log-lik':>13} {'accuracy':>9} {'rmse':>12} "
           f"{'uncovered':>9}")
     for key, s in scores.items():
-        acc = f"{s['accuracy']:.4f}" if "accuracy" in s else "-"
-        rmse = f"{s['rmse']:.6g}" if "rmse" in s else "-"
-        print(f"{key:<28} {s['n']:>8} {s['mean_log_likelihood']:>13.5g} {acc:>9} {rmse:>12} "
-              f"{s['uncovered']:>9}")
+        print(_score_row(key, None, s))
     return 0
+
+
+def run_cross_validate(args: argparse.Namespace) -> int:
+    """``ddc cross-validate``: the folds' held-out scores, per fold and over the folds."""
+    from cli.ddc_cli import CliError
+    from ddclearn.crossval import SUMMARY_NAME, cross_validate
+    from jobs import ClusterError, parse_cluster
+
+    if args.folds < 2:
+        raise CliError(f"--folds {args.folds}: cross-validation needs at least 2 folds")
+    if args.out.exists() and not args.out.is_dir():
+        raise CliError(f"--out {args.out}: not a folder")
+    try:
+        cluster = parse_cluster(args.cluster, args.jobs)
+    except ClusterError as exc:
+        raise CliError(str(exc)) from None
+    result = cross_validate(args.data, args.folds, args.out, targets=args.target or None,
+                            seed=args.seed, unit=args.unit, options=_search_options(args),
+                            form=args.form, cluster=cluster,
+                            progress=not args.quiet and sys.stderr.isatty())
+    for w in result.warnings:
+        print(f"ddc cross-validate: warning: {w}", file=sys.stderr)
+    if args.json:
+        print(json.dumps(result.to_json()))
+        return 0
+    print(f"{'target':<28} {'fold':>4} {'n':>8} {'mean log-lik':>13} {'accuracy':>9} "
+          f"{'rmse':>12} {'uncovered':>9}")
+    summary = result.summary()
+    for key, s in summary.items():
+        for f in result.folds:
+            if key in f.scores:
+                print(_score_row(key, str(f.fold), f.scores[key]))
+        print(_score_row(key, "all", s) + f"   (fold mean {s['fold_mean']:.5g} "
+              f"± {s['fold_std']:.2g})")
+    print(f"{len(result.folds)} folds on {result.cluster}: wrote "
+          f"{args.out}/fold-*/learned.pl and {args.out / SUMMARY_NAME}")
+    return 0
+
+
+def _score_row(key: str, fold: str | None, s: dict[str, Any]) -> str:
+    """One line of held-out scores (``ddc evaluate``'s columns; a fold column unless None)."""
+    acc = f"{s['accuracy']:.4f}" if "accuracy" in s else "-"
+    rmse = f"{s['rmse']:.6g}" if "rmse" in s else "-"
+    where = "" if fold is None else f" {fold:>4}"
+    return (f"{key:<28}{where} {s['n']:>8} {s['mean_log_likelihood']:>13.5g} {acc:>9} "
+            f"{rmse:>12} {s['uncovered']:>9}")
 
 
 def run_split(args: argparse.Namespace) -> int:
