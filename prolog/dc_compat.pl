@@ -46,6 +46,7 @@
             densityGaussian/4,          % +Mean, +Var, +X, -Density
             remove_duplicates/2,        % +List, -Set
             bb_put/2, bb_get/2, bb_delete/2,
+            eraseall/1,                 % +Key
             op(700, xfx, ~),
             op(700, xfx, ~=),
             op(1105, xfx, :=),
@@ -377,11 +378,19 @@ step_particle(Actions, Obs, _Constraints, N, Delta) :-
     must_be(list, Actions), must_be(list, Obs), must_be(number, Delta),
     belief(N, B),
     ddc_program(M),
+    observation_facts(Obs, OFacts),     % the untimed reads (dc_compat_load.pl)
+    append(Actions, OFacts, Facts0),
     (   current_predicate(M:deltaT/1)
-    ->  Facts = Actions             % the program's own deltaT/1 stays (the original wiped it)
-    ;   Facts = [deltaT(Delta)|Actions]
+    ->  Facts = Facts0              % the program's own deltaT/1 stays (the original wiped it)
+    ;   Facts = [deltaT(Delta)|Facts0]
     ),
     belief_step(B, Obs, Facts).
+
+%   observation_facts(+Obs, -Facts): dc_observation(O, V) for each
+%   `observation(O) ~= V` of the step, which the original recorded in the
+%   particles and its programs read untimed in clause bodies.
+observation_facts(Obs, Facts) :-
+    findall(dc_observation(O, V), member(observation(O) ~= V, Obs), Facts).
 
 %!  step_particle_aux(+Actions:list, +Obs:list, +N:integer) is det.
 %!  step_particle_ps(+Obs:list, +N:integer) is det.
@@ -487,9 +496,29 @@ reset_loglikelihood.
 
 %   distributionalclause:proof_query_backward(+I, ?Goal): Goal holds in
 %   particle I (1-based) now; Goal's variables are bound to their values
-%   there (the first proof).  For the original's plot predicates.
+%   there, one proof after another on backtracking (tracking.pl's and
+%   minimalexample.pl's plotdata/1 go through every object).  For the
+%   original's plot predicates.
 distributionalclause:proof_query_backward(I, Goal) :-
     dc_compat:particle_goal(I, Goal).
+
+%   distributionalclause:proof_query_backward_lazy(+I, +TempKey, ?Goal):
+%   the original's lazy proof of Goal in particle I into the throw-away
+%   store TempKey; the same as proof_query_backward/2 here (a query never
+%   changes a particle, so there is no store to give).
+distributionalclause:proof_query_backward_lazy(I, _TempKey, Goal) :-
+    dc_compat:particle_goal(I, Goal).
+
+%!  eraseall(+Key) is det.
+%
+%   YAP's eraseall/1: erases every record of Key in SWI-Prolog's recorded
+%   database.  The original's programs call it on its throw-away particle
+%   store (`eraseall(tempparticle)`) before a query; particles themselves
+%   are not in that database here, so erasing a particle key changes no
+%   particle.
+eraseall(Key) :-
+    must_be(nonvar, Key),
+    forall(recorded(Key, _, Ref), erase(Ref)).
 
 %!  particle_recorded(?Key, ?Term, -Ref) is nondet.
 %
@@ -537,10 +566,9 @@ particle_goal(I, Goal) :-
     belief_filter(B, F),
     timed_goal(Goal, G0),
     copy_term(Goal-G0, Goal1-G),
-    filter_values(F, some(G), G, Values),
-    nth1(I, Values, some(G1)),
-    G = G1,
-    Goal = Goal1.
+    filter_values(F, L, findall(Goal1, G, L), Values),
+    nth1(I, Values, Sols),
+    member(Goal, Sols).
 
                  /*******************************
                  *          BLACKBOARD          *

@@ -11,11 +11,13 @@
 
 :- module(dc_compat_load,
           [ original_directive/3,       % +Directive, +File:Line, -Options
-            original_arithmetic/2       % +Term0, -Term
+            original_arithmetic/2,      % +Term0, -Term
+            original_program/2          % +Items0, -Items
           ]).
 
 :- use_module(library(lists)).
 :- use_module(library(error)).
+:- use_module(library(terms), [mapsubterms/3]).
 
 :- dynamic warned_/2.                  % warned_(Directive, File:Line)
 
@@ -47,8 +49,10 @@ option value the original did not know is an error.
 %   original calls) gives first(all), the original's rule that the first
 %   clause (in file order) whose body holds defines a variable, where
 %   ddc.pl would otherwise refuse two clauses that apply in one world, and
-%   facts([action/1, deltaT/1]), the facts the original's filter asserts
-%   at each step (as `:- dynamic(action/1).` would declare them).
+%   facts([action/1, deltaT/1, dc_observation/2]), the facts the
+%   original's filter asserts at each step (as `:- dynamic(action/1).`
+%   would declare them; dc_observation/2 holds the step's observations,
+%   see original_program/2).
 %   Fails for any other directive.  Throws error(ddc(bad_directive(D),
 %   Where), _) for an option setter with a value the original did not
 %   accept.
@@ -59,7 +63,7 @@ original_directive(D, Where, Options) :-
     forall(member(D1, Ds), option_setter(D1)),
     forall(member(D1, Ds), check_option(D1, Where)),
     (   memberchk(set_options(_), Ds)
-    ->  Options = [first(all), facts([action/1, deltaT/1])]
+    ->  Options = [first(all), facts([action/1, deltaT/1, dc_observation/2])]
     ;   Options = []
     ).
 
@@ -104,6 +108,68 @@ option_effect(set_current2nextcopy(true), same).
 option_effect(set_current2nextcopy(false), copy).
 
 boolean(B) :- B == true ; B == false.
+
+%!  original_program(+Items0:list, -Items:list) is det.
+%
+%   Items0 are the terms of a program as ddc.pl read them, t(Term, Line);
+%   Items has the original's arithmetic rewritten in every term
+%   (original_arithmetic/2) and, in a program written for the original
+%   (one with a set_options/1 directive, which the original requires),
+%   the original's one-entry observation weight `H ~ logfinite([W:_])`
+%   (any value; its particle filter weighed by the raw log weight W)
+%   rewritten to `H ~ logweight(W)` (ddc_dist.pl), whose log mass is W:
+%   this engine's logfinite is normalised, so the one entry would always
+%   weigh 0 in log and the observation would not count.  In such a
+%   program an untimed read `observation(O) ~= V` in a clause body (the
+%   original's particle filter recorded each step's observations raw in
+%   the particles, so a transition could read them: tracking.pl's birth
+%   of an object where it is first seen) becomes `dc_observation(O, V)`,
+%   a fact of the filter step (dc_compat.pl's step_particle/5 gives one
+%   for each observation), and the original's internal names of the
+%   time-indexed reads, `current(h) ~= V`, `next(h) ~= V` and
+%   `prior(h) ~= V` (minimalexample.pl reads `current(object(A)) ~= O`),
+%   become `h:t ~= V`, `h:t+1 ~= V` and `h:0 ~= V`.
+original_program(Items0, Items) :-
+    must_be(list, Items0),
+    maplist(original_item, Items0, Items1),
+    (   member(t((:- D), _), Items1), nonvar(D),
+        conjuncts(D, Ds), memberchk(set_options(_), Ds)
+    ->  maplist(logweight_item, Items1, Items)
+    ;   Items = Items1
+    ).
+
+original_item(t(T0, L), t(T, L)) :- !, original_arithmetic(T0, T).
+original_item(I, I).
+
+logweight_item(t(T0, L), t(T, L)) :- !, logweight_clause(T0, T).
+logweight_item(I, I).
+
+logweight_clause(T0, T) :-
+    (   nonvar(T0), T0 = ':='(C0, B0)
+    ->  logweight_head(C0, C),
+        mapsubterms(original_read, B0, B),
+        T = ':='(C, B)
+    ;   logweight_head(T0, T)
+    ).
+
+logweight_head(T0, T) :-
+    (   nonvar(T0), T0 = '~'(H, D), nonvar(D), D = logfinite(Ls),
+        nonvar(Ls), Ls = [E], nonvar(E), E = (W:V), var(V)
+    ->  T = '~'(H, logweight(W))
+    ;   T = T0
+    ).
+
+original_read(R, R1) :-
+    compound(R), R = '~='(X, V), nonvar(X),
+    (   X = observation(O)
+    ->  R1 = dc_observation(O, V)
+    ;   X = current(H)
+    ->  R1 = '~='(H:t, V)
+    ;   X = next(H)
+    ->  R1 = '~='(H:(t+1), V)
+    ;   X = prior(H)
+    ->  R1 = '~='(H:0, V)
+    ).
 
 %!  original_arithmetic(+Term0, -Term) is det.
 %

@@ -368,7 +368,7 @@ derived_name(N, Kind, Name) :-
 %   Kind is u, state, trans or fixed(N).
 
 compile_program(File, M, Items00, Clauses, Info) :-
-    maplist(original_item, Items00, Items0),   % `X is random` (dc_compat_load.pl)
+    original_program(Items00, Items0),   % `X is random`, logfinite([W:_]) (dc_compat_load.pl)
     retractall(undefined_call_(_, _)),
     classify_items(Items0, File, 1, Items1, Dirs),
     directives_options(Dirs, File, M, Opts, DirClauses),
@@ -412,8 +412,6 @@ compile_program(File, M, Items00, Clauses, Info) :-
     warn_undefined(File).
 
 state_rv(rv(_, _, state, _, _, _)).
-
-original_item(t(T0, L), t(T, L)) :- original_arithmetic(T0, T).
 
 %   lookback_preds(+Items, -Preds): the N/A read in some body at a time
 %   other than t+1 (t, t-K, a number, a variable, current/prior), i.e.

@@ -54,6 +54,10 @@ wherever a float is):
 | gaussian(M, Var) | 1-D normal, second argument the VARIANCE | float |
 | gaussian(Ms, CovFlat) | k-D normal, covariance row-major k*k | (X1,...,Xk); a float when k = 1 |
 | indepGaussians([(M,V),...]) | independent blocks, each (Number,Variance) or (MeanList,CovFlat) | concatenated tuple |
+| optimalProposal(M, P, H, R, Y) | Kalman posterior of x ~ N(M,P) given Y = H x + N(0,R) | tuple (float when 1-D) |
+| indepOptimalProposals([(M,P,H,R,Y),...]) | independent blocks, each such a posterior | concatenated tuple |
+| logIndepOptimalProposals([(M,P,H,R,Y),...]) | the same, with the log predictive density of the Ys | [Tuple, LogW] |
+| logweight(W) | weight only: log mass W at every value (no sampler) | - |
 | contUniform(A, B) | uniform on [A,B] | float |
 | beta(Alpha, Beta) | beta | float in [0,1] |
 | gamma(Shape, Scale) | gamma with SCALE (mean Shape*Scale) | float >= 0 |
@@ -84,6 +88,27 @@ Differences from the original DC system (all deliberate):
     above the cumulative sum the last entry of positive probability is
     returned.
   - every distribution has a density; none silently weighs 0.
+  - logweight(W) is this engine's form of the original's one-entry
+    logfinite([W:_]) observation weight: dc_compat_load.pl rewrites the
+    latter to the former in programs written for the original.
+
+Optimal proposals (the original's sampling.pl; Doucet et al. 2000): a
+block (M, P, H, R, Y) is a prior x ~ N(M, P) (M a list of k means, P the
+k*k covariance row-major), a measurement matrix H (m*k row-major), a
+measurement noise covariance R (m*m) and the measurement Y (a list of m,
+or a number when m = 1).  The Kalman update is
+
+    S  = H P H' + R                     (innovation covariance)
+    K  = P H' S^-1                      (gain)
+    M' = M + K (Y - H M)                (posterior mean)
+    P' = P - K H P                      (posterior covariance)
+    log w = log N(Y; H M, S)
+          = -1/2 ((Y-HM)' S^-1 (Y-HM) + log det S + m log 2 pi)
+
+optimalProposal and indepOptimalProposals draw x from N(M', P') (per
+block); logIndepOptimalProposals draws [X, LogW] with LogW the sum of the
+blocks' log w, the predictive density that weighs the particle (the
+original's tracking example reads it into logfinite([LogW:_])).
 */
 
 :- multifile
@@ -156,6 +181,18 @@ check(indepGaussians(Bs)) :-
     must_list(D, Bs),
     (   Bs == [] -> dist_error(D, empty_support) ; true ),
     forall(member(B, Bs), check_block(D, B)).
+check(optimalProposal(M, P, H, R, Y)) :-
+    D = optimalProposal(M, P, H, R, Y),
+    kalman_block(D, (M, P, H, R, Y), _, _).
+check(indepOptimalProposals(Bs)) :-
+    D = indepOptimalProposals(Bs),
+    kalman_blocks(D, Bs, _, _).
+check(logIndepOptimalProposals(Bs)) :-
+    D = logIndepOptimalProposals(Bs),
+    kalman_blocks(D, Bs, _, _).
+check(logweight(W)) :-
+    D = logweight(W),
+    logweight_value(D, W, _).
 check(contUniform(A, B)) :-
     D = contUniform(A, B),
     must_number(D, A),
@@ -345,6 +382,17 @@ dist_sample(gaussian(M, V), X) :-
 dist_sample(indepGaussians(Bs), X) :-
     blocks_sample(Bs, Xs),
     list_value(Xs, X).
+dist_sample(optimalProposal(M, P, H, R, Y), X) :-
+    kalman_blocks(optimalProposal, [(M, P, H, R, Y)], Post, _),
+    dist_sample(indepGaussians(Post), X).
+dist_sample(indepOptimalProposals(Bs), X) :-
+    kalman_blocks(indepOptimalProposals, Bs, Post, _),
+    dist_sample(indepGaussians(Post), X).
+dist_sample(logIndepOptimalProposals(Bs), [X, LogW]) :-
+    kalman_blocks(logIndepOptimalProposals, Bs, Post, LogW),
+    dist_sample(indepGaussians(Post), X).
+dist_sample(logweight(W), _) :-
+    dist_error(logweight(W), no_sampler).
 dist_sample(contUniform(A, B), X) :-
     X is A + (B-A)*random_float.
 dist_sample(beta(A, B), X) :-
@@ -845,6 +893,20 @@ dist_log_density(indepGaussians(Bs), X, LP) :-
     ->  blocks_log_density(Bs, Xs, 0.0, LP)
     ;   LP is -inf
     ).
+dist_log_density(optimalProposal(M, P, H, R, Y), X, LP) :-
+    kalman_blocks(optimalProposal, [(M, P, H, R, Y)], Post, _),
+    dist_log_density(indepGaussians(Post), X, LP).
+dist_log_density(indepOptimalProposals(Bs), X, LP) :-
+    kalman_blocks(indepOptimalProposals, Bs, Post, _),
+    dist_log_density(indepGaussians(Post), X, LP).
+dist_log_density(logIndepOptimalProposals(Bs), V, LP) :-
+    kalman_blocks(logIndepOptimalProposals, Bs, Post, LogW),
+    (   nonvar(V), V = [X, L], number(L), abs(L - LogW) =< 1.0e-9*max(1.0, abs(LogW))
+    ->  dist_log_density(indepGaussians(Post), X, LP)
+    ;   LP is -inf
+    ).
+dist_log_density(logweight(W), _, LP) :-
+    logweight_value(logweight(W), W, LP).
 dist_log_density(contUniform(A, B), X, LP) :-
     (   number(X), X >= A, X =< B
     ->  LP is -log(B - A)
@@ -1118,7 +1180,8 @@ all_numbers([X|Xs]) :-
 %!  dist_discrete(+Dist) is semidet.
 %
 %   True if Dist is a discrete distribution (a mass function): finite,
-%   propfinite, logfinite, uniform (both forms), bool, val and poisson.
+%   propfinite, logfinite, uniform (both forms), bool, val, poisson and
+%   logweight (a weight, counted as a mass).
 
 dist_discrete(finite(_)).
 dist_discrete(propfinite(_)).
@@ -1127,6 +1190,7 @@ dist_discrete(uniform(_)).
 dist_discrete(bool(_)).
 dist_discrete(val(_)).
 dist_discrete(poisson(_)).
+dist_discrete(logweight(_)).
 
 %!  dist_support(+Dist, -Pairs) is semidet.
 %
@@ -1252,7 +1316,7 @@ dist_message(Dist, Cause) -->
 cause_message(unbound) --> !,
     [ 'the distribution is unbound' ].
 cause_message(unknown_distribution) --> !,
-    [ 'unknown distribution (known: finite, propfinite, logfinite, uniform, bool, val, gaussian, indepGaussians, contUniform, beta, gamma, invgamma, student, poisson, exponential, dirichlet)' ].
+    [ 'unknown distribution (known: finite, propfinite, logfinite, uniform, bool, val, gaussian, indepGaussians, contUniform, beta, gamma, invgamma, student, poisson, exponential, dirichlet, optimalProposal, indepOptimalProposals, logIndepOptimalProposals, logweight)' ].
 cause_message(not_a_number(X)) --> !,
     [ 'parameter ~p is not a number'-[X] ].
 cause_message(not_finite(X)) --> !,
@@ -1287,5 +1351,166 @@ cause_message(not_positive_definite) --> !,
     [ 'the covariance matrix is not positive definite' ].
 cause_message(malformed_block(B)) --> !,
     [ 'block ~p is not of the form (Mean,Variance) or (MeanList,CovList)'-[B] ].
+cause_message(malformed_kalman_block(B)) --> !,
+    [ 'block ~p is not of the form (MeanList,CovList,HList,RList,YList)'-[B] ].
+cause_message(singular_innovation) --> !,
+    [ 'the innovation covariance H P H\' + R is singular' ].
+cause_message(no_sampler) --> !,
+    [ 'logweight/1 only weighs an observation; it cannot be sampled' ].
 cause_message(Cause) -->
     [ '~p'-[Cause] ].
+
+		 /*******************************
+		 *   KALMAN (OPTIMAL PROPOSALS)  *
+		 *******************************/
+
+%   kalman_blocks(+D, +Blocks, -Posterior, -LogW): Posterior is the list of
+%   indepGaussians blocks (M', P') of the Kalman updates of Blocks (see the
+%   module documentation for the equations) and LogW the sum of their log
+%   predictive densities log N(Y; H M, S).  D names the distribution in
+%   errors.
+kalman_blocks(D, Bs, Post, LogW) :-
+    must_list(D, Bs),
+    (   Bs == [] -> dist_error(D, empty_support) ; true ),
+    foldl(kalman_block_acc(D), Bs, Post, 0.0, LogW).
+
+kalman_block_acc(D, B, (M1, P1), W0, W) :-
+    kalman_block(D, B, (M1, P1), W1),
+    W is W0 + W1.
+
+%   kalman_block(+D, +Block, -(M1, P1), -LogW): one block's update; M1 a
+%   list of k means, P1 the k*k posterior covariance row-major.
+kalman_block(D, B, (M1, P1f), LogW) :-
+    (   nonvar(B), B = (M0, Pf0, Hf0, Rf0, Y0)
+    ->  true
+    ;   dist_error(D, malformed_kalman_block(B))
+    ),
+    maplist(num_list(D), [M0, Pf0, Hf0, Rf0, Y0], [M, Pf, Hf, Rf, Y]),
+    length(M, K), length(Y, Mm),
+    (   K > 0, Mm > 0 -> true ; dist_error(D, empty_support) ),
+    rows(D, covariance, Pf, K, K, P),
+    rows(D, measurement_matrix, Hf, Mm, K, H),
+    rows(D, measurement_covariance, Rf, Mm, Mm, R),
+    mat_vec(H, M, HM),
+    maplist(kdiff, Y, HM, E),                    % innovation Y - H M
+    transpose_rows(H, Ht),
+    mat_mul(P, Ht, PHt),                        % P H'
+    mat_mul(H, PHt, HPHt),
+    maplist(maplist(sum2), HPHt, R, S),         % S = H P H' + R
+    (   mat_inverse(S, Si, DetS), DetS > 0
+    ->  true
+    ;   dist_error(D, singular_innovation)
+    ),
+    mat_mul(PHt, Si, G),                        % gain K = P H' S^-1
+    mat_vec(G, E, GE),
+    maplist(sum2, M, GE, M1),                   % M' = M + K (Y - H M)
+    transpose_rows(PHt, HP),                    % H P = (P H')'  (P symmetric)
+    mat_mul(G, HP, GHP0),                       % K H P
+    transpose_rows(GHP0, GHPt),                 % (K S K' is symmetric; average
+    maplist(maplist(half_sum), GHP0, GHPt, GHP),%  out rounding)
+    maplist(maplist(kdiff), P, GHP, P1),         % P' = P - K H P
+    append(P1, P1f),
+    mat_vec(Si, E, SiE),
+    dot(E, SiE, Q),
+    LogW is -0.5*(Q + log(DetS) + Mm*1.8378770664093453),
+    check_block(D, (M1, P1f)).
+
+num_list(D, X, L) :-
+    (   is_list(X) -> L = X ; L = [X] ),
+    forall(member(V, L), must_number(D, V)).
+
+rows(D, What, Flat, NR, NC, Rows) :-
+    length(Flat, N),
+    N0 is NR*NC,
+    (   N =:= N0 -> true ; dist_error(D, dimension_mismatch(What, N0, N)) ),
+    length(Rows, NR),
+    maplist(row_length(NC), Rows),
+    append(Rows, Flat).
+
+row_length(N, R) :- length(R, N).
+
+kdiff(A, B, C) :- C is A - B.
+sum2(A, B, C) :- C is A + B.
+half_sum(A, B, C) :- C is (A + B)/2.
+
+dot(Xs, Ys, D) :- foldl(dot_acc, Xs, Ys, 0.0, D).
+dot_acc(X, Y, D0, D) :- D is D0 + X*Y.
+
+mat_vec(A, X, Y) :- maplist(row_dot(X), A, Y).
+row_dot(X, Row, Y) :- dot(Row, X, Y).
+
+transpose_rows([], []) :- !.
+transpose_rows([[]|_], []) :- !.
+transpose_rows(Rows, [Col|Cols]) :-
+    maplist(head_tail, Rows, Col, Rests),
+    transpose_rows(Rests, Cols).
+
+head_tail([H|T], H, T).
+
+mat_mul(A, B, C) :-
+    transpose_rows(B, Bt),
+    maplist(row_times(Bt), A, C).
+row_times(Bt, Row, CRow) :- maplist(row_dot(Row), Bt, CRow).
+
+%   mat_inverse(+A, -Inv, -Det): Gauss-Jordan elimination with partial
+%   pivoting; fails when A is singular.
+mat_inverse(A, Inv, Det) :-
+    length(A, N),
+    numlist(1, N, Is),
+    maplist(identity_row(N), Is, Id),
+    maplist(append, A, Id, Aug0),
+    gauss_jordan(Is, N, Aug0, Aug, 1.0, Det),
+    maplist(drop_left(N), Aug, Inv).
+
+identity_row(N, I, Row) :-
+    numlist(1, N, Js),
+    maplist(kronecker(I), Js, Row).
+kronecker(I, J, X) :- ( I =:= J -> X = 1.0 ; X = 0.0 ).
+
+drop_left(N, Row, Right) :- length(Left, N), append(Left, Right, Row).
+
+gauss_jordan([], _, Aug, Aug, Det, Det).
+gauss_jordan([C|Cs], N, Aug0, Aug, Det0, Det) :-
+    C0 is C - 1,
+    length(Done, C0),
+    append(Done, Rest, Aug0),
+    pivot_row(Rest, C, Piv, Others),
+    nth1(C, Piv, PV),
+    abs(PV) > 1.0e-300,
+    (   Rest = [Piv|_] -> Sign = 1.0 ; Sign = -1.0 ),
+    Det1 is Det0*PV*Sign,
+    maplist(div_by(PV), Piv, PivN),
+    append(Done, [PivN|Others], Aug1),
+    numlist(1, N, Ks),
+    maplist(eliminate(C, PivN), Ks, Aug1, Aug2),
+    gauss_jordan(Cs, N, Aug2, Aug, Det1, Det).
+
+%   the row of Rows with the largest |entry| in column C first
+pivot_row(Rows, C, Piv, Others) :-
+    foldl(best_row(C), Rows, none, Piv),
+    selectchk(Piv, Rows, Others).
+
+best_row(C, R, none, R) :- !, nth1(C, R, _).
+best_row(C, R, B, Best) :-
+    nth1(C, R, X), nth1(C, B, Y),
+    (   abs(X) > abs(Y) -> Best = R ; Best = B ).
+
+div_by(P, X, Y) :- Y is X/P.
+
+eliminate(C, PivN, K, Row, Row1) :-
+    (   K =:= C
+    ->  Row1 = Row
+    ;   nth1(C, Row, F),
+        maplist(sub_scaled(F), Row, PivN, Row1)
+    ).
+sub_scaled(F, X, P, Y) :- Y is X - F*P.
+
+%   logweight_value(+D, +W, -LP): the log weight W, a number or (as YAP
+%   evaluated it in the original's tracking example) a one-element list.
+logweight_value(D, W, LP) :-
+    (   number(W) -> LP0 = W
+    ;   W = [LP0], number(LP0) -> true
+    ;   dist_error(D, not_a_number(W))
+    ),
+    (   float(LP0), LP0 =\= LP0 -> dist_error(D, not_a_number(W)) ; true ),
+    LP is float(LP0).

@@ -275,6 +275,67 @@ def test_dcpf_pit_world_unittest() -> None:
         assert abs(marginals[cell] - exact) <= 3 * binomial_se(exact, n / 4) + 1e-9, cell
 
 
+def tracked(out: str, label: str) -> tuple[float, float, float]:
+    """The position ``X,Y,Z`` printed after ``label`` by tracking.pl's test_tracking/1."""
+    line = next(ln for ln in out.splitlines() if ln.startswith(label))
+    x, y, z = (float(v) for v in line.rsplit(": ", 1)[1].split(","))
+    return x, y, z
+
+
+def test_tracking_births_the_object_and_follows_it_with_the_kalman_proposal(
+        tmp_path: Path) -> None:
+    n = 1000
+    program = tmp_path / "tracking.pl"      # plotdata/1 writes data.txt where it runs
+    program.write_text((DC / "tracking.pl").read_text())
+    path = str(program).replace("'", "\\'")
+    run = subprocess.run(
+        [swipl_executable(), "-q", "-g", f"set_random(seed(4)), consult('{path}'), "
+         f"test_tracking({n})", "-t", "halt", str(COMPAT)],
+        cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    # birth at the first observation (0.6,1,0): each coordinate ~ N(obs, varQ deltaT^2)
+    var_birth = 0.005 * 0.2 ** 2
+    for got, obs in zip(tracked(run.stdout, "after the first"), (0.6, 1.0, 0.0), strict=True):
+        assert abs(got - obs) <= 3 * math.sqrt(var_birth / n)
+    # second observation (0.7,1,0): prior N(0.6, 2 var_birth) in x, measurement variance
+    # 0.001, Kalman posterior mean and variance; the particles are weighed by the
+    # predictive density N(0.7; x_t, var_birth + 0.001), which costs N / N_eff =
+    # E[w^2] / E[w]^2 of the sample size
+    prior, r, d = 2 * var_birth, 0.001, 0.1
+    mean = 0.6 + prior / (prior + r) * d
+    var_post = prior * r / (prior + r)
+    s = var_birth + r
+    ratio = (math.sqrt(math.pi * s) * stats.norm.pdf(d, 0, math.sqrt(s / 2 + var_birth))
+             / (2 * math.pi * s * stats.norm.pdf(d, 0, math.sqrt(s + var_birth)) ** 2))
+    x, y, z = tracked(run.stdout, "after the second")
+    assert abs(x - mean) <= 3 * math.sqrt(var_post * ratio / n), (x, mean)
+    for got, obs in ((y, 1.0), (z, 0.0)):
+        assert abs(got - obs) <= 3 * math.sqrt(var_birth * 2 * r / (var_birth * 2 + r) * ratio / n)
+    rows = (tmp_path / "data.txt").read_text().split("\n")
+    assert len([ln for ln in rows if ln.startswith("1 ")]) == n     # "ID X Y Z R G B"
+
+
+@pytest.mark.parametrize(("goal", "lines"), [
+    ("t2", ["anchor2 anchor2"]),                    # anchor3 arrives when an object exists
+    ("t3", ["anchor1 anchor1", "anchor2 anchor2"]),  # anchor2 associated with its own object
+    ("t1", ["anchor1 anchor1", "anchor2 anchor2"]),
+])
+def test_minimalexample_associates_anchors_with_one_particle(tmp_path: Path, goal: str,
+                                                            lines: list[str]) -> None:
+    """Its plotdata/1 reads the particle through the original's internals (eraseall/1,
+    proof_query_backward_lazy/3) and writes one "Anchor Object" line per object."""
+    program = tmp_path / "minimalexample.pl"        # plotdata/1 writes data.txt where it runs
+    program.write_text((DC / "minimalexample.pl").read_text())
+    path = str(program).replace("'", "\\'")
+    run = subprocess.run(
+        [swipl_executable(), "-q", "-g", f"consult('{path}'), {goal}", "-t", "halt", str(COMPAT)],
+        cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert "[anchor2]" in run.stdout                 # writeln/1 in the association clause's body
+    written = [ln for ln in (tmp_path / "data.txt").read_text().splitlines() if ln]
+    assert sorted(written) == lines
+
+
 @pytest.mark.parametrize(("program", "query", "evidence", "exact"), [
     ("tutorial.pl", "drawn(1) ~= X, color(X) ~= black", None, 0.7 / 3 + 0.3 / 2),
     ("example1.pl", "drawn(1) ~= 1", None, 0.1 * H10),
@@ -282,6 +343,8 @@ def test_dcpf_pit_world_unittest() -> None:
     ("indian_gpa.pl", "nation ~= a", "student_gpa ~= 3.0", gpa_exact(3.0)),
     ("dcpfwumpus.pl", "position:0 ~= (0,0)", None, 1.0),
     ("generatesamples.pl", "prod ~= P, P > 0", None, 0.5),
+    ("tracking.pl", "deltaT(D), D =:= 0.2", None, 1.0),
+    ("minimalexample.pl", "associate:0 ~= _", None, 0.0),
 ])
 def test_the_same_files_load_with_ddc_query(program: str, query: str, evidence: str | None,
                                            exact: float) -> None:

@@ -88,6 +88,18 @@ test(random_in_a_body_is_a_uniform_draw) :-
     query((r ~= X, X < 0.3), P, [samples(4000), seed(3)]),
     assertion(abs(P - 0.3) =< 3*sqrt(0.21/4000)).
 
+test(old_programs_logfinite_weight_and_internal_reads_rewritten) :-
+    C0 = (observation(o):t+1 ~ logfinite([W:_]) :=
+              p:t+1 ~= [_|W], current(q) ~= 1, \+(observation(o) ~= _)),
+    original_program([t((:- set_options(default)), 1), t(C0, 2), t(test :- step([observation(o) ~= 1]), 3)],
+                     [_, t(C, 2), t(Plain, 3)]),
+    assertion(C = (observation(o):t+1 ~ logweight(_) :=
+                       p:t+1 ~= [_|_], q:t ~= 1, \+ dc_observation(o, _))),
+    assertion(Plain == (test :- step([observation(o) ~= 1]))),
+    %   without the original's set_options/1 the program is this engine's
+    original_program([t(C0, 1)], [t(C1, 1)]),
+    assertion(C1 =@= C0).
+
 :- end_tests(dc_compat_load).
 
 :- begin_tests(dc_compat_entry_points).

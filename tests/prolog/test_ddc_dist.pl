@@ -499,3 +499,71 @@ test(a_prepared_covariance_is_checked_once) :-
     E = error(ddc_distribution(_, _), _).
 
 :- end_tests(ddc_dist_api).
+
+%   Optimal proposals against a Kalman update computed by hand:
+%   prior x ~ N([1,2], [[2,0.5],[0.5,1]]), H = I, R = I, y = [3,1]:
+%   S = [[3,0.5],[0.5,2]], det S = 5.75, S^-1 = [[2,-0.5],[-0.5,3]]/5.75,
+%   K = P S^-1 = [[3.75,0.5],[0.5,2.75]]/5.75, y - Hx = [2,-1],
+%   M' = [1 + 7/5.75, 2 - 1.75/5.75] = [2.2173913, 1.6956522],
+%   P' = P - K P = [[0.6521739,0.0869565],
+%   [0.0869565,0.4782609]], (y-Hx)' S^-1 (y-Hx) = 13/5.75,
+%   log w = -1/2 (13/5.75 + log 5.75 + 2 log 2 pi) = -3.8429118.
+kalman_block_2d(([1,2],[2,0.5,0.5,1],[1,0,0,1],[1,0,0,1],[3,1])).
+
+close_lists(Xs, Ys, Tol) :-
+    maplist([X, Y]>>(abs(X-Y) =< Tol), Xs, Ys).
+
+:- begin_tests(ddc_dist_kalman).
+
+test(log_weight_and_posterior_density_are_the_hand_computed_ones) :-
+    kalman_block_2d(B),
+    D = logIndepOptimalProposals([B]),
+    dist_check(D),
+    set_random(seed(3)),
+    dist_sample(D, [(X1, X2), LogW]),
+    assertion(abs(LogW - -3.8429118) < 1.0e-6),
+    dist_log_density(D, [(X1, X2), LogW], LP),
+    dist_log_density(gaussian([2.2173913, 1.6956522],
+                              [0.6521739, 0.0869565, 0.0869565, 0.4782609]), (X1, X2), LP0),
+    assertion(abs(LP - LP0) < 1.0e-5),
+    LW1 is LogW + 0.5,
+    dist_log_density(D, [(X1, X2), LW1], LPBad),
+    assertion(LPBad =:= -inf).
+
+test(optimal_proposal_samples_have_the_posterior_moments) :-
+    kalman_block_2d((M, P, H, R, Y)),
+    draws(optimalProposal(M, P, H, R, Y), 4000, 11, Ts),
+    maplist([(A, B), A, B]>>true, Ts, As, Bs),
+    moments_ok(As, 2.2173913, 0.6521739),
+    moments_ok(Bs, 1.6956522, 0.4782609).
+
+test(independent_blocks_one_dimensional_measurement) :-
+    %   tracking.pl's block: ([0.6,0], diag(0.0002,1e-7)), H = [1,0],
+    %   R = 0.001, y = 0.7: gain 0.0002/0.0012 = 1/6, mean 0.6 + 0.1/6,
+    %   variance 0.0002*5/6; log w = log N(0.7; 0.6, 0.0012)
+    B = ([0.6,0],[0.0002,0,0,1.0e-7],[1,0],[0.001],[0.7]),
+    D = indepOptimalProposals([B, B]),
+    dist_check(D),
+    draws(D, 4000, 5, Ts),
+    maplist([(A, _, C, _), A, C]>>true, Ts, As, Cs),
+    moments_ok(As, 0.6166667, 0.00016666667),
+    moments_ok(Cs, 0.6166667, 0.00016666667),
+    dist_sample(logIndepOptimalProposals([B, B]), [_, LogW]),
+    Exact is 2*(-0.5*(0.01/0.0012 + log(0.0012) + log(2*pi))),
+    assertion(abs(LogW - Exact) < 1.0e-9).
+
+test(logweight_weighs_any_value_by_its_log_mass_and_cannot_be_sampled) :-
+    dist_check(logweight([-2.5])),
+    dist_log_density(logweight([-2.5]), anything, LP),
+    assertion(LP =:= -2.5),
+    dist_log_density(logweight(-1), _, LP1),
+    assertion(LP1 =:= -1.0),
+    catch(dist_sample(logweight(0.0), _), error(ddc_distribution(_, no_sampler), _), true).
+
+test(a_malformed_block_is_an_error, [throws(error(ddc_distribution(_, dimension_mismatch(measurement_matrix, 2, 3)), _))]) :-
+    dist_check(indepOptimalProposals([([0.6,0],[0.0002,0,0,1.0e-7],[1,0,0],[0.001],[0.7])])).
+
+test(a_singular_innovation_is_an_error, [throws(error(ddc_distribution(_, singular_innovation), _))]) :-
+    dist_check(optimalProposal([0.0],[0.0],[1],[0.0],[1.0])).
+
+:- end_tests(ddc_dist_kalman).
