@@ -92,7 +92,8 @@ def test_a_worker_that_keeps_dying_fails_its_job_after_the_retries() -> None:
     assert by_name["always dies"].error == died
     # (a job under way beside it when the pool broke counts a try too)
     assert (by_name["square 2"].value, by_name["square 2"].error) in ((4, None), (None, died))
-    with pytest.raises(JobsFailed, match=r"of 2 jobs failed: (.*; )?always dies: its worker process"):
+    with pytest.raises(JobsFailed,
+                       match=r"of 2 jobs failed: (.*; )?always dies: its worker process"):
         raise_failures(outcomes)
 
 
