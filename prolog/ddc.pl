@@ -2275,6 +2275,7 @@ install_exception_hook :-
 %!  program_error(+Error, -ProgramError, +Frame, +Catcher) is semidet.
 program_error(E0, E, Frame, Catcher) :-
     \+ engine_error(E0),
+    \+ caught_by_program(Catcher),
     program_frame(Frame, Catcher, 200, M, Ref),
     M:'$clause_line'(Ref, Line),
     program_file_(M, File), !,
@@ -2286,6 +2287,15 @@ engine_error(error(ddc_distribution(_, _), _)).
 engine_error('$aborted').
 engine_error(unwind(_)).
 engine_error(time_limit_exceeded).
+
+%   caught_by_program(+Catcher): the catch/3 that will catch the error is
+%   called by a clause of a program (its own catch/3, whose catcher may ask
+%   for the error as Prolog raised it).
+caught_by_program(Catcher) :-
+    integer(Catcher),
+    (   F = Catcher ; prolog_frame_attribute(Catcher, parent, F) ),
+    prolog_frame_attribute(F, predicate_indicator, M:_),
+    program_file_(M, _), !.
 
 %   program_frame(+Frame, +Catcher, +Depth, -Module, -ClauseRef): the first
 %   frame from Frame up (and below the catcher's frame) running a clause of

@@ -87,8 +87,13 @@ def test_a_call_to_a_predicate_defined_nowhere_is_a_warning_with_its_line(
 
 def test_the_programs_own_catch_handles_its_own_error(tmp_path: Path) -> None:
     program = tmp_path / "catching.pl"
-    program.write_text("p := catch(X is 1/0, _, fail), X > 0.\np := true.\n")
-    assert bridge.load(program).query("p").probability == 1.0
+    program.write_text("p := catch(X is 1/0, _, fail), X > 0.\np := true.\n"
+                       # the catcher asks for the error as Prolog raises it, in another clause
+                       "half(X, Y) :- Y is X/0.\n"
+                       "r := catch(half(1, _), error(evaluation_error(zero_divisor), _), true).\n")
+    loaded = bridge.load(program)
+    assert loaded.query("p").probability == 1.0
+    assert loaded.query("r").probability == 1.0
 
 
 # Run-time errors inside a filter step: the same message from both engines.
