@@ -719,10 +719,10 @@ item_line(der(_, _, _, _, L), L).
 %   the item's line.
 compile_item_at(I, File, Info, RivalsOf, '$at'(Line, C)) :-
     item_where(I, File, Where),
+    Where = _:Line,
     b_setval(ddc_compiling, Where),
     catch(compile_item(I, File, Info, RivalsOf, C), E, item_error(E, I, File)),
-    check_clause(C, I, File),
-    item_where(I, File, _:Line).
+    check_clause(C, I, File).
 
 item_error(E, I, File) :-
     item_where(I, File, Where),
