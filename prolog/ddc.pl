@@ -1112,13 +1112,8 @@ occurs_in(V, T) :- term_variables(T, Vs), member(X, Vs), X == V, !.
 select_read(Ls, A, Before, R, After) :-
     append(Before, [(R ~= A1)|After], Ls), A1 == A, !.
 
-%   invert_expr(E, A, V, Goal, LJGoal, LJ): A is the unique variable of E;
-%   Goal computes A from V with V = E; LJ = log |dA/dV|.
-invert_expr(E, A, V, Goal, LJGoal, LJ) :-
-    inv(E, A, V, Goal0, Scale),
-    Goal = Goal0,
-    LJGoal = (LJ is -log(abs(Scale))).
-
+%   inv(+E, +A, +V, -Goal, -Scale): A is the unique variable of E; Goal
+%   computes A from V with V = E; Scale = dV/dA (the Jacobian's factor).
 inv(E, A, V, (A = V), 1) :- E == A, !.
 inv(E1*C, A, V, G, S) :- \+ occurs_in(A, C), !, inv(E1, A, V1, G1, S1), G = (V1 is V/C, G1), S = S1*C.
 inv(C*E1, A, V, G, S) :- \+ occurs_in(A, C), !, inv(E1, A, V1, G1, S1), G = (V1 is V/C, G1), S = S1*C.
