@@ -80,6 +80,7 @@ def test_outputs_summary_pictures_gif_and_world(reasoning_run) -> None:
         capture_output=True, text=True, timeout=60,
     )
     assert result.returncode == 0, result.stderr
+    assert "Warning" not in result.stderr, result.stderr   # it loads without a word
     p_known, p_hidden = (float(v) for v in result.stdout.split())
     assert p_known == pytest.approx(1.0)  # every particle knows where the ball is
     assert p_hidden == pytest.approx(0.0)  # and none has it under the mug: it is seen at the end

@@ -36,6 +36,8 @@ def world_facts(loop: AnchoringLoop, perceived: set[str],
     lines = [
         "% World state written by `anchoring run`; load with: swipl prolog/world.pl THIS_FILE",
         ":- dynamic anchor/5, attribute/3, particle/2, particle_fact/2, identity/3.",
+        # each anchor's facts stand together (its anchor/5, then its attributes)
+        ":- discontiguous anchor/5, attribute/3.",
     ]
     for anchor in loop.manager.anchors:
         atom = symbol_atom(anchor.symbol)
