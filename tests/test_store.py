@@ -145,3 +145,14 @@ def test_the_shell_loads_the_store_into_the_world_model(whole) -> None:
     assert result.returncode == 0, result.stderr
     p = float(result.stdout.split("P=")[1].split()[0])
     assert p > 0.5
+
+
+def test_a_run_resumed_from_its_store_alone_takes_the_stored_options(whole,
+                                                                      tmp_path: Path) -> None:
+    output, db = whole
+    copy = tmp_path / "world.db"
+    shutil.copy(db, copy)
+    resumed = run(RunOptions(resume=copy, progress=False))   # no source, no --particles 60
+    assert resumed.summary["particles"] == PARTICLES
+    assert [o["symbols"] for o in resumed.summary["objects"]] == \
+        [o["symbols"] for o in output.summary["objects"]]

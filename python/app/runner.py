@@ -13,7 +13,14 @@ from tqdm import tqdm
 from app.loop import AnchoringLoop, FrameOutcome, LoopConfig, run_frames
 from app.pictures import FramePictures
 from app.sources import bag_frames, scenario_frames, scenario_length, stream_frames
-from app.store import StoredRun, WorldStore, run_meta, store_source, stored_source
+from app.store import (
+    StoredRun,
+    WorldStore,
+    adopt_stored_options,
+    run_meta,
+    store_source,
+    stored_source,
+)
 from app.world_file import write_world
 from evaluation import TrackingRecord, evaluate, make_summary, write_records, write_summary
 
@@ -59,6 +66,8 @@ def run(options: RunOptions) -> RunOutput:
         if store is not None and options.scenario is options.percepts is options.bag is None:
             kind, path = stored_source(store.meta())  # the stored run's own source
             setattr(options, kind, path)
+        if store is not None:
+            adopt_stored_options(options, store.meta())
         given = [s for s in (options.scenario, options.percepts, options.bag) if s is not None]
         if len(given) != 1:
             raise ValueError("give one of a scenario, a percept stream (--percepts) or a bag "

@@ -16,6 +16,7 @@ weights; the hidden anchors get their particles back from it.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import sqlite3
@@ -71,6 +72,28 @@ CREATE TABLE IF NOT EXISTS state (
 #: the options a resumed run must share with the stored one
 RUN_KEYS = ("source", "particles", "seed", "threads", "engine", "reasoning", "reidentify",
             "resample_threshold", "theory_sha1")
+
+
+#: how the stored text of each run option that a resumed run takes from its store is read back
+_STORED_OPTION: dict[str, Any] = {
+    "particles": int, "seed": int, "threads": int, "engine": str, "theory": Path,
+    "reasoning": lambda text: text == "True", "reidentify": lambda text: text == "True",
+    "resample_threshold": float,
+}
+
+
+def adopt_stored_options(options: Any, meta: dict[str, str]) -> None:
+    """Resuming: each run option left at its default takes the stored run's value.
+
+    ``anchoring run --resume WORLD.db`` then continues the run without its options given
+    again; an option given with another value than the stored one is still refused by
+    :meth:`WorldStore.check_resumable`.
+    """
+    defaults = {f.name: f.default for f in dataclasses.fields(options)
+                if f.default is not dataclasses.MISSING}
+    for key, read in _STORED_OPTION.items():
+        if key in meta and key in defaults and getattr(options, key) == defaults[key]:
+            setattr(options, key, read(meta[key]))
 
 
 class StoreError(ValueError):
