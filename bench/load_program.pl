@@ -49,6 +49,7 @@ write_program(File, Gen) :-
                        forall(call(Gen, T), write(S, T)),
                        close(S)).
 
+dc_clause(_, _, ':- dynamic((obj/2, object/1)).\n').   % facts that come from elsewhere
 dc_clause(Shape, N, T) :- between(1, N, I), clause_text(Shape, N, I, T).
 plain_clause(N, T) :- between(1, N, I), plain_text(I, T).
 

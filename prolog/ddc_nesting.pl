@@ -36,12 +36,21 @@ max_nesting(10000).
 %   Line is where the limit is passed.
 check_file_nesting(File) :-
     must_be(atom, File),
-    read_file_to_codes(File, Codes, []),
+    read_file_to_string(File, Text, []),
     max_nesting(Max),
-    (   too_deep(Codes, Max, Line)
+    (   open_brackets(Text, Opens),
+        Opens > Max,                        % (else it cannot nest deeper: no scan)
+        string_codes(Text, Codes),
+        too_deep(Codes, Max, Line)
     ->  throw(error(ddc(too_deep(Max), File:Line), _))
     ;   true
     ).
+
+%   open_brackets(+Text, -N): how many opening brackets Text holds, quoted or not.
+open_brackets(Text, N) :-
+    split_string(Text, "([{", "", Parts),
+    length(Parts, K),
+    N is K - 1.
 
 %!  check_text_nesting(+Text, +Where) is det.
 %
