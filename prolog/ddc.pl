@@ -409,7 +409,7 @@ compile_program(File, M, Items00, Clauses, Info) :-
     append(Items, Rivals, BatchItems),
     append([DirClauses, Cs0, Ds, Ps, Sw1, Sw2, ['$ddc_items'(BatchItems)]], Clauses),
     b_setval(ddc_compiling, []),
-    warn_undefined(File).
+    warn_undefined.
 
 state_rv(rv(_, _, state, _, _, _)).
 
@@ -722,7 +722,7 @@ compile_item_at(I, File, Info, RivalsOf, '$at'(Line, C)) :-
     Where = _:Line,
     b_setval(ddc_compiling, Where),
     catch(compile_item(I, File, Info, RivalsOf, C), E, item_error(E, I, File)),
-    check_clause(C, I, File).
+    check_clause(C, I, Where).
 
 item_error(E, I, File) :-
     item_where(I, File, Where),
@@ -741,28 +741,24 @@ load_error(error(ddc(C, W0), _), _, Where) :- !,
 load_error(E, _, Where) :-
     throw(error(ddc(prolog_error(E), Where), _)).
 
-%   check_clause(+Clause, +Item, +File): the errors assertz/1 would raise
+%   check_clause(+Clause, +Item, +Where): the errors assertz/1 would raise
 %   when the program is installed, found before anything is replaced: a
 %   head that is a control construct or a system predicate, and arithmetic
 %   (compiled inline) on an atom that is not an arithmetic function.
-check_clause(C, I, File) :-
+check_clause(C, I, Where) :-
     (   C = (H :- B) -> true ; H = C, B = true ),
     (   var(H)
     ->  true
     ;   ( \+ callable(H) ; timed_plain_head(H) )
-    ->  item_where(I, File, Where),
-        throw(error(ddc(bad_head(H), Where), _))
+    ->  throw(error(ddc(bad_head(H), Where), _))
     ;   predicate_property(system:H, iso)
-    ->  item_where(I, File, Where),
-        functor(H, N, A),
+    ->  functor(H, N, A),
         load_error(error(permission_error(modify, static_procedure, N/A), _), I, Where)
     ;   arithmetic_atom(B, Atom)
-    ->  item_where(I, File, Where),
-        load_error(error(type_error(evaluable, Atom/0), _), I, Where)
+    ->  load_error(error(type_error(evaluable, Atom/0), _), I, Where)
     ;   term_variables(H, Seen),
         \+ fresh_arithmetic(B, Seen, _)
-    ->  item_where(I, File, Where),
-        throw(error(ddc(fresh_arithmetic, Where), _))
+    ->  throw(error(ddc(fresh_arithmetic, Where), _))
     ;   true
     ).
 
@@ -1329,10 +1325,10 @@ note_undefined(PI, info(_, _, _, _, _, Impure, _)) :-
     ;   true
     ).
 
-%   warn_undefined(+File): one warning per predicate called in File's
+%   warn_undefined: one warning per predicate called in the program's
 %   bodies and defined nowhere: it holds only for the facts of a filter
 %   step, and is false in a static query.
-warn_undefined(_) :-
+warn_undefined :-
     forall(retract(undefined_call_(PI, Where)),
            print_message(warning, error(ddc(undefined_predicate(PI), Where), _))).
 
