@@ -351,12 +351,15 @@ resampled_group(Src0, Src1, S0, Pairs, S) :-
 batch_keep(groups(Gs), Kept) :- !,
     maplist(batch_keep, Gs, Ks),
     kept_list(Ks, L),
-    functor(Kept, groups, 1),
-    nb_linkarg(1, Kept, L).
+    groups_fields(Fields),
+    new_groups(Kept),
+    nb_link_field(Fields, states, Kept, L).
 batch_keep(S, Kept) :-
     state_keep(S, Kept).
 
-%   kept_list(+Xs, -L): the list Xs, its cells made by nb_linkarg/3.
+%   kept_list(+Xs, -L): the list Xs, its cells made by nb_linkarg/3 (a
+%   list cell '[|]'(Head, Tail), not a record: the only numeric arg/3
+%   family call here).
 kept_list([], []).
 kept_list([X|Xs], L) :-
     kept_list(Xs, L1),

@@ -55,7 +55,9 @@ over the batch, not four.  A goal that needs V's value as a term (a
 split) gets it computed into a column first (materialise/3).
 */
 
-%   plan(+T, -Tmpl, -Binds): Tmpl is T with each '$c'(C, Pattern, V)
+%!  plan(+T, -Tmpl, -Binds:list) is det.
+%
+%   Tmpl is T with each '$c'(C, Pattern, V)
 %   replaced by V and each '$x'(Expr) by a variable W, Binds the C-Pattern
 %   pairs and '$e'(W, ExprTmpl, '$x'(Expr)) evaluations (each once, an
 %   evaluation after the bindings it reads): bind/2 makes Tmpl a
@@ -92,19 +94,31 @@ map_args([X|Xs], Leaf, [Y|Ys], A0, A) :-
     map_term(Leaf, X, Y, A0, A1),
     map_args(Xs, Leaf, Ys, A1, A).
 
+%!  bind(+Binds:list, +I:integer) is semidet.
+%
+%   Makes plan/3's template particle I's instance: binds each column's
+%   pattern to the particle's value, evaluates each deferred expression.
 bind([], _).
 bind([B|Bs], I) :- bind_one(B, I), bind(Bs, I).
 
 bind_one(C-P, I) :- arg(I, C, P).
 bind_one('$e'(W, Ex, _), _) :- W is Ex.
 
+%!  column_ref(+Column, ?V, -Ref) is det.
+%
+%   Ref is a reference to Column whose particle value is V itself.
 column_ref(C, V, '$c'(C, V, V)).
 
+%!  has_column(+T) is semidet.
+%
+%   T holds a column reference or a deferred expression.
 has_column(T) :-
     compound(T),
     (   T = '$c'(_, _, _) -> true ; T = '$x'(_) -> true ; arg(_, T, A), has_column(A) ), !.
 
-%   materialise(+T, +Ps, -T1): T with each deferred expression computed
+%!  materialise(+T, +Ps:list(integer), -T1) is det.
+%
+%   T1 is T with each deferred expression computed
 %   into a column, for the particles Ps.
 materialise(T, Ps, T1) :-
     (   deferred_in(T, X)
@@ -144,7 +158,11 @@ replace_leaf(X, Y, T, T1, A, A) :-
     ;   T = '$c'(_, _, _) -> T1 = T             % (a column: not walked)
     ).
 
-%   arith_value(?V, +Ex, +Ps0, -Ps): V is Ex, over columns or not.
+%!  arith_value(?V, +Ex, +Ps0:list(integer), -Ps:list(integer)) is semidet.
+%
+%   V is Ex, over columns or not: a variable V becomes the deferred
+%   expression; a bound V is compared with Ex in each particle of Ps0 (Ps
+%   those where it holds).
 arith_value(V, Ex, Ps0, Ps) :-
     (   has_column(Ex), var(V) -> V = '$x'(Ex), Ps = Ps0
     ;   ( has_column(V) ; has_column(Ex) ) -> test_loop(V =:= Ex, Ps0, Ps)
@@ -152,15 +170,20 @@ arith_value(V, Ex, Ps0, Ps) :-
     ).
 
 
-%   has_free_var(+T): T has a variable of its own (not one inside a column
+%!  has_free_var(@T) is semidet.
+%
+%   T has a variable of its own (not one inside a column
 %   reference or a deferred expression, which each particle binds).
 has_free_var(T) :- var(T), !.
 has_free_var(T) :-
     compound(T), T \= '$c'(_, _, _), T \= '$x'(_),
     arg(_, T, A), has_free_var(A), !.
 
-%   A goal run particle by particle as a test: no variables to bind (all
-%   bound to values or columns) and a comparison or unification.
+%!  test_goal(+G) is semidet.
+%
+%   G is a goal that can run particle by particle as a test when it has no
+%   variables to bind (all bound to values or columns): a comparison or a
+%   unification.
 test_goal(G) :-
     compound(G), functor(G, Op, 2),
     memberchk(Op, [<, >, =<, >=, =:=, =\=, ==, \==, =, \=, @<, @>, @=<, @>=]).
@@ -170,9 +193,13 @@ arith_loop([I|Is], Bs, Ex, C) :-
     \+ \+ ( bind(Bs, I), X is Ex, nb_setarg(I, C, X) ),
     arith_loop(Is, Bs, Ex, C).
 
+%!  test_loop(+G, +Ps0:list(integer), -Ps:list(integer)) is semidet.
+%
+%   Ps: the particles of Ps0 in which the test G holds (not empty).  A
+%   batch of 16 or more particles runs a compiled loop (compiled_test/4).
 test_loop(G, Ps0, Ps) :-
     plan(G, Tmpl, Bs),
-    (   Ps0 = [_, _, _, _, _, _, _, _, _, _, _, _, _, _, _, _|_]
+    (   Ps0 = [_, _, _, _, _, _, _, _, _, _, _, _, _, _, _, _|_]      % (16 or more)
     ->  compiled_test(Ps0, Bs, Tmpl, Ps)
     ;   test_each(Ps0, Bs, Tmpl, Ps)
     ),
@@ -200,8 +227,12 @@ compiled_test(Ps0, Bs, Tmpl, Ps) :-
     Cols =.. [cols|Cs],
     call(Name, Ps0, Cols, k(Ns), Ps).
 
-%   compiled_instance(+Ps, +Binds, +Tmpl, +C): instance_each/4 as a
-%   compiled loop (see compiled_test/4).
+%!  compiled_instance(+Ps:list(integer), +Binds, +Tmpl, !C) is det.
+%
+%   Each particle of Ps whose value in column C is not drawn yet ('$u')
+%   gets its instance of Tmpl (plan/3), by a compiled loop (see
+%   compiled_test/4; ddc_batch_rv:instance_each/4 is the same without
+%   one).
 compiled_instance(Ps, Bs, Tmpl, C) :-
     bind_goals(Bs, I, Cs, CVs, Gets, Evals),
     append(Gets, Evals, Gs0),
@@ -262,6 +293,9 @@ bind_goals([C-P|Bs], I, [C|Cs], [CV|CVs], [arg(I, CV, P)|Gs], Es) :- !,
 bind_goals(['$e'(W, Ex, _)|Bs], I, Cs, CVs, Gs, [W is Ex|Es]) :-
     bind_goals(Bs, I, Cs, CVs, Gs, Es).
 
+%!  list_conj(+Goals:list, -Conj) is det.
+%
+%   Conj is the conjunction of Goals (not empty).
 list_conj([G], G) :- !.
 list_conj([G|Gs], (G, C)) :- list_conj(Gs, C).
 
@@ -276,7 +310,9 @@ test_each([I|Is], Bs, G, Ps) :-
     (   \+ \+ ( bind(Bs, I), call(G) ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
     test_each(Is, Bs, G, Ps1).
 
-%   split(+T, +Ps0, -T1, -Ps): T with its column references replaced by
+%!  split(+T, +Ps0:list(integer), -T1, -Ps:list(integer)) is nondet.
+%
+%   T1 is T with its column references replaced by
 %   the particles' values, for each group of particles that share them.
 %   (Only the columns' values are grouped: T's own unbound variables stay
 %   T1's, for the goals after it.)
@@ -301,7 +337,10 @@ split_pairs([I|Is], Cs, [Vs-I|Ps]) :-
 args_at([], _, []).
 args_at([C|Cs], I, [V|Vs]) :- arg(I, C, V), args_at(Cs, I, Vs).
 
-%   unify_value(?P, +V, +Ps0, -Ps): P with a value the batch agrees on.
+%!  unify_value(?P, +V, +Ps0:list(integer), -Ps:list(integer)) is semidet.
+%
+%   P unified with a value the batch agrees on (over columns: Ps the
+%   particles where it unifies).
 unify_value(P, V, Ps, Ps) :-
     (   has_column(P)
     ->  fail
@@ -312,9 +351,12 @@ unify_value(P, V, Ps0, Ps) :-
     has_column(P),
     test_loop(P = V, Ps0, Ps).
 
-%   unify_column(?P, +C, +Ps0, -Ps): P with each particle's value in C
-%   (none undefined).
-%   Arity: the tuple arity all values in C have (a number) or unknown.
+%!  unify_column(?P, +C, +Ps0:list(integer), -Ps:list(integer)) is nondet.
+%!  unify_column(?P, +C, +Arity, +Ps0:list(integer), -Ps:list(integer)) is nondet.
+%
+%   P unified with each particle's value in column C (none undefined), Ps
+%   the particles of a branch; Arity: the tuple arity all values in C
+%   have (a number), unknown or none.
 unify_column(P, C, Ps0, Ps) :-
     unify_column(P, C, unknown, Ps0, Ps).
 
@@ -360,13 +402,19 @@ unifiable_at([I|Is], C, Bs, Tmpl, Ps) :-
     (   \+ \+ ( bind(Bs, I), Tmpl = V ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
     unifiable_at(Is, C, Bs, Tmpl, Ps1).
 
+%!  split_column(+C, +Ps0:list(integer), -V, -Ps:list(integer)) is nondet.
+%
+%   For each value V that particles of Ps0 hold in column C, Ps those
+%   particles (in the standard order of the values).
 split_column(C, Ps0, V, Ps) :-
     findall(V0-I, ( member(I, Ps0), arg(I, C, V0) ), Pairs),
     keysort(Pairs, Sorted),
     group_pairs_by_key(Sorted, Groups),
     member(V-Ps, Groups).
 
-%   tuple_of_vars(+P, -Vs): P is a tuple of two or more distinct
+%!  tuple_of_vars(@P, -Vs:list) is semidet.
+%
+%   P is a tuple of two or more distinct
 %   variables Vs (a pattern such as (X, Y, Z) or (_, _, Z)).
 tuple_of_vars(P, [A|Vs]) :-
     nonvar(P), P = (A, B), var(A),

@@ -120,10 +120,10 @@ read_time(0, _, 0).
                  /*******************************
                  *            BODIES            *
                  *******************************/
-
-
-%   eval_body(+Body, +Env, +Ps0, -Ps): the body for the particles Ps0 (a sorted
-%   list of indices, not empty); nondeterministic over branches (solutions
+%!  eval_body(+Body, +Env, +Ps0:list(integer), -Ps:list(integer)) is nondet.
+%
+%   Body for the particles Ps0 (a sorted list of indices, not empty):
+%   nondeterministic over branches (solutions
 %   of goals the batch agrees on, splits by value), Ps the particles of the
 %   branch, each in at most one branch per solution of their own.
 eval_body(_, _, [], _) :- !, fail.
@@ -252,6 +252,9 @@ static_body_call(\+ A, E) :- !, \+ static_body_call(A, E).
 static_body_call(findall(X, A, L), E) :- !, findall(X, static_body_call(A, E), L).
 static_body_call(G, E) :- call_static(G, E).
 
+%!  branch_union(+G, +Env, +Ps0:list(integer), -Union:list(integer)) is det.
+%
+%   Union: the particles of Ps0 in which G has a solution.
 branch_union(G, E, Ps0, Union) :-
     findall(Ps, eval_body(G, E, Ps0, Ps), Ls),
     ord_union(Ls, Union).
@@ -279,7 +282,10 @@ firsts([L|Ls], Taken0, [F|Fs], Taken) :-
     ord_union(Taken0, F, Taken1),
     firsts(Ls, Taken1, Fs, Taken).
 
-%   collect(+T, +G, ?L, +E, +Ps0, -Ps): findall per particle.
+%!  collect(+T, +G, ?L, +Env, +Ps0:list(integer), -Ps:list(integer)) is nondet.
+%
+%   findall(T, G, L) in each particle of Ps0: L a value the batch agrees
+%   on, or a column of lists.
 collect(T, G, L, E, Ps0, Ps) :-
     env_size(E, N),
     functor(LC, c, N),
@@ -363,8 +369,11 @@ unify_read(P, _, Entry, Ps0, Ps) :-
     ).
 
 
-%   value(+E, +X, +T, +Ps, -Entry): X's entry at T with a value (or
-%   '$undef') for every particle of Ps.
+%!  value(+Env, +X, +T, +Ps:list(integer), -Entry) is det.
+%
+%   Entry: X's entry at T (a table's entry record, ddc_batch_tables.pl),
+%   with a value (or '$undef') for every particle of Ps, drawn now by X's
+%   first applicable clause where one lacks it (T the latest time).
 value(E, X, T, Ps, Entry) :-
     env_time_table(E, T, Tab),
     (   table_get(Tab, X, Entry0)
@@ -416,15 +425,16 @@ assign_clauses([clause_of(K, D, B, At)|Cls], EK, ES, X, T, Ps, C, Rest) :-
         assign_clauses(Cls, EK, ES, X, T, Ps1, C, Rest)
     ).
 
-%   rv_clause(+M, ?X, ?K, -D, -B, -At): a clause of X (a called clause is
-%   a fresh copy; calling with X lets the clause index find X's clauses
+%!  rv_clause(+M, ?X, ?Kind, -Dist, -Body, -Origin) is nondet.
+%
+%   A clause of X (a called clause is a fresh copy; calling with X lets the clause index find X's clauses
 %   without looking at every random variable's).
 rv_clause(M, X, K, D, B, At) :-
     M:'$b_rv'(X, K, D, B, At).
 
 %   A distribution error names the clause (file:line), as in ddc.pl.  The
 %   particles of the env's check list that this clause gave a value are
-%   checked for a later clause that also applies (check_rivals/8).
+%   checked for a later clause that also applies (check_rivals/7).
 assign_clause(E, X, T, K, B, D, At, Rest, C, Any) :-
     run_clause(E, X, T, K, B, At, Rest, C, assign_branch(Any, C, D)).
 
@@ -432,8 +442,9 @@ assign_branch(Any, C, D, Ps) :-
     nb_set_cell_value(Any, true),
     assign(Ps, C, D).
 
-%   run_clause(+E, +X, +T, +K, +B, +At, +Rest, +C, :Action): Action on the
-%   particles of each branch of body B over Rest; a distribution error
+%!  run_clause(+Env, +X, +T, +Kind, +Body, +Origin, +Rest:list(integer), +C, :Action) is det.
+%
+%   call(Action, Ps) on the particles Ps of each branch of Body over Rest; a distribution error
 %   names the clause's line; then the particles of the env's check list
 %   that got a value in C are checked for a later clause that applies too.
 run_clause(E, X, T, K, B, At, Rest, C, Action) :-
@@ -519,8 +530,9 @@ derived(G, T, E, Ps0, Ps) :-
                  *            SWEEP             *
                  *******************************/
 
-%   sweep(+M, +Kind, +E, +T, +All): every ground head of a Kind clause
-%   drawn at T for the particles that have it.  The heads come from the
+%!  sweep(+M, +Kind, +Env, +T, +All:list(integer)) is det.
+%
+%   Every ground head of a Kind clause drawn at T for the particles that have it.  The heads come from the
 %   goals the clause's body starts with: static goals, derived atoms
 %   (pos(A):t+1 := hidden(A):t+1, ...: the per-particle filter's sweep
 %   proves the whole body), and reads at t, whose keys are those held (so

@@ -37,6 +37,10 @@ place.
 %   batch_state(Module, Size, Time, Tables, Facts, Random): above.
 :- record_type batch_state(module, size, time, tables, facts, random).
 
+%   groups(States): a filter of groups (ddc_batch.pl, "Groups"), its
+%   groups' states in the order of their particles.
+:- record_type groups(states).
+
 :- meta_predicate with_state(+, 0).
 
 %!  state_keep(+State, -Kept) is det.
