@@ -16,7 +16,7 @@
             read_time/3,                % +TimeExpr, +Env, -T
             value/5,                    % +Env, +X, +T, +Ps, -Entry
             rv_clause/6,                % +Module, ?X, ?Kind, -Dist, -Body, -Origin
-            run_clause/9,               % +Env, +X, +T, +Kind, +Body, +Origin, +Ps, +Column, :Action
+            run_clause/9,               % +Env, +X, +T, +Kind, +Body, +Origin, +Ps, +C, :Action
             sweep/5                     % +Module, +Kind, +Env, +T, +All
           ]).
 
@@ -427,13 +427,14 @@ assign_clauses([clause_of(K, D, B, At)|Cls], EK, ES, X, T, Ps, C, Rest) :-
 
 %!  rv_clause(+M, ?X, ?Kind, -Dist, -Body, -Origin) is nondet.
 %
-%   A clause of X (a called clause is a fresh copy; calling with X lets the clause index find X's clauses
-%   without looking at every random variable's).
+%   A clause of X (a called clause is a fresh copy; calling with X lets
+%   the clause index find X's clauses without looking at every random
+%   variable's).
 rv_clause(M, X, K, D, B, At) :-
     M:'$b_rv'(X, K, D, B, At).
 
 %   A distribution error names the clause (file:line), as in ddc.pl.  The
-%   particles of the env's check list that this clause gave a value are
+%   particles of the env's checked list that this clause gave a value are
 %   checked for a later clause that also applies (check_rivals/7).
 assign_clause(E, X, T, K, B, D, At, Rest, C, Any) :-
     run_clause(E, X, T, K, B, At, Rest, C, assign_branch(Any, C, D)).
@@ -444,9 +445,10 @@ assign_branch(Any, C, D, Ps) :-
 
 %!  run_clause(+Env, +X, +T, +Kind, +Body, +Origin, +Rest:list(integer), +C, :Action) is det.
 %
-%   call(Action, Ps) on the particles Ps of each branch of Body over Rest; a distribution error
-%   names the clause's line; then the particles of the env's check list
-%   that got a value in C are checked for a later clause that applies too.
+%   call(Action, Ps) on the particles Ps of each branch of Body over
+%   Rest; a distribution error names the clause's line; then the particles
+%   of the env's checked list that got a value in C are checked for a
+%   later clause that applies too.
 run_clause(E, X, T, K, B, At, Rest, C, Action) :-
     origin_line(At, L), origin_id(At, Id), origin_rivals(At, R),
     env_module(E, M),
@@ -532,12 +534,13 @@ derived(G, T, E, Ps0, Ps) :-
 
 %!  sweep(+M, +Kind, +Env, +T, +All:list(integer)) is det.
 %
-%   Every ground head of a Kind clause drawn at T for the particles that have it.  The heads come from the
-%   goals the clause's body starts with: static goals, derived atoms
-%   (pos(A):t+1 := hidden(A):t+1, ...: the per-particle filter's sweep
-%   proves the whole body), and reads at t, whose keys are those held (so
-%   a value held at t that a persistence clause such as h:t+1 ~ val(V) :=
-%   h:t ~= V carries on is carried on in the particles that hold it).
+%   Every ground head of a Kind clause drawn at T for the particles that
+%   have it.  The heads come from the goals the clause's body starts
+%   with: static goals, derived atoms (pos(A):t+1 := hidden(A):t+1, ...:
+%   the per-particle filter's sweep proves the whole body), and reads at
+%   t, whose keys are those held (so a value held at t that a persistence
+%   clause such as h:t+1 ~ val(V) := h:t ~= V carries on is carried on in
+%   the particles that hold it).
 sweep(M, K, E, T, All) :-
     findall(X-Ps, sweep_head(M, K, E, All, X, Ps), Pairs0),
     keysort(Pairs0, Pairs),
