@@ -208,11 +208,10 @@ batch_step(State0, Obs, Facts, Result) :-
 %
 %   Overlapping clauses are looked for in the first N particles of every
 %   filter step, by both engines (ddc_filter.pl's step_range_at/10 too):
-%   the engine's horizon for that check, a constant.  Checking every
-%   particle would cost a second evaluation of each rival clause's body
-%   per particle; an overlap that shows in no particle of the first N is
-%   one the program's tests are unlikely to meet either.  (Static queries
-%   have their own horizon: ddc.pl's overlap_checked_worlds/1.)
+%   the horizon of that check, a constant of the engine.  Checking a
+%   particle costs an evaluation of each rival clause's body in it, so the
+%   check looks at a few particles, not at all of them.  (Static queries
+%   have a horizon of their own: ddc.pl's overlap_checked_worlds/1.)
 overlap_checked_particles(20).
 
 %   check_list(+Check, +N, -Checked): the particles a group checks for
