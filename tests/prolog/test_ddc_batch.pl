@@ -1,5 +1,7 @@
-/*  plunit tests of the batched particle filter (prolog/ddc_batch.pl), reached
-    through ddc.pl's filter_* predicates with engine(batched) or auto.  The
+/*  plunit tests of the batched particle filter (prolog/ddc_batch.pl and its
+    modules prolog/ddc_batch_*.pl), reached through ddc.pl's filter_*
+    predicates with engine(batched) or auto, and of its tables
+    (prolog/ddc_batch_tables.pl) directly.  The
     conformance answers (wumpus, pit world, Kalman, follow the occluder) are
     checked for both engines in tests/test_filter.py; these tests are about
     what the batched engine does on its own: its fragment, its evaluation of
@@ -9,6 +11,7 @@
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
+:- use_module('../../prolog/ddc_batch_tables').
 
 program(Lines, File) :-
     tmp_file_stream(text, File, S),
@@ -290,5 +293,25 @@ test(pit_world_non_ground_reads_agree_with_the_per_particle_engine) :-
                       nth1(I, Ls, [(0,0),(0,1),(1,0)]) )),
              forall(( nth1(I, LW, W), W =\= 0.0 ), W < -1.0e308),
              forall(nth1(I, Ls, L2), memberchk((0,0), L2)) )).
+
+%   A resampled table stays as made after the query that made it
+%   backtracks (it is kept in a filter's global variable): its entries'
+%   fields are linked, not bound.
+test(a_resampled_table_survives_backtracking) :-
+    table_new(Tab),
+    new_entry(E0), entry_column(E0, c(1, 2, 3)), entry_status(E0, defined),
+    entry_arity(E0, unknown),
+    table_put(Tab, x, E0),
+    new_entry(S0), entry_column(S0, c(a, a, a)), entry_status(S0, same(a)),
+    entry_arity(S0, none),
+    table_put(Tab, y, S0),
+    functor(Holder, holder, 1),
+    forall(true, ( resample_tables([Tab], [1-3, 1-2, 1-1], New),
+                   nb_linkarg(1, Holder, New) )),
+    arg(1, Holder, Kept),
+    table_get(Kept, x, E), entry_column(E, C), C == c(3, 2, 1),
+    entry_status(E, defined),
+    table_get(Kept, y, S), entry_column(S, CS), CS == c(a, a, a),
+    entry_status(S, Same), Same == same(a), entry_arity(S, A), A == none.
 
 :- end_tests(ddc_batch).

@@ -1,0 +1,426 @@
+/*  ddc_batch_columns.pl -- goals over columns, as loops over a batch.
+
+    Part of the batched particle filter (ddc_batch.pl, the API): the
+    terms a clause body's variables are bound to when their values differ
+    between particles (column references, deferred expressions), and the
+    loops that run a goal over a batch of particles: tests, arithmetic,
+    instances of a template (compiled to virtual-machine clauses for large
+    batches), splits of a batch by value, unification with a column.
+*/
+
+:- module(ddc_batch_columns,
+          [ plan/3,                     % +Term, -Template, -Binds
+            bind/2,                     % +Binds, +I
+            column_ref/3,               % +Column, ?V, -Ref
+            has_column/1,               % +Term
+            has_free_var/1,             % +Term
+            materialise/3,              % +Term, +Ps, -Term1
+            arith_value/4,              % ?V, +Expr, +Ps0, -Ps
+            test_goal/1,                % +Goal
+            test_loop/3,                % +Goal, +Ps0, -Ps
+            compiled_instance/4,        % +Ps, +Binds, +Template, !Column
+            split/4,                    % +Term, +Ps0, -Term1, -Ps
+            split_column/4,             % +Column, +Ps0, -V, -Ps
+            unify_value/4,              % ?P, +V, +Ps0, -Ps
+            unify_column/4,             % ?P, +Column, +Ps0, -Ps
+            unify_column/5,             % ?P, +Column, +Arity, +Ps0, -Ps
+            tuple_of_vars/2,            % +P, -Vars
+            list_conj/2                 % +Goals, -Conjunction
+          ]).
+
+:- use_module(library(apply)).
+:- use_module(library(lists)).
+:- use_module(library(pairs)).
+:- use_module(ddc_batch_tables, [tuple_shape/2]).
+
+:- set_prolog_flag(optimise, true).
+
+/** <module> Goals over columns for the batched filter
+
+A particle index is an integer 1..N; a batch is a sorted list of them.
+Column terms c(V1, ..., VN) are read and written by particle index
+(arg/3, nb_setarg/3): they are arrays, not records.
+
+Body variables are bound to values (the same for the whole batch) or
+to column references '$c'(C, Pattern, V): the particle's value in
+column C unifies with Pattern, whose variable V is the variable's value
+(Pattern = V for a plain read; a tuple of fresh variables, one of
+them V, for a read such as pos(O):t ~= (X, Y, Z), whose three
+references share the one Pattern: one unification per particle binds
+all three), or to a deferred expression '$x'(Expr): `V is Expr` over
+columns is not computed into a column of its own but evaluated in the
+loop of each goal that reads V (a comparison, a draw, a head's value),
+so that X1 is X + DX, Y1 is ..., then val((X1, Y1, Z1)) costs one loop
+over the batch, not four.  A goal that needs V's value as a term (a
+split) gets it computed into a column first (materialise/3).
+*/
+
+%!  plan(+T, -Tmpl, -Binds:list) is det.
+%
+%   Tmpl is T with each '$c'(C, Pattern, V)
+%   replaced by V and each '$x'(Expr) by a variable W, Binds the C-Pattern
+%   pairs and '$e'(W, ExprTmpl, '$x'(Expr)) evaluations (each once, an
+%   evaluation after the bindings it reads): bind/2 makes Tmpl a
+%   particle's instance.
+plan(T, Tmpl, Binds) :-
+    map_term(plan_leaf, T, Tmpl, [], Binds0),
+    reverse(Binds0, Binds).
+
+plan_leaf('$c'(C, P, V), V, Bs0, Bs) :-
+    (   member(C0-P0, Bs0), C0 == C, P0 == P -> Bs = Bs0 ; Bs = [C-P|Bs0] ).
+plan_leaf(X, W, Bs0, Bs) :-
+    X = '$x'(Ex),
+    (   member('$e'(W0, _, X0), Bs0), X0 == X
+    ->  W = W0, Bs = Bs0
+    ;   map_term(plan_leaf, Ex, ExT, Bs0, Bs1),
+        Bs = ['$e'(W, ExT, X)|Bs1]
+    ).
+
+%   map_term(:Leaf, +T, -T1, +A0, -A): T with each subterm S for which
+%   call(Leaf, S, S1, A0, A) succeeds replaced by S1 (its arguments not
+%   visited), the others copied, A threaded through the leaves from left
+%   to right.
+:- meta_predicate map_term(4, +, -, +, -).
+map_term(_, T, T, A, A) :- var(T), !.
+map_term(Leaf, T, T1, A0, A) :- call(Leaf, T, T1, A0, A), !.
+map_term(_, T, T, A, A) :- atomic(T), !.
+map_term(Leaf, T, T1, A0, A) :-
+    compound_name_arguments(T, F, As),
+    map_args(As, Leaf, As1, A0, A),
+    compound_name_arguments(T1, F, As1).
+
+map_args([], _, [], A, A).
+map_args([X|Xs], Leaf, [Y|Ys], A0, A) :-
+    map_term(Leaf, X, Y, A0, A1),
+    map_args(Xs, Leaf, Ys, A1, A).
+
+%!  bind(+Binds:list, +I:integer) is semidet.
+%
+%   Makes plan/3's template particle I's instance: binds each column's
+%   pattern to the particle's value, evaluates each deferred expression.
+bind([], _).
+bind([B|Bs], I) :- bind_one(B, I), bind(Bs, I).
+
+bind_one(C-P, I) :- arg(I, C, P).
+bind_one('$e'(W, Ex, _), _) :- W is Ex.
+
+%!  column_ref(+Column, ?V, -Ref) is det.
+%
+%   Ref is a reference to Column whose particle value is V itself.
+column_ref(C, V, '$c'(C, V, V)).
+
+%!  has_column(+T) is semidet.
+%
+%   T holds a column reference or a deferred expression.
+has_column(T) :-
+    compound(T),
+    (   T = '$c'(_, _, _) -> true ; T = '$x'(_) -> true ; arg(_, T, A), has_column(A) ), !.
+
+%!  materialise(+T, +Ps:list(integer), -T1) is det.
+%
+%   T1 is T with each deferred expression computed
+%   into a column, for the particles Ps.
+materialise(T, Ps, T1) :-
+    (   deferred_in(T, X)
+    ->  X = '$x'(Ex),
+        once(column_in(Ex, C0)),
+        functor(C0, _, N),
+        plan(X, W, Bs),
+        functor(C, c, N),
+        arith_loop(Ps, Bs, W, C),
+        column_ref(C, _, Ref),
+        replace_eq(T, X, Ref, T2),
+        materialise(T2, Ps, T1)
+    ;   T1 = T
+    ).
+
+%   deferred_in(+T, -X): a deferred expression in T (not looking inside
+%   column references: a column has an argument per particle).
+deferred_in(T, X) :-
+    compound(T),
+    (   T = '$x'(_) -> X = T
+    ;   T = '$c'(_, _, _) -> fail
+    ;   arg(_, T, A), deferred_in(A, X)
+    ), !.
+
+%   column_in(+Ex, -C): a column Ex reads.
+column_in(T, C) :-
+    compound(T),
+    (   T = '$c'(C0, _, _) -> C = C0
+    ;   arg(_, T, A), column_in(A, C)
+    ).
+
+replace_eq(T, X, Y, T1) :-
+    map_term(replace_leaf(X, Y), T, T1, none, _).
+
+replace_leaf(X, Y, T, T1, A, A) :-
+    (   T == X -> T1 = Y
+    ;   T = '$c'(_, _, _) -> T1 = T             % (a column: not walked)
+    ).
+
+%!  arith_value(?V, +Ex, +Ps0:list(integer), -Ps:list(integer)) is semidet.
+%
+%   V is Ex, over columns or not: a variable V becomes the deferred
+%   expression; a bound V is compared with Ex in each particle of Ps0 (Ps
+%   those where it holds).
+arith_value(V, Ex, Ps0, Ps) :-
+    (   has_column(Ex), var(V) -> V = '$x'(Ex), Ps = Ps0
+    ;   ( has_column(V) ; has_column(Ex) ) -> test_loop(V =:= Ex, Ps0, Ps)
+    ;   V is Ex, Ps = Ps0
+    ).
+
+
+%!  has_free_var(@T) is semidet.
+%
+%   T has a variable of its own (not one inside a column
+%   reference or a deferred expression, which each particle binds).
+has_free_var(T) :- var(T), !.
+has_free_var(T) :-
+    compound(T), T \= '$c'(_, _, _), T \= '$x'(_),
+    arg(_, T, A), has_free_var(A), !.
+
+%!  test_goal(+G) is semidet.
+%
+%   G is a goal that can run particle by particle as a test when it has no
+%   variables to bind (all bound to values or columns): a comparison or a
+%   unification.
+test_goal(G) :-
+    compound(G), functor(G, Op, 2),
+    memberchk(Op, [<, >, =<, >=, =:=, =\=, ==, \==, =, \=, @<, @>, @=<, @>=]).
+
+arith_loop([], _, _, _).
+arith_loop([I|Is], Bs, Ex, C) :-
+    \+ \+ ( bind(Bs, I), X is Ex, nb_setarg(I, C, X) ),
+    arith_loop(Is, Bs, Ex, C).
+
+%!  test_loop(+G, +Ps0:list(integer), -Ps:list(integer)) is semidet.
+%
+%   Ps: the particles of Ps0 in which the test G holds (not empty).  A
+%   batch of 16 or more particles runs a compiled loop (compiled_test/4).
+test_loop(G, Ps0, Ps) :-
+    plan(G, Tmpl, Bs),
+    (   Ps0 = [_, _, _, _, _, _, _, _, _, _, _, _, _, _, _, _|_]      % (16 or more)
+    ->  compiled_test(Ps0, Bs, Tmpl, Ps)
+    ;   test_each(Ps0, Bs, Tmpl, Ps)
+    ),
+    Ps \== [].
+
+%   compiled_test(+Ps0, +Binds, +Test, -Ps): test_each/4 as a loop compiled
+%   for the goal (its arithmetic compiled to virtual-machine instructions,
+%   as the per-particle engine's clauses are; a particle's values bound by
+%   unification in the clause, no undo between particles), for batches
+%   large enough to pay for it.  A loop is compiled once per shape of goal:
+%   its numbers are arguments (they change from step to step), so the
+%   number of loops is bounded by the program's goals, and none is ever
+%   retracted (a retracted clause waits for the clause garbage collector,
+%   which a forked process, such as anchoring evaluate's workers, does not
+%   have: loops asserted and retracted per batch made each run there seven
+%   times slower).
+compiled_test(Ps0, Bs, Tmpl, Ps) :-
+    bind_goals(Bs, I, Cs, CVs, Gets, Evals),
+    append([Gets, Evals, [Tmpl]], Gs),
+    list_conj(Gs, Cond0),
+    abstract_numbers(Cond0, Cond, Ks),
+    pairs_keys_values(Ks, KVs, Ns),
+    Head =.. [cols|CVs],
+    compiled_loop(test, Head, k(KVs), I, Cond, Name),
+    Cols =.. [cols|Cs],
+    call(Name, Ps0, Cols, k(Ns), Ps).
+
+%!  compiled_instance(+Ps:list(integer), +Binds, +Tmpl, !C) is det.
+%
+%   Each particle of Ps whose value in column C is not drawn yet ('$u')
+%   gets its instance of Tmpl (plan/3), by a compiled loop (see
+%   compiled_test/4; ddc_batch_rv:instance_each/4 is the same without
+%   one).
+compiled_instance(Ps, Bs, Tmpl, C) :-
+    bind_goals(Bs, I, Cs, CVs, Gets, Evals),
+    append(Gets, Evals, Gs0),
+    (   Gs0 == [] -> Cond1 = true ; list_conj(Gs0, Cond1) ),
+    abstract_numbers(Cond1-Tmpl, Cond-Value, Ks),
+    pairs_keys_values(Ks, KVs, Ns),
+    Head =.. [cols|CVs],
+    compiled_loop(instance(Value), Head, k(KVs), I, Cond, Name),
+    Cols =.. [cols|Cs],
+    call(Name, Ps, Cols, k(Ns), C).
+
+%   compiled_loop(+Kind, +Head, +Consts, ?I, +Cond, -Name): the loop
+%   predicate Name/4 for this shape (Name(Ps, Cols, Consts, Out)), made the
+%   first time (under a mutex: threads share it).
+compiled_loop(Kind, Head, Consts, I, Cond, Name) :-
+    Shape = loop(Kind, Head, Consts, I, Cond),
+    variant_sha1(Shape, Sha),
+    atom_concat('$b_loop_', Sha, Name),
+    (   '$b_loop_ready'(Name)
+    ->  true
+    ;   with_mutex('$ddc_batch_loops',
+                   (   '$b_loop_ready'(Name) -> true
+                   ;   copy_term(Shape, loop(Kind1, Head1, Consts1, I1, Cond1)),
+                       loop_clauses(Kind1, Name, Head1, Consts1, I1, Cond1, Clauses),
+                       optimised_assert(Clauses),
+                       compile_predicates([Name/4]),
+                       assertz('$b_loop_ready'(Name))   % (last: another thread may look)
+                   ))
+    ).
+
+:- dynamic '$b_loop_ready'/1.
+
+loop_clauses(test, Name, Head, Consts, I, Cond,
+             [ Base, (Rec :- ( Cond -> Out = [I|Out1] ; Out = Out1 ), Next) ]) :-
+    Base =.. [Name, [], _, _, []],
+    Rec =.. [Name, [I|Is], Head, Consts, Out],
+    Next =.. [Name, Is, Head, Consts, Out1].
+loop_clauses(instance(Value), Name, Head, Consts, I, Cond,
+             [ Base, (Rec :- ( arg(I, Out, U), U == '$u', Cond -> nb_setarg(I, Out, Value)
+                              ; true ), Next) ]) :-
+    Base =.. [Name, [], _, _, _],
+    Rec =.. [Name, [I|Is], Head, Consts, Out],
+    Next =.. [Name, Is, Head, Consts, Out].
+
+%   abstract_numbers(+T, -T1, -Pairs): T with each number a variable;
+%   Pairs the Variable-Number pairs, in order.
+abstract_numbers(T, T1, Ps) :-
+    map_term(number_leaf, T, T1, Ps, []).
+
+number_leaf(T, V, [V-T|Ps], Ps) :- number(T).
+
+%   bind_goals(+Binds, ?I, -Columns, -ColumnVars, -Gets, -Evals): the goals
+%   that bind/2 runs for particle I, each column a variable (a clause must
+%   not hold a column: asserting it would copy it).
+bind_goals([], _, [], [], [], []).
+bind_goals([C-P|Bs], I, [C|Cs], [CV|CVs], [arg(I, CV, P)|Gs], Es) :- !,
+    bind_goals(Bs, I, Cs, CVs, Gs, Es).
+bind_goals(['$e'(W, Ex, _)|Bs], I, Cs, CVs, Gs, [W is Ex|Es]) :-
+    bind_goals(Bs, I, Cs, CVs, Gs, Es).
+
+%!  list_conj(+Goals:list, -Conj) is det.
+%
+%   Conj is the conjunction of Goals (not empty).
+list_conj([G], G) :- !.
+list_conj([G|Gs], (G, C)) :- list_conj(Gs, C).
+
+optimised_assert(Clauses) :-
+    current_prolog_flag(optimise, Old),
+    setup_call_cleanup(set_prolog_flag(optimise, true),
+                       forall(member(C, Clauses), assertz(C)),
+                       set_prolog_flag(optimise, Old)).
+
+test_each([], _, _, []).
+test_each([I|Is], Bs, G, Ps) :-
+    (   \+ \+ ( bind(Bs, I), call(G) ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
+    test_each(Is, Bs, G, Ps1).
+
+%!  split(+T, +Ps0:list(integer), -T1, -Ps:list(integer)) is nondet.
+%
+%   T1 is T with its column references replaced by
+%   the particles' values, for each group of particles that share them.
+%   (Only the columns' values are grouped: T's own unbound variables stay
+%   T1's, for the goals after it.)
+split(T0, Ps0, T1, Ps) :-
+    (   has_column(T0)
+    ->  materialise(T0, Ps0, T),
+        plan(T, Tmpl, Bs),
+        pairs_keys_values(Bs, Cs, Pats),
+        split_pairs(Ps0, Cs, Pairs),
+        keysort(Pairs, Sorted),
+        group_pairs_by_key(Sorted, Groups),
+        member(Pats-Ps, Groups),
+        T1 = Tmpl
+    ;   T1 = T0, Ps = Ps0
+    ).
+
+split_pairs([], _, []).
+split_pairs([I|Is], Cs, [Vs-I|Ps]) :-
+    args_at(Cs, I, Vs),
+    split_pairs(Is, Cs, Ps).
+
+args_at([], _, []).
+args_at([C|Cs], I, [V|Vs]) :- arg(I, C, V), args_at(Cs, I, Vs).
+
+%!  unify_value(?P, +V, +Ps0:list(integer), -Ps:list(integer)) is semidet.
+%
+%   P unified with a value the batch agrees on (over columns: Ps the
+%   particles where it unifies).
+unify_value(P, V, Ps, Ps) :-
+    (   has_column(P)
+    ->  fail
+    ;   P = V -> true
+    ;   number(P), number(V), P =:= V
+    ), !.
+unify_value(P, V, Ps0, Ps) :-
+    has_column(P),
+    test_loop(P = V, Ps0, Ps).
+
+%!  unify_column(?P, +C, +Ps0:list(integer), -Ps:list(integer)) is nondet.
+%!  unify_column(?P, +C, +Arity, +Ps0:list(integer), -Ps:list(integer)) is nondet.
+%
+%   P unified with each particle's value in column C (none undefined), Ps
+%   the particles of a branch; Arity: the tuple arity all values in C
+%   have (a number), unknown or none.
+unify_column(P, C, Ps0, Ps) :-
+    unify_column(P, C, unknown, Ps0, Ps).
+
+unify_column(P, C, Arity, Ps0, Ps) :-
+    (   var(P)
+    ->  column_ref(C, _, P), Ps = Ps0
+    ;   tuple_of_vars(P, Vs)
+    ->  length(Vs, K),
+        (   Arity == K -> Ps = Ps0 ; with_arity(Ps0, C, K, Ps), Ps \== [] ),
+        copy_term(P, Pat),
+        term_variables(Pat, PVs),
+        maplist(element_ref(C, Pat), Vs, PVs)
+    ;   ground(P), \+ has_column(P)
+    ->  with_value(Ps0, C, P, Ps), Ps \== []
+    ;   plan(P, Tmpl, Bs),
+        unifiable_at(Ps0, C, Bs, Tmpl, Ps1),
+        Ps1 \== [],
+        split_column(C, Ps1, V, Ps),
+        unify_value(P, V, Ps, _)
+    ).
+
+element_ref(C, Pat, V, PV) :- V = '$c'(C, Pat, PV).
+
+with_arity(Ps0, C, K, Ps) :-
+    tuple_shape(K, Shape),
+    with_shape(Ps0, C, Shape, Ps).
+
+with_shape([], _, _, []).
+with_shape([I|Is], C, Shape, Ps) :-
+    arg(I, C, V),
+    (   subsumes_term(Shape, V), V \== '$undef', V \== '$u' -> Ps = [I|Ps1] ; Ps = Ps1 ),
+    with_shape(Is, C, Shape, Ps1).
+
+with_value([], _, _, []).
+with_value([I|Is], C, P, Ps) :-
+    arg(I, C, V),
+    (   ( V = P -> true ; number(V), number(P), V =:= P ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
+    with_value(Is, C, P, Ps1).
+
+unifiable_at([], _, _, _, []).
+unifiable_at([I|Is], C, Bs, Tmpl, Ps) :-
+    arg(I, C, V),
+    (   \+ \+ ( bind(Bs, I), Tmpl = V ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
+    unifiable_at(Is, C, Bs, Tmpl, Ps1).
+
+%!  split_column(+C, +Ps0:list(integer), -V, -Ps:list(integer)) is nondet.
+%
+%   For each value V that particles of Ps0 hold in column C, Ps those
+%   particles (in the standard order of the values).
+split_column(C, Ps0, V, Ps) :-
+    findall(V0-I, ( member(I, Ps0), arg(I, C, V0) ), Pairs),
+    keysort(Pairs, Sorted),
+    group_pairs_by_key(Sorted, Groups),
+    member(V-Ps, Groups).
+
+%!  tuple_of_vars(@P, -Vs:list) is semidet.
+%
+%   P is a tuple of two or more distinct
+%   variables Vs (a pattern such as (X, Y, Z) or (_, _, Z)).
+tuple_of_vars(P, [A|Vs]) :-
+    nonvar(P), P = (A, B), var(A),
+    tuple_vars(B, Vs),
+    term_variables(P, All), length(All, K), length([A|Vs], K).
+
+tuple_vars(P, [P]) :- var(P), !.
+tuple_vars((A, B), [A|Vs]) :- var(A), tuple_vars(B, Vs).
+

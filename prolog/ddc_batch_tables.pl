@@ -1,0 +1,294 @@
+/*  ddc_batch_tables.pl -- the batched filter's tables of columns.
+
+    Part of the batched particle filter (ddc_batch.pl, the API): the
+    particles' values of a random variable at a time are one column term
+    c(V1, ..., VN); this module holds the columns of a time in a table,
+    keyed by the variable, with what is known of each column (its entry),
+    the tables of the two times a filter keeps, and the resampling of
+    tables.
+*/
+
+:- module(ddc_batch_tables,
+          [ table_new/1,                % -Table
+            table_get/3,                % +Table, +Key, -Entry
+            table_put/3,                % +Table, +Key, +Entry
+            table_match/3,              % +Table, ?Key, -Entry
+            new_column/3,               % +N, +Value, -Column
+            fill_column/3,              % +N, !Column, +Value
+            uncomputed/3,               % +Ps, +Column, -Missing
+            defined_at/3,               % +Ps, +Column, -Defined
+            settle/1,                   % !Entry
+            entry_tuple_arity/2,        % !Entry, -Arity
+            tuple_shape/2,              % +K, -Shape
+            real_table/2,               % +Table0, -Table
+            resample_tables/3,          % +Sources, +Pairs, -Table
+            nb_link_field/4             % +Fields, +Field, !Record, +Value
+          ]).
+
+:- use_module(library(apply)).
+:- use_module(library(lists)).
+:- use_module(ddc_records).
+
+:- set_prolog_flag(optimise, true).
+
+/** <module> Tables of columns for the batched filter
+
+A column is a term c(V1, ..., VN) with an argument per particle: '$u'
+where the particle's value is not drawn yet, '$undef' where no clause
+applies.
+
+A table holds the columns of one time: Key -> entry(Column, Status,
+Arity), Status one of open (some particle may lack its value: '$u'),
+same(V) (every particle holds V, '$undef' where no clause applied),
+defined (each particle a value of its own), mixed (some undefined).  It
+has a fixed number of bucket chains (1024: table_new/1); an entry is
+copied once, when put, and then updated in place, so that a column taken
+from the table stays the table's own.  Arity: the tuple arity of all of
+a defined column's values, unknown until found (entry_tuple_arity/2), or
+none.
+
+A filter keeps the tables of two times, a tables(OlderTime, Older,
+LatestTime, Latest) record: queries read both, a step writes the latest
+only.  After a resampling the older table is pending(Sources, Pairs)
+until a query first reads it (real_table/2).
+*/
+
+%   entry(Column, Status, Arity): a table's entry (above).
+:- record_type entry(column, status, arity).
+
+%   tables(OlderTime, Older, LatestTime, Latest): the tables of two times
+%   (Older none at time 0, or in a worker's copy of a group).
+:- record_type tables(older_time, older, latest_time, latest).
+
+%!  nb_link_field(+Fields:list(atom), +Field:atom, !Record, +Value) is det.
+%
+%   nb_linkarg/3 of Record's Field, whose record type has the fields
+%   Fields (as its Type_fields/1 gives them): Value linked, not copied
+%   (ddc_records' nb_set_ accessors copy, as nb_setarg/3 does).
+nb_link_field(Fields, Field, Record, Value) :-
+    nth1(I, Fields, Field), !,
+    nb_linkarg(I, Record, Value).
+
+                 /*******************************
+                 *        TABLES OF A TIME      *
+                 *******************************/
+
+%   (The buckets are a term's arguments, indexed by the key's hash: the
+%   only arg/3 on a table.)
+
+%!  table_new(-Table) is det.
+table_new(T) :- functor(T, tab, 1024).
+
+%!  table_get(+Table, +Key, -Entry) is semidet.
+table_get(T, K, E) :-
+    term_hash(K, H), I is H mod 1024 + 1,
+    arg(I, T, L), nonvar(L), memberchk(K-E0, L), E = E0.
+
+%!  table_put(!Table, +Key, +Entry) is det.
+%
+%   Adds a copy of Key-Entry to Table (a term made by unification may be
+%   undone: the copy is the table's own).
+table_put(T, K, E) :-
+    term_hash(K, H), I is H mod 1024 + 1,
+    arg(I, T, L),
+    duplicate_term(K-E, KE),
+    (   var(L) -> nb_linkarg(I, T, [KE]) ; nb_linkarg(I, T, [KE|L]) ).
+
+%   table_link(+T, +K, +E): as table_put/3 for an entry made by construction
+%   (no binding to undo): linked, not copied.
+table_link(T, K, E) :-
+    term_hash(K, H), I is H mod 1024 + 1,
+    arg(I, T, L),
+    (   var(L) -> nb_linkarg(I, T, [K-E]) ; nb_linkarg(I, T, [K-E|L]) ).
+
+%!  table_match(+Table, ?Key, -Entry) is nondet.
+table_match(T, K, E) :-
+    arg(_, T, L), nonvar(L), member(K-E, L).
+
+                 /*******************************
+                 *            COLUMNS           *
+                 *******************************/
+
+%!  new_column(+N, +Value, -Column) is det.
+%
+%   A column of N particles, each holding Value.
+new_column(N, V, C) :-
+    functor(C, c, N),
+    fill_column(N, C, V).
+
+%!  fill_column(+N, !Column, +Value) is det.
+%
+%   Binds the arguments N..1 of Column (fresh variables) to Value.
+fill_column(0, _, _) :- !.
+fill_column(I, C, V) :- arg(I, C, V), I1 is I-1, fill_column(I1, C, V).
+
+%!  uncomputed(+Ps, +Column, -Missing) is det.
+%
+%   Missing: the particles of Ps whose value in Column is not drawn yet.
+uncomputed([], _, []).
+uncomputed([I|Is], C, Ps) :-
+    arg(I, C, V),
+    (   V == '$u' -> Ps = [I|Ps1] ; Ps = Ps1 ),
+    uncomputed(Is, C, Ps1).
+
+%!  defined_at(+Ps, +Column, -Defined) is det.
+%
+%   Defined: the particles of Ps that have a value in Column.
+defined_at([], _, []).
+defined_at([I|Is], C, Ps) :-
+    arg(I, C, V),
+    (   ( V == '$u' ; V == '$undef' ) -> Ps = Ps1 ; Ps = [I|Ps1] ),
+    defined_at(Is, C, Ps1).
+
+                 /*******************************
+                 *            ENTRIES           *
+                 *******************************/
+
+%!  settle(!Entry) is det.
+%
+%   Entry's status once every particle has a value (unchanged, open,
+%   while one lacks it).
+settle(Entry) :-
+    entry_column(Entry, C),
+    functor(C, _, N),
+    arg(1, C, V1),
+    column_status(N, C, V1, same, S0),
+    (   S0 == open -> true
+    ;   S0 == same -> nb_set_entry_status(Entry, same(V1))
+    ;   nb_set_entry_status(Entry, S0)
+    ).
+
+%   column_status(+I, +C, +V1, +S0, -S): the status of C's arguments I..1
+%   (open as soon as one lacks its value).
+column_status(0, _, _, S, S) :- !.
+column_status(I, C, V1, S0, S) :-
+    arg(I, C, V),
+    (   V == '$u' -> S = open
+    ;   (   S0 == same, V == V1 -> S1 = same
+        ;   S0 == mixed -> S1 = mixed
+        ;   V == '$undef' -> S1 = mixed
+        ;   V1 == '$undef' -> S1 = mixed
+        ;   S1 = defined
+        ),
+        I1 is I-1,
+        column_status(I1, C, V1, S1, S)
+    ).
+
+%!  entry_tuple_arity(!Entry, -Arity) is det.
+%
+%   The tuple arity every value of a defined entry has, or none; found
+%   once, then kept in the entry.
+entry_tuple_arity(Entry, Arity) :-
+    entry_arity(Entry, A0),
+    (   A0 \== unknown
+    ->  Arity = A0
+    ;   entry_column(Entry, C),
+        arg(1, C, V1),
+        value_arity(V1, 1, K),
+        (   K > 1, functor(C, _, N), with_arity_all(N, C, K) -> A = K ; A = none ),
+        nb_set_entry_arity(Entry, A),
+        Arity = A
+    ).
+
+with_arity_all(N, C, K) :-
+    tuple_shape(K, Shape),
+    forall(between(1, N, I), ( arg(I, C, V), subsumes_term(Shape, V) )).
+
+value_arity(V, K0, K) :-
+    (   nonvar(V), V = (_, B) -> K1 is K0+1, value_arity(B, K1, K) ; K = K0 ).
+
+%!  tuple_shape(+K, -Shape) is det.
+%
+%   Shape is (_, ..., _) of K elements (the last any term).
+tuple_shape(1, _) :- !.
+tuple_shape(K, (_, S)) :- K1 is K-1, tuple_shape(K1, S).
+
+                 /*******************************
+                 *          RESAMPLING          *
+                 *******************************/
+
+%!  real_table(+Table0, -Table) is det.
+%
+%   Table0 itself, or the table a pending(Sources, Pairs) stands for,
+%   resampled now.
+real_table(pending(Srcs, Pairs), Tab) :- !,
+    resample_tables(Srcs, Pairs, Tab).
+real_table(Tab, Tab).
+
+%!  resample_tables(+Sources:list, +Pairs:list, -Table) is det.
+%
+%   A table of the particles Pairs (Group-Index, 1-based) of the tables
+%   Sources (one per group, each a table, pending/2 or none; a key a group
+%   lacks is '$u' there: never drawn in those particles).
+resample_tables(Srcs0, Pairs, New) :-
+    maplist(real_table, Srcs0, Srcs),
+    table_new(New),
+    findall(K, ( member(Tab, Srcs), Tab \== none, table_match(Tab, K, _) ), Ks0),
+    sort(Ks0, Ks),
+    length(Pairs, N),
+    forall(member(K, Ks),
+           (   maplist(source_entry(K), Srcs, Es),
+               resampled_entry(Es, Pairs, N, E),
+               table_link(New, K, E)
+           )).
+
+source_entry(K, Tab, E) :-
+    (   Tab \== none, table_get(Tab, K, E0) -> E = E0 ; E = none ).
+
+%   (A column of one value is the same after resampling: a source's of the
+%   same length is shared, not copied: a complete column is never written.)
+resampled_entry(Es, Pairs, N, E) :-
+    (   Es = [E1|_], E1 \== none, entry_status(E1, Same), Same = same(V),
+        entry_arity(E1, A),
+        forall(member(E2, Es), same_entry(E2, V))
+    ->  (   member(E2, Es), E2 \== none, entry_column(E2, C0), functor(C0, _, N)
+        ->  C1 = C0
+        ;   functor(C, c, N), fill_column(N, C, V), duplicate_term(C, C1)
+        ),
+        linked_entry(C1, Same, A, E)
+    ;   maplist(source_column, Es, Cs),
+        Src =.. [s|Cs],
+        pair_values(Pairs, Src, Vs),
+        C =.. [c|Vs],
+        (   forall(member(E1, Es), defined_entry(E1))
+        ->  common_arity(Es, A),
+            linked_entry(C, defined, A, E)
+        ;   linked_entry(C, open, unknown, E0),
+            duplicate_term(E0, E),
+            settle(E)
+        )
+    ).
+
+%   linked_entry(+Column, +Status, +Arity, -Entry): a new entry whose
+%   fields are set by nb_linkarg/3 (not copied), so that it stays as made
+%   when the query backtracks over its making (a field bound by its
+%   accessor, arg/3, would be unbound again): for table_link/3.
+linked_entry(C, S, A, E) :-
+    entry_fields(Fields),
+    new_entry(E),
+    nb_link_field(Fields, column, E, C),
+    nb_link_field(Fields, status, E, S),
+    nb_link_field(Fields, arity, E, A).
+
+same_entry(E, V) :- E \== none, entry_status(E, same(V1)), V1 == V.
+
+%   defined_entry(+E): E is a group's entry with a value in every particle
+%   (a group that lacks the key, none, has it open: never drawn there).
+defined_entry(E) :- E \== none, entry_status(E, defined).
+
+source_column(none, '$none') :- !.
+source_column(E, C) :- entry_column(E, C).
+
+%   (Src: the groups' columns, an argument per group.)
+pair_values([], _, []).
+pair_values([G-L|Ps], Src, [V|Vs]) :-
+    arg(G, Src, C),
+    (   C == '$none' -> V = '$u' ; arg(L, C, V) ),
+    pair_values(Ps, Src, Vs).
+
+common_arity([E|Es], Arity) :-
+    entry_arity(E, A),
+    (   forall(( member(E1, Es), E1 \== none ), ( entry_arity(E1, A1), A1 == A ))
+    ->  Arity = A
+    ;   Arity = unknown
+    ).
