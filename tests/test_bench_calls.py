@@ -27,7 +27,7 @@ def test_call_counts_count_the_engine_predicates_of_the_steps() -> None:
 
 def test_batched_calls_are_counted_too() -> None:
     counts = filter_step.call_counts(particles=40, objects=3, steps=2, seed=1, engine="batched")
-    assert any(name.startswith("ddc_batch:beval/") for name in counts)
+    assert any(name.startswith("ddc_batch_eval:eval_body/") for name in counts)
     assert not any(name.startswith("ddc_store:") for name in counts)
 
 
