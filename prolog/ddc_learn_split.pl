@@ -699,7 +699,7 @@ prolog:message(_Lang, error(ddc_learn(Cause, Where), _)) -->
     split_message(Cause, Where).
 
 split_message(Cause, Where) -->
-    ddc_learn_data:learn_where(Where),
+    ddc_learn_messages:learn_where(Where),
     split_cause(Cause).
 
 split_cause(one_world(Types)) --> !,

@@ -1,0 +1,147 @@
+/*  ddc_learn_text.pl -- DC source text of the learner's terms and clauses,
+    and the names of their variables.
+*/
+
+:- module(ddc_learn_text,
+          [ learn_clause_text/3,        % +Data, +Clause, -Text
+            clause_text_vars/2,         % +Clause, -Text
+            term_text/3,                % +Term, +Bindings, -Text
+            print_literal/1,            % +Literal
+            print_conj/1,               % +Conjunction
+            print_term_/1,              % +Term
+            type_var_base/2,            % +Type, -Base
+            capitalise/2,               % +Atom, -Capitalised
+            unique_name/3,              % +Base, +Used, -Name
+            clause_names/3,             % +Vars, +VarTerms, -Bindings
+            new_var/4,                  % +Base, ?Var, +Bindings0, -Bindings
+            conj_list/2                 % +Goals, -Conjunction
+          ]).
+
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+:- use_module(ddc_learn_data).
+
+:- set_prolog_flag(optimise, true).
+
+/** <module> DC text of learned terms
+
+Terms are written with the DC operators of ddc_learn_data.pl, quoted,
+their variables by the names in a list Name=Var (the others as `_`): a
+clause's head and distribution on the first line, one body literal per
+line.  Variable names come from the argument types (an obj is Obj, Obj1,
+...).
+*/
+
+new_var(Base, V, Bs0, Bs) :-
+    findall(N, member(N=_, Bs0), Used),
+    unique_name(Base, Used, Name),
+    append(Bs0, [Name=V], Bs).
+
+conj_list([G], G) :- !.
+conj_list([G|Gs], (G, C)) :- conj_list(Gs, C).
+
+                 /*******************************
+                 *           PRINTING           *
+                 *******************************/
+
+%!  learn_clause_text(+Data, +Clause, -Text:string) is det.
+%
+%   Clause (from learn_clause/5) as DC source text: the head and its
+%   distribution on the first line, one body literal per line.
+learn_clause_text(_, clause(C, Bs), Text) :-
+    copy_term(C-Bs, C1-Bs1),
+    maplist([Name=V]>>( var(V) -> V = '$VAR'(Name) ; true ), Bs1),
+    term_variables(C1, Rest),
+    maplist(=('$VAR'('_')), Rest),
+    with_output_to(string(Text), print_clause(C1)).
+
+clause_text_vars(C, Text) :-
+    copy_term(C, C1),
+    numbervars(C1, 0, _),
+    with_output_to(string(Text), print_clause(C1)).
+
+term_text(T, Bs, Text) :-
+    copy_term(T-Bs, T1-Bs1),
+    maplist([Name=V]>>( var(V) -> V = '$VAR'(Name) ; true ), Bs1),
+    term_variables(T1, Rest),
+    maplist(=('$VAR'('_')), Rest),
+    with_output_to(string(Text), print_literal(T1)).
+
+print_clause((H ~ D := B)) :- !,
+    print_literal(H), write(' ~ '), print_term_(D),
+    (   B == true -> write('.')
+    ;   write(' :='), print_body(B), write('.')
+    ).
+print_clause((H := B)) :- !,
+    print_literal(H), write(' :='), print_body(B), write('.').
+print_clause((H :- B)) :- !,
+    print_term_(H), write(' :-'), print_body(B), write('.').
+print_clause(C) :-
+    print_term_(C), write('.').
+
+print_body(B) :-
+    conj_to_list(B, Ls),
+    foldl([L, Sep0, ',']>>( write(Sep0), nl, write('    '), print_literal(L) ), Ls, '', _).
+
+conj_to_list((A, B), Ls) :- !, conj_to_list(A, LA), conj_to_list(B, LB), append(LA, LB, Ls).
+conj_to_list(A, [A]).
+
+print_literal(\+ G) :- !, write('\\+ '), print_inner(G).
+print_literal((A -> B)) :- !, write('('), print_literal(A), write(' -> '), print_literal(B), write(')').
+print_literal((A, B)) :- !, write('('), print_conj((A, B)), write(')').
+print_literal(findall_forward(T, G, L)) :- !,
+    write('findall_forward('), print_term_(T), write(', '),
+    (   G = (_, _) -> write('('), print_conj(G), write(')') ; print_literal(G) ),
+    write(', '), print_term_(L), write(')').
+print_literal(G) :-
+    compound(G), G =.. [Op, A, B], memberchk(Op, [~=, <, >, =<, >=, ==, is, =, =:=, =\=]), !,
+    print_term_(A, 699), format(' ~w ', [Op]), print_term_(B, 699).
+print_literal(G) :- print_term_(G).
+
+print_inner(G) :-
+    (   G = (_, _) -> write('('), print_conj(G), write(')')
+    ;   G = (_ ~= _) -> print_literal(G)
+    ;   print_literal(G)
+    ).
+
+print_conj((A, B)) :- !, print_literal(A), write(', '), print_conj(B).
+print_conj(A) :- print_literal(A).
+
+print_term_(T) :-
+    print_term_(T, 1200).
+
+print_term_(T, Priority) :-
+    write_term(T, [quoted(true), numbervars(true), spacing(next_argument),
+                   module(ddc_learn_data), priority(Priority)]).
+
+                 /*******************************
+                 *            NAMES             *
+                 *******************************/
+
+%   type_var_base(+Type, -Base): variables of type obj are Obj, Obj1, ...;
+%   of DreaML's type la are La, ...; of an untyped argument X.
+type_var_base(T, B) :-
+    (   atom(T), T \== '_', T \== '' -> capitalise(T, B0), sanitise(B0, B)
+    ;   B = 'X'
+    ).
+
+capitalise(A, C) :-
+    atom_codes(A, [F|Rest]),
+    code_type(U, to_upper(F)),
+    atom_codes(C, [U|Rest]).
+
+sanitise(A, S) :-
+    atom_codes(A, Cs),
+    include([C]>>( code_type(C, csym) ), Cs, Cs1),
+    ( Cs1 == [] -> S = 'X' ; atom_codes(S, Cs1) ).
+
+unique_name(Base, Used, Name) :-
+    (   \+ memberchk(Base, Used) -> Name = Base
+    ;   between(1, inf, I), atom_concat(Base, I, Name), \+ memberchk(Name, Used) -> true
+    ).
+
+%   clause_names(+Vars, +VarTerms, -Bindings): Name=Var for the node's
+%   variables.
+clause_names(Vars, Terms, Bs) :-
+    length(Vars, N), length(Ts, N), append(Ts, _, Terms),
+    maplist([v(Name, _), T, Name=T]>>true, Vars, Ts, Bs).
