@@ -13,12 +13,14 @@
             branch_literal/6,           % +Data, +Spec, +Branch, -Literal, +Names0, -Names
             dc_literal/3,               % +Data, +Internal, -DC
             fresh_names/3,              % +Fresh, +Names0, -Names
-            fresh_values/2              % +Fresh, -Vars
+            fresh_values/2,             % +Fresh, -Vars
+            agg_call/4                  % ?Aggregate, ?List, ?Result, ?Goal
           ]).
 
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(ddc_learn_data).
+:- use_module(ddc_learn_records).
 :- use_module(ddc_learn_text, [capitalise/2, clause_names/3, term_text/3, type_var_base/2,
                                unique_name/3]).
 
@@ -29,8 +31,8 @@
 A candidate is an instance of a mode of the target (its + arguments bound
 to the node's variables, its constants chosen), stored in the data
 module as '$ddcl_cand'(Id, Key, Spec) under one id per distinct instance.
-Spec is cand(Mode, Kind, Goal, Ins, Fresh, Val, Dom, Ts, Agg, Lits) (see
-instance/8); its kind decides its branches (the table in ddc_learn.pl).
+Spec is a candidate record (ddc_learn_records.pl); its kind decides its
+branches (the table in ddc_learn.pl).
 branch_literal/6 writes a branch as the body literal of a learned clause.
 */
 
@@ -52,7 +54,9 @@ branch_literal/6 writes a branch as the body literal of a learned clause.
 %   variables).
 learn_candidates(M, Node, Cands) :-
     M:'$ddcl_node'(Node, Info, _),
-    Info = info(target(TN, TA, _), Vars, Used, _),
+    node_info_target(Info, target(TN, TA, _)),
+    node_info_vars(Info, Vars),
+    node_info_used(Info, Used),
     findall(C, node_candidate(M, TN, TA, Vars, Used, C), Cs0),
     list_to_set(Cs0, Cs),
     length(Vars, NV),
@@ -82,13 +86,8 @@ literal_preds(L, [N]) :- functor(L, N, _).
 
 %   instance(+M, +Vars, +MId, +Agg, +Cond, +Lit, +Where, -Spec) is nondet.
 %
-%   Spec = cand(MId, Kind, Goal, Ins, Fresh, Val, Dom, Ts, Agg, Lits)
-%     Goal   the literal (or Cond-and-literal of an aggregate), internal
-%     Ins    [P-V]: template variable V takes node variable P
-%     Fresh  [v(Type, V)]: new variables of a relational literal
-%     Val    the value variable (an attribute's, an aggregate's result)
-%     Lits   lit(Cond, Lit, Locals): an aggregate's condition and literal
-%            and their own new variables [v(Type, V)], for the DC text
+%   Spec is a candidate(Mode, Kind, Goal, Inputs, Fresh, Value, Domain,
+%   Thresholds, Aggregate, Literal) record (its fields: ddc_learn_records.pl).
 instance(M, Vars, MId, none, none, L, W, Spec) :- !,
     literal_args(M, L, W, N, KModes, VMode, KTypes, VSpec),
     bind_keys(M, KModes, KTypes, Vars, KArgs, [], Ins0, [], Fresh0),
@@ -99,7 +98,7 @@ instance(M, Vars, MId, none, none, L, W, Spec) :- !,
         ( Kind == test -> Val = none ; Val = Val0 )
     ),
     reverse(Fresh0, Fresh),
-    Spec = cand(MId, Kind, G, Ins, Fresh, Val, Dom, Ts, none, lit(true, G, [])).
+    Spec = candidate(MId, Kind, G, Ins, Fresh, Val, Dom, Ts, none, lit(true, G, [])).
 instance(M, Vars, MId, Agg, Cond, L, W, Spec) :-
     (   Cond == none
     ->  CG = true, CIns = [], CFresh = []
@@ -124,7 +123,7 @@ instance(M, Vars, MId, Agg, Cond, L, W, Spec) :-
     conj(CG, LG, G),
     literal_locals(M, LG, KModes, KTypes, KArgs, LLocal),
     append(Local, LLocal, Locals),
-    Spec = cand(MId, Kind, G, Ins, [], Val, Dom, [], Agg, lit(CG, LG, Locals)).
+    Spec = candidate(MId, Kind, G, Ins, [], Val, Dom, [], Agg, lit(CG, LG, Locals)).
 
 %   literal_locals: the aggregated literal's own new variables (- keys).
 literal_locals(_, _, Modes, Types, Args, Locals) :-
@@ -229,7 +228,9 @@ candidate_id(M, Spec, Id) :-
     ).
 
 instance_key(Spec, k(MId, G1)) :-
-    Spec = cand(MId, _, G, Ins, _, _, _, _, _, _),
+    candidate_mode(Spec, MId),
+    candidate_goal(Spec, G),
+    candidate_inputs(Spec, Ins),
     copy_term(G-Ins, G1-Ins1),
     maplist([P-'$in'(P)]>>true, Ins1),
     numbervars(G1, 0, _).
@@ -241,7 +242,10 @@ next_id(M, Kind, Id) :-
 candidate_dict(M, Vars, NV, TA, Id, _{id: Id, mode: MId, kind: Kind, branches: NB, labels: Labels,
                                       regressor: Regs, root: Root, fresh: Fresh, where: Where}) :-
     M:'$ddcl_cand'(Id, _, Spec),
-    Spec = cand(MId, Kind, _, Ins, F, _, _, _, _, _),
+    candidate_mode(Spec, MId),
+    candidate_kind(Spec, Kind),
+    candidate_inputs(Spec, Ins),
+    candidate_fresh(Spec, F),
     M:'$ddcl_mode'(MId, _, _, _, _, File:Line),
     format(atom(Where), '~w:~w', [File, Line]),
     branch_count(Spec, NB),
@@ -253,11 +257,21 @@ candidate_dict(M, Vars, NV, TA, Id, _{id: Id, mode: MId, kind: Kind, branches: N
     (   forall(member(P-_, Ins), P < TA) -> Root = true ; Root = false ),
     ( F == [] -> Fresh = false ; Fresh = true ).
 
-branch_count(cand(_, discrete, _, _, _, _, D, _, _, _), N) :- !, length(D, K), N is K+1.
-branch_count(cand(_, agg_discrete, _, _, _, _, D, _, _, _), N) :- !, length(D, K), N is K+1.
-branch_count(cand(_, threshold, _, _, _, _, _, Ts, _, _), N) :- !, length(Ts, K), N is K+2.
-branch_count(cand(_, count, _, _, _, _, _, _, _, _), 1) :- !.
-branch_count(_, 2).
+%!  branch_count(+Spec, -Branches:integer) is det.
+%
+%   The number of outcomes of a candidate (the table in ddc_learn.pl).
+branch_count(Spec, N) :-
+    candidate_kind(Spec, Kind),
+    kind_branch_count(Kind, Spec, N).
+
+kind_branch_count(discrete, Spec, N) :- !,
+    candidate_domain(Spec, D), length(D, K), N is K+1.
+kind_branch_count(agg_discrete, Spec, N) :- !,
+    candidate_domain(Spec, D), length(D, K), N is K+1.
+kind_branch_count(threshold, Spec, N) :- !,
+    candidate_thresholds(Spec, Ts), length(Ts, K), N is K+2.
+kind_branch_count(count, _, 1) :- !.
+kind_branch_count(_, _, 2).
 
 branch_regressor(numeric, 0, true) :- !.
 branch_regressor(count, 0, true) :- !.
@@ -266,7 +280,8 @@ branch_regressor(_, _, false).
 
 branch_label(M, Spec, VarTerms, Bs0, B, Text) :-
     copy_term(Spec, S1),
-    S1 = cand(_, _, _, Ins, Fresh, _, _, _, _, _),
+    candidate_inputs(S1, Ins),
+    candidate_fresh(S1, Fresh),
     maplist(bind_in(VarTerms), Ins),
     fresh_names(Fresh, Bs0, Bs1),
     branch_literal(M, S1, B, Lit, Bs1, Bs),
@@ -293,8 +308,15 @@ fresh_name(v(Type, V), Bs0, Bs) :-
 
 %   branch_literal(+M, +Spec, +Branch, -Literal, +Bs0, -Bs): the branch's
 %   body literal in DC syntax; names for its new variables added to Bs.
-branch_literal(M, cand(_, Kind, G, _, Fresh, Val, Dom, Ts, Agg, lit(CG, LG, Locals)), B, Lit,
-               Bs0, Bs) :-
+branch_literal(M, Spec, B, Lit, Bs0, Bs) :-
+    candidate_kind(Spec, Kind),
+    candidate_goal(Spec, G),
+    candidate_fresh(Spec, Fresh),
+    candidate_value(Spec, Val),
+    candidate_domain(Spec, Dom),
+    candidate_thresholds(Spec, Ts),
+    candidate_aggregate(Spec, Agg),
+    candidate_literal(Spec, lit(CG, LG, Locals)),
     fresh_names(Locals, Bs0, Bs00),
     value_name(M, Kind, Agg, LG, Val, Bs00, Bs1),
     dc_literal(M, G, DG),

@@ -13,9 +13,10 @@
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(ddc_learn_data).
+:- use_module(ddc_learn_records).
 :- use_module(ddc_learn_text, [clause_names/3, conj_list/2, learn_clause_text/3, new_var/4,
                                print_conj/1, print_literal/1, print_term_/1, term_text/3]).
-:- use_module(ddc_learn_candidates, [bind_in/2, branch_literal/6, fresh_names/3,
+:- use_module(ddc_learn_candidates, [agg_call/4, bind_in/2, branch_literal/6, fresh_names/3,
                                      fresh_values/2]).
 :- use_module(ddc_learn_background, [learn_background/3]).
 
@@ -96,7 +97,9 @@ learn_background_for(M, Leaves, Texts) :-
 %   of one family (a leaf gaussian, another poisson): no single head.
 learn_tree_text(M, Leaves, Text) :-
     Leaves = [[N0, MT0|_]|_],
-    M:'$ddcl_node'(N0, info(target(N, A, Spec), Vars, _, _), _),
+    M:'$ddcl_node'(N0, Info, _),
+    node_info_target(Info, target(N, A, Spec)),
+    node_info_vars(Info, Vars),
     length(HeadInfo, A), append(HeadInfo, _, Vars),
     length(HeadVars, A),
     clause_names(HeadInfo, HeadVars, Bs0),
@@ -106,7 +109,7 @@ learn_tree_text(M, Leaves, Text) :-
     once(model_goals(Model0, Spec, _, Dist0, _, [], _)),
     dist_template(Dist0, Dist, Bs0, Bs1),
     maplist(leaf_item(M), Leaves, Items),
-    tree_node(Items, t(M, Spec, Dist), s([], HeadVars, Bs1, 0, []), Bs, Tree),
+    tree_node(Items, tree_context(M, Spec, Dist), path_state([], HeadVars, Bs1, 0, []), Bs, Tree),
     dedupe_names(Bs, Bs2),
     copy_term(t(Head, Dist, Guard, Tree)-Bs2, t(H1, D1, G1, T1)-Bs3),
     maplist([Name=V]>>( var(V) -> V = '$VAR'(Name) ; true ), Bs3),
@@ -115,7 +118,8 @@ learn_tree_text(M, Leaves, Text) :-
     with_output_to(string(Text), print_tree_clause(H1, D1, G1, T1)).
 
 leaf_item(M, [Node, MT, Regs, Comment], Path-leaf(Model, Regs, Comment)) :-
-    M:'$ddcl_node'(Node, info(_, _, _, Path), _),
+    M:'$ddcl_node'(Node, Info, _),
+    node_info_path(Info, Path),
     term_string(Model, MT).
 
 %   dist_template(+LeafDist, -Dist, +Bs0, -Bs): the head's distribution,
@@ -145,10 +149,14 @@ param_goal(P, Q, Gs, Gs) :- var(P), !, P = Q.
 param_goal(P, Q, [Q = P|Gs], Gs).
 
 %   tree_node(+Items, +Ctx, +S, -Bs, -Tree): the (sub)tree of Items (each
-%   RemainingPath-leaf(Model, Regressors, Comment)) from path state S (see
-%   path_literal/4); Tree is leaf(Comment, Goals) or node([Lit-Tree, ...]).
-tree_node([[]-leaf(Model, Regs, Comment)], t(_, Spec, Dist), s(_, _, Bs0, _, Xs0), Bs,
+%   RemainingPath-leaf(Model, Regressors, Comment)) from path state S (a
+%   path_state record, see path_literal/4) in the context
+%   tree_context(Data, Spec, HeadDist); Tree is leaf(Comment, Goals) or
+%   node([Lit-Tree, ...]).
+tree_node([[]-leaf(Model, Regs, Comment)], tree_context(_, Spec, Dist), S, Bs,
           leaf(Comment, Goals)) :- !,
+    path_state_names(S, Bs0),
+    path_state_regressors(S, Xs0),
     regressor_vars(Regs, Xs0, Xs),
     once(model_goals(Model, Spec, Xs, D, Goals0, Bs0, Bs)),
     leaf_params(D, Dist, Eqs),
@@ -158,7 +166,7 @@ tree_node(Items, Ctx, S0, Bs, node(Branches)) :-
     forall(member(P-_, Items), P = [step(Id, _)|_]),
     group_branches(Items, Groups),
     tree_branches(Groups, Id, Ctx, S0, Bs, Branches0),
-    Ctx = t(M, _, _),
+    Ctx = tree_context(M, _, _),
     (   exhaustive(M, Id, Groups)
     ->  append(Front, [_-Last], Branches0),
         (   threshold_node(Front, Last, Branches1) -> true
@@ -188,7 +196,9 @@ threshold_rest([(_ ~= V, _ >= _, V < T)-B|Is], V0, [(V0 < T)-B|Cs]) :-
 %   empty).  A discrete attribute's are not: a value outside its domain
 %   takes none.
 exhaustive(M, Id, Groups) :-
-    M:'$ddcl_cand'(Id, _, cand(_, Kind, _, _, _, _, _, Ts, _, _)),
+    M:'$ddcl_cand'(Id, _, Spec),
+    candidate_kind(Spec, Kind),
+    candidate_thresholds(Spec, Ts),
     (   memberchk(Kind, [test, numeric, agg_numeric]) -> N = 2
     ;   Kind == threshold -> length(Ts, NT), N is NT+2
     ),
@@ -203,14 +213,15 @@ same_branch([[step(_, B)|P]-L|Is], B0, [P-L|Ps], Rest) :- B == B0, !,
     same_branch(Is, B0, Ps, Rest).
 same_branch(Is, _, [], Is).
 
-tree_branches([], _, _, s(_, _, Bs, _, _), Bs, []).
+tree_branches([], _, _, S, Bs, []) :-
+    path_state_names(S, Bs).
 tree_branches([B-Sub|Gs], Id, Ctx, S0, Bs, [Lit-T|Ts]) :-
-    Ctx = t(M, _, _),
+    Ctx = tree_context(M, _, _),
     path_literal(M, step(Id, B), S0, S1),
-    S1 = s([Lit|_], _, _, _, _),
+    path_state_literals(S1, [Lit|_]),
     tree_node(Sub, Ctx, S1, Bs1, T),
-    S0 = s(Ls, VT, _, K, Xs),
-    tree_branches(Gs, Id, Ctx, s(Ls, VT, Bs1, K, Xs), Bs, Ts).
+    S0 = path_state(Ls, VT, _, K, Xs),          % the next branch: S0 with Sub's names
+    tree_branches(Gs, Id, Ctx, path_state(Ls, VT, Bs1, K, Xs), Bs, Ts).
 
 %   dedupe_names(+Bs0, -Bs): the first name of each variable (a leaf's
 %   model variable bound to the head's parameter keeps the head's name).
@@ -254,12 +265,16 @@ print_cond((A, B)) :- !, print_conj((A, B)).
 print_cond(G) :- print_literal(G).
 
 clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs) :-
-    M:'$ddcl_node'(Node, info(target(N, A, Spec), Vars, _, Path), _),
+    M:'$ddcl_node'(Node, Info, _),
+    node_info_target(Info, target(N, A, Spec)),
+    node_info_vars(Info, Vars),
+    node_info_path(Info, Path),
     length(HeadInfo, A), append(HeadInfo, _, Vars),
     length(HeadVars, A),
     clause_names(HeadInfo, HeadVars, Bs0),
     K =.. [N|HeadVars], dc_term(M, K, Head),
-    foldl(path_literal(M), Path, s([], HeadVars, Bs0, 0, []), s(RevLits, _, Bs1, _, Xs0)),
+    foldl(path_literal(M), Path, path_state([], HeadVars, Bs0, 0, []),
+          path_state(RevLits, _, Bs1, _, Xs0)),
     reverse(RevLits, Lits1),
     examples_guard(M, N, A, HeadVars, Lits1, Lits),
     regressor_vars(Regs, Xs0, Xs),
@@ -292,12 +307,17 @@ renamed_dc(M, K ~= V, DK ~= V) :- !, dc_term(M, K, DK).
 renamed_dc(M, G, DG) :- callable(G), !, dc_term(M, G, DG).
 renamed_dc(_, G, G).
 
-%   path_literal(+M, +Step, +S0, -S): S = s(LiteralsReversed, VarTerms,
-%   Bindings, StepIndex, StepIndex-ValueVariable pairs).
-path_literal(M, step(Id, B), s(Lits, VT0, Bs0, K0, Xs0), s([Lit|Lits], VT, Bs, K, [K0-X|Xs0])) :-
+%   path_literal(+M, +Step, +S0, -S): S0 and S are path_state(Literals,
+%   VarTerms, Names, Step, Regressors) records (ddc_learn_records.pl): the
+%   step's literal is added to the body, its new variables to the node's.
+path_literal(M, step(Id, B), path_state(Lits, VT0, Bs0, K0, Xs0),
+             path_state([Lit|Lits], VT, Bs, K, [K0-X|Xs0])) :-
     M:'$ddcl_cand'(Id, _, Spec0),
     copy_term(Spec0, Spec),
-    Spec = cand(_, Kind, _, Ins, Fresh, Val, _, _, _, _),
+    candidate_kind(Spec, Kind),
+    candidate_inputs(Spec, Ins),
+    candidate_fresh(Spec, Fresh),
+    candidate_value(Spec, Val),
     maplist(bind_in(VT0), Ins),
     fresh_names(Fresh, Bs0, Bs1),
     branch_literal(M, Spec, B, Lit, Bs1, Bs),
@@ -312,7 +332,7 @@ path_literal(M, step(Id, B), s(Lits, VT0, Bs0, K0, Xs0), s([Lit|Lits], VT, Bs, K
 %   step gives the leaf's model (an attribute's value, a count, a mean).
 regressor_of(numeric, _, V, V) :- !.
 regressor_of(count, (_, length(_, X)), _, X) :- !.
-regressor_of(agg_numeric, (_, Call), _, X) :- compound(Call), Call \= (_ == _), !, arg(2, Call, X).
+regressor_of(agg_numeric, (_, Call), _, X) :- agg_call(_, _, X, Call), !.   % mean_list(L, X)
 regressor_of(_, _, _, none).
 
 regressor_vars([], _, []).

@@ -16,6 +16,7 @@
 :- use_module(library(assoc)).
 :- use_module(library(pairs)).
 :- use_module(ddc_learn_data).
+:- use_module(ddc_learn_records).
 :- use_module(ddc_learn_text, [type_var_base/2, unique_name/3]).
 :- use_module(ddc_learn_worlds, [alts/6]).
 :- use_module(ddc_learn_candidates, [next_id/3, branch_count/2]).
@@ -26,9 +27,10 @@
 /** <module> The nodes of the learner's trees
 
 A node is stored in the data module as '$ddcl_node'(Id, Info, Rows):
-Info is info(target(Name, KeyArity, Spec), Vars, Used, Path) (the node's
-variables v(Name, Type), the candidates used on the path from the root,
-the path's steps step(CandidateId, Branch)), Rows its groundings
+Info is a node_info(Target, Vars, Used, Path) record (ddc_learn_records.pl:
+its tree's target(Name, KeyArity, Spec), the node's variables v(Name,
+Type), the candidates used on the path from the root, the path's steps
+step(CandidateId, Branch)), Rows its groundings
 r(Bindings, World) (see ddc_learn.pl).  The root of a target holds one
 row per grounding of its head and partial world; a split gives each
 branch of a candidate a child with the rows whose outcome is that
@@ -61,7 +63,7 @@ learn_root(M, N, _Options, _{node: Id, y: Ys, weight: Ws, example: Es}) :-
     Goal = ( once(M:TG) -> Y = V ; Y = Missing ),
     retractall(M:'$ddcl_node_target'(_)), assertz(M:'$ddcl_node_target'(N)),
     foldl(root_rows(M, Spec, Ks, Goal, Y, E0), Keys, 0-Rows-Ys-Ws-Es, _-[]-[]-[]-[]),
-    new_node(M, info(target(N, A, Spec), Vars, [], []), Rows, Id).
+    new_node(M, node_info(target(N, A, Spec), Vars, [], []), Rows, Id).
 
 root_rows(M, Spec, Ks, Goal, Y, E0, Key, I0-Rows0-Ys0-Ws0-Es0, I-Rows-Ys-Ws-Es) :-
     I is I0+1,
@@ -136,8 +138,11 @@ learn_split(M, Node, Id, Children) :-
               ( B =:= 0, FVs \== [] -> append(Bs, FVs, Bs1) ; Bs1 = Bs ) ),
             Pairs),
     NB1 is NB-1, numlist(0, NB1, BIs),
-    Info = info(T, Vars, Used, Path),
-    Spec = cand(_, _, _, _, Fresh, _, _, _, _, _),
+    node_info_target(Info, T),
+    node_info_vars(Info, Vars),
+    node_info_used(Info, Used),
+    node_info_path(Info, Path),
+    candidate_fresh(Spec, Fresh),
     maplist(child(M, T, Vars, Used, Path, Id, Fresh, Pairs), BIs, Children).
 
 child(M, T, Vars, Used, Path, Id, Fresh, Pairs, B,
@@ -153,7 +158,7 @@ child(M, T, Vars, Used, Path, Id, Fresh, Pairs, B,
     ;   Vars1 = Vars
     ),
     append(Path, [step(Id, B)], Path1),
-    new_node(M, info(T, Vars1, [Id|Used], Path1), Rows, C).
+    new_node(M, node_info(T, Vars1, [Id|Used], Path1), Rows, C).
 
 fresh_var(v(Type, _), Vars0-Used0, Vars-[Name|Used0]) :-
     type_var_base(Type, Base),
@@ -176,7 +181,8 @@ learn_forget(M, Node) :-
 %   bindings and the partial world's assignment as Key=Value pairs (for
 %   inspection from swipl).
 learn_groundings(M, Node, Gs) :-
-    M:'$ddcl_node'(Node, info(target(N, A, _), _, _, _), Rows),
+    M:'$ddcl_node'(Node, Info, Rows),
+    node_info_target(Info, target(N, A, _)),
     findall(H-Ps, ( member(r(Bs, W), Rows), length(Ks, A), append(Ks, _, Bs),
                     K =.. [N|Ks], dc_term(M, K, H),
                     assoc_to_list(W, Ps0), maplist(world_pair(M), Ps0, Ps) ),

@@ -14,6 +14,7 @@
 :- use_module(library(pairs)).
 :- use_module(ddc_models).
 :- use_module(ddc_learn_data).
+:- use_module(ddc_learn_records).
 :- use_module(ddc_learn_worlds, [alts/6, in_world/2]).
 :- use_module(ddc_learn_candidates, [candidate_id/3, fresh_values/2]).
 
@@ -110,7 +111,15 @@ alt_result(I, Bs, a(O, W, F, P), [res(I, Bs, W, F, P, O)|T], T).
 outcome_goal(M, Spec, Bind, M:'$ddcl_out'(Id, Bind, Out), Out) :-
     candidate_id(M, Spec, Id),
     (   M:'$ddcl_out_done'(Id) -> true
-    ;   copy_term(Spec, cand(_, Kind, G, Ins, Fresh, Val, Dom, Ts, Agg, _)),
+    ;   copy_term(Spec, Copy),
+        candidate_kind(Copy, Kind),
+        candidate_goal(Copy, G),
+        candidate_inputs(Copy, Ins),
+        candidate_fresh(Copy, Fresh),
+        candidate_value(Copy, Val),
+        candidate_domain(Copy, Dom),
+        candidate_thresholds(Copy, Ts),
+        candidate_aggregate(Copy, Agg),
         bind_goal(Ins, BindList, BG),
         fresh_values(Fresh, FVs),
         kind_goal(Kind, Agg, M:G, Val, Dom, Ts, B, X, KG),
