@@ -64,7 +64,7 @@
 /** <module> The DC structure learner's groundings and clauses
 
 A *node* of a tree is a set of groundings of the target's head: rows
-r(Bindings, World), Bindings the values of the node's variables (the head's
+row(Bindings, World), Bindings the values of the node's variables (the head's
 key arguments, then the variables that relational literals on the path
 introduced), World the partial possible world (an assoc Key-Value of the
 uncertain facts the proofs on the path have read).  Python keeps each

@@ -223,7 +223,7 @@ typed_fact_arg(M, N, A, I, C) :-
 candidate_id(M, Spec, Id) :-
     instance_key(Spec, Key),
     (   M:'$ddcl_cand'(Id0, Key, _) -> Id = Id0
-    ;   next_id(M, cand, Id),
+    ;   next_id(M, candidate, Id),
         assertz(M:'$ddcl_cand'(Id, Key, Spec))
     ).
 
@@ -320,29 +320,29 @@ branch_literal(M, Spec, B, Lit, Bs0, Bs) :-
     fresh_names(Locals, Bs0, Bs00),
     value_name(M, Kind, Agg, LG, Val, Bs00, Bs1),
     dc_literal(M, G, DG),
-    branch_literal_(Kind, B, DG, Fresh, Val, Dom, Ts, Agg, CG, LG, M, Lit, Bs1, Bs).
+    kind_branch_literal(Kind, B, DG, Fresh, Val, Dom, Ts, Agg, CG, LG, M, Lit, Bs1, Bs).
 
-branch_literal_(discrete, B, K ~= V, _, V, Dom, _, _, _, _, _, Lit, Bs, Bs) :-
+kind_branch_literal(discrete, B, K ~= V, _, V, Dom, _, _, _, _, _, Lit, Bs, Bs) :-
     (   nth0(B, Dom, C) -> V = C, Lit = (K ~= V) ; Lit = (\+ K ~= _) ).
-branch_literal_(numeric, B, K ~= V, _, V, _, _, _, _, _, _, Lit, Bs, Bs) :-
+kind_branch_literal(numeric, B, K ~= V, _, V, _, _, _, _, _, _, Lit, Bs, Bs) :-
     (   B =:= 0 -> Lit = (K ~= V) ; Lit = (\+ K ~= _) ).
-branch_literal_(threshold, B, K ~= V, _, V, _, Ts, _, _, _, _, Lit, Bs, Bs) :-
+kind_branch_literal(threshold, B, K ~= V, _, V, _, Ts, _, _, _, _, Lit, Bs, Bs) :-
     length(Ts, NT),
     (   B =:= 0 -> Ts = [T|_], Lit = (K ~= V, V < T)
     ;   B =:= NT -> last(Ts, T), Lit = (K ~= V, V >= T)
     ;   B < NT -> B0 is B-1, nth0(B0, Ts, T0), nth0(B, Ts, T1), Lit = (K ~= V, V >= T0, V < T1)
     ;   Lit = (\+ K ~= _)
     ).
-branch_literal_(test, B, DG, Fresh, _, _, _, _, _, _, _, Lit, Bs, Bs) :-
+kind_branch_literal(test, B, DG, Fresh, _, _, _, _, _, _, _, Lit, Bs, Bs) :-
     (   B =:= 0 -> ( Fresh == [] -> Lit = DG ; Lit = (DG -> true) )
     ;   Lit = (\+ DG)
     ).
-branch_literal_(count, _, _, _, _, _, _, _, CG, LG, M, Lit, Bs0, Bs) :-
+kind_branch_literal(count, _, _, _, _, _, _, _, CG, LG, M, Lit, Bs0, Bs) :-
     agg_goal(M, CG, LG, DG),
     list_var(Bs0, Bs1, L),
     count_var(M, LG, Bs1, Bs, X),
     Lit = (findall_forward(x, DG, L), length(L, X)).
-branch_literal_(agg_numeric, B, _, _, V, _, _, Agg, CG, LG, M, Lit, Bs0, Bs) :-
+kind_branch_literal(agg_numeric, B, _, _, V, _, _, Agg, CG, LG, M, Lit, Bs0, Bs) :-
     agg_goal(M, CG, LG, DG),
     list_var(Bs0, Bs1, L),
     (   B =:= 0
@@ -350,7 +350,7 @@ branch_literal_(agg_numeric, B, _, _, V, _, _, Agg, CG, LG, M, Lit, Bs0, Bs) :-
         Lit = (findall_forward(V, DG, L), Call)
     ;   Bs = Bs1, Lit = (findall_forward(V, DG, L), L == [])
     ).
-branch_literal_(agg_discrete, B, _, _, V, Dom, _, Agg, CG, LG, M, Lit, Bs0, Bs) :-
+kind_branch_literal(agg_discrete, B, _, _, V, Dom, _, Agg, CG, LG, M, Lit, Bs0, Bs) :-
     agg_goal(M, CG, LG, DG),
     list_var(Bs0, Bs, L),
     (   nth0(B, Dom, C)

@@ -15,7 +15,7 @@
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_records).
 :- use_module(ddc_learn_text, [clause_names/3, conj_list/2, learn_clause_text/3, new_var/4,
-                               print_conj/1, print_literal/1, print_term_/1, term_text/3]).
+                               print_conj/1, print_literal/1, print_dc_term/1, term_text/3]).
 :- use_module(ddc_learn_candidates, [agg_call/4, bind_in/2, branch_literal/6, fresh_names/3,
                                      fresh_values/2]).
 :- use_module(ddc_learn_background, [learn_background/3]).
@@ -230,7 +230,7 @@ dedupe_names(Bs0, Bs) :-
           Bs0, [], Bs).
 
 print_tree_clause(H, D, Guard, Tree) :-
-    print_literal(H), write(' ~ '), print_term_(D), write(' :='),
+    print_literal(H), write(' ~ '), print_dc_term(D), write(' :='),
     forall(member(G, Guard), ( nl, write('    '), print_literal(G), write(',') )),
     nl, write('    '),
     print_tree(Tree, 4),

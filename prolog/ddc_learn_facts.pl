@@ -327,7 +327,8 @@ assert_background(M, C, W) :-
 %   The value of an uncertain random variable in the partial world being
 %   proved (the assoc in the global variable ddcl_assign).  A key the world
 %   has not assigned yet throws ddcl_need(Key, Dist): the caller
-%   (ddc_learn:expand/5) splits the world on it and proves again.
+%   (world_alternatives/6 in ddc_learn_worlds.pl) splits the world on it
+%   and proves again.
 pick(K, D, V) :-
     nb_setval(ddcl_touched, true),
     (   nb_current(ddcl_assign, A), A \== [] -> true ; empty_assoc(A) ),

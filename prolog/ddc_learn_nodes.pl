@@ -18,7 +18,7 @@
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_records).
 :- use_module(ddc_learn_text, [type_var_base/2, unique_name/3]).
-:- use_module(ddc_learn_worlds, [alts/6]).
+:- use_module(ddc_learn_worlds, [world_alternatives/6]).
 :- use_module(ddc_learn_candidates, [next_id/3, branch_count/2]).
 :- use_module(ddc_learn_outcomes, [node_outcomes/6, outcome_goal/5]).
 
@@ -31,7 +31,7 @@ Info is a node_info(Target, Vars, Used, Path) record (ddc_learn_records.pl:
 its tree's target(Name, KeyArity, Spec), the node's variables v(Name,
 Type), the candidates used on the path from the root, the path's steps
 step(CandidateId, Branch)), Rows its groundings
-r(Bindings, World) (see ddc_learn.pl).  The root of a target holds one
+row(Bindings, World) (see ddc_learn.pl).  The root of a target holds one
 row per grounding of its head and partial world; a split gives each
 branch of a candidate a child with the rows whose outcome is that
 branch.
@@ -70,10 +70,11 @@ root_rows(M, Spec, Ks, Goal, Y, E0, Key, I0-Rows0-Ys0-Ws0-Es0, I-Rows-Ys-Ws-Es) 
     copy_term(Ks-Goal-Y, Key-G-Y1),
     M:'$ddcl_node_target'(N),
     K =.. [N|Key], example_weight(M, K, W),
-    alts(M, G, Y1, E0, W, Alts),
-    foldl(root_alt(M, Spec, Key, I0), Alts, Rows0-Ys0-Ws0-Es0, Rows-Ys-Ws-Es).
+    world_alternatives(M, G, Y1, E0, W, Alts),
+    foldl(root_alternative(M, Spec, Key, I0), Alts, Rows0-Ys0-Ws0-Es0, Rows-Ys-Ws-Es).
 
-root_alt(M, Spec, Key, I, a(Y, World, F, _), [r(Key, World)|Rows]-[YV|Ys]-[F|Ws]-[I|Es], Rows-Ys-Ws-Es) :-
+root_alternative(M, Spec, Key, I, alternative(Y, World, F, _),
+                 [row(Key, World)|Rows]-[YV|Ys]-[F|Ws]-[I|Es], Rows-Ys-Ws-Es) :-
     (   Y == '$none' -> throw(error(ddc_learn(no_value(Key), M), _)) ; true ),
     target_value(Spec, Y, M, Key, YV).
 
@@ -133,8 +134,8 @@ learn_split(M, Node, Id, Children) :-
     ( NR1 >= 0 -> numlist(0, NR1, Is) ; Is = [] ),
     pairs_keys_values(IRs, Is, Rows),
     node_outcomes(M, IRs, Bind, Goal, Out, Results),
-    findall(B-(I-r(Bs1, W1)-F-X),
-            ( member(res(I, Bs, W1, F, _, o(B, X, FVs)), Results),
+    findall(B-(I-row(Bs1, W1)-F-X),
+            ( member(row_result(I, Bs, W1, F, _, outcome(B, X, FVs)), Results),
               ( B =:= 0, FVs \== [] -> append(Bs, FVs, Bs1) ; Bs1 = Bs ) ),
             Pairs),
     NB1 is NB-1, numlist(0, NB1, BIs),
@@ -183,7 +184,7 @@ learn_forget(M, Node) :-
 learn_groundings(M, Node, Gs) :-
     M:'$ddcl_node'(Node, Info, Rows),
     node_info_target(Info, target(N, A, _)),
-    findall(H-Ps, ( member(r(Bs, W), Rows), length(Ks, A), append(Ks, _, Bs),
+    findall(H-Ps, ( member(row(Bs, W), Rows), length(Ks, A), append(Ks, _, Bs),
                     K =.. [N|Ks], dc_term(M, K, H),
                     assoc_to_list(W, Ps0), maplist(world_pair(M), Ps0, Ps) ),
             Gs).

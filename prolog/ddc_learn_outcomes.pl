@@ -15,16 +15,16 @@
 :- use_module(ddc_models).
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_records).
-:- use_module(ddc_learn_worlds, [alts/6, in_world/2]).
+:- use_module(ddc_learn_worlds, [world_alternatives/6, in_world/2]).
 :- use_module(ddc_learn_candidates, [candidate_id/3, fresh_values/2]).
 
 :- set_prolog_flag(optimise, true).
 
 /** <module> Outcomes of candidate literals
 
-A candidate's outcome in a row is o(Branch, X, FreshValues): the branch
-the row takes, the value X (a regressor of the leaf's model, NaN where
-none) and the values of the variables the literal introduces.  Each
+A candidate's outcome in a row is outcome(Branch, X, FreshValues): the
+branch the row takes, the value X (a regressor of the leaf's model, NaN
+where none) and the values of the variables the literal introduces.  Each
 candidate's goal is compiled once into the data module (outcome_goal/5);
 a row whose proof reads an uncertain fact its world has not assigned is
 proved again in each partial world that assigns it (ddc_learn_worlds.pl).
@@ -68,17 +68,21 @@ evaluate_indexed(M, IRs, Id, _{row: Rs, branch: Bs, factor: Fs, x: Xs, pure: Ps}
     outcome_lists(Results, Rs, Bs, Fs, Xs, Ps).
 
 outcome_lists([], [], [], [], [], []).
-outcome_lists([res(I, _, _, F, P, o(B, X, _))|T], [I|Is], [B|Bs], [F|Fs], [X|Xs], [P|Ps]) :-
+outcome_lists([row_result(I, _, _, F, P, outcome(B, X, _))|T],
+              [I|Is], [B|Bs], [F|Fs], [X|Xs], [P|Ps]) :-
     outcome_lists(T, Is, Bs, Fs, Xs, Ps).
 
-%   node_outcomes(+M, +IndexedRows, ?Bind, +Goal, ?Out, -Results): the
-%   outcome of Goal in each row and partial world, res(I, Bindings, World,
-%   Factor, Pure, Out) in row order.  A row whose proof reads no uncertain
-%   fact the row's world has not assigned is proved once, in a failure-
-%   driven loop (no copy of the goal); only the others split their worlds
-%   (alts/6).
+%!  node_outcomes(+Data, +IndexedRows:list(pair), ?Bind, +Goal, ?Out,
+%!                -Results:list) is det.
+%
+%   The outcome of Goal (from outcome_goal/5) in each row I-row(Bindings,
+%   World) and partial world, row_result(I, Bindings, World, Factor, Pure,
+%   Out) in row order.  A row whose proof reads no uncertain fact the
+%   row's world has not assigned is proved once, in a failure-driven loop
+%   (no copy of the goal); only the others (unproved_row(I, Bindings,
+%   World)) split their worlds (world_alternatives/6).
 node_outcomes(M, IRs, Bind, Goal, Out, Results) :-
-    findall(R, ( member(I-r(Bs, W), IRs), row_outcome(Bind, Goal, Out, I, Bs, W, R) ), Rs),
+    findall(R, ( member(I-row(Bs, W), IRs), row_outcome(Bind, Goal, Out, I, Bs, W, R) ), Rs),
     foldl(world_outcomes(M, Bind, Goal, Out), Rs, Results, []).
 
 row_outcome(Bind, Goal, Out, I, Bs, W, R) :-
@@ -88,23 +92,24 @@ row_outcome(Bind, Goal, Out, I, Bs, W, R) :-
     (   R0 == ok
     ->  nb_getval(ddcl_touched, T),
         ( T == true -> P = false ; P = true ),
-        R = res(I, Bs, W, 1.0, P, Out)
+        R = row_result(I, Bs, W, 1.0, P, Out)
     ;   R0 == need
-    ->  R = slow(I, Bs, W)
+    ->  R = unproved_row(I, Bs, W)
     ;   throw(error(ddc_learn(goal_failed(Goal), data), _))
     ).
 
-world_outcomes(_, _, _, _, R, [R|T], T) :- R = res(_, _, _, _, _, _), !.
-world_outcomes(M, Bind, Goal, Out, slow(I, Bs, W), L, T) :-
+world_outcomes(_, _, _, _, R, [R|T], T) :- R = row_result(_, _, _, _, _, _), !.
+world_outcomes(M, Bind, Goal, Out, unproved_row(I, Bs, W), L, T) :-
     copy_term(Bind-Goal-Out, Bs-G-O),
-    alts(M, G, O, W, 1.0, Alts),
-    foldl(alt_result(I, Bs), Alts, L, T).
+    world_alternatives(M, G, O, W, 1.0, Alts),
+    foldl(alternative_result(I, Bs), Alts, L, T).
 
-alt_result(I, Bs, a(O, W, F, P), [res(I, Bs, W, F, P, O)|T], T).
+alternative_result(I, Bs, alternative(O, W, F, P), [row_result(I, Bs, W, F, P, O)|T], T).
 
-%   outcome_goal(+M, +Spec, -Bind, -Goal, -Out): Goal, once Bind (the node
-%   variables' values) is bound, always succeeds with Out = o(Branch, X,
-%   FreshValues).
+%!  outcome_goal(+Data, +Spec, -Bind, -Goal, -Out) is det.
+%
+%   Goal, once Bind (the node variables' values) is bound, always succeeds
+%   with Out = outcome(Branch, X, FreshValues).
 %   The goal is compiled once per candidate, as the clause
 %   '$ddcl_out'(Id, Bind, Out) :- Goal of the data module, so that each row
 %   runs compiled code instead of a meta-call of the whole conjunction.
@@ -123,7 +128,7 @@ outcome_goal(M, Spec, Bind, M:'$ddcl_out'(Id, Bind, Out), Out) :-
         bind_goal(Ins, BindList, BG),
         fresh_values(Fresh, FVs),
         kind_goal(Kind, Agg, M:G, Val, Dom, Ts, B, X, KG),
-        optimised_assert(M, ('$ddcl_out'(Id, BindList, o(B, X, FVs)) :- BG, KG)),
+        optimised_assert(M, ('$ddcl_out'(Id, BindList, outcome(B, X, FVs)) :- BG, KG)),
         assertz(M:'$ddcl_out_done'(Id))
     ).
 
@@ -144,7 +149,8 @@ kind_goal(numeric, _, G, V, _, _, B, X, Goal) :-
     Goal = ( once(G) -> ddc_learn_outcomes:numeric_value(V, X), B = 0 ; B = 1, X = nan ).
 kind_goal(threshold, _, G, V, _, Ts, B, X, Goal) :-
     length(Ts, K), K1 is K+1,
-    Goal = ( once(G) -> ddc_learn_outcomes:numeric_value(V, X0), ddc_learn_outcomes:bin(X0, Ts, 0, B), X = nan
+    Goal = ( once(G) -> ddc_learn_outcomes:numeric_value(V, X0),
+                        ddc_learn_outcomes:threshold_bin(X0, Ts, 0, B), X = nan
            ; B = K1, X = nan ).
 kind_goal(test, _, G, _, _, _, B, X, Goal) :-
     Goal = ( once(G) -> B = 0, X = nan ; B = 1, X = nan ).
@@ -177,8 +183,8 @@ numeric_list(L) :-
     ;   member(V, L), \+ number(V) -> throw(error(ddc_learn(not_a_number(value, V), data), _))
     ).
 
-bin(X, [], B, B) :- !, number(X).
-bin(X, [T|Ts], B0, B) :- ( X < T -> B = B0 ; B1 is B0+1, bin(X, Ts, B1, B) ).
+threshold_bin(X, [], B, B) :- !, number(X).
+threshold_bin(X, [T|Ts], B0, B) :- ( X < T -> B = B0 ; B1 is B0+1, threshold_bin(X, Ts, B1, B) ).
 
 aggregate(mean, L, X) :- mean_list(L, X).
 aggregate(max, L, X) :- max_list(L, X).

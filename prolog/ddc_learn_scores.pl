@@ -12,7 +12,7 @@
 :- use_module(ddc_dist).
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_text, [term_text/3]).
-:- use_module(ddc_learn_worlds, [alts/6]).
+:- use_module(ddc_learn_worlds, [world_alternatives/6]).
 :- use_module(ddc_learn_nodes, [target_examples/4]).
 
 :- set_prolog_flag(optimise, true).
@@ -110,8 +110,8 @@ target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_l
              ->  ddc_learn_facts:eval_dist_at(D0, CW, D), R = d(D)
              ;   R = uncovered
              ) ),
-    foldl(score_example(M, N, Ks, Goal, Y-R, Spec), Keys, s(0, 0, 0, 0, 0), S),
-    S = s(SW, SLL, SC, SE, U),
+    foldl(score_example(M, N, Ks, Goal, Y-R, Spec), Keys, score_sums(0, 0, 0, 0, 0), S),
+    S = score_sums(SW, SLL, SC, SE, U),
     (   SW > 0, U =:= 0 -> MLL is SLL / SW ; SW > 0 -> MLL = -inf ; MLL = nan ),
     LL = SLL,
     (   Spec = discrete(_)
@@ -123,10 +123,13 @@ score_example(M, N, Ks, Goal, Out, Spec, Key, S0, S) :-
     copy_term(Ks-Goal-Out, Key-G-O),
     empty_assoc(E0),
     K =.. [N|Key], example_weight(M, K, W),
-    alts(M, G, O, E0, W, Alts),
-    foldl(score_alt(M, N, Key, Spec), Alts, S0, S).
+    world_alternatives(M, G, O, E0, W, Alts),
+    foldl(score_alternative(M, N, Key, Spec), Alts, S0, S).
 
-score_alt(M, N, Key, Spec, a(Y-R, _, F, _), s(W0, L0, C0, E0, U0), s(W, L, C, E, U)) :-
+%   score_sums(Weight, LogLikelihood, Correct, SquaredError, Uncovered):
+%   the sums over a target's groundings and partial worlds.
+score_alternative(M, N, Key, Spec, alternative(Y-R, _, F, _),
+                  score_sums(W0, L0, C0, E0, U0), score_sums(W, L, C, E, U)) :-
     W is W0 + F,
     (   R = d(D)
     ->  K =.. [N|Key],

@@ -8,7 +8,7 @@
             term_text/3,                % +Term, +Bindings, -Text
             print_literal/1,            % +Literal
             print_conj/1,               % +Conjunction
-            print_term_/1,              % +Term
+            print_dc_term/1,              % +Term
             type_var_base/2,            % +Type, -Base
             capitalise/2,               % +Atom, -Capitalised
             unique_name/3,              % +Base, +Used, -Name
@@ -68,16 +68,16 @@ term_text(T, Bs, Text) :-
     with_output_to(string(Text), print_literal(T1)).
 
 print_clause((H ~ D := B)) :- !,
-    print_literal(H), write(' ~ '), print_term_(D),
+    print_literal(H), write(' ~ '), print_dc_term(D),
     (   B == true -> write('.')
     ;   write(' :='), print_body(B), write('.')
     ).
 print_clause((H := B)) :- !,
     print_literal(H), write(' :='), print_body(B), write('.').
 print_clause((H :- B)) :- !,
-    print_term_(H), write(' :-'), print_body(B), write('.').
+    print_dc_term(H), write(' :-'), print_body(B), write('.').
 print_clause(C) :-
-    print_term_(C), write('.').
+    print_dc_term(C), write('.').
 
 print_body(B) :-
     conj_to_list(B, Ls),
@@ -90,13 +90,13 @@ print_literal(\+ G) :- !, write('\\+ '), print_inner(G).
 print_literal((A -> B)) :- !, write('('), print_literal(A), write(' -> '), print_literal(B), write(')').
 print_literal((A, B)) :- !, write('('), print_conj((A, B)), write(')').
 print_literal(findall_forward(T, G, L)) :- !,
-    write('findall_forward('), print_term_(T), write(', '),
+    write('findall_forward('), print_dc_term(T), write(', '),
     (   G = (_, _) -> write('('), print_conj(G), write(')') ; print_literal(G) ),
-    write(', '), print_term_(L), write(')').
+    write(', '), print_dc_term(L), write(')').
 print_literal(G) :-
     compound(G), G =.. [Op, A, B], memberchk(Op, [~=, <, >, =<, >=, ==, is, =, =:=, =\=]), !,
-    print_term_(A, 699), format(' ~w ', [Op]), print_term_(B, 699).
-print_literal(G) :- print_term_(G).
+    print_dc_term(A, 699), format(' ~w ', [Op]), print_dc_term(B, 699).
+print_literal(G) :- print_dc_term(G).
 
 print_inner(G) :-
     (   G = (_, _) -> write('('), print_conj(G), write(')')
@@ -107,10 +107,10 @@ print_inner(G) :-
 print_conj((A, B)) :- !, print_literal(A), write(', '), print_conj(B).
 print_conj(A) :- print_literal(A).
 
-print_term_(T) :-
-    print_term_(T, 1200).
+print_dc_term(T) :-
+    print_dc_term(T, 1200).
 
-print_term_(T, Priority) :-
+print_dc_term(T, Priority) :-
     write_term(T, [quoted(true), numbervars(true), spacing(next_argument),
                    module(ddc_learn_data), priority(Priority)]).
 
