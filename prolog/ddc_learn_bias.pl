@@ -38,11 +38,21 @@ data module ('$ddcl_type'/5, '$ddcl_pred'/3, '$ddcl_mode'/6, ...).
 %   Bias declarations are read first (from every file), so that facts can
 %   be checked against them wherever they stand.
 
+%!  bias_items(+Data, +Items:list) is det.
+%
+%   Assert the bias declarations among Items (item(Term, VarNames,
+%   Dialect, File:Line)) in the data module, ranks last.
+%
+%   @error ddc_learn(Cause, File:Line) for a bad declaration.
 bias_items(M, Items) :-
     forall(( member(item(T, Vs, D, W), Items), bias_term(D, T) ),
            bias_item(M, D, T, Vs, W)),
     rank_levels(M, Items).
 
+%!  bias_term(+Dialect, +Term) is semidet.
+%
+%   Term is a declaration of the bias in Dialect (own or dreaml), not
+%   data.
 bias_term(dreaml, T) :- functor(T, N, A), memberchk(N/A, [base/1, thres/4, randomVariableNames/1,
                                                           mode/3, learn/4, rank/1]).
 bias_term(own, T) :- functor(T, N, A), memberchk(N/A, [type/1, rv/2, rv/1, mode/2, mode/3,
@@ -217,11 +227,13 @@ rank_name(P0, _, W, _) :- throw(error(ddc_learn(bad_rank(P0), W), _)).
                  *          PREDICATES          *
                  *******************************/
 
-%   finish_preds(+M, +Items): decide for each predicate whether it is a
-%   random variable (internal arity: key arity + 1, the value last) or an
-%   atom, from the declarations and, in the own dialect, from how the data
-%   are written (K ~= V: a random variable); the argument types; and the
-%   modes in the internal form.
+%!  finish_preds(+Data, +Items:list) is det.
+%
+%   Decide for each predicate whether it is a random variable (internal
+%   arity: key arity + 1, the value last) or an atom, from the
+%   declarations and, in the own dialect, from how the data are written
+%   (K ~= V: a random variable); the argument types; and the modes in the
+%   internal form.
 finish_preds(M, Items) :-
     dreaml_preds(M),
     forall(( M:'$ddcl_examples'(N/A, _, _, _), \+ M:'$ddcl_pred'(N, A, _) ),

@@ -70,15 +70,20 @@ node_candidate(M, TN, TA, Vars, Used, Id) :-
     candidate_id(M, Spec, Id),
     \+ memberchk(Id, Used).                 % a literal at most once on a path
 
-%   allowed_by_rank(+M, +Target, +Cond, +Lit): every predicate the literal
-%   reads ranks below the target (unranked predicates rank 0, always
-%   allowed), and none is the target itself.
+%!  allowed_by_rank(+Data, +Target:atom, +Cond, +Lit) is semidet.
+%
+%   Every predicate the literal (and its condition) reads ranks below the
+%   target (unranked predicates rank 0, always allowed), and none is the
+%   target itself.
 allowed_by_rank(M, T, C, L) :-
     literal_preds((C, L), Ps),
     \+ memberchk(T, Ps),
     ( M:'$ddcl_rank'(T, RT) -> true ; RT = 0 ),
     forall(member(P, Ps), ( M:'$ddcl_rank'(P, RP) -> RP < RT ; true )).
 
+%!  literal_preds(+Literal, -Names:list(atom)) is det.
+%
+%   The predicate names a mode's literal (none, or a conjunction) reads.
 literal_preds(none, []) :- !.
 literal_preds((A, B), Ps) :- !,
     literal_preds(A, PA), literal_preds(B, PB), append(PA, PB, Ps).
@@ -219,7 +224,10 @@ typed_fact_arg(M, N, A, I, C) :-
     clause(M:F, true),
     arg(I, F, C).
 
-%   candidate_id(+M, +Spec, -Id): one id per distinct instance.
+%!  candidate_id(+Data, +Spec, -Id:integer) is det.
+%
+%   The id of a candidate: one per distinct instance, assigned the first
+%   time it is seen.
 candidate_id(M, Spec, Id) :-
     instance_key(Spec, Key),
     (   M:'$ddcl_cand'(Id0, Key, _) -> Id = Id0
@@ -235,6 +243,9 @@ instance_key(Spec, k(MId, G1)) :-
     maplist([P-'$in'(P)]>>true, Ins1),
     numbervars(G1, 0, _).
 
+%!  next_id(+Data, +Kind:atom, -Id:integer) is det.
+%
+%   The next id of a counter of the data module (node, candidate), from 1.
 next_id(M, Kind, Id) :-
     (   retract(M:'$ddcl_counter'(Kind, Id0)) -> Id is Id0+1 ; Id = 1 ),
     assertz(M:'$ddcl_counter'(Kind, Id)).
@@ -287,13 +298,21 @@ branch_label(M, Spec, VarTerms, Bs0, B, Text) :-
     branch_literal(M, S1, B, Lit, Bs1, Bs),
     term_text(Lit, Bs, Text).
 
+%!  bind_in(+VarTerms:list, +Input:pair) is det.
+%
+%   Input P-V: V is the node's variable at position P of VarTerms.
 bind_in(VarTerms, P-V) :- nth0(P, VarTerms, V).
 
-%   fresh_values(+Fresh, -Vars): the variables of [v(Type, Var)], shared
-%   (findall/3 would copy them).
+%!  fresh_values(+Fresh:list, -Vars:list) is det.
+%
+%   The variables of [v(Type, Var)], shared (findall/3 would copy them).
 fresh_values([], []).
 fresh_values([v(_, V)|Fs], [V|Vs]) :- fresh_values(Fs, Vs).
 
+%!  fresh_names(+Fresh:list, +Names0:list, -Names:list) is det.
+%
+%   Names (Name=Var) for the unbound variables of Fresh ([v(Type, Var)]),
+%   after their type (type_var_base/2), unique among Names0.
 fresh_names(Fresh, Bs0, Bs) :-
     foldl(fresh_name, Fresh, Bs0, Bs).
 
@@ -306,8 +325,11 @@ fresh_name(v(Type, V), Bs0, Bs) :-
     ;   Bs = Bs0
     ).
 
-%   branch_literal(+M, +Spec, +Branch, -Literal, +Bs0, -Bs): the branch's
-%   body literal in DC syntax; names for its new variables added to Bs.
+%!  branch_literal(+Data, +Spec, +Branch:integer, -Literal,
+%!                 +Names0:list, -Names:list) is det.
+%
+%   The body literal of a candidate's branch in DC syntax; names for its
+%   new variables added to Names0.
 branch_literal(M, Spec, B, Lit, Bs0, Bs) :-
     candidate_kind(Spec, Kind),
     candidate_goal(Spec, G),
@@ -363,6 +385,10 @@ agg_goal(M, CG, LG, DG) :-
     ;   dc_literal(M, CG, DC), dc_literal(M, LG, DL), DG = (DC, DL)
     ).
 
+%!  agg_call(?Aggregate:atom, ?List, ?Result, ?Goal) is nondet.
+%
+%   Goal computes Result, the aggregate of List (mean_list(List, Result),
+%   ...).
 agg_call(mean, L, X, mean_list(L, X)).
 agg_call(max, L, X, max_list(L, X)).
 agg_call(min, L, X, min_list(L, X)).
@@ -401,7 +427,10 @@ agg_result_var(M, Agg, LG, Bs0, Bs, X) :-
 
 base_name(M, N, B) :- ( M:'$ddcl_timed'(N, B0, _) -> B = B0 ; B = N ).
 
-%   dc_literal(+M, +Internal, -DC): an internal literal in DC syntax.
+%!  dc_literal(+Data, +Internal, -DC) is det.
+%
+%   An internal literal (a conjunction of them) in DC syntax: a random
+%   variable's p_t(K, V) is p(K):t ~= V.
 dc_literal(M, (A, B), (DA, DB)) :- !, dc_literal(M, A, DA), dc_literal(M, B, DB).
 dc_literal(M, G, DG) :-
     G =.. [N|As],

@@ -39,6 +39,13 @@ background knowledge is compiled to '$bg:N'(K1..Kn, Dist, Where) :- Body.
                  *             ITEMS            *
                  *******************************/
 
+%!  load_item(+Data, +Item) is det.
+%
+%   Assert a data item (item(Term, VarNames, Dialect, File:Line)) that is
+%   not a bias declaration: a fact, an uncertain fact, a background clause
+%   or a directive.
+%
+%   @error ddc_learn(Cause, File:Line) for a bad item.
 load_item(_, item(T, _, D, _)) :- bias_term(D, T), !.
 load_item(M, item((:- Dir), _, _, W)) :- !,
     directive(M, Dir, W).
@@ -229,6 +236,9 @@ prob_atom(M, A0, P, W) :-
         prob_clause(M, N, Ar, atom)
     ).
 
+%!  prob_table(+Name:atom, -TableName:atom) is det.
+%
+%   The predicate that holds the distributions of Name's uncertain facts.
 prob_table(N, PN) :- atom_concat('$prob:', N, PN).
 
 %   prob_clause(+M, +N, +A, +Kind): once per predicate,

@@ -87,9 +87,11 @@ target_value(_, Y, M, Key, Y1) :-
     ;   throw(error(ddc_learn(not_a_number(Key, Y), M), _))
     ).
 
-%   target_examples(+M, +N, +A, -Keys): the groundings of N/A's key: the
-%   solutions of examples/2 when declared (a Boolean target given as atoms:
-%   an example without a fact is false), else every key with a fact.
+%!  target_examples(+Data, +Name:atom, +KeyArity:integer, -Keys:list) is det.
+%
+%   The groundings of Name/KeyArity's key: the solutions of examples/2
+%   when declared (a Boolean target given as atoms: an example without a
+%   fact is false), else every key with a fact.
 target_examples(M, N, A, Keys) :-
     (   M:'$ddcl_examples'(N/A, H0, G0, W)
     ->  internal_key(M, H0-G0, H-G1),
@@ -104,6 +106,11 @@ target_examples(M, N, A, Keys) :-
         append(K1, K2, Keys)
     ).
 
+%!  head_vars(+Data, +Name:atom, +KeyArity:integer, +Names:list,
+%!            -Vars:list) is det.
+%
+%   The variables v(Name, Type) of a target's head: the names it was
+%   written with, or names after the argument types.
 head_vars(M, N, A, Names, Vars) :-
     (   M:'$ddcl_type'(N, A, Types, _, _) -> true
     ;   length(Types, A), maplist(=('_'), Types)

@@ -37,6 +37,13 @@ data module, so a DC body's `K ~= V` is a call of that predicate.
 %   p(X):t+1 -> p_t1(X); '$ddcl_timed'(Internal, Base, t|t1) remembers the
 %   mapping.  Anything else after a colon that is not a module qualifier
 %   (p:t-1, p:0) is an error: learning data describe one step.
+
+%!  time_rename_items(+Data, +Items0:list, -Items:list) is det.
+%
+%   Items0 with every time-indexed term renamed (time_rename/4).
+%
+%   @error ddc_learn(unsupported_time(T), File:Line) for a time other than
+%          t and t+1.
 time_rename_items(M, Items0, Items) :-
     maplist(time_rename_item(M), Items0, Items).
 

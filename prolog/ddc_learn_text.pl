@@ -32,11 +32,17 @@ line.  Variable names come from the argument types (an obj is Obj, Obj1,
 ...).
 */
 
+%!  new_var(+Base:atom, ?Var, +Names0:list, -Names:list) is det.
+%
+%   Names0 and Var named after Base, unique among Names0.
 new_var(Base, V, Bs0, Bs) :-
     findall(N, member(N=_, Bs0), Used),
     unique_name(Base, Used, Name),
     append(Bs0, [Name=V], Bs).
 
+%!  conj_list(+Goals:list, -Conjunction) is det.
+%
+%   The conjunction of a non-empty list of goals.
 conj_list([G], G) :- !.
 conj_list([G|Gs], (G, C)) :- conj_list(Gs, C).
 
@@ -55,11 +61,18 @@ learn_clause_text(_, clause(C, Bs), Text) :-
     maplist(=('$VAR'('_')), Rest),
     with_output_to(string(Text), print_clause(C1)).
 
+%!  clause_text_vars(+Clause, -Text:string) is det.
+%
+%   Clause as DC source text, its variables as A, B, ...
 clause_text_vars(C, Text) :-
     copy_term(C, C1),
     numbervars(C1, 0, _),
     with_output_to(string(Text), print_clause(C1)).
 
+%!  term_text(+Term, +Names:list, -Text:string) is det.
+%
+%   A literal as DC source text, its variables named by Names (Name=Var),
+%   the others `_`.
 term_text(T, Bs, Text) :-
     copy_term(T-Bs, T1-Bs1),
     maplist([Name=V]>>( var(V) -> V = '$VAR'(Name) ; true ), Bs1),
@@ -86,6 +99,10 @@ print_body(B) :-
 conj_to_list((A, B), Ls) :- !, conj_to_list(A, LA), conj_to_list(B, LB), append(LA, LB, Ls).
 conj_to_list(A, [A]).
 
+%!  print_literal(+Literal) is det.
+%
+%   Write a body literal in DC syntax (negations, if-then, comparisons
+%   with their operators, findall_forward/3 with a conjunction).
 print_literal(\+ G) :- !, write('\\+ '), print_inner(G).
 print_literal((A -> B)) :- !, write('('), print_literal(A), write(' -> '), print_literal(B), write(')').
 print_literal((A, B)) :- !, write('('), print_conj((A, B)), write(')').
@@ -104,9 +121,15 @@ print_inner(G) :-
     ;   print_literal(G)
     ).
 
+%!  print_conj(+Conjunction) is det.
+%
+%   Write a conjunction of literals, separated by commas.
 print_conj((A, B)) :- !, print_literal(A), write(', '), print_conj(B).
 print_conj(A) :- print_literal(A).
 
+%!  print_dc_term(+Term) is det.
+%
+%   Write a term quoted, with the DC operators.
 print_dc_term(T) :-
     print_dc_term(T, 1200).
 
@@ -118,13 +141,18 @@ print_dc_term(T, Priority) :-
                  *            NAMES             *
                  *******************************/
 
-%   type_var_base(+Type, -Base): variables of type obj are Obj, Obj1, ...;
-%   of DreaML's type la are La, ...; of an untyped argument X.
+%!  type_var_base(+Type, -Base:atom) is det.
+%
+%   Variables of type obj are Obj, Obj1, ...; of DreaML's type la are La,
+%   ...; of an untyped argument X.
 type_var_base(T, B) :-
     (   atom(T), T \== '_', T \== '' -> capitalise(T, B0), sanitise(B0, B)
     ;   B = 'X'
     ).
 
+%!  capitalise(+Atom, -Capitalised:atom) is det.
+%
+%   Atom with its first letter in upper case.
 capitalise(A, C) :-
     atom_codes(A, [F|Rest]),
     code_type(U, to_upper(F)),
@@ -135,13 +163,17 @@ sanitise(A, S) :-
     include([C]>>( code_type(C, csym) ), Cs, Cs1),
     ( Cs1 == [] -> S = 'X' ; atom_codes(S, Cs1) ).
 
+%!  unique_name(+Base:atom, +Used:list(atom), -Name:atom) is det.
+%
+%   Base, or Base1, Base2, ..., the first not in Used.
 unique_name(Base, Used, Name) :-
     (   \+ memberchk(Base, Used) -> Name = Base
     ;   between(1, inf, I), atom_concat(Base, I, Name), \+ memberchk(Name, Used) -> true
     ).
 
-%   clause_names(+Vars, +VarTerms, -Bindings): Name=Var for the node's
-%   variables.
+%!  clause_names(+Vars:list, +VarTerms:list, -Names:list) is det.
+%
+%   Name=Var for the node's variables v(Name, Type) and their terms.
 clause_names(Vars, Terms, Bs) :-
     length(Vars, N), length(Ts, N), append(Ts, _, Terms),
     maplist([v(Name, _), T, Name=T]>>true, Vars, Ts, Bs).
