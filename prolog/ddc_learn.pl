@@ -128,14 +128,16 @@ set_options(M, Options) :-
 declare(M, PI) :- dynamic(M:PI).
 
 %!  learn_free(+Data) is det.
+%
+%   Forget a data set and everything learned about it (learn_data_free/1).
 learn_free(M) :- learn_data_free(M).
 
 %!  learn_targets(+Data, -Targets:list(dict)) is det.
 %
 %   One dict per target: name (the DC head, e.g. "occluded_by(A,O):t+1"),
-%   key (Name/KeyArity of the internal predicate), kind (discrete,
-%   continuous, count), domain (the values of a discrete target), where
-%   (File:Line of its declaration).
+%   predicate and arity (the internal predicate's name and key arity),
+%   kind (discrete, continuous, count), domain (the values of a discrete
+%   target), file and line (where it is declared).
 learn_targets(M, Targets) :-
     learn_data_targets(M, Ts),
     maplist(target_dict(M), Ts, Targets).
