@@ -114,9 +114,10 @@ learn_split_files(Files, Options, Stats) :-
                        split_data(Data, Paths, Opts, Stats),
                        learn_data_free(Data)).
 
-%   split_options(+Options, -Opts): opts(Train, Test, Fraction, Seed, Unit),
-%   the outputs as absolute file names, Unit none or unit(Type).
-split_options(Options, opts(Train, Test, F, Seed, Unit)) :-
+%   split_options(+Options, -Settings): split_settings(Train, Test,
+%   Fraction, Seed, Unit), the outputs as absolute file names, Unit none or
+%   unit(Type).
+split_options(Options, split_settings(Train, Test, F, Seed, Unit)) :-
     output_option(train, Options, Train),
     output_option(test, Options, Test),
     option(fraction(F), Options, 0.2),
@@ -135,7 +136,7 @@ output_option(Name, Options, Path) :-
     must_be(text, Spec),
     absolute_file_name(Spec, Path).
 
-check_outputs(Paths, opts(Train, Test, _, _, _)) :-
+check_outputs(Paths, split_settings(Train, Test, _, _, _)) :-
     (   Train == Test -> throw(error(ddc_learn(same_outputs, Train:0), _)) ; true ),
     forall(( member(Out, [Train, Test]), member(Out, Paths) ),
            throw(error(ddc_learn(output_is_input, Out:0), _))),
@@ -144,13 +145,13 @@ check_outputs(Paths, opts(Train, Test, _, _, _)) :-
            throw(error(ddc_learn(no_such_directory(Dir), Out:0), _))).
 
 split_data(Data, Paths, Opts, Stats) :-
-    Opts = opts(Train, Test, F, Seed, Unit),
+    Opts = split_settings(Train, Test, F, Seed, Unit),
     data_units(Data, Paths, Unit, Items, NF, Facts, Graph),
     Graph = graph(NU, _),
     choose_test_units(Graph, NF, F, Seed, InTest, K),
     fact_sides(Facts, Graph, InTest, Sides),
     side_counts(Sides, NF, NTrain, NTest, NCut),
-    aggregate_all(count, member(it(_, _, _, fact0), Items), NBoth),
+    aggregate_all(count, member(split_item(_, _, _, fact0), Items), NBoth),
     Stats = _{train: NTrain, test: NTest, cut: NCut, units: NU, test_units: K, both: NBoth},
     unit_how(Unit, How),
     format(atom(Settings), '~w, fraction ~w, seed ~w', [How, F, Seed]),
@@ -169,7 +170,7 @@ data_units(Data, Paths, Unit, Items, NF, Facts, Graph) :-
     maplist(classify_items(Data, Unit, RulePreds), ItemLists, Dialects, ClassLists),
     append(ClassLists, Items0),
     number_facts(Items0, 0, NF, Items, Facts),
-    (   memberchk(it(_, _, FirstWhere, fact(_)), Items)
+    (   memberchk(split_item(_, _, FirstWhere, fact(_)), Items)
     ->  true
     ;   Paths = [P0|_], throw(error(ddc_learn(no_facts, P0:0), _))
     ),
@@ -216,7 +217,7 @@ learn_fold_files(Files, Options, Stats) :-
     must_be(integer, Seed),
     (   option(unit(Type), Options) -> must_be(atom, Type), Unit = unit(Type) ; Unit = none ),
     maplist(ddc_learn_data:resolve_data_file, Files, Paths),
-    forall(member(Tr-Te, Pairs), check_outputs(Paths, opts(Tr, Te, _, _, _))),
+    forall(member(Tr-Te, Pairs), check_outputs(Paths, split_settings(Tr, Te, _, _, _))),
     setup_call_cleanup(learn_data_load(Paths, [targets(false)], Data),
                        fold_data(Data, Paths, Pairs, Seed, Unit, Stats),
                        learn_data_free(Data)).
@@ -238,7 +239,7 @@ fold_data(Data, Paths, Pairs, Seed, Unit, Stats) :-
     ;   true
     ),
     deal_units(FU, NF, NU, K, Seed, FoldOf),
-    aggregate_all(count, member(it(_, _, _, fact0), Items), NBoth),
+    aggregate_all(count, member(split_item(_, _, _, fact0), Items), NBoth),
     unit_how(Unit, How),
     numlist(1, K, Is),
     maplist(write_fold(Items, Facts, Graph, FoldOf, Paths, How, K, Seed, NF, NBoth),
@@ -332,13 +333,13 @@ bias(own, T) :- own_bias(T).
 bias(dreaml, T) :- dreaml_bias(T).
 
 %   classify_items(+Data, +Unit, +RulePreds, +Items, +Dialect, -Classified):
-%   it(Term, VarNames, Where, Class) per item; Class is other, fact0 (a
-%   fact without constants) or fact(Consts), Consts a list of
+%   split_item(Term, VarNames, Where, Class) per item; Class is other,
+%   fact0 (a fact without constants) or fact(Consts), Consts a list of
 %   Constant-IsUnit.
 classify_items(Data, Unit, RulePreds, Items, Dialect, Classified) :-
     maplist(classify(Data, Dialect, Unit, RulePreds), Items, Classified).
 
-classify(Data, Dialect, Unit, RulePreds, item(T, Vs, _, W), it(T, Vs, W, Class)) :-
+classify(Data, Dialect, Unit, RulePreds, item(T, Vs, _, W), split_item(T, Vs, W, Class)) :-
     (   fact_key(Dialect, Data, T, N, KeyArgs),
         \+ rule_fact(Dialect, Data, T, RulePreds)
     ->  key_constants(Data, Unit, N, KeyArgs, Cs),
@@ -420,9 +421,9 @@ key_constant(UnitType, A, T, Cs0, Cs) :-
 %   is the list of their Consts, in order.
 number_facts([], N, N, [], []).
 number_facts([I0|Is0], N0, N, [I|Is], Fs) :-
-    I0 = it(T, Vs, W, C0),
+    I0 = split_item(T, Vs, W, C0),
     (   C0 = fact(Cs)
-    ->  N1 is N0+1, I = it(T, Vs, W, fact(N1-Cs)), Fs = [Cs|Fs1]
+    ->  N1 is N0+1, I = split_item(T, Vs, W, fact(N1-Cs)), Fs = [Cs|Fs1]
     ;   N1 = N0, I = I0, Fs = Fs1
     ),
     number_facts(Is0, N1, N, Is, Fs1).
@@ -652,7 +653,7 @@ tmp_name(Path, Tmp) :-
 write_part(File, Side, Items, Sides, Header) :-
     setup_call_cleanup(open(File, write, S, [encoding(utf8)]),
                        ( write_header(S, Header),
-                         forall(( member(it(T, Vs, _, C), Items), on_side(C, Side, Sides) ),
+                         forall(( member(split_item(T, Vs, _, C), Items), on_side(C, Side, Sides) ),
                                 write_item(S, T, Vs)) ),
                        close(S)).
 
@@ -699,7 +700,7 @@ prolog:message(_Lang, error(ddc_learn(Cause, Where), _)) -->
     split_message(Cause, Where).
 
 split_message(Cause, Where) -->
-    ddc_learn_data:learn_where(Where),
+    ddc_learn_messages:learn_where(Where),
     split_cause(Cause).
 
 split_cause(one_world(Types)) --> !,

@@ -1,6 +1,7 @@
 /*  plunit tests of the structure learner's Prolog side (prolog/ddc_learn.pl,
-    prolog/ddc_learn_data.pl) and of the statistical models of learned
-    clauses (prolog/ddc_models.pl).
+    prolog/ddc_learn_data.pl and the modules they re-export,
+    prolog/ddc_learn_*.pl) and of the statistical models of learned clauses
+    (prolog/ddc_models.pl).
 */
 :- use_module('../../prolog/ddc').
 :- use_module('../../prolog/ddc_learn').
@@ -290,6 +291,37 @@ test(a_test_value_the_program_does_not_know) :-
     learn_free(M).
 
 :- end_tests(ddc_learn_clauses).
+
+:- begin_tests(ddc_learn_modules).
+
+%   The entry modules that Python (bridge/learning.py) and the tests load
+%   keep their API while the code lives in modules of one job each.
+test(learner_api, Exports == [ learn_background/3, learn_background_for/3, learn_candidates/3,
+                              learn_check/1, learn_clause/5, learn_clause_text/3,
+                              learn_evaluate/4, learn_evaluate_rows/5, learn_forget/2,
+                              learn_free/1, learn_groundings/3, learn_leaf_text/5,
+                              learn_load/3, learn_program_scores/5, learn_root/4,
+                              learn_split/4, learn_targets/2, learn_tree_text/3 ]) :-
+    module_property(ddc_learn, exports(E)), msort(E, Exports).
+
+test(data_api, Exports == [ data_read_terms/3, dc_goal/4, dc_term/3, dist_points/3,
+                           example_weight/3, fact_where/3, internal_key/3, learn_data_free/1,
+                           learn_data_load/3, learn_data_pred/4, learn_data_targets/2,
+                           learn_data_warnings/2, message_text/2, pick/3 ]) :-
+    module_property(ddc_learn_data, exports(E)), msort(E, Exports).
+
+test(data_operators) :-
+    module_property(ddc_learn_data, exported_operators(Ops)),
+    forall(member(Op, [op(700, xfx, ~), op(700, xfx, ~=), op(1105, xfx, :=),
+                       op(1105, xfx, <-), op(1150, xfx, pr), op(700, xfx, ::)]),
+           memberchk(Op, Ops)).
+
+%   The learner's records are read by name and compiled to arg/3.
+test(record_accessors_inline) :-
+    clause(ddc_learn_candidates:branch_count(_, _), Body),
+    Body = (arg(2, _, _), _).
+
+:- end_tests(ddc_learn_modules).
 
 :- begin_tests(ddc_models).
 
