@@ -3,7 +3,8 @@
 Prolog (``prolog/ddc.pl``) owns the semantics: the particles live there between steps and one
 call per step samples the transition and weights every particle. Python owns the bookkeeping:
 normalised log weights (numpy), the effective sample size, resampling indices drawn from a numpy
-``Generator`` seeded from ``seed``, the running log-likelihood, and timing.
+``Generator`` seeded from ``seed`` (:mod:`bridge.resampling`), the running log-likelihood, and
+timing.
 
 Example::
 
@@ -59,11 +60,11 @@ import janus_swi as janus
 import numpy as np
 
 from bridge import prolog
+from bridge.resampling import RESAMPLERS, Resampling, effective_sample_size, resample_indices
 from bridge.terms import Compound, Text, item_text, to_term
 
 logger = logging.getLogger(__name__)
 
-Resampling = Literal["systematic", "multinomial", "residual"]
 Engine = Literal["per_particle", "batched", "auto"]
 ENGINES: tuple[Engine, ...] = ("auto", "batched", "per_particle")
 #: Prolog threads that step the particles unless told otherwise (the 2-core machine's cores)
@@ -80,68 +81,7 @@ class ZeroWeightWarning(RuntimeWarning):
 
 
 # --------------------------------------------------------------------------------------------
-# Resampling (pure numpy; unit-tested on their own)
-
-
-def systematic_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-    """One uniform offset, stride 1/N: particle i is copied floor(N w_i) or ceil(N w_i) times."""
-    n = len(weights)
-    positions = (rng.random() + np.arange(n)) / n
-    cumulative = np.cumsum(weights)
-    cumulative[-1] = 1.0
-    return np.minimum(np.searchsorted(cumulative, positions, side="right"), n - 1)
-
-
-def multinomial_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-    """N independent draws from the weights (sorted, so copies sit together)."""
-    n = len(weights)
-    cumulative = np.cumsum(weights)
-    cumulative[-1] = 1.0
-    draws = np.sort(rng.random(n))
-    return np.minimum(np.searchsorted(cumulative, draws, side="right"), n - 1)
-
-
-def residual_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-    """floor(N w_i) copies of each particle, the remaining R drawn multinomially from the rest."""
-    n = len(weights)
-    scaled = n * np.asarray(weights, dtype=float)
-    copies = np.floor(scaled).astype(np.int64)
-    deterministic = np.repeat(np.arange(n), copies)
-    remaining = n - len(deterministic)
-    if remaining == 0:
-        return deterministic
-    residual = scaled - copies
-    cumulative = np.cumsum(residual / residual.sum())
-    cumulative[-1] = 1.0
-    draws = np.sort(rng.random(remaining))
-    extra = np.minimum(np.searchsorted(cumulative, draws, side="right"), n - 1)
-    return np.sort(np.concatenate([deterministic, extra]))
-
-
-RESAMPLERS = {
-    "systematic": systematic_indices,
-    "multinomial": multinomial_indices,
-    "residual": residual_indices,
-}
-
-
-def resample_indices(
-    weights: np.ndarray, scheme: Resampling, rng: np.random.Generator
-) -> np.ndarray:
-    """N ancestor indices (0-based) for normalised ``weights`` under ``scheme``."""
-    try:
-        resampler = RESAMPLERS[scheme]
-    except KeyError:
-        raise ValueError(
-            f"unknown resampling scheme {scheme!r}; use one of {sorted(RESAMPLERS)}"
-        ) from None
-    return resampler(np.asarray(weights, dtype=float), rng).astype(np.int64)
-
-
-def effective_sample_size(log_weights: np.ndarray) -> float:
-    """1 / sum(w_i^2) for normalised log weights."""
-    w = np.exp(log_weights)
-    return float(1.0 / np.dot(w, w))
+# Weights arithmetic (resampling itself is bridge.resampling, pure numpy)
 
 
 def _logsumexp(values: np.ndarray) -> float:
