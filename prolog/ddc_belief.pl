@@ -37,6 +37,7 @@
             belief_zero_weight_events/2, % +Belief, -Count
             belief_filter/2,             % +Belief, -Filter
             belief_free/1,               % +Belief
+            read_frame_file/2,           % +File, -Frames
             resample_indices/4           % +Scheme, +Weights, +Uniforms, -Indices
           ]).
 :- reexport(ddc).
@@ -549,38 +550,79 @@ list_tuple([X|Xs], (X, T)) :-
 %!  belief_run(+Belief, +File) is det.
 %!  belief_run(+Belief, +File, :OnStep) is det.
 %
-%   Steps the belief once per frame of File, a JSONL file in the format of
-%   `ddc filter` (docs/filter.md, the JSONL frame format): one
-%   JSON object per line with optional "observations" and "actions" lists
-%   (term text, or {"observation": TERM, "value": V} for `observation(TERM)
-%   ~= V`, a JSON array as a tuple), blank lines skipped.  call(OnStep,
-%   Step) after each step (belief_step/4's dict).  A bad line or a step
-%   the filter refuses raises error(ddc_belief(frame(File, Line, Cause)),
-%   _); the steps before it stay done, the belief is as after them.
+%   Steps the belief once per frame of File (read_frame_file/2's format),
+%   reading and stepping line by line; call(OnStep, Step) after each step
+%   (belief_step/4's dict).  A bad line or a step the filter refuses raises
+%   error(ddc_belief(frame(File, Line, Cause)), _); the steps before it stay
+%   done, the belief is as after them.
 belief_run(B, File) :-
     belief_run(B, File, ignore_step).
 
 ignore_step(_).
 
 belief_run(B, File, OnStep) :-
+    must_be(text, File),
     setup_call_cleanup(open(File, read, In, [encoding(utf8)]),
-                       run_lines(In, File, 1, B, OnStep),
+                       run_frames(In, File, 1, B, OnStep),
                        close(In)).
 
-run_lines(In, File, Line, B, OnStep) :-
+run_frames(In, File, Line0, B, OnStep) :-
+    read_frame(In, File, Line0, Frame, Line),
+    (   Frame = frame(At, Obs, Acts)
+    ->  catch(belief_step(B, Obs, Acts, Step), E,
+              frame_error(File, At, E)),
+        call(OnStep, Step),
+        run_frames(In, File, Line, B, OnStep)
+    ;   true
+    ).
+
+%!  read_frame_file(+File, -Frames:list) is det.
+%
+%   The frames of File, a JSON Lines file in the format of `ddc filter`
+%   (docs/filter.md, the JSONL frame format): one JSON object per line with
+%   optional "observations" and "actions" lists and a "comment" (ignored);
+%   blank lines skipped.  A list item is term text (read in the operator
+%   context of module ddc, ground), or, for an observation,
+%   {"observation": TERM, "value": V} for `observation(TERM) ~= V`, V a JSON
+%   number, string (an atom), true/false or non-empty array (a tuple).
+%   Frames = [frame(Line, Observations, Actions), ...], Line the 1-based
+%   line number.  The Python side (bridge.frames, used by `ddc filter`)
+%   reads frame files with this predicate.
+%
+%   @error ddc_belief(frame(File, Line, Cause)) for the first bad line;
+%   its message is "File:Line: cause" (for an item, "observations[I]: ..."
+%   or "actions[I]: ...").
+read_frame_file(File, Frames) :-
+    must_be(text, File),
+    setup_call_cleanup(open(File, read, In, [encoding(utf8)]),
+                       read_frames(In, File, 1, Frames),
+                       close(In)).
+
+read_frames(In, File, Line0, Frames) :-
+    read_frame(In, File, Line0, Frame, Line),
+    (   Frame == end_of_file
+    ->  Frames = []
+    ;   Frames = [Frame|Rest],
+        read_frames(In, File, Line, Rest)
+    ).
+
+%   read_frame(+In, +File, +Line0, -Frame, -Line): the next frame of In
+%   (frame(At, Observations, Actions), or end_of_file), blank lines skipped;
+%   Line0 is the number of the next line of In, Line that of the line after
+%   the frame.
+read_frame(In, File, Line0, Frame, Line) :-
     read_line_to_string(In, Text),
     (   Text == end_of_file
-    ->  true
-    ;   (   normalize_space(string(""), Text)
-        ->  true
+    ->  Frame = end_of_file,
+        Line = Line0
+    ;   Line1 is Line0 + 1,
+        (   normalize_space(string(""), Text)
+        ->  read_frame(In, File, Line1, Frame, Line)
         ;   catch(frame_terms(Text, Obs, Acts), E,
-                  frame_error(File, Line, E)),
-            catch(belief_step(B, Obs, Acts, Step), E,
-                  frame_error(File, Line, E)),
-            call(OnStep, Step)
-        ),
-        Line1 is Line + 1,
-        run_lines(In, File, Line1, B, OnStep)
+                  frame_error(File, Line0, E)),
+            Frame = frame(Line0, Obs, Acts),
+            Line = Line1
+        )
     ).
 
 frame_error(File, Line, E) :-
@@ -600,8 +642,15 @@ frame_terms(Text, Obs, Acts) :-
     ),
     get_dict_default(observations, D, ObsItems),
     get_dict_default(actions, D, ActItems),
-    maplist(observation_term, ObsItems, Obs),
-    maplist(text_term, ActItems, Acts).
+    foldl(frame_item(observations, observation_term), ObsItems, Obs, 1, _),
+    foldl(frame_item(actions, text_term), ActItems, Acts, 1, _).
+
+%   frame_item(+Key, :Read, +Item, -Term, +I0, -I): Item, the I0-th of
+%   list Key, read by Read; its errors name Key and I0.
+frame_item(Key, Read, Item, Term, I0, I) :-
+    I is I0 + 1,
+    catch(call(Read, Item, Term), error(frame_syntax(Cause), _),
+          throw(error(frame_syntax(item(Key, I0, Cause)), _))).
 
 dict_keys(D, Keys) :-
     dict_pairs(D, _, Pairs),
@@ -626,6 +675,10 @@ observation_term(Item, T) :-
 
 text_term(Text, T) :-
     (   string(Text) -> true ; throw(error(frame_syntax(not_term_text(Text)), _)) ),
+    (   normalize_space(string(""), Text)
+    ->  throw(error(frame_syntax(empty_text), _))
+    ;   true
+    ),
     catch(check_text_nesting(Text, nowhere), _, throw(error(frame_syntax(too_deep), _))),
     catch(term_string(T, Text, [module(ddc)]), E,
           throw(error(frame_syntax(term(Text, E)), _))),
@@ -663,6 +716,9 @@ frame_cause(error(frame_syntax(C), _)) --> !,
 frame_cause(E) -->
     '$messages':translate_message(E).
 
+frame_syntax(item(Key, I, Cause)) --> !,
+    [ '~w[~w]: '-[Key, I] ],
+    frame_syntax(Cause).
 frame_syntax(invalid_json) --> !, [ 'invalid JSON' ].
 frame_syntax(not_an_object) --> !, [ 'a line must be a JSON object' ].
 frame_syntax(unknown_key(K)) --> !,
@@ -674,6 +730,18 @@ frame_syntax(not_term_text(X)) --> !, [ 'not term text: ~q'-[X] ].
 frame_syntax(too_deep) --> !,
     { max_nesting(Max) },
     [ 'a term whose brackets nest deeper than ~D, the most the reader takes'-[Max] ].
-frame_syntax(term(Text, _)) --> !, [ 'syntax error in ~q'-[Text] ].
+frame_syntax(term(Text, E)) --> !,
+    [ 'syntax error in ~q'-[Text] ],
+    syntax_detail(E).
 frame_syntax(not_ground(Text)) --> !, [ 'not ground: ~q'-[Text] ].
+frame_syntax(empty_text) --> !, [ 'empty term text' ].
 frame_syntax(bad_value(V)) --> [ 'cannot use ~q as an observed value'-[V] ].
+
+%   syntax_detail(+Error): ": " and what the reader said, e.g. "Operator
+%   expected" (nothing if it has no message).
+syntax_detail(error(syntax_error(What), _)) -->
+    { catch('$messages':translate_message(error(syntax_error(What), _), Lines, []), _, fail),
+      Lines = ['Syntax error: '|Detail], Detail \== []
+    }, !,
+    [ ': ' ], Detail.
+syntax_detail(_) --> [].

@@ -18,7 +18,8 @@
             bridge_free/1,              % +Key
             bridge_holds/4,             % +Key, +GoalText, -Flags, -Err
             bridge_values/4,            % +Key, +PairText, -Values, -Err
-            bridge_numeric_rows/6       % +Key, +PairText, -Width, -Floats, -Values, -Err
+            bridge_numeric_rows/6,      % +Key, +PairText, -Width, -Floats, -Values, -Err
+            bridge_frames/3             % +File, -Frames, -Err
           ]).
 
 :- use_module(library(lists)).
@@ -28,6 +29,7 @@
                      filter_time/2, filter_engine/2, filter_free/1, filter_holds/3,
                      filter_values/4, filter_rows/6 ]).
 :- use_module(ddc_nesting, [check_text_nesting/2]).
+:- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
 
 /** <module> The Prolog side of the Python bridge
 
@@ -126,6 +128,28 @@ bridge_numeric_rows(Key, PairText, Width, Floats, Values, Err) :-
               filter_rows(F, Template, Goal, Width, Floats, Values0),
               maplist(py_solution, Values0, Values) ), Err),
     ( var(Width) -> Width = 0, Floats = [], Values = [] ; true ).
+
+%!  bridge_frames(+File, -Frames:list, -Err) is det.
+%
+%   The frames of a frame file (JSON Lines, the format of `ddc filter`), read by
+%   ddc_belief's read_frame_file/2, the one reader of the format: Frames holds per frame
+%   -(Line, ObservationTexts, ActionTexts) (a tuple in Python), each term written back as
+%   text that term_string/3 in module ddc reads as the same term.  A bad line gives
+%   Frames [] and Err "File:Line: cause".
+bridge_frames(File, Frames, Err) :-
+    guarded(( read_frame_file(File, Frames0),
+              maplist(frame_texts, Frames0, Frames) ), Err),
+    ( var(Frames) -> Frames = [] ; true ).
+
+frame_texts(frame(Line, Obs, Acts), -(Line, ObsTexts, ActTexts)) :-
+    maplist(term_text, Obs, ObsTexts),
+    maplist(term_text, Acts, ActTexts).
+
+%   term_text(+Term, -Text): Text reads back (in module ddc) as Term.
+term_text(Term, Text) :-
+    format(string(Text), "~W",
+           [ Term, [ quoted(true), module(ddc), spacing(next_argument),
+                     numbervars(false), portray(false), ignore_ops(false) ] ]).
 
 		 /*******************************
 		 *            ERRORS            *

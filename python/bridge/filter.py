@@ -122,6 +122,13 @@ def _ensure_engine() -> None:
         _helper_loaded = True
 
 
+def call_helper(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
+    """Run ``goal``, a call of prolog/ddc_bridge.pl, once (the engine and the helper are loaded
+    first); a Prolog error or failure is a :class:`FilterError`."""
+    _ensure_engine()
+    return _call(goal, bindings)
+
+
 def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
     """Run ``goal`` of the helper module once, in whatever thread calls (the particles live
     in a Prolog engine of their own, which any thread may run: ``filter_new/5``); a Prolog

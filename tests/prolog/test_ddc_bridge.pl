@@ -4,6 +4,7 @@
 */
 :- use_module('../../prolog/ddc').
 :- use_module('../../prolog/ddc_bridge').
+:- use_module('../../prolog/ddc_belief', [read_frame_file/2]).
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
@@ -130,4 +131,32 @@ test(numeric_rows_flatten_numbers_and_tuples) :-
     assertion(W3 == 0), assertion(Err \== ""),
     bridge_free(Key).
 
+test(frames_come_as_texts_that_read_back_as_the_terms_read) :-
+    tmp_file_stream(text, Frames, Out),
+    format(Out, '~w~n', ['{"observations": ["observation(p) ~= (0.1, -1, 1.0e-300, 12345678901234567890)", "observation(q) ~= \\"s\\"", "seen(\'A b\', [x|y], {z}, - (1), a- -1, (:-), \'=..\')"], "actions": ["action(move(b, (0.1,0,0)))"]}']),
+    format(Out, '~w~n', ['{"observations": [{"observation": "pos(b)", "value": [0.30000000000000004, "Ab", [1, 2], false]}]}']),
+    close(Out),
+    read_frame_file(Frames, Terms),
+    bridge_frames(Frames, Texts, Err),
+    assertion(Err == ""),
+    length(Terms, 2),
+    maplist(same_frame, Terms, Texts).
+
+test(a_bad_frame_file_gives_file_line_and_cause_in_err) :-
+    tmp_file_stream(text, Frames, Out),
+    format(Out, '{}~n{"observations": [1]}~n', []),
+    close(Out),
+    bridge_frames(Frames, Fs, Err),
+    assertion(Fs == []),
+    atom_concat(Frames, ':2: observations[1]: ', Start),
+    assertion(sub_string(Err, 0, _, _, Start)).
+
 :- end_tests(ddc_bridge).
+
+same_frame(frame(Line, Obs, Acts), -(Line, ObsTexts, ActTexts)) :-
+    maplist(reads_as, ObsTexts, Obs),
+    maplist(reads_as, ActTexts, Acts).
+
+reads_as(Text, Term) :-
+    term_string(T, Text, [module(ddc)]),
+    assertion(T == Term).
