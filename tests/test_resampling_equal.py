@@ -145,3 +145,8 @@ def test_the_resampling_module_imports_no_janus() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_too_few_uniforms_is_an_error_in_python() -> None:
+    with pytest.raises(ValueError, match="2 uniforms needed, 1 given"):
+        indices_from_uniforms([0.5, 0.5], "multinomial", [0.1])

@@ -32,6 +32,14 @@ Uniforms = npt.ArrayLike
 # From given uniforms
 
 
+def _first(uniforms: Uniforms, k: int) -> np.ndarray:
+    """The first ``k`` of ``uniforms`` (ValueError if there are fewer)."""
+    values = np.asarray(uniforms, dtype=float).reshape(-1)
+    if len(values) < k:
+        raise ValueError(f"{k} uniforms needed, {len(values)} given")
+    return values[:k]
+
+
 def _walk(weights: np.ndarray, positions: np.ndarray) -> np.ndarray:
     """Per position, the first index whose cumulative weight exceeds it (last counts as 1)."""
     n = len(weights)
@@ -42,17 +50,18 @@ def _walk(weights: np.ndarray, positions: np.ndarray) -> np.ndarray:
 
 def systematic_from_uniforms(weights: npt.ArrayLike, uniforms: Uniforms) -> np.ndarray:
     """Systematic resampling with the offset ``uniforms[0]`` (the others are not used)."""
-    w = np.asarray(weights, dtype=float)
+    return _systematic(np.asarray(weights, dtype=float), float(_first(uniforms, 1)[0]))
+
+
+def _systematic(w: np.ndarray, u: float) -> np.ndarray:
     n = len(w)
-    u = float(np.asarray(uniforms, dtype=float).reshape(-1)[0])
     return _walk(w, (u + np.arange(n)) / n)
 
 
 def multinomial_from_uniforms(weights: npt.ArrayLike, uniforms: Uniforms) -> np.ndarray:
     """Multinomial resampling with the draws ``uniforms[:N]`` (sorted here)."""
     w = np.asarray(weights, dtype=float)
-    draws = np.asarray(uniforms, dtype=float).reshape(-1)[: len(w)]
-    return _walk(w, np.sort(draws))
+    return _walk(w, np.sort(_first(uniforms, len(w))))
 
 
 def _residual_copies(w: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
@@ -69,14 +78,18 @@ def residual_from_uniforms(weights: npt.ArrayLike, uniforms: Uniforms) -> np.nda
     The residuals are normalised by their numpy sum (pairwise summation, which
     ``prolog/ddc_belief.pl`` reproduces)."""
     w = np.asarray(weights, dtype=float)
-    n = len(w)
     scaled, copies, remaining = _residual_copies(w)
+    return _residual(scaled, copies, _first(uniforms, remaining))
+
+
+def _residual(scaled: np.ndarray, copies: np.ndarray, draws: np.ndarray) -> np.ndarray:
+    """floor copies plus ``len(draws)`` (= R) picked from the residuals."""
+    n = len(scaled)
     deterministic = np.repeat(np.arange(n), copies)
-    if remaining == 0:
+    if len(draws) == 0:
         return deterministic
     residual = scaled - copies
-    draws = np.sort(np.asarray(uniforms, dtype=float).reshape(-1)[:remaining])
-    extra = _walk(residual / residual.sum(), draws)
+    extra = _walk(residual / residual.sum(), np.sort(draws))
     return np.sort(np.concatenate([deterministic, extra]))
 
 
@@ -98,8 +111,8 @@ def indices_from_uniforms(
     weights: npt.ArrayLike, scheme: Resampling, uniforms: Uniforms
 ) -> np.ndarray:
     """N ancestor indices (int64, 0-based) for normalised ``weights`` under ``scheme``, from
-    the given uniform numbers in [0, 1): at least 1 (systematic), N (multinomial) or R
-    (residual); N of them always suffice."""
+    the given uniform numbers in [0, 1): the first 1 (systematic), N (multinomial) or R
+    (residual) are used; N of them always suffice (ValueError if too few)."""
     _check_scheme(scheme)
     return FROM_UNIFORMS[scheme](weights, uniforms).astype(np.int64)
 
@@ -110,7 +123,7 @@ def indices_from_uniforms(
 
 def systematic_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     """One uniform offset, stride 1/N: particle i is copied floor(N w_i) or ceil(N w_i) times."""
-    return systematic_from_uniforms(weights, [rng.random()])
+    return _systematic(np.asarray(weights, dtype=float), rng.random())
 
 
 def multinomial_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
@@ -121,9 +134,8 @@ def multinomial_indices(weights: np.ndarray, rng: np.random.Generator) -> np.nda
 def residual_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     """floor(N w_i) copies of each particle, the remaining R drawn multinomially from the rest
     (R uniforms drawn, none when R is 0)."""
-    _, _, remaining = _residual_copies(np.asarray(weights, dtype=float))
-    draws = rng.random(remaining) if remaining else np.empty(0)
-    return residual_from_uniforms(weights, draws)
+    scaled, copies, remaining = _residual_copies(np.asarray(weights, dtype=float))
+    return _residual(scaled, copies, rng.random(remaining) if remaining else np.empty(0))
 
 
 RESAMPLERS: dict[str, Callable[[np.ndarray, np.random.Generator], np.ndarray]] = {
