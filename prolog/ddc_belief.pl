@@ -37,6 +37,7 @@
             belief_zero_weight_events/2, % +Belief, -Count
             belief_filter/2,             % +Belief, -Filter
             belief_free/1,               % +Belief
+            read_frame_file/2,           % +File, -Frames
             resample_indices/4           % +Scheme, +Weights, +Uniforms, -Indices
           ]).
 :- reexport(ddc).
@@ -227,24 +228,45 @@ add_square(L, S0, S) :-
     exp_weight(L, W),
     S is S0 + W*W.
 
-%!  resample_indices(+Scheme, +Weights, +Uniforms, -Indices) is det.
+%!  resample_indices(+Scheme, +Weights:list(float), +Uniforms:list(float),
+%!                   -Indices:list(integer)) is det.
 %
-%   N ancestor indices (0-based, ascending) for normalised Weights (N
-%   floats), from N uniform numbers in [0, 1) (only the first is used by
-%   systematic), as bridge.filter's resamplers: systematic (one offset,
-%   stride 1/N: particle i is copied floor(N w_i) or ceil(N w_i) times),
-%   multinomial (N independent draws), residual (floor(N w_i) copies of
-%   each, the rest drawn from the remainders).
-resample_indices(systematic, Ws, [U|_], Is) :-
+%   N ancestor indices (0-based, ascending) for N normalised Weights, from
+%   uniform numbers in [0, 1), with the rules of python/bridge/resampling.py
+%   (tests/test_resampling_equal.py gives both the same uniforms and expects
+%   the same indices):
+%     - systematic: one offset U (the first uniform), positions (U+k)/N:
+%       particle i is copied floor(N w_i) or ceil(N w_i) times;
+%     - multinomial: the first N uniforms, sorted, are the positions;
+%     - residual: floor(N w_i) copies of each particle, the R = N - sum of
+%       the floors that remain drawn as multinomial (the first R uniforms)
+%       from the residuals N w_i - floor(N w_i), normalised by their sum as
+%       numpy computes it (numpy_sum/2).
+%   Each position takes the first particle whose cumulative weight exceeds
+%   it, the last particle any position that none exceeds (its cumulative
+%   weight counts as 1).  N uniforms always suffice.
+%
+%   @error domain_error(enough_uniforms(K), Uniforms) if fewer than the K
+%   the scheme needs are given.
+resample_indices(Scheme, Ws, Us, Is) :-
+    must_be(oneof([systematic, multinomial, residual]), Scheme),
+    must_be(list(number), Ws),
+    must_be(list(number), Us),
+    resample_indices_(Scheme, Ws, Us, Is).
+
+resample_indices_(systematic, Ws, Us, Is) :-
+    first_uniforms(1, Us, [U]),
     length(Ws, N),
     N1 is N - 1,
     numlist(0, N1, Ks),
     maplist(systematic_position(U, N), Ks, Ps),
     walk(Ws, Ps, Is).
-resample_indices(multinomial, Ws, Us, Is) :-
-    msort(Us, Ps),
+resample_indices_(multinomial, Ws, Us, Is) :-
+    length(Ws, N),
+    first_uniforms(N, Us, Draws),
+    msort(Draws, Ps),
     walk(Ws, Ps, Is).
-resample_indices(residual, Ws, Us, Is) :-
+resample_indices_(residual, Ws, Us, Is) :-
     length(Ws, N),
     maplist(residual_copies(N), Ws, Copies),
     sum_list(Copies, Kept),
@@ -255,14 +277,21 @@ resample_indices(residual, Ws, Us, Is) :-
     (   Rest =:= 0
     ->  Is = Det
     ;   maplist(residual_weight(N), Ws, Copies, Rs0),
-        sum_list(Rs0, RSum),
+        numpy_sum(Rs0, RSum),
         maplist(divide(RSum), Rs0, Rs),
-        length(Draws, Rest),
-        append(Draws, _, Us),
+        first_uniforms(Rest, Us, Draws),
         msort(Draws, Ps),
         walk(Rs, Ps, Extra),
         append(Det, Extra, All),
         msort(All, Is)
+    ).
+
+%   first_uniforms(+K, +Us, -First): the first K of Us.
+first_uniforms(K, Us, First) :-
+    length(First, K),
+    (   append(First, _, Us)
+    ->  true
+    ;   domain_error(enough_uniforms(K), Us)
     ).
 
 systematic_position(U, N, K, P) :-
@@ -283,23 +312,77 @@ repeat_index(I, C, L0, L) :-
     append(Is, L, L0).
 
 %   walk(+Weights, +SortedPositions, -Indices): for each position the first
-%   index whose cumulative weight exceeds it (the last cumulative weight
-%   counts as 1, so a position never falls off the end).
+%   index whose cumulative weight exceeds it; the last index for a position
+%   that none exceeds (as if the last cumulative weight were 1 and positions
+%   below 1: numpy's searchsorted, capped at N-1).
 walk(Ws, Ps, Is) :-
     length(Ws, N),
     Last is N - 1,
     walk(Ws, 0, 0.0, Last, Ps, Is).
 
 walk(_, _, _, _, [], []) :- !.
-walk(Ws, I, C0, Last, [P|Ps], Is) :-
-    Ws = [W|Ws1],
-    (   I == Last -> C = 1.0 ; C is C0 + W ),
+walk(_, Last, _, Last, Ps, Is) :- !,
+    maplist(constant(Last), Ps, Is).
+walk([W|Ws1], I, C0, Last, [P|Ps], Is) :-
+    C is C0 + W,
     (   C > P
     ->  Is = [I|Is1],
-        walk(Ws, I, C0, Last, Ps, Is1)
+        walk([W|Ws1], I, C0, Last, Ps, Is1)
     ;   I1 is I + 1,
         walk(Ws1, I1, C, Last, [P|Ps], Is)
     ).
+
+constant(C, _, C).
+
+%!  numpy_sum(+Xs:list(float), -Sum:float) is det.
+%
+%   The sum of the non-empty list Xs as numpy's sum of a float64 array
+%   computes it, bit for bit: pairwise summation.  A run of fewer than 8
+%   numbers is added from left to right; a run of at most 128 in 8
+%   interleaved partial sums (the k-th takes elements k, k+8, ...),
+%   combined as ((s0+s1)+(s2+s3))+((s4+s5)+(s6+s7)), then the N mod 8 left
+%   over added one by one; a longer run is split in two, the first half
+%   floor(N/2) rounded down to a multiple of 8, and the halves' sums added.
+%   (For non-negative numbers, as the residuals are: numpy starts from
+%   -0.0, the same as starting from the first number.)
+numpy_sum(Xs, S) :-
+    length(Xs, N),
+    pairwise_sum(N, Xs, [], S).
+
+%   pairwise_sum(+N, +Xs, -Rest, -S): S the sum of the first N of Xs, Rest
+%   the others.
+pairwise_sum(N, [X|Xs], Rest, S) :-
+    N < 8, !,
+    N1 is N - 1,
+    add_run(N1, Xs, X, S, Rest).
+pairwise_sum(N, [X0,X1,X2,X3,X4,X5,X6,X7|Xs], Rest, S) :-
+    N =< 128, !,
+    Blocks is N // 8 - 1,
+    add_blocks(Blocks, Xs, s(X0,X1,X2,X3,X4,X5,X6,X7), s(R0,R1,R2,R3,R4,R5,R6,R7), Xs1),
+    S0 is ((R0+R1)+(R2+R3))+((R4+R5)+(R6+R7)),
+    K is N mod 8,
+    add_run(K, Xs1, S0, S, Rest).
+pairwise_sum(N, Xs, Rest, S) :-
+    Half is N // 2,
+    N1 is Half - Half mod 8,
+    N2 is N - N1,
+    pairwise_sum(N1, Xs, Xs1, S1),
+    pairwise_sum(N2, Xs1, Rest, S2),
+    S is S1 + S2.
+
+%   add_run(+K, +Xs, +S0, -S, -Rest): S0 plus the first K of Xs, left to right.
+add_run(0, Xs, S, S, Xs) :- !.
+add_run(K, [X|Xs], S0, S, Rest) :-
+    S1 is S0 + X,
+    K1 is K - 1,
+    add_run(K1, Xs, S1, S, Rest).
+
+add_blocks(0, Xs, R, R, Xs) :- !.
+add_blocks(B, [X0,X1,X2,X3,X4,X5,X6,X7|Xs], s(A0,A1,A2,A3,A4,A5,A6,A7), R, Rest) :-
+    B0 is A0+X0, B1 is A1+X1, B2 is A2+X2, B3 is A3+X3,
+    B4 is A4+X4, B5 is A5+X5, B6 is A6+X6, B7 is A7+X7,
+    B1s is B - 1,
+    add_blocks(B1s, Xs, s(B0,B1,B2,B3,B4,B5,B6,B7), R, Rest).
 
 		 /*******************************
 		 *            QUERIES           *
@@ -467,38 +550,79 @@ list_tuple([X|Xs], (X, T)) :-
 %!  belief_run(+Belief, +File) is det.
 %!  belief_run(+Belief, +File, :OnStep) is det.
 %
-%   Steps the belief once per frame of File, a JSONL file in the format of
-%   `ddc filter` (docs/filter.md, the JSONL frame format): one
-%   JSON object per line with optional "observations" and "actions" lists
-%   (term text, or {"observation": TERM, "value": V} for `observation(TERM)
-%   ~= V`, a JSON array as a tuple), blank lines skipped.  call(OnStep,
-%   Step) after each step (belief_step/4's dict).  A bad line or a step
-%   the filter refuses raises error(ddc_belief(frame(File, Line, Cause)),
-%   _); the steps before it stay done, the belief is as after them.
+%   Steps the belief once per frame of File (read_frame_file/2's format),
+%   reading and stepping line by line; call(OnStep, Step) after each step
+%   (belief_step/4's dict).  A bad line or a step the filter refuses raises
+%   error(ddc_belief(frame(File, Line, Cause)), _); the steps before it stay
+%   done, the belief is as after them.
 belief_run(B, File) :-
     belief_run(B, File, ignore_step).
 
 ignore_step(_).
 
 belief_run(B, File, OnStep) :-
+    must_be(text, File),
     setup_call_cleanup(open(File, read, In, [encoding(utf8)]),
-                       run_lines(In, File, 1, B, OnStep),
+                       run_frames(In, File, 1, B, OnStep),
                        close(In)).
 
-run_lines(In, File, Line, B, OnStep) :-
+run_frames(In, File, Line0, B, OnStep) :-
+    read_frame(In, File, Line0, Frame, Line),
+    (   Frame = frame(At, Obs, Acts)
+    ->  catch(belief_step(B, Obs, Acts, Step), E,
+              frame_error(File, At, E)),
+        call(OnStep, Step),
+        run_frames(In, File, Line, B, OnStep)
+    ;   true
+    ).
+
+%!  read_frame_file(+File, -Frames:list) is det.
+%
+%   The frames of File, a JSON Lines file in the format of `ddc filter`
+%   (docs/filter.md, the JSONL frame format): one JSON object per line with
+%   optional "observations" and "actions" lists and a "comment" (ignored);
+%   blank lines skipped.  A list item is term text (read in the operator
+%   context of module ddc, ground), or, for an observation,
+%   {"observation": TERM, "value": V} for `observation(TERM) ~= V`, V a JSON
+%   number, string (an atom), true/false or non-empty array (a tuple).
+%   Frames = [frame(Line, Observations, Actions), ...], Line the 1-based
+%   line number.  The Python side (bridge.frames, used by `ddc filter`)
+%   reads frame files with this predicate.
+%
+%   @error ddc_belief(frame(File, Line, Cause)) for the first bad line;
+%   its message is "File:Line: cause" (for an item, "observations[I]: ..."
+%   or "actions[I]: ...").
+read_frame_file(File, Frames) :-
+    must_be(text, File),
+    setup_call_cleanup(open(File, read, In, [encoding(utf8)]),
+                       read_frames(In, File, 1, Frames),
+                       close(In)).
+
+read_frames(In, File, Line0, Frames) :-
+    read_frame(In, File, Line0, Frame, Line),
+    (   Frame == end_of_file
+    ->  Frames = []
+    ;   Frames = [Frame|Rest],
+        read_frames(In, File, Line, Rest)
+    ).
+
+%   read_frame(+In, +File, +Line0, -Frame, -Line): the next frame of In
+%   (frame(At, Observations, Actions), or end_of_file), blank lines skipped;
+%   Line0 is the number of the next line of In, Line that of the line after
+%   the frame.
+read_frame(In, File, Line0, Frame, Line) :-
     read_line_to_string(In, Text),
     (   Text == end_of_file
-    ->  true
-    ;   (   normalize_space(string(""), Text)
-        ->  true
+    ->  Frame = end_of_file,
+        Line = Line0
+    ;   Line1 is Line0 + 1,
+        (   normalize_space(string(""), Text)
+        ->  read_frame(In, File, Line1, Frame, Line)
         ;   catch(frame_terms(Text, Obs, Acts), E,
-                  frame_error(File, Line, E)),
-            catch(belief_step(B, Obs, Acts, Step), E,
-                  frame_error(File, Line, E)),
-            call(OnStep, Step)
-        ),
-        Line1 is Line + 1,
-        run_lines(In, File, Line1, B, OnStep)
+                  frame_error(File, Line0, E)),
+            Frame = frame(Line0, Obs, Acts),
+            Line = Line1
+        )
     ).
 
 frame_error(File, Line, E) :-
@@ -518,8 +642,15 @@ frame_terms(Text, Obs, Acts) :-
     ),
     get_dict_default(observations, D, ObsItems),
     get_dict_default(actions, D, ActItems),
-    maplist(observation_term, ObsItems, Obs),
-    maplist(text_term, ActItems, Acts).
+    foldl(frame_item(observations, observation_term), ObsItems, Obs, 1, _),
+    foldl(frame_item(actions, text_term), ActItems, Acts, 1, _).
+
+%   frame_item(+Key, :Read, +Item, -Term, +I0, -I): Item, the I0-th of
+%   list Key, read by Read; its errors name Key and I0.
+frame_item(Key, Read, Item, Term, I0, I) :-
+    I is I0 + 1,
+    catch(call(Read, Item, Term), error(frame_syntax(Cause), _),
+          throw(error(frame_syntax(item(Key, I0, Cause)), _))).
 
 dict_keys(D, Keys) :-
     dict_pairs(D, _, Pairs),
@@ -544,6 +675,10 @@ observation_term(Item, T) :-
 
 text_term(Text, T) :-
     (   string(Text) -> true ; throw(error(frame_syntax(not_term_text(Text)), _)) ),
+    (   normalize_space(string(""), Text)
+    ->  throw(error(frame_syntax(empty_text), _))
+    ;   true
+    ),
     catch(check_text_nesting(Text, nowhere), _, throw(error(frame_syntax(too_deep), _))),
     catch(term_string(T, Text, [module(ddc)]), E,
           throw(error(frame_syntax(term(Text, E)), _))),
@@ -581,6 +716,9 @@ frame_cause(error(frame_syntax(C), _)) --> !,
 frame_cause(E) -->
     '$messages':translate_message(E).
 
+frame_syntax(item(Key, I, Cause)) --> !,
+    [ '~w[~w]: '-[Key, I] ],
+    frame_syntax(Cause).
 frame_syntax(invalid_json) --> !, [ 'invalid JSON' ].
 frame_syntax(not_an_object) --> !, [ 'a line must be a JSON object' ].
 frame_syntax(unknown_key(K)) --> !,
@@ -592,6 +730,18 @@ frame_syntax(not_term_text(X)) --> !, [ 'not term text: ~q'-[X] ].
 frame_syntax(too_deep) --> !,
     { max_nesting(Max) },
     [ 'a term whose brackets nest deeper than ~D, the most the reader takes'-[Max] ].
-frame_syntax(term(Text, _)) --> !, [ 'syntax error in ~q'-[Text] ].
+frame_syntax(term(Text, E)) --> !,
+    [ 'syntax error in ~q'-[Text] ],
+    syntax_detail(E).
 frame_syntax(not_ground(Text)) --> !, [ 'not ground: ~q'-[Text] ].
+frame_syntax(empty_text) --> !, [ 'empty term text' ].
 frame_syntax(bad_value(V)) --> [ 'cannot use ~q as an observed value'-[V] ].
+
+%   syntax_detail(+Error): ": " and what the reader said, e.g. "Operator
+%   expected" (nothing if it has no message).
+syntax_detail(error(syntax_error(What), _)) -->
+    { catch('$messages':translate_message(error(syntax_error(What), _), Lines, []), _, fail),
+      Lines = ['Syntax error: '|Detail], Detail \== []
+    }, !,
+    [ ': ' ], Detail.
+syntax_detail(_) --> [].

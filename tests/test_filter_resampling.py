@@ -1,4 +1,5 @@
-"""Resampling schemes and weight arithmetic of the filter bridge (pure numpy, no engine)."""
+"""Resampling schemes and weight arithmetic of the filter bridge (bridge.resampling: pure numpy,
+no engine)."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from bridge.filter import (
+from bridge.resampling import (
     effective_sample_size,
     multinomial_indices,
     resample_indices,

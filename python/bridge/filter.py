@@ -3,7 +3,8 @@
 Prolog (``prolog/ddc.pl``) owns the semantics: the particles live there between steps and one
 call per step samples the transition and weights every particle. Python owns the bookkeeping:
 normalised log weights (numpy), the effective sample size, resampling indices drawn from a numpy
-``Generator`` seeded from ``seed``, the running log-likelihood, and timing.
+``Generator`` seeded from ``seed`` (:mod:`bridge.resampling`), the running log-likelihood, and
+timing.
 
 Example::
 
@@ -59,11 +60,11 @@ import janus_swi as janus
 import numpy as np
 
 from bridge import prolog
+from bridge.resampling import RESAMPLERS, Resampling, effective_sample_size, resample_indices
 from bridge.terms import Compound, Text, item_text, to_term
 
 logger = logging.getLogger(__name__)
 
-Resampling = Literal["systematic", "multinomial", "residual"]
 Engine = Literal["per_particle", "batched", "auto"]
 ENGINES: tuple[Engine, ...] = ("auto", "batched", "per_particle")
 #: Prolog threads that step the particles unless told otherwise (the 2-core machine's cores)
@@ -80,68 +81,7 @@ class ZeroWeightWarning(RuntimeWarning):
 
 
 # --------------------------------------------------------------------------------------------
-# Resampling (pure numpy; unit-tested on their own)
-
-
-def systematic_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-    """One uniform offset, stride 1/N: particle i is copied floor(N w_i) or ceil(N w_i) times."""
-    n = len(weights)
-    positions = (rng.random() + np.arange(n)) / n
-    cumulative = np.cumsum(weights)
-    cumulative[-1] = 1.0
-    return np.minimum(np.searchsorted(cumulative, positions, side="right"), n - 1)
-
-
-def multinomial_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-    """N independent draws from the weights (sorted, so copies sit together)."""
-    n = len(weights)
-    cumulative = np.cumsum(weights)
-    cumulative[-1] = 1.0
-    draws = np.sort(rng.random(n))
-    return np.minimum(np.searchsorted(cumulative, draws, side="right"), n - 1)
-
-
-def residual_indices(weights: np.ndarray, rng: np.random.Generator) -> np.ndarray:
-    """floor(N w_i) copies of each particle, the remaining R drawn multinomially from the rest."""
-    n = len(weights)
-    scaled = n * np.asarray(weights, dtype=float)
-    copies = np.floor(scaled).astype(np.int64)
-    deterministic = np.repeat(np.arange(n), copies)
-    remaining = n - len(deterministic)
-    if remaining == 0:
-        return deterministic
-    residual = scaled - copies
-    cumulative = np.cumsum(residual / residual.sum())
-    cumulative[-1] = 1.0
-    draws = np.sort(rng.random(remaining))
-    extra = np.minimum(np.searchsorted(cumulative, draws, side="right"), n - 1)
-    return np.sort(np.concatenate([deterministic, extra]))
-
-
-RESAMPLERS = {
-    "systematic": systematic_indices,
-    "multinomial": multinomial_indices,
-    "residual": residual_indices,
-}
-
-
-def resample_indices(
-    weights: np.ndarray, scheme: Resampling, rng: np.random.Generator
-) -> np.ndarray:
-    """N ancestor indices (0-based) for normalised ``weights`` under ``scheme``."""
-    try:
-        resampler = RESAMPLERS[scheme]
-    except KeyError:
-        raise ValueError(
-            f"unknown resampling scheme {scheme!r}; use one of {sorted(RESAMPLERS)}"
-        ) from None
-    return resampler(np.asarray(weights, dtype=float), rng).astype(np.int64)
-
-
-def effective_sample_size(log_weights: np.ndarray) -> float:
-    """1 / sum(w_i^2) for normalised log weights."""
-    w = np.exp(log_weights)
-    return float(1.0 / np.dot(w, w))
+# Weights arithmetic (resampling itself is bridge.resampling, pure numpy)
 
 
 def _logsumexp(values: np.ndarray) -> float:
@@ -152,127 +92,14 @@ def _logsumexp(values: np.ndarray) -> float:
 
 
 # --------------------------------------------------------------------------------------------
-# The Prolog side of the bridge: a small helper module, loaded once, that parses the texts,
-# turns errors into messages and particle values into janus-friendly data.
+# The Prolog side of the bridge: prolog/ddc_bridge.pl, loaded once, parses the texts, turns
+# errors into messages and particle values into janus-friendly data.
 
 #: The engine file loaded before the first filter is made (tests may point it elsewhere).
 ENGINE: Path = prolog.PROLOG_DIR / "ddc.pl"
-_HELPER_MODULE = "ddc_filter_bridge"
-_HELPER_SOURCE = r"""
-:- module(ddc_filter_bridge, []).
-:- use_module(library(lists)).
-:- use_module(library(apply)).
-
-%   The handle Python holds is the text of the engine's filter atom, valid
-%   in every thread (filter_new/5); a freed one raises unknown_filter.
-filter_of(Key, F) :-
-    atom_string(F, Key).
-
-error_text(bridge(_, _, _, Msg), Msg) :- !.
-error_text(E, S) :-
-    catch(( '$messages':translate_message(E, Lines, []),
-            with_output_to(string(S0), print_message_lines(current_output, '', Lines)),
-            split_string(S0, "", "\n ", [S])
-          ), _, fail), !.
-error_text(E, S) :- format(string(S), "~q", [E]).
-
-guarded(Goal, Err) :-
-    catch((Goal, Err = ""), E, (error_text(E, Msg), bridge_error(E, Msg, Err))).
-
-bridge_error(bridge(goal, _, Text0, Msg), _, Err) :- !,
-    shown_text(Text0, Text),
-    format(string(Err), "goal ~w: ~w", [Text, Msg]).
-bridge_error(bridge(Kind, I, Text0, Msg), _, Err) :- !,
-    shown_text(Text0, Text),
-    format(string(Err), "~w ~w (~w): ~w", [Kind, I, Text, Msg]).
-bridge_error(_, Msg, Msg).
-
-% shown_text(+Text, -Shown): a text as an error message shows it (at most 200 characters)
-shown_text(Text, Shown) :-
-    string_length(Text, N),
-    (   N =< 200 -> Shown = Text
-    ;   sub_string(Text, 0, 120, _, Head), sub_string(Text, _, 40, 0, Tail),
-        format(string(Shown), "~w ... ~w, ~D characters", [Head, Tail, N])
-    ).
-
-parse_terms(Kind, Texts, Terms) :-
-    foldl(parse_term(Kind), Texts, Terms, 1, _).
-
-parse_term(Kind, Text, Term, I, I1) :-
-    I1 is I + 1,
-    catch(( ddc_nesting:check_text_nesting(Text, nowhere),
-            term_string(Term, Text, [module(ddc)]) ), E,
-          ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(Kind, I, Text, Msg)) )),
-    (   ground(Term) -> true
-    ;   throw(bridge(Kind, I, Text, "not ground (observations and actions must be)"))
-    ).
-
-clean(Msg0, Msg) :- split_string(Msg0, "\n", " ", [Msg|_]), !.
-clean(Msg, Msg).
-
-parse_goal(Text, Goal) :-
-    catch(( ddc_nesting:check_text_nesting(Text, nowhere),
-            term_string(Goal, Text, [module(ddc)]) ), E,
-          ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(goal, "", Text, Msg)) )).
-
-new(Program, N, Seed, Share, Threads, Engine, F, Used, Err) :-
-    guarded(( ddc:filter_new(Program, N, Seed, [share(Share), threads(Threads), engine(Engine)], F),
-              ddc:filter_engine(F, Used) ), Err),
-    ( var(Used) -> Used = none, F = none ; true ).
-
-step(Key, ObsTexts, ActTexts, LW, Err) :-
-    guarded(( filter_of(Key, F),
-              parse_terms(observation, ObsTexts, Obs),
-              parse_terms(action, ActTexts, Acts),
-              ddc:filter_step(F, Obs, Acts, LW0),
-              maplist(to_float, LW0, LW)
-            ), Err),
-    ( var(LW) -> LW = [] ; true ).
-
-to_float(X, F) :- ( float(X) -> F = X ; F is float(X) ).
-
-undo(Key) :- filter_of(Key, F), ddc:filter_undo(F).
-resample(Key, Indices) :- filter_of(Key, F), ddc:filter_resample(F, Indices).
-time(Key, T) :- filter_of(Key, F), ddc:filter_time(F, T).
-free(Key) :- filter_of(Key, F), ddc:filter_free(F).
-
-holds(Key, GoalText, Flags, Err) :-
-    guarded(( filter_of(Key, F), parse_goal(GoalText, Goal), ddc:filter_holds(F, Goal, Flags) ),
-            Err),
-    ( var(Flags) -> Flags = [] ; true ).
-
-%   (The template is wrapped: filter_values/4 gives the atom none for a
-%   particle without a solution, which must not be taken for a value none.)
-values(Key, PairText, Values, Err) :-
-    guarded(( filter_of(Key, F), parse_goal(PairText, ddc_bridge_pair(Template, Goal)),
-              ddc:filter_values(F, value(Template), Goal, Values0),
-              maplist(py_solution, Values0, Values) ), Err),
-    ( var(Values) -> Values = [] ; true ).
-
-%   numeric_rows(Key, PairText, Width, Floats, Values, Err): the values of
-%   values/4 as N rows of Width floats (NaN where the goal has no solution)
-%   when every value is a number or a tuple of Width numbers (Values []);
-%   else Width 0 and the Values of values/4 (ddc:filter_rows/6).
-numeric_rows(Key, PairText, Width, Floats, Values, Err) :-
-    guarded(( filter_of(Key, F), parse_goal(PairText, ddc_bridge_pair(Template, Goal)),
-              ddc:filter_rows(F, Template, Goal, Width, Floats, Values0),
-              maplist(py_solution, Values0, Values) ), Err),
-    ( var(Width) -> Width = 0, Floats = [], Values = [] ; true ).
-
-py_solution(none, @(none)).
-py_solution(value(V), P) :- py_value(V, P).
-
-py_value(V, "_") :- var(V), !.
-py_value(V, V) :- number(V), !.
-py_value(V, V) :- atom(V), !.
-py_value(V, V) :- string(V), !.
-py_value(V, P) :- is_list(V), !, maplist(py_value, V, P).
-py_value((A, B), P) :- !, comma_items((A, B), Items), maplist(py_value, Items, Ps), P =.. [-|Ps].
-py_value(V, S) :- format(string(S), "~q", [V]).
-
-comma_items((A, B), [A|Rest]) :- !, comma_items(B, Rest).
-comma_items(A, [A]).
-"""
+#: The bridge's Prolog helper module (its predicates are called module-qualified).
+HELPER: Path = prolog.PROLOG_DIR / "ddc_bridge.pl"
+_HELPER_MODULE = "ddc_bridge"
 
 _helper_lock = threading.Lock()
 _helper_loaded = False
@@ -288,15 +115,18 @@ def _ensure_engine() -> None:
             raise FilterError(f"{engine}: the DDC engine is missing")
         try:
             prolog.ensure_loaded(engine)
-            janus.query_once(
-                "open_string(Text, _S), "
-                "call_cleanup(load_files(ddc_filter_bridge_src, [stream(_S), module(M)]),"
-                " close(_S))",
-                {"Text": _HELPER_SOURCE, "M": _HELPER_MODULE},
-            )
+            # (use_module/2 with no imports: the helper's predicates stay out of user)
+            janus.query_once("use_module(F, [])", {"F": str(HELPER)})
         except janus.PrologError as error:
             raise FilterError(f"{engine}: {str(error).strip()}") from None
         _helper_loaded = True
+
+
+def call_helper(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
+    """Run ``goal``, a call of prolog/ddc_bridge.pl, once (the engine and the helper are loaded
+    first); a Prolog error or failure is a :class:`FilterError`."""
+    _ensure_engine()
+    return _call(goal, bindings)
 
 
 def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
@@ -423,7 +253,7 @@ class Filter:
         self._lock = threading.RLock()
         _ensure_engine()
         result = _call(
-            "new(P, N, S, Sh, Th, E, K, Used, Err)",
+            "bridge_new(P, N, S, Sh, Th, E, K, Used, Err)",
             {"P": str(self.program_path), "N": self.particles, "S": self.seed,
              "Sh": "true" if self.share else "false", "Th": self.threads, "E": engine},
         )
@@ -441,7 +271,7 @@ class Filter:
         with self._lock:
             if self._key is not None:
                 key, self._key = self._key, None
-                _call("free(K)", {"K": key})
+                _call("bridge_free(K)", {"K": key})
 
     def __enter__(self) -> Filter:
         return self
@@ -471,7 +301,7 @@ class Filter:
     @_locked
     def time(self) -> int:
         """The time step of the particles (0 after construction, +1 per non-zero-weight step)."""
-        return int(_call("time(K, T)", {"K": self._handle()})["T"])
+        return int(_call("bridge_time(K, T)", {"K": self._handle()})["T"])
 
     @property
     def log_weights(self) -> np.ndarray:
@@ -502,7 +332,7 @@ class Filter:
         call_started = _time.perf_counter()
         try:
             result = _call(
-                "step(K, O, A, LW, Err)", {"K": key, "O": obs_texts, "A": act_texts}
+                "bridge_step(K, O, A, LW, Err)", {"K": key, "O": obs_texts, "A": act_texts}
             )
         except Exception as exc:  # janus-level failure: treat like an engine error
             result = {"Err": str(exc), "LW": []}
@@ -533,7 +363,7 @@ class Filter:
         resampled = ess < self.resample_threshold * self.particles
         if resampled:
             indices = resample_indices(self.weights, self.resampling, self._rng)
-            _call("resample(K, I)", {"K": key, "I": indices.tolist()})
+            _call("bridge_resample(K, I)", {"K": key, "I": indices.tolist()})
             self._log_weights = np.full(self.particles, -math.log(self.particles))
             self.resample_count += 1
         return self._finish(
@@ -555,7 +385,7 @@ class Filter:
     def _restore(self, time_before: int) -> None:
         try:
             if self.time != time_before:
-                _call("undo(K)", {"K": self._handle()})
+                _call("bridge_undo(K)", {"K": self._handle()})
         except Exception as exc:  # pragma: no cover - the engine refused to undo
             logger.error("could not undo a failed step: %s", exc)
 
@@ -568,7 +398,7 @@ class Filter:
         )
         logger.warning(message)
         warnings.warn(message, ZeroWeightWarning, stacklevel=4)  # the caller of step
-        _call("undo(K)", {"K": self._handle()})
+        _call("bridge_undo(K)", {"K": self._handle()})
         self._log_weights = np.full(self.particles, -math.log(self.particles))
         return self._finish(
             StepResult(self.time, frame, 0.0, False, -math.inf, True, 0.0, prolog_seconds),
@@ -588,7 +418,7 @@ class Filter:
     def holds(self, goal: Any) -> np.ndarray:
         """Per particle, 1 if ``goal`` holds in it, else 0 (int8 array of N)."""
         result = _call(
-            "holds(K, G, F, Err)", {"K": self._handle(), "G": _as_term_text(goal)}
+            "bridge_holds(K, G, F, Err)", {"K": self._handle(), "G": _as_term_text(goal)}
         )
         if result["Err"]:
             raise FilterError(f"query: {result['Err']}")
@@ -602,7 +432,7 @@ class Filter:
     @_locked
     def values(self, template: Any, goal: Any) -> list[Any]:
         """Per particle, ``template`` at the first solution of ``goal`` (None: no solution)."""
-        return list(self._query("values(K, P, V, Err)", template, goal)["V"])
+        return list(self._query("bridge_values(K, P, V, Err)", template, goal)["V"])
 
     def _query(self, call: str, template: Any, goal: Any) -> dict[str, Any]:
         """One bridge query over the particles: ``template`` at the first solution of
@@ -656,7 +486,8 @@ class Filter:
         """(values, weights): N rows of values (float, NaN where undefined, when numeric)."""
         # numbers or k-tuples of numbers come flattened from Prolog (no per-particle Python
         # work); other values as values() gives them
-        result = self._query("numeric_rows(K, P, W, F, V, Err)", *self._template_goal(term, goal))
+        result = self._query("bridge_numeric_rows(K, P, W, F, V, Err)",
+                             *self._template_goal(term, goal))
         width = int(result["W"])
         if width == 0:
             return _as_array(result["V"]), self.weights

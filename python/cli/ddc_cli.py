@@ -14,7 +14,8 @@ with the optional keys ``observations`` and ``actions`` (lists; missing means em
 ``"action(move(box_1,(0.1,0,0)))"``) or, for an observation, an object
 ``{"observation": "pos(ball_1)", "value": [0.31, 0.12, 0.05]}`` meaning
 ``observation(pos(ball_1)) ~= (0.31,0.12,0.05)``: a JSON array value becomes a tuple, a string
-an atom, a number a number. Blank lines are skipped.
+an atom, a number a number. Blank lines are skipped. (The format has one reader, in the
+engine: ``read_frame_file/2`` of prolog/ddc_belief.pl, asked through ``bridge.frames``.)
 
 It prints one row per step (step 0 is the prior) with the filter's time, the effective sample
 size, whether it resampled, the running log-likelihood and the probability of each ``--query``
@@ -30,8 +31,6 @@ import logging
 import math
 import sys
 import warnings
-from collections.abc import Iterator
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -94,79 +93,17 @@ def _json_float(value: Any) -> float | None:
 # ddc filter: the observations file
 
 
-@dataclass
-class Frame:
-    """One line of an observations file."""
+def read_frames(path: Path) -> list[Any]:
+    """The frames (``bridge.frames.Frame``) of an observations file, read by the engine's
+    reader of the format (prolog/ddc_belief.pl, the one swipl users run); CliError naming
+    file:line on a bad line."""
+    from bridge.frames import FrameFileError
+    from bridge.frames import read_frames as read_frame_file
 
-    line: int
-    observations: list[Any] = field(default_factory=list)
-    actions: list[Any] = field(default_factory=list)
-
-
-_FRAME_KEYS = {"observations", "actions", "comment"}
-
-
-def _observation_item(item: Any, where: str) -> Any:
-    from bridge import terms
-
-    if isinstance(item, str):
-        return item
-    if isinstance(item, dict):
-        if set(item) != {"observation", "value"} or not isinstance(item["observation"], str):
-            raise CliError(
-                f"{where}: an observation object needs exactly the keys 'observation' "
-                f"(term text) and 'value', got {sorted(item)}"
-            )
-        return terms.observation(terms.Text(item["observation"]), _json_value(item["value"],
-                                                                             where))
-    raise CliError(f"{where}: an observation is a string or an object, not {item!r}")
-
-
-def _json_value(value: Any, where: str) -> Any:
-    if isinstance(value, bool | int | float | str):
-        return value
-    if isinstance(value, list) and value:
-        return tuple(_json_value(v, where) for v in value)
-    raise CliError(f"{where}: cannot use {value!r} as an observed value")
-
-
-def read_frames(path: Path) -> Iterator[Frame]:
-    """The frames of an observations file; CliError naming file:line on a bad line."""
     try:
-        handle = path.open(encoding="utf-8")
-    except OSError as exc:
-        raise CliError(f"{path}: {exc.strerror or exc}") from None
-    with handle:
-        for number, text in enumerate(handle, start=1):
-            if not text.strip():
-                continue
-            where = f"{path}:{number}"
-            try:
-                record = json.loads(text)
-            except json.JSONDecodeError as exc:
-                raise CliError(f"{where}: invalid JSON: {exc.msg} (column {exc.colno})") from None
-            if not isinstance(record, dict):
-                kind = type(record).__name__
-                raise CliError(f"{where}: a line must be a JSON object, got {kind}")
-            unknown = set(record) - _FRAME_KEYS
-            if unknown:
-                raise CliError(
-                    f"{where}: unknown key(s) {sorted(unknown)}; use {sorted(_FRAME_KEYS)}"
-                )
-            frame = Frame(number)
-            for key in ("observations", "actions"):
-                items = record.get(key, [])
-                if not isinstance(items, list):
-                    raise CliError(f"{where}: '{key}' must be a list")
-                for i, item in enumerate(items, start=1):
-                    item_where = f"{where}: {key}[{i}]"
-                    if key == "observations":
-                        frame.observations.append(_observation_item(item, item_where))
-                    elif isinstance(item, str):
-                        frame.actions.append(item)
-                    else:
-                        raise CliError(f"{item_where}: an action is a string of term text")
-            yield frame
+        return read_frame_file(path)
+    except FrameFileError as exc:
+        raise CliError(str(exc)) from None
 
 
 # --------------------------------------------------------------------------------------------

@@ -224,6 +224,35 @@ test(residual_keeps_the_whole_copies) :-
     resample_indices(multinomial, Ws, [0.9, 0.01, 0.5, 0.06], Ms),
     assertion(Ms == [0, 1, 1, 3]).
 
+test(read_frame_file_gives_the_terms_of_each_non_blank_line) :-
+    tmp_file_stream(text, Frames, Out),
+    format(Out, '{"observations": ["observation(up) ~~= wall", {"observation": "pos(b)", "value": [0.5, [1, "Ab"], true]}], "actions": ["action(null)"]}~n~n', []),
+    format(Out, '{"comment": "nothing seen"}~n', []),
+    close(Out),
+    read_frame_file(Frames, Fs),
+    assertion(Fs == [ frame(1, [ observation(up) ~= wall,
+                                 observation(pos(b)) ~= (0.5, (1, 'Ab'), true) ],
+                            [action(null)]),
+                      frame(3, [], []) ]).
+
+test(read_frame_file_names_file_line_and_item) :-
+    forall(member(Line-Expected,
+                  [ '{"observations": ["a", 3]}'-":2: observations[2]: an observation is term text",
+                    '{"actions": ["  "]}'-":2: actions[1]: empty term text",
+                    '{"actions": ["f(X)"]}'-":2: actions[1]: not ground",
+                    '{"observations": ["f("]}'-":2: observations[1]: syntax error in \"f(\": ",
+                    '[1]'-":2: a line must be a JSON object",
+                    '{"observations": [{"observation": "x", "value": {}}]}'-":2: observations[1]: cannot use"
+                  ]),
+           ( tmp_file_stream(text, Frames, Out),
+             format(Out, '{}~n~w~n', [Line]),
+             close(Out),
+             catch(read_frame_file(Frames, _), E, true),
+             assertion(nonvar(E)),
+             message_text(E, Text),
+             atom_concat(Frames, Expected, Start),
+             assertion(sub_string(Text, 0, _, _, Start)) )).
+
 :- end_tests(ddc_belief).
 
 message_text(Term, S) :-

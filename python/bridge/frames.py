@@ -1,0 +1,49 @@
+"""Frame files (the observations and actions of ``ddc filter``, JSON Lines) read by the engine.
+
+The format has one reader, ``read_frame_file/2`` in ``prolog/ddc_belief.pl`` (swipl users
+filter with it through ``belief_run/2``); this module asks it, through the bridge's helper
+(``bridge_frames/3`` in ``prolog/ddc_bridge.pl``), and hands the frames to Python as term
+texts that :meth:`bridge.Filter.step` takes as they are. The format: docs/filter.md.
+
+Example::
+
+    from bridge.frames import read_frames
+    for frame in read_frames("prolog/examples/filter/wumpus.jsonl"):
+        f.step(frame.observations, frame.actions)
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+from bridge.filter import FilterError, call_helper
+from bridge.terms import Text
+
+
+class FrameFileError(ValueError):
+    """A frame file that cannot be read; the message is ``file:line: cause``."""
+
+
+@dataclass(frozen=True)
+class Frame:
+    """One line of a frame file: its 1-based number, observations and actions (term text)."""
+
+    line: int
+    observations: list[Text]
+    actions: list[Text]
+
+
+def read_frames(path: str | os.PathLike[str]) -> list[Frame]:
+    """Every frame of the file at ``path`` (the whole file is read and checked first: a bad
+    line raises :class:`FrameFileError` naming the file, the line and the cause)."""
+    try:
+        result = call_helper("bridge_frames(F, Frames, Err)", {"F": os.fspath(path)})
+    except FilterError as error:
+        raise FrameFileError(f"{os.fspath(path)}: {error}") from None
+    if result["Err"]:
+        raise FrameFileError(str(result["Err"]))
+    return [
+        Frame(int(line), [Text(str(t)) for t in observations], [Text(str(t)) for t in actions])
+        for line, observations, actions in result["Frames"]
+    ]
