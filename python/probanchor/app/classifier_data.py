@@ -4,7 +4,7 @@ Random tables with three or four objects of the known categories (random sizes w
 category's range, colours, yaws, cups and mugs upright or turned over, the camera moved a
 little) are rendered; the pipeline segments them; each segment's shape features are labelled
 with the category of the object whose pixels dominate it (the ground truth is read here, at
-training time only). ``perception.training.train`` fits the classifier on the result: the
+training time only). ``probanchor.perception.training.train`` fits the classifier on the result: the
 simulator stays out of ``perception``.
 """
 
@@ -106,7 +106,7 @@ def build_dataset(n_scenes: int, seed: int = 0, hard: float = 0.0) -> Dataset:
 
     Returns
     -------
-    The :class:`perception.training.Dataset`.
+    The :class:`probanchor.perception.training.Dataset`.
     """
     rng = np.random.default_rng(seed)
     pipe = Pipeline(model=None)

@@ -1,14 +1,13 @@
 """``anchoring collect``: play episodes through perception and anchoring and write the learner's
-input, before/after facts of occlusions (:mod:`app.occlusion_data`).
+input, before/after facts of occlusions (:mod:`probanchor.app.occlusion_data`).
 
 Episodes are scenario files (the shipped ones, or any) and generated occlusion games
-(:func:`tabletop.generate.occlusion_game`). Each is perceived once (the percept stream is cached,
-as ``anchoring evaluate`` caches its streams) and anchored with anchoring alone; the episodes
-are independent jobs (:mod:`jobs`): on worker processes (spawned: a forked child of a process
-that has janus loaded can hang) or on a Ray cluster, combined in the order of the episodes
-whichever finished first.
-The data file is written only once every episode is done (atomically), and an empty collection
-(no occlusion happened) is an error that writes nothing.
+(:func:`probanchor.tabletop.generate.occlusion_game`). Each is perceived once (the percept stream is
+cached, as ``anchoring evaluate`` caches its streams) and anchored with anchoring alone; the
+episodes are independent jobs (:mod:`probanchor.jobs`): on worker processes (spawned: a forked child
+of a process that has janus loaded can hang) or on a Ray cluster, combined in the order of the
+episodes whichever finished first. The data file is written only once every episode is done
+(atomically), and an empty collection (no occlusion happened) is an error that writes nothing.
 """
 
 from __future__ import annotations
@@ -52,7 +51,7 @@ class CollectOptions:
         Worker processes (or the CPUs of a local Ray).
     cluster : str, optional
         Where the episodes run: None or ``"local"``, ``"ray"``, ``"auto"``,
-        ``"ray://HOST:PORT"`` (:func:`jobs.parse_cluster`).
+        ``"ray://HOST:PORT"`` (:func:`probanchor.jobs.parse_cluster`).
     command : str, optional
         The command line, recorded in the data file.
     progress : bool, default=False

@@ -4,7 +4,7 @@ An *episode* is one scenario (a shipped one or a generated game) perceived frame
 anchored with no reasoning (:class:`anchoring.AnchorManager`, which re-identifies a percept by
 appearance when it looks like exactly one anchor left over). Per frame it keeps, for every
 anchor, whether it was perceived and where it was last seen, and, from the simulator, the
-ground truth: which body covers or holds which object. :mod:`app.occlusion_data` turns
+ground truth: which body covers or holds which object. :mod:`probanchor.app.occlusion_data` turns
 episodes into the learner's before/after facts.
 
 The anchors' ground-truth identities come from their percepts' ``truth_id`` (the object

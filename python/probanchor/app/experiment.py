@@ -4,7 +4,7 @@ published multi-object trackers run on the same percepts.
 
 Each (scenario, seed) is perceived once (the stream is cached as JSON Lines in the output
 directory) and every method runs on that same stream. The (scenario, seed) units are
-independent jobs (:mod:`jobs`): on ``jobs`` spawned worker processes, or on a Ray cluster
+independent jobs (:mod:`probanchor.jobs`): on ``jobs`` spawned worker processes, or on a Ray cluster
 (``cluster``); each unit's lines go into ``OUT/summaries.jsonl`` the moment it finishes, and a
 unit whose every method is already there (an interrupted, failed or extended run) is not run
 again. The table is made from those lines, so it is the same whichever back end ran them.

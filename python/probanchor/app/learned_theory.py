@@ -1,8 +1,8 @@
 """``anchoring learn-theory``: the theory of occlusion with rules learned from experience.
 
-The structure learner (:func:`ddclearn.learn`) learns, from the data ``anchoring collect``
-writes, one distributional logic tree for ``occluder(A, O):t+1``: whether O covers (or holds)
-the hidden object A at t+1. Its branch where A was known to be under O at t is the *tracking
+The structure learner (:func:`probanchor.ddclearn.learn`) learns, from the data ``anchoring
+collect`` writes, one distributional logic tree for ``occluder(A, O):t+1``: whether O covers (or
+holds) the hidden object A at t+1. Its branch where A was known to be under O at t is the *tracking
 rule* (does the occlusion go on?), the other branch the *occluder rule* (may O start hiding A?),
 both with statistical models (a logistic regression on a distance, ...) in their leaves.
 

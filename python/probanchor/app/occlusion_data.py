@@ -1,10 +1,10 @@
 """Before/after facts of occlusions for the structure learner (paper, section 4 and 5.2).
 
-From each episode (:mod:`app.experience`), for each pair of consecutive frames t, t+1, each
-anchor A hidden at t+1 (not perceived) and each other anchor O perceived at t+1, a data point:
-the states of A and O at t and t+1 as DDC facts, and the label, whether O covers or holds A at
-t+1. Both kinds of pairs of the paper are there: A perceived at t (it has just vanished) and A
-hidden at t too (an occlusion that goes on, or not). Each data point gets constants of its own
+From each episode (:mod:`probanchor.app.experience`), for each pair of consecutive frames t, t+1,
+each anchor A hidden at t+1 (not perceived) and each other anchor O perceived at t+1, a data point:
+the states of A and O at t and t+1 as DDC facts, and the label, whether O covers or holds A at t+1.
+Both kinds of pairs of the paper are there: A perceived at t (it has just vanished) and A hidden at
+t too (an occlusion that goes on, or not). Each data point gets constants of its own
 (``ball_1_e3_f120``), so that data points are independent worlds.
 
 The states at t are what a particle of the theory of occlusion can know at t, computed from the

@@ -1,5 +1,6 @@
 """The reasoning side of the loop: anchors in, one filter step over the theory of occlusion,
-position particles of hidden anchors out. The only module of :mod:`app` that uses :mod:`bridge`.
+position particles of hidden anchors out. The only module of :mod:`probanchor.app` that uses
+:mod:`bridge`.
 """
 
 from __future__ import annotations

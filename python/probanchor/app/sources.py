@@ -1,11 +1,11 @@
 """Where frames come from: a simulated scenario (rendered and perceived here), a recorded
 RGB-D bag (ROS 1 or 2, perceived here) or a recorded percept stream (JSON Lines, no images).
 
-A source yields one *pending frame* per camera frame: the camera's image is there (the
-simulator has rendered it), and calling the pending frame runs perception on it (timed) and
-gives the :class:`SourceFrame`.  The loop can so perceive the next frame while it reasons
-about the current one (:func:`app.loop.run_frames`); rendering, the simulator's stand-in for a
-camera, is never timed nor overlapped.
+A source yields one *pending frame* per camera frame: the camera's image is there (the simulator has
+rendered it), and calling the pending frame runs perception on it (timed) and gives the
+:class:`SourceFrame`.  The loop can so perceive the next frame while it reasons about the current
+one (:func:`probanchor.app.loop.run_frames`); rendering, the simulator's stand-in for a camera, is
+never timed nor overlapped.
 """
 
 from __future__ import annotations
@@ -107,7 +107,7 @@ def bag_frames(path: str | Path, topics: Any = None, start: int = 0
     Parameters
     ----------
     path:
-        A ``.bag``, ``.db3`` or ``.mcap`` file (``bags.read_bag``).
+        A ``.bag``, ``.db3`` or ``.mcap`` file (``probanchor.bags.read_bag``).
     topics:
         A :class:`bags.BagTopics` (the usual topic names by default).
     start:
@@ -129,7 +129,7 @@ def bag_frames(path: str | Path, topics: Any = None, start: int = 0
 def stream_frames(path: str | Path, skipped: list[str] | None = None, start: int = 0
                   ) -> Iterator[PendingFrame]:
     """A recorded percept stream: no images, perception time 0. With ``skipped``, a line that
-    is not a frame is skipped and its error appended there (``percepts.read_percepts``).
+    is not a frame is skipped and its error appended there (``probanchor.percepts.read_percepts``).
     Frames numbered below ``start`` are skipped."""
     for frame in read_percepts(path, skipped):
         if frame.frame >= start:

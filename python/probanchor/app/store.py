@@ -113,7 +113,7 @@ def run_meta(source: str, options: Any) -> dict[str, str]:
     source:
         ``scenario:PATH``, ``bag:PATH`` or ``percepts:PATH`` (absolute paths).
     options:
-        The run's :class:`app.runner.RunOptions`.
+        The run's :class:`probanchor.app.runner.RunOptions`.
 
     Returns
     -------

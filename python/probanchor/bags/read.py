@@ -7,7 +7,7 @@ first pair's. The intrinsics are the first ``CameraInfo`` of the colour camera; 
 pose is the chain of ``/tf_static`` and ``/tf`` transforms from the world frame to the colour
 image's ``frame_id`` (each dynamic transform the latest at or before the frame's stamp), or
 the extrinsic the caller gives. The simulator's ground truth, when the bag was written by
-:func:`bags.write_bag`, comes back on the frames for evaluation.
+:func:`probanchor.bags.write_bag`, comes back on the frames for evaluation.
 """
 
 from __future__ import annotations

@@ -1,12 +1,12 @@
 """Writing RGB-D frames (the simulator's, with their ground truth) as a ROS bag.
 
-Per frame: ``/camera/color/image_raw`` (rgb8), ``/camera/depth/image_raw`` (32FC1 metres, so
-that the recorded frame is the rendered one to the bit; :func:`bags.read_bag` reads 16UC1 as
+Per frame: ``/camera/color/image_raw`` (rgb8), ``/camera/depth/image_raw`` (32FC1 metres, so that
+the recorded frame is the rendered one to the bit; :func:`probanchor.bags.read_bag` reads 16UC1 as
 well), ``/camera/color/camera_info``, the camera pose on ``/tf_static`` (from ``world`` to
-``camera_color_optical_frame``, again whenever it changes) and, on topics of their own, the
-ground truth: ``/anchoring/ground_truth`` (``std_msgs/String``, JSON with the frame's stamp,
-its truth and the names of the label image's bodies) and ``/anchoring/segmentation`` (32SC1,
-the body seen at each pixel).
+``camera_color_optical_frame``, again whenever it changes) and, on topics of their own, the ground
+truth: ``/anchoring/ground_truth`` (``std_msgs/String``, JSON with the frame's stamp, its truth and
+the names of the label image's bodies) and ``/anchoring/segmentation`` (32SC1, the body seen at each
+pixel).
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """`anchoring`: the command-line app that wires perception, anchoring and reasoning together.
 
-Each sub-command lives in its own module under ``cli.commands`` and exposes
+Each sub-command lives in its own module under ``probanchor.cli.commands`` and exposes
 ``register(subparsers)`` which adds its parser and sets ``func`` (taking the parsed args and
 returning an exit status).
 """

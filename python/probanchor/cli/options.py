@@ -19,7 +19,7 @@ def add_engine_option(parser: argparse.ArgumentParser, what: str) -> None:
 
 
 def add_cluster_options(parser: argparse.ArgumentParser, what: str, extra: str = "") -> None:
-    """``--jobs`` and ``--cluster``: where the independent jobs run (:mod:`jobs`)."""
+    """``--jobs`` and ``--cluster``: where the independent jobs run (:mod:`probanchor.jobs`)."""
     parser.add_argument("--jobs", type=int, default=1,
                         help=f"worker processes, one {what} each (default 1: in this process); "
                              f"with --cluster ray, the CPUs of the local Ray{extra}")

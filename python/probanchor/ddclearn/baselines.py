@@ -17,8 +17,8 @@ name            discrete target (K classes)     continuous (count) target
 ==============  ==============================  ========================================
 
 :func:`score` gives a fitted baseline's held-out figures in the form of
-:func:`ddclearn.evaluate`'s: the weighted mean log-likelihood per grounding (natural log) and
-the accuracy (discrete) or RMSE.
+:func:`probanchor.ddclearn.evaluate`'s: the weighted mean log-likelihood per grounding (natural log)
+and the accuracy (discrete) or RMSE.
 
 Example::
 
@@ -304,7 +304,7 @@ class Baseline:
 
         For a discrete target ``y`` is the class index (``-1`` for a value outside the training
         domain: probability 0). Probabilities are clipped below at 1e-12 (``LOG_FLOOR``) only to
-        avoid ``-inf``; :func:`ddclearn.evaluate` scores the learned program exactly.
+        avoid ``-inf``; :func:`probanchor.ddclearn.evaluate` scores the learned program exactly.
         """
         if self.kind == "discrete":
             p = self._proba(X)
@@ -499,7 +499,7 @@ def _class_map(train: list[str], test: list[str]) -> np.ndarray:
 
 
 def score(baseline: Baseline, test: FeatureTable) -> dict[str, Any]:
-    """Held-out figures of a fitted baseline, as :func:`ddclearn.evaluate` gives them.
+    """Held-out figures of a fitted baseline, as :func:`probanchor.ddclearn.evaluate` gives them.
 
     Parameters
     ----------

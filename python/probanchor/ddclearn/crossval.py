@@ -1,10 +1,11 @@
 """K-fold cross-validation of the structure learner, one fold per job (``ddc cross-validate``).
 
-The data are split into K folds of separate worlds (``bridge.learning.fold_files``: the units
-of ``ddc split``, dealt out to the folds); fold ``i``'s job learns a program on the other folds
-(:func:`ddclearn.learn`) and scores it on fold ``i`` (:func:`ddclearn.evaluate`). The jobs run
-through :mod:`jobs` (local processes or Ray); each job's arguments fix its files and seed, so
-the result is the same whichever back end ran it.
+The data are split into K folds of separate worlds (``bridge.learning.fold_files``: the units of
+``ddc split``, dealt out to the folds); fold ``i``'s job learns a program on the other folds
+(:func:`probanchor.ddclearn.learn`) and scores it on fold ``i``
+(:func:`probanchor.ddclearn.evaluate`). The jobs run through :mod:`probanchor.jobs` (local processes
+or Ray); each job's arguments fix its files and seed, so the result is the same whichever back end
+ran it.
 
     >>> result = cross_validate(["data.pl"], folds=5, out="out/cv")    # doctest: +SKIP
     >>> result.summary()["occluder:t+1"]["mean_log_likelihood"]         # doctest: +SKIP
@@ -45,7 +46,7 @@ class FoldResult:
     training : dict
         ``LearnResult.report()`` of the program learned on the other folds.
     scores : dict
-        ``ddclearn.evaluate`` of that program on this fold, keyed by target.
+        ``probanchor.ddclearn.evaluate`` of that program on this fold, keyed by target.
     program : str
         The learned program's file.
     """

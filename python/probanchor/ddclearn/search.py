@@ -2,7 +2,7 @@
 
 The search owns the choices; :class:`bridge.learning.LearningData` answers the questions about
 the data (the groundings of a node, the literals the bias allows, their outcomes) and turns the
-leaves into DC clauses; :mod:`ddclearn.leaves` fits the statistical models.
+leaves into DC clauses; :mod:`probanchor.ddclearn.leaves` fits the statistical models.
 
 At a node with rows ``i`` (groundings of the head, weighted by ``w_i``; several partial worlds
 of one example are several rows), target values ``y_i`` and the path's regressors ``x_i``, the

@@ -24,8 +24,8 @@ condition given as ``(fact, condition)`` (``("v(J) ~= V", "link(I, J)")``: the v
 neighbour). Every template reads the same world, so the facts are one joint sample of the
 program; the same seed gives the same file.
 
-Because the target's clauses of the generator read only the facts, ``ddclearn.evaluate`` scores
-the generator itself on held-out data sampled with another seed: the log-likelihood of the
+Because the target's clauses of the generator read only the facts, ``probanchor.ddclearn.evaluate``
+scores the generator itself on held-out data sampled with another seed: the log-likelihood of the
 generating program, which no learned program beats (on average).
 """
 

@@ -1,4 +1,5 @@
-"""``python -m evaluation SUMMARY.json...``: the results table of saved runs (see table.py)."""
+"""``python -m probanchor.evaluation SUMMARY.json...``: the results table of saved runs
+(see table.py)."""
 
 import sys
 

@@ -1,11 +1,11 @@
 """Published multi-object trackers run on the same percepts, for comparison.
 
-SORT, ByteTrack and OC-SORT from Roboflow's ``trackers`` package (2.6.1). They track 2-D boxes:
-each percept's mask bounding box ``Percept.bbox`` is a detection, with confidence 1 by default
-(our segments are not scored; pass ``confidence`` to use e.g. the best category probability).
-A track id ``k`` of method ``m`` becomes the symbol ``"m-k"``, and each frame becomes a
-:class:`~evaluation.record.TrackingRecord`, so the metrics of :mod:`evaluation.metrics` apply
-unchanged.
+SORT, ByteTrack and OC-SORT from Roboflow's ``trackers`` package (2.6.1). They track 2-D boxes: each
+percept's mask bounding box ``Percept.bbox`` is a detection, with confidence 1 by default (our
+segments are not scored; pass ``confidence`` to use e.g. the best category probability). A track id
+``k`` of method ``m`` becomes the symbol ``"m-k"``, and each frame becomes a
+:class:`~probanchor.evaluation.record.TrackingRecord`, so the metrics of
+:mod:`probanchor.evaluation.metrics` apply unchanged.
 
 Settings, chosen in the trackers' favour: the lost-track buffer is ``lost_seconds`` (60 s by
 default, longer than any occlusion in our scenarios) instead of the usual 1 s; a track gets an id

@@ -1,4 +1,4 @@
-"""Metrics over a list of :class:`~evaluation.record.TrackingRecord`.
+"""Metrics over a list of :class:`~probanchor.evaluation.record.TrackingRecord`.
 
 Two views of identity:
 

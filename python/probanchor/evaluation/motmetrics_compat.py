@@ -6,7 +6,7 @@ floating dtype) when, and only when, numpy lacks it. Import motmetrics from here
 ``from evaluation.motmetrics_compat import mm``.
 
 motmetrics 1.4.0 also stores object and hypothesis ids as floats, so callers must give it
-numeric ids (see :mod:`evaluation.metrics`).
+numeric ids (see :mod:`probanchor.evaluation.metrics`).
 """
 
 from __future__ import annotations

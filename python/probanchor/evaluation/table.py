@@ -1,10 +1,11 @@
 """The results table: runs grouped by (scenario, method), as Markdown.
 
 Each input row is ``(scenario, method, run)`` where ``run`` is one run's list of
-:class:`~evaluation.record.TrackingRecord`, its :class:`~evaluation.metrics.Evaluation`, its
-summary dictionary (:func:`~evaluation.summary.make_summary`) or the path of its
-``summary.json``. Runs with the same scenario and method (e.g. 20 seeds, or 50 generated
-games under one scenario name) make one line of the table:
+:class:`~probanchor.evaluation.record.TrackingRecord`, its
+:class:`~probanchor.evaluation.metrics.Evaluation`, its summary dictionary
+(:func:`~probanchor.evaluation.summary.make_summary`) or the path of its ``summary.json``. Runs with
+the same scenario and method (e.g. 20 seeds, or 50 generated games under one scenario name) make one
+line of the table:
 
 - identity kept, objects: objects that kept their identity / objects, over all the runs;
 - identity kept, runs: runs in which every object kept its identity / runs;
@@ -149,15 +150,16 @@ def rows_from_summaries(paths: Sequence[str | Path]) -> list[tuple[str, str, dic
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m evaluation SUMMARY.json...``: print the results table of saved runs."""
+    """``python -m probanchor.evaluation SUMMARY.json...``: the results table of saved runs."""
     import argparse
 
-    parser = argparse.ArgumentParser(prog="python -m evaluation", description=main.__doc__)
+    parser = argparse.ArgumentParser(prog="python -m probanchor.evaluation",
+                                     description=main.__doc__)
     parser.add_argument("summaries", nargs="+", type=Path, metavar="SUMMARY.json")
     args = parser.parse_args(argv)
     try:
         print_table(rows_from_summaries(args.summaries))
     except (OSError, ValueError) as exc:
-        print(f"python -m evaluation: error: {exc}", file=sys.stderr)
+        print(f"python -m probanchor.evaluation: error: {exc}", file=sys.stderr)
         return 1
     return 0

@@ -1,8 +1,8 @@
 """Training of the category classifier on labelled shape features.
 
 A small MLP (scikit-learn) is trained on 60 % of the scenes of a :class:`Dataset`, its softmax
-temperature fitted on 20 % and it is tested on the last 20 %; its weights are saved as JSON.
-The shipped model's data are random simulated tables (``app.classifier_data``); any camera's
+temperature fitted on 20 % and it is tested on the last 20 %; its weights are saved as JSON. The
+shipped model's data are random simulated tables (``probanchor.app.classifier_data``); any camera's
 labelled segments will do.
 """
 
@@ -41,7 +41,8 @@ def train(data: Dataset, seed: int = 0, hidden: int = 32,
     Parameters
     ----------
     data:
-        Labelled shape features (``app.classifier_data.build_dataset`` for the shipped model).
+        Labelled shape features (``probanchor.app.classifier_data.build_dataset`` for the shipped
+        model).
     seed:
         Seeds the MLP.
     hidden:

@@ -35,9 +35,9 @@ class AnchorView:
     """What to draw of one anchor in one frame.
 
     ``position``: point estimate (3,) in world metres (the perceived position, or e.g.
-    ``evaluation.point_estimate`` of the particles), or ``None``. ``particles`` (N, 3) and
-    ``weights`` (N,) are drawn for anchors that are not ``perceived``. ``bbox`` is the 2-D
-    box ``(x0, y0, x1, y1)`` of the anchor's percept in this frame, if any.
+    ``probanchor.evaluation.point_estimate`` of the particles), or ``None``. ``particles`` (N, 3)
+    and ``weights`` (N,) are drawn for anchors that are not ``perceived``. ``bbox`` is the 2-D box
+    ``(x0, y0, x1, y1)`` of the anchor's percept in this frame, if any.
     """
 
     symbol: str

@@ -7,7 +7,8 @@ Entities, all on the ``frame`` timeline (and ``time``, seconds of the recording)
 - ``world/cloud``: the points the camera sees (the table and what stands on it), every
   ``cloud_stride``-th pixel, in their colours;
 - ``world/anchors``: each anchor as a 3-D box at its point estimate with its size, labelled
-  with its symbol (and "hidden"), in its colour (``visualise.anchor_colour``, as in the PNGs);
+  with its symbol (and "hidden"), in its colour (``probanchor.visualise.anchor_colour``, as in
+  the PNGs);
 - ``world/particles/<symbol>``: the position particles of a hidden anchor, in its colour, more
   opaque the heavier;
 - ``occlusion/<anchor>/<occluder>``: P(occluded_by(anchor, occluder)) as a time series (0 once

@@ -1,8 +1,9 @@
-"""A picture of one frame of a Rerun log, drawn with matplotlib from the logged data (for
+r"""A picture of one frame of a Rerun log, drawn with matplotlib from the logged data (for
 documents, and where the viewer cannot run): the point cloud, the anchors' boxes and labels,
 the hidden anchors' particles in 3-D, beside the camera image.
 
-    .venv/bin/python -m visualise.rrd_picture out/shell_game.rrd --frame 150 --out view.png
+    .venv/bin/python -m probanchor.visualise.rrd_picture out/shell_game.rrd --frame 150 \
+        --out view.png
 """
 
 from __future__ import annotations

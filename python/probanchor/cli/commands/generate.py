@@ -1,7 +1,7 @@
 """`anchoring generate shell-game --containers K --swaps S --seed N`: a random shell game.
 
 Writes the scenario as YAML (to ``--out FILE``, or to standard output) built with
-``tabletop.generate.shell_game``: K containers in a row, a ball hidden under one of them
+``probanchor.tabletop.generate.shell_game``: K containers in a row, a ball hidden under one of them
 while a hand covers the camera, S random swaps, then every container lifted in turn.
 """
 

@@ -22,7 +22,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="share of scenes with a partly hidden or a lifted object "
                              "(default 0.4)")
     parser.add_argument("--out", type=Path, default=None,
-                        help="model file (default: python/perception/models/category_mlp.json)")
+                        help="model file (default: the shipped model, "
+                             "python/probanchor/perception/models/category_mlp.json)")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
     parser.set_defaults(func=run)
 
