@@ -29,8 +29,8 @@ from probanchor.evaluation import evaluate, make_summary, results_table
 from probanchor.evaluation.baselines import BASELINES, run_baseline
 from probanchor.jobs import Job, JobsFailed, parse_cluster, run_jobs
 from probanchor.percepts import read_percepts, write_percepts
+from probanchor.resources import scenario_file
 
-ROOT = Path(__file__).resolve().parents[3]
 SHIPPED = ("shell_game", "can_under_box", "ball_under_box_two_balls", "transitive")
 #: Reasoning with each shipped theory of occlusion (app.theories): the hand-written one, the one
 #: learned from ground-truth labels, the one learned from hindsight labels.
@@ -156,7 +156,7 @@ def run_experiment(options: ExperimentOptions, progress: bool = False) -> str:
     units: list[tuple[str, Path, int]] = []
     for name in options.scenarios:
         for seed in range(options.seeds):
-            units.append((name, ROOT / "scenarios" / f"{name}.yaml", seed))
+            units.append((name, scenario_file(name), seed))
     for path in game_scenarios(out, options.games, options.first_game_seed):
         units.append(("generated shell games", path, 0))
 

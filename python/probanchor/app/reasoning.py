@@ -14,8 +14,7 @@ import numpy as np
 from bridge import DEFAULT_THREADS, Filter, terms
 from bridge.filter import Engine
 from probanchor.app.naming import category_atom, symbol_atom
-
-DEFAULT_THEORY = Path(__file__).resolve().parents[3] / "prolog" / "too.pl"
+from probanchor.app.theories import DEFAULT_THEORY
 
 
 @dataclass(frozen=True)

@@ -13,12 +13,15 @@ from __future__ import annotations
 
 from pathlib import Path
 
-PROLOG = Path(__file__).resolve().parents[3] / "prolog"
+from bridge.resources import prolog_file
+
 THEORIES: dict[str, Path] = {
-    "hand": PROLOG / "too.pl",
-    "learned": PROLOG / "too_learned.pl",
-    "hindsight": PROLOG / "too_learned_hindsight.pl",
+    "hand": prolog_file("too.pl"),
+    "learned": prolog_file("too_learned.pl"),
+    "hindsight": prolog_file("too_learned_hindsight.pl"),
 }
+#: The theory of occlusion unless told otherwise: the hand-written one
+DEFAULT_THEORY = THEORIES["hand"]
 
 
 def theory_path(name: str | Path) -> Path:

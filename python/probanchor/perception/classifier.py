@@ -11,11 +11,13 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
+from importlib import resources
 from pathlib import Path
 
 import numpy as np
 
-DEFAULT_MODEL = Path(__file__).resolve().parent / "models" / "category_mlp.json"
+#: The shipped model (package data of probanchor.perception)
+DEFAULT_MODEL = Path(resources.files(__package__).joinpath("models", "category_mlp.json"))
 
 
 @dataclass

@@ -6,13 +6,11 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-ROOT = Path(__file__).resolve().parents[4]
-
 
 def register(sub: Any) -> None:
     parser = sub.add_parser("demo", help="run the shell game and say where the pictures are",
                             description=__doc__)
-    parser.add_argument("--out", type=Path, default=ROOT / "out" / "demo",
+    parser.add_argument("--out", type=Path, default=Path("out") / "demo",
                         help="output directory (default out/demo)")
     parser.add_argument("--particles", type=int, default=200,
                         help="particles of the filter (default 200)")
@@ -23,8 +21,9 @@ def register(sub: Any) -> None:
 
 def main(args: argparse.Namespace) -> int:
     from probanchor.app.runner import RunOptions, format_summary, run
+    from probanchor.resources import scenario_file
 
-    scenario = ROOT / "scenarios" / "shell_game.yaml"
+    scenario = scenario_file("shell_game")
     output = run(RunOptions(scenario=scenario, particles=args.particles, seed=args.seed,
                             out=args.out, picture_every=1, progress=not args.quiet))
     print(format_summary(output.summary))

@@ -11,8 +11,6 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
-ROOT = Path(__file__).resolve().parents[4]
-
 
 def register(sub: Any) -> None:
     parser = sub.add_parser("shell", help="ask a saved world model questions in Prolog",
@@ -44,6 +42,8 @@ def main(args: argparse.Namespace) -> int:
     swipl = str(Path(sys.executable).parent / "swipl")
     if not os.path.exists(swipl):
         swipl = shutil.which("swipl") or "swipl"
-    argv = [swipl, "-g", "world:banner", str(ROOT / "prolog" / "world.pl"), str(world)]
+    from bridge.resources import prolog_file
+
+    argv = [swipl, "-g", "world:banner", str(prolog_file("world.pl")), str(world)]
     os.execv(swipl, argv)
     return 0  # pragma: no cover - execv does not return

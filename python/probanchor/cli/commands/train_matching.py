@@ -12,14 +12,14 @@ from __future__ import annotations
 import argparse
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import numpy as np
+if TYPE_CHECKING:  # imported where used: `anchoring --help` imports no numpy, scipy, anchoring
+    from anchoring.matcher import RbfSvm
+    from probanchor.percepts import PerceptFrame
 
-from anchoring import training
-from anchoring.matcher import DEFAULT_MODEL, RbfSvm
-from probanchor.percepts import PerceptFrame, read_percepts
-
-ORIGINAL = Path(__file__).resolve().parents[4].parent / "shared" / "probanch" / "matching_svm.yml"
+#: The authors' original model, beside the repository (not shipped; run from the repository)
+ORIGINAL = Path("..") / "shared" / "probanch" / "matching_svm.yml"
 GRID = [(c, g) for c in (1.0, 10.0, 100.0) for g in (0.5, 2.0, 8.0)]
 
 
@@ -36,7 +36,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                         "simulating")
     p.add_argument("--synthetic", type=int, default=0, metavar="N",
                    help="also use N synthetic streams (anchoring.synthetic; no simulator)")
-    p.add_argument("--out", type=Path, default=DEFAULT_MODEL, help="model file (JSON)")
+    p.add_argument("--out", type=Path, default=None,
+                   help="model file (JSON; default: the shipped model, "
+                        "python/anchoring/models/matching_svm.json)")
     p.add_argument("--report", type=Path, default=None,
                    help="figures as JSON (default: OUT with .report.json)")
     p.add_argument("--original", type=Path, default=ORIGINAL,
@@ -63,6 +65,10 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def _streams(args: argparse.Namespace) -> list[tuple[str, list[PerceptFrame]]]:
+    import numpy as np
+
+    from probanchor.percepts import read_percepts
+
     out: list[tuple[str, list[PerceptFrame]]] = []
     for path in args.streams:
         frames = list(read_percepts(path))
@@ -153,6 +159,13 @@ def run(args: argparse.Namespace) -> int:
             raise ValueError(f"{args.show_report}: cannot read report: {exc}") from exc
         print(report_table(report))
         return 0
+    import numpy as np
+
+    from anchoring import training
+    from anchoring.matcher import DEFAULT_MODEL, RbfSvm
+
+    if args.out is None:
+        args.out = DEFAULT_MODEL
     rng = np.random.default_rng(args.seed)
     streams = _streams(args)
     pairs = [training.labelled_pairs(frames, group=g) for g, (_, frames) in enumerate(streams)]
@@ -257,6 +270,10 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _evaluate(args: argparse.Namespace, model: RbfSvm) -> dict:
+    from anchoring import training
+    from anchoring.matcher import RbfSvm
+    from probanchor.percepts import read_percepts
+
     original = RbfSvm.from_opencv_yaml(args.original) if args.original and \
         Path(args.original).exists() else None
     sets = []
