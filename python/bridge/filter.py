@@ -60,14 +60,13 @@ import numpy as np
 
 from bridge import prolog
 from bridge.terms import Compound, Text, item_text, to_term
+from bridge.threads import DEFAULT_THREADS
 
 logger = logging.getLogger(__name__)
 
 Resampling = Literal["systematic", "multinomial", "residual"]
 Engine = Literal["per_particle", "batched", "auto"]
 ENGINES: tuple[Engine, ...] = ("auto", "batched", "per_particle")
-#: Prolog threads that step the particles unless told otherwise (the 2-core machine's cores)
-DEFAULT_THREADS = 2
 _TEMPLATE_VAR = "DdcBridgeValue__"
 
 

@@ -36,7 +36,7 @@ from pathlib import Path
 from typing import Any
 
 from probanchor.cli.ddc_learn_cli import add_learn_commands
-from probanchor.cli.options import add_engine_option
+from probanchor.cli.options import add_engine_option, add_threads_option
 
 
 class CliError(Exception):
@@ -324,10 +324,7 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("observations", help="JSON Lines, one step per line")
     f.add_argument("--particles", type=_positive_int, default=1000)
     f.add_argument("--seed", type=int, default=0)
-    # (bridge.DEFAULT_THREADS, not imported here: importing the bridge starts Prolog)
-    f.add_argument("--threads", type=_positive_int, default=2,
-                   help="Prolog threads that step the particles (default 2; the particles "
-                        "depend on the seed and this number)")
+    add_threads_option(f, kind=_positive_int)
     add_engine_option(f, "")
     f.add_argument("--query", action="append", default=[], metavar="GOAL",
                    help="a goal whose probability is printed after each step (repeatable)")

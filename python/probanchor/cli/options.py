@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 from pathlib import Path
+
+from bridge.threads import DEFAULT_THREADS, MAX_DEFAULT_THREADS
 
 #: bridge.Filter's engines, auto first (the default), for --engine (not imported from the
 #: bridge here: importing it starts Prolog)
@@ -16,6 +19,17 @@ def add_engine_option(parser: argparse.ArgumentParser, what: str) -> None:
                         help="the filter's engine: batched (each clause evaluated once for a "
                              "batch of particles), per_particle, or auto (the default: batched "
                              f"when the program is in its fragment){what}")
+
+
+def add_threads_option(parser: argparse.ArgumentParser,
+                       what: str = "Prolog threads that step the particles",
+                       kind: Callable[[str], int] = int) -> None:
+    """``--threads``: the filter's Prolog threads (bridge.Filter's ``threads``)."""
+    parser.add_argument("--threads", type=kind, default=DEFAULT_THREADS,
+                        help=f"{what} (default {DEFAULT_THREADS}: one per core available to "
+                             f"this process, at most {MAX_DEFAULT_THREADS}; the particles depend "
+                             "on the seed and this number, so give it where runs on different "
+                             "machines must agree)")
 
 
 def add_cluster_options(parser: argparse.ArgumentParser, what: str, extra: str = "") -> None:

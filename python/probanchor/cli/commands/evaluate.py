@@ -8,7 +8,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from probanchor.cli.options import add_cluster_options, add_engine_option
+from probanchor.cli.options import add_cluster_options, add_engine_option, add_threads_option
 
 
 def register(sub: Any) -> None:
@@ -19,10 +19,7 @@ def register(sub: Any) -> None:
     parser.add_argument("--seeds", type=int, default=20, help="seeds per shipped scenario")
     parser.add_argument("--games", type=int, default=50, help="random shell games")
     parser.add_argument("--particles", type=int, default=1000)
-    # (bridge.DEFAULT_THREADS, not imported here: importing the bridge starts Prolog)
-    parser.add_argument("--threads", type=int, default=2,
-                        help="Prolog threads per filter (default 2; the particles depend on the "
-                             "seed and this number)")
+    add_threads_option(parser, "Prolog threads per filter")
     add_engine_option(parser, "; a run recorded with another engine is run again")
     parser.add_argument("--methods", default=None,
                         help="comma-separated methods: reasoning (the hand-written theory), "

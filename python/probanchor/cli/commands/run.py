@@ -8,9 +8,8 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from probanchor.app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS
-from probanchor.app.theories import theory_path
-from probanchor.cli.options import add_engine_option
+from probanchor.app.theories import DEFAULT_THEORY, theory_path
+from probanchor.cli.options import add_engine_option, add_threads_option
 
 
 def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> None:
@@ -21,9 +20,7 @@ def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> N
                              "(prolog/too_learned.pl), hindsight "
                              "(prolog/too_learned_hindsight.pl), or a DDC program's path")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
-    parser.add_argument("--threads", type=int, default=DEFAULT_THREADS,
-                        help=f"Prolog threads that step the particles (default "
-                             f"{DEFAULT_THREADS}; the particles depend on the seed and it)")
+    add_threads_option(parser)
     add_engine_option(parser, ", as prolog/too.pl is")
     parser.add_argument("--resample-threshold", type=float, default=0.9,
                         help="resample when ESS < this fraction of the particles (default 0.9)")
