@@ -10,13 +10,6 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from probanchor.evaluation.baselines import BASELINES, display_name, run_baseline
-from probanchor.evaluation.metrics import DEFAULT_THRESHOLD_M, evaluate
-from probanchor.evaluation.record import write_records
-from probanchor.evaluation.summary import make_summary, write_summary
-from probanchor.evaluation.table import results_table
-from probanchor.percepts import read_percepts
-
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
@@ -26,9 +19,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument("streams", nargs="+", type=Path, metavar="PERCEPTS.jsonl",
                         help="percept streams with ground truth (anchoring perceive --out ...)")
-    parser.add_argument("--methods", default=",".join(BASELINES),
-                        help=f"comma-separated subset of {','.join(BASELINES)} (default: all)")
-    parser.add_argument("--threshold", type=float, default=DEFAULT_THRESHOLD_M,
+    # (the trackers' names and the threshold are evaluation's; not imported here, it is slow)
+    parser.add_argument("--methods", default=None,
+                        help="comma-separated subset of sort,bytetrack,ocsort (default: all)")
+    parser.add_argument("--threshold", type=float, default=None,
                         help="match distance in metres for ID switches and IDF1 (default 0.1)")
     parser.add_argument("--lost-seconds", type=float, default=60.0,
                         help="how long a lost track is kept (default 60 s)")
@@ -40,7 +34,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    methods = [m.strip() for m in args.methods.split(",") if m.strip()]
+    from probanchor.evaluation.baselines import BASELINES, display_name, run_baseline
+    from probanchor.evaluation.metrics import DEFAULT_THRESHOLD_M, evaluate
+    from probanchor.evaluation.record import write_records
+    from probanchor.evaluation.summary import make_summary, write_summary
+    from probanchor.evaluation.table import results_table
+    from probanchor.percepts import read_percepts
+
+    if args.threshold is None:
+        args.threshold = DEFAULT_THRESHOLD_M
+    methods = [m.strip() for m in (args.methods or ",".join(BASELINES)).split(",") if m.strip()]
     unknown = [m for m in methods if m not in BASELINES]
     if unknown:
         raise ValueError(f"unknown baseline(s) {', '.join(unknown)}; known: {', '.join(BASELINES)}")
