@@ -11,6 +11,8 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
+from bridge.resources import prolog_file  # (a pure module: no Prolog started)
+
 
 def register(sub: Any) -> None:
     parser = sub.add_parser("shell", help="ask a saved world model questions in Prolog",
@@ -42,8 +44,6 @@ def main(args: argparse.Namespace) -> int:
     swipl = str(Path(sys.executable).parent / "swipl")
     if not os.path.exists(swipl):
         swipl = shutil.which("swipl") or "swipl"
-    from bridge.resources import prolog_file
-
     argv = [swipl, "-g", "world:banner", str(prolog_file("world.pl")), str(world)]
     os.execv(swipl, argv)
     return 0  # pragma: no cover - execv does not return
