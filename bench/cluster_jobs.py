@@ -40,7 +40,7 @@ def noop() -> int:
 
 def sweep(cluster: Any, work: list[Any]) -> tuple[float, list[str]]:
     """Seconds of the whole sweep on ``cluster`` and its summaries (timings left out)."""
-    from jobs import raise_failures, run_jobs
+    from probanchor.jobs import raise_failures, run_jobs
 
     started = time.perf_counter()
     outcomes = list(run_jobs(work, cluster))
@@ -56,7 +56,7 @@ def sweep(cluster: Any, work: list[Any]) -> tuple[float, list[str]]:
 
 def empty_jobs(cluster: Any, count: int) -> float:
     """Seconds of ``count`` empty jobs on ``cluster``."""
-    from jobs import Job, run_jobs
+    from probanchor.jobs import Job, run_jobs
 
     started = time.perf_counter()
     outcomes = list(run_jobs([Job(f"noop {i}", noop) for i in range(count)], cluster))
@@ -72,7 +72,7 @@ def overhead(backend: str, count: int, repeat: int = 3) -> tuple[float, float]:
     Local: every measure starts its own pool of two spawned processes. Ray: a local Ray with
     two CPUs is started once (its start is the start-up), warmed up with two empty jobs, and
     kept for the measures."""
-    from jobs import parse_cluster
+    from probanchor.jobs import parse_cluster
 
     cluster = parse_cluster(backend, 2)
     ray = None
@@ -103,8 +103,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="where the percept streams are cached")
     args = parser.parse_args(argv)
 
-    from app.experiment import percept_stream, run_unit
-    from jobs import Job, parse_cluster
+    from probanchor.app.experiment import percept_stream, run_unit
+    from probanchor.jobs import Job, parse_cluster
 
     cache = args.out / "percepts"
     units = [(name, ROOT / "scenarios" / f"{name}.yaml", seed)

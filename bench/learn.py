@@ -44,8 +44,8 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "python"))
 
 from bridge.learning import LearningData  # noqa: E402
-from ddclearn import learn, target_key  # noqa: E402
-from ddclearn.datasets import financial  # noqa: E402
+from probanchor.ddclearn import learn, target_key  # noqa: E402
+from probanchor.ddclearn.datasets import financial  # noqa: E402
 
 FINANCIAL = financial()
 TARGET_LOGISTIC_S = 10.0

@@ -40,9 +40,9 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "python"))
 
 from bridge.learning import LearningData, split_files  # noqa: E402
-from ddclearn import evaluate, learn, target_key  # noqa: E402
-from ddclearn.baselines import BASELINES, feature_table, fit_baselines, score  # noqa: E402
-from ddclearn.datasets import financial  # noqa: E402
+from probanchor.ddclearn import evaluate, learn, target_key  # noqa: E402
+from probanchor.ddclearn.baselines import BASELINES, feature_table, fit_baselines, score  # noqa: E402
+from probanchor.ddclearn.datasets import financial  # noqa: E402
 
 FINANCIAL = financial()
 MODELS: tuple[str, ...] = ("learned", *BASELINES)

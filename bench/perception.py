@@ -27,9 +27,9 @@ sys.path.insert(0, str(ROOT / "python"))
 import numpy as np  # noqa: E402
 import open3d as o3d  # noqa: E402
 
-from perception import Pipeline  # noqa: E402
-from perception.pointcloud import Backprojector  # noqa: E402
-from tabletop import Simulation, load_scenario  # noqa: E402
+from probanchor.perception import Pipeline  # noqa: E402
+from probanchor.perception.pointcloud import Backprojector  # noqa: E402
+from probanchor.tabletop import Simulation, load_scenario  # noqa: E402
 
 TARGET_FPS = 30.0
 
@@ -51,8 +51,8 @@ def open3d_reference(frame, back: Backprojector, voxel: float) -> int:
 
 def accuracy(tables: int, seed: int) -> None:
     """Percepts against ground truth on random tables (any yaw, every category)."""
-    from app.classifier_data import random_scene
-    from tabletop import parse_scenario
+    from probanchor.app.classifier_data import random_scene
+    from probanchor.tabletop import parse_scenario
 
     rng = np.random.default_rng(seed)
     pipe = Pipeline()

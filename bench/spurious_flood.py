@@ -20,9 +20,9 @@ import time
 import numpy as np
 
 from anchoring.synthetic import observe, random_object, spurious
-from app.loop import AnchoringLoop, LoopConfig
-from app.sources import SourceFrame
-from percepts import PerceptFrame
+from probanchor.app.loop import AnchoringLoop, LoopConfig
+from probanchor.app.sources import SourceFrame
+from probanchor.percepts import PerceptFrame
 
 FPS = 15.0
 BEFORE = 15  # frames timed before the flood

@@ -38,8 +38,8 @@ SHIPPED = ("shell_game", "can_under_box", "ball_under_box_two_balls", "transitiv
 
 
 def _run(theory: str, scenario: str, seed: int, particles: int, cache: str) -> dict[str, Any]:
-    from app.experiment import percept_stream
-    from app.runner import RunOptions, run
+    from probanchor.app.experiment import percept_stream
+    from probanchor.app.runner import RunOptions, run
 
     stream = percept_stream(ROOT / "scenarios" / f"{scenario}.yaml", seed, Path(cache))
     out = run(RunOptions(percepts=stream, particles=particles, seed=seed, theory=Path(theory),
@@ -52,7 +52,7 @@ def _run(theory: str, scenario: str, seed: int, particles: int, cache: str) -> d
 def identity(theory: Path, seeds: int, particles: int, cache: Path, jobs: int,
              cluster: str | None = None) -> tuple[int, int, int, int]:
     """Objects kept, objects, runs kept, runs over the shipped scenarios and seeds."""
-    from jobs import Job, parse_cluster, raise_failures, run_jobs
+    from probanchor.jobs import Job, parse_cluster, raise_failures, run_jobs
 
     work = [Job(f"{theory.stem} {s} seed {k}", _run, (str(theory), s, k, particles, str(cache)))
             for s in SHIPPED for k in range(seeds)]
@@ -83,10 +83,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
 
-    from app.collect import CollectOptions, collect
-    from app.learned_theory import learn_theory
-    from app.occlusion_data import LabelOptions
-    from app.reasoning import DEFAULT_THEORY
+    from probanchor.app.collect import CollectOptions, collect
+    from probanchor.app.learned_theory import learn_theory
+    from probanchor.app.occlusion_data import LabelOptions
+    from probanchor.app.reasoning import DEFAULT_THEORY
 
     args.out.mkdir(parents=True, exist_ok=True)
     rows: list[dict[str, Any]] = []

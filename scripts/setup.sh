@@ -129,7 +129,7 @@ if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
 fi
 # Packages whose metadata asks for opencv-python, which would overwrite the cv2 module of our
 # opencv-python-headless: installed without dependencies (pyproject.toml lists those instead).
-nodeps="python/evaluation/requirements-nodeps.txt"
+nodeps="python/probanchor/evaluation/requirements-nodeps.txt"
 nodeps_stamp="$venv/.anchoring-nodeps"
 if [ -f "$nodeps" ] && [ "$(sha1sum < "$nodeps")" != "$(cat "$nodeps_stamp" 2>/dev/null)" ]; then
   log "installing $nodeps without dependencies"

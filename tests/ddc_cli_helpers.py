@@ -8,7 +8,7 @@ from contextlib import redirect_stderr, redirect_stdout
 from dataclasses import dataclass
 from pathlib import Path
 
-from cli.ddc_cli import main
+from probanchor.cli.ddc_cli import main
 
 
 @dataclass

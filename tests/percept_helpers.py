@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from percepts import Percept
+from probanchor.percepts import Percept
 
 
 def ball_percept(t: float, x: float) -> Percept:

@@ -9,7 +9,7 @@ import pytest
 
 from anchoring import AnchorManager, AnchorManagerError, SymbolTable
 from anchoring.synthetic import TrueObject, observe, stream, true_histogram
-from percepts import Percept
+from probanchor.percepts import Percept
 
 
 def hist(hue: float) -> np.ndarray:

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import pytest
 
-tabletop = pytest.importorskip("tabletop")
-sources = pytest.importorskip("app.sources")
+tabletop = pytest.importorskip("probanchor.tabletop")
+sources = pytest.importorskip("probanchor.app.sources")
 
 from anchoring import AnchorManager  # noqa: E402
 

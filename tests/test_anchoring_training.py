@@ -9,7 +9,7 @@ import pytest
 
 from anchoring import training
 from anchoring.synthetic import stream
-from percepts import write_percepts
+from probanchor.percepts import write_percepts
 
 
 def test_labelled_pairs_follow_the_ground_truth():
@@ -47,7 +47,7 @@ def test_exported_svm_equals_scikit_learn():
 
 
 def test_train_matching_command_writes_a_model(tmp_path, capsys):
-    from cli.anchoring_cli import main
+    from probanchor.cli.anchoring_cli import main
 
     paths = []
     for k in range(4):
@@ -70,7 +70,7 @@ def test_train_matching_command_writes_a_model(tmp_path, capsys):
 
 
 def test_train_matching_rejects_unlabelled_streams(tmp_path, capsys):
-    from cli.anchoring_cli import main
+    from probanchor.cli.anchoring_cli import main
 
     frames = stream(1, n_objects=2, seconds=0.5)
     for f in frames:

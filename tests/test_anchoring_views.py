@@ -12,7 +12,7 @@ import pytest
 
 from anchoring import AnchorManager
 from anchoring.synthetic import TrueObject, true_histogram
-from percepts import Percept
+from probanchor.percepts import Percept
 
 MUG = (0.097, 0.07, 0.082)
 

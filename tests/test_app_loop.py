@@ -11,12 +11,12 @@ from typing import Any
 import numpy as np
 import pytest
 
-from app.loop import run_frames
-from app.runner import RunOptions, run
-from app.sources import SourceFrame
-from evaluation import FrameTimings
 from percept_helpers import ball_percept
-from percepts import PerceptFrame, write_percepts
+from probanchor.app.loop import run_frames
+from probanchor.app.runner import RunOptions, run
+from probanchor.app.sources import SourceFrame
+from probanchor.evaluation import FrameTimings
+from probanchor.percepts import PerceptFrame, write_percepts
 
 FRAMES = 5
 

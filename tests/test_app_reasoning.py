@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from app.naming import symbol_atom
-from app.reasoning import AnchorState, OcclusionReasoner
+from probanchor.app.naming import symbol_atom
+from probanchor.app.reasoning import AnchorState, OcclusionReasoner
 
 MUG = (0.0, 0.0, 0.05)
 BALL = (0.05, 0.0, 0.03)

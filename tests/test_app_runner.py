@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from app.runner import RunOptions, run
 from plunit_runner import ROOT, swipl_executable
+from probanchor.app.runner import RunOptions, run
 from scenario_helpers import BALL_UNDER_MUG_MOVED as SCENARIO
 from scenario_helpers import scenario_file
 
@@ -102,7 +102,7 @@ def test_a_theory_with_an_error_stops_the_run_before_the_first_frame(
 
 def test_a_percept_with_nan_is_dropped_counted_and_the_run_goes_on(tmp_path: Path) -> None:
     from percept_helpers import ball_percept as ball
-    from percepts import PerceptFrame, write_percepts
+    from probanchor.percepts import PerceptFrame, write_percepts
 
     frames = []
     for k in range(6):
@@ -144,7 +144,7 @@ def test_the_same_command_and_seed_give_the_same_run(scenario: Path, reasoning_r
 
 def _ball_stream(tmp_path: Path, frames: int = 8, truth_of: dict | None = None) -> Path:
     from percept_helpers import ball_percept as ball
-    from percepts import PerceptFrame, write_percepts
+    from probanchor.percepts import PerceptFrame, write_percepts
 
     stream = tmp_path / "stream.jsonl"
     write_percepts(stream, [PerceptFrame(k, k / 5, [ball(k / 5, 0.1)],
@@ -169,7 +169,7 @@ def test_lines_that_are_not_frames_are_skipped_counted_and_the_run_goes_on(
 def test_a_run_stopped_by_an_error_writes_what_it_did(tmp_path: Path) -> None:
     """A malformed ground truth in frame 5 stops the run: the error is raised, and the summary
     and the records of frames 0-4 are written first, the summary saying why it stopped."""
-    from evaluation import RecordError
+    from probanchor.evaluation import RecordError
 
     bad = {5: {"objects": {"ball_1": {"visible": True}}}}  # no position
     stream = _ball_stream(tmp_path, truth_of=bad)

@@ -7,9 +7,9 @@ from __future__ import annotations
 import numpy as np
 
 from anchoring.synthetic import TrueObject, observe, random_object, spurious
-from app.loop import AnchoringLoop, LoopConfig
-from app.sources import SourceFrame
-from percepts import Percept, PerceptFrame
+from probanchor.app.loop import AnchoringLoop, LoopConfig
+from probanchor.app.sources import SourceFrame
+from probanchor.percepts import Percept, PerceptFrame
 
 FPS = 15.0
 

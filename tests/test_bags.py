@@ -12,13 +12,13 @@ from rosbags.rosbag1 import Writer as Writer1
 from rosbags.rosbag2 import StoragePlugin
 from rosbags.rosbag2 import Writer as Writer2
 
-from app.runner import RunOptions, run
-from bags import BagError, BagTopics, bag_topics, read_bag, write_bag
-from bags.messages import CAMERA_INFO, IMAGE, TF, MessageFactory, typestore_for
-from cli.anchoring_cli import main as anchoring
-from perception import CameraIntrinsics
+from probanchor.app.runner import RunOptions, run
+from probanchor.bags import BagError, BagTopics, bag_topics, read_bag, write_bag
+from probanchor.bags.messages import CAMERA_INFO, IMAGE, TF, MessageFactory, typestore_for
+from probanchor.cli.anchoring_cli import main as anchoring
+from probanchor.perception import CameraIntrinsics
+from probanchor.tabletop import Simulation, load_scenario
 from scenario_helpers import scenario_file
-from tabletop import Simulation, load_scenario
 
 
 @pytest.fixture(scope="module")

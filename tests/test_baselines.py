@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from evaluation import evaluate
-from evaluation.baselines import BASELINES, BaselineError, display_name, run_baseline
-from percepts import Percept, PerceptFrame, write_percepts
+from probanchor.evaluation import evaluate
+from probanchor.evaluation.baselines import BASELINES, BaselineError, display_name, run_baseline
+from probanchor.percepts import Percept, PerceptFrame, write_percepts
 
 FPS = 15.0
 
@@ -103,7 +103,7 @@ def test_baseline_errors():
 
 
 def test_baselines_command_prints_the_table(tmp_path, capsys):
-    from cli.anchoring_cli import main
+    from probanchor.cli.anchoring_cli import main
 
     path = tmp_path / "moved.jsonl"
     write_percepts(path, stream(ball_back_at=(0.15, -0.1, 0.03)))

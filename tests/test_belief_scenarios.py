@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from app.loop import AnchoringLoop, FrameOutcome, run_frames
-from app.runner import RunOptions
-from app.sources import scenario_frames
-from evaluation import evaluate, make_summary
 from plunit_runner import ROOT
+from probanchor.app.loop import AnchoringLoop, FrameOutcome, run_frames
+from probanchor.app.runner import RunOptions
+from probanchor.app.sources import scenario_frames
+from probanchor.evaluation import evaluate, make_summary
 
 
 def test_a_ball_removed_unseen_beside_an_upright_can_is_never_under_it() -> None:
@@ -42,7 +42,7 @@ def test_look_alikes_swapped_unseen_are_reported_ambiguous() -> None:
     the mugs swapped while the camera is covered. Nothing seen tells the balls apart: the run
     names them (by where the mugs are believed) and reports the mugs' and a ball's
     re-acquisition as ambiguous, each candidate equally likely."""
-    from app.runner import run
+    from probanchor.app.runner import run
 
     output = run(RunOptions(scenario=ROOT / "scenarios" / "lookalikes_swapped_unseen.yaml",
                             particles=200, seed=0, threads=1, progress=False))
@@ -56,7 +56,7 @@ def test_look_alikes_swapped_unseen_are_reported_ambiguous() -> None:
 def test_a_look_alike_uncovered_while_the_original_is_hidden_is_a_new_object() -> None:
     """scenarios/lookalike_while_hidden.yaml: ball_2 appears 33 cm from where every particle of
     the boxed ball_1 is; it gets a symbol of its own, and ball_1 keeps its symbol."""
-    from app.runner import run
+    from probanchor.app.runner import run
 
     output = run(RunOptions(scenario=ROOT / "scenarios" / "lookalike_while_hidden.yaml",
                             particles=200, seed=0, threads=1, progress=False))
@@ -70,8 +70,8 @@ def test_the_world_model_answers_the_probability_of_an_identity(tmp_path) -> Non
     ambiguous re-acquisition, and refuses a percept that was not ambiguous."""
     import subprocess
 
-    from app.runner import run
     from plunit_runner import swipl_executable
+    from probanchor.app.runner import run
 
     output = run(RunOptions(scenario=ROOT / "scenarios" / "lookalikes_swapped_unseen.yaml",
                             particles=100, seed=0, threads=1, progress=False, out=tmp_path,

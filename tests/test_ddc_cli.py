@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from cli.ddc_cli import main
+from probanchor.cli.ddc_cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "prolog" / "examples" / "filter"
@@ -148,8 +148,8 @@ def test_installed_console_script_runs_a_filter() -> None:
 
 def test_the_commands_default_to_the_bridge_thread_count() -> None:
     from bridge import DEFAULT_THREADS
-    from cli.anchoring_cli import build_parser as anchoring_parser
-    from cli.ddc_cli import build_parser
+    from probanchor.cli.anchoring_cli import build_parser as anchoring_parser
+    from probanchor.cli.ddc_cli import build_parser
 
     assert build_parser().parse_args(["filter", "p.pl", "o.jsonl"]).threads == DEFAULT_THREADS
     for command in (["run", "s.yaml"], ["evaluate"]):

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from evaluation import (
+from probanchor.evaluation import (
     SUMMARY_FIELDS,
     FrameTimings,
     Hypothesis,
@@ -262,7 +262,7 @@ def summary_of(kept: list[bool], switches: int, idf1: float | None) -> dict:
 
 
 def test_results_table_groups_runs_by_scenario_and_method(tmp_path):
-    from evaluation import aggregate, results_table, rows_from_summaries
+    from probanchor.evaluation import aggregate, results_table, rows_from_summaries
 
     rows = [
         ("shell_game", "reasoning", summary_of([True, True, True], 0, 1.0)),
@@ -297,8 +297,8 @@ def test_results_table_groups_runs_by_scenario_and_method(tmp_path):
 
 
 def test_record_for_frame_from_a_percept_frame():
-    from evaluation import record_for_frame
-    from percepts import Percept, PerceptFrame
+    from probanchor.evaluation import record_for_frame
+    from probanchor.percepts import Percept, PerceptFrame
 
     def p(truth_id):
         return Percept(0.5, [0, 0, 0.03], [0.06] * 3, [1.0], {"ball": 1.0}, truth_id=truth_id)
@@ -323,8 +323,8 @@ def test_record_for_frame_from_a_percept_frame():
 def test_an_object_split_into_two_percepts_is_judged_by_its_main_view():
     """A mug whose handle is segmented on its own for a frame: the handle's new anchor is a
     phantom, the mug keeps the symbol of its body (the larger percept), whichever comes first."""
-    from evaluation import record_for_frame
-    from percepts import Percept, PerceptFrame
+    from probanchor.evaluation import record_for_frame
+    from probanchor.percepts import Percept, PerceptFrame
 
     body = Percept(0.5, [0.35, 0.06, 0.05], [0.08, 0.08, 0.1], [1.0], {"mug": 1.0},
                    truth_id="mug_4", bbox=(247, 91, 279, 126))

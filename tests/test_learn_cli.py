@@ -19,10 +19,10 @@ import pytest
 from bridge import DDCError
 from ddc_cli_helpers import Run
 from ddc_cli_helpers import ddc as run_ddc
-from ddclearn import evaluate, learn
+from probanchor.ddclearn import evaluate, learn
 
 ROOT = Path(__file__).resolve().parents[1]
-DDC = [sys.executable, "-m", "cli.ddc_cli"]
+DDC = [sys.executable, "-m", "probanchor.cli.ddc_cli"]
 
 BIAS = """\
 type(distance(obj, obj):t).

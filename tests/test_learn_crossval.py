@@ -10,9 +10,9 @@ import pytest
 
 from bridge import DDCError
 from bridge.learning import fold_files
-from ddclearn import evaluate, learn
-from ddclearn.crossval import SUMMARY_NAME, cross_validate
-from jobs import parse_cluster
+from probanchor.ddclearn import evaluate, learn
+from probanchor.ddclearn.crossval import SUMMARY_NAME, cross_validate
+from probanchor.jobs import parse_cluster
 
 ROOT = Path(__file__).resolve().parents[1]
 OCCLUDER = ROOT / "prolog" / "examples" / "learn" / "occluder.pl"
@@ -76,7 +76,7 @@ def test_more_folds_than_worlds_is_an_error_naming_the_file(tmp_path: Path) -> N
 
 def test_cross_validation_equals_learning_and_scoring_each_fold_by_hand(
         data: Path, tmp_path: Path, capsys) -> None:
-    from cli.ddc_cli import main
+    from probanchor.cli.ddc_cli import main
 
     out = tmp_path / "cv"
     assert main(["cross-validate", str(data), "--folds", "3", "--out", str(out), "--seed", "1",
@@ -127,7 +127,7 @@ def test_local_processes_and_ray_give_the_same_folds(data: Path, tmp_path: Path,
 
 def test_bad_options_are_errors_before_anything_is_written(data: Path, tmp_path: Path,
                                                            capsys) -> None:
-    from cli.ddc_cli import main
+    from probanchor.cli.ddc_cli import main
 
     out = tmp_path / "cv"
     assert main(["cross-validate", str(data), "--folds", "1", "--out", str(out)]) == 1

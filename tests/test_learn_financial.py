@@ -19,7 +19,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
 
 import learn_financial  # noqa: E402
 from bridge.learning import LearningData, split_files  # noqa: E402
-from ddclearn.baselines import (  # noqa: E402
+from probanchor.ddclearn.baselines import (  # noqa: E402
     UNDEFINED,
     ConstantBaseline,
     FeatureTable,

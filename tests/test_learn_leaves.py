@@ -17,8 +17,8 @@ import statsmodels.api as sm
 from scipy.special import expit, log_expit
 from scipy.stats import norm, poisson
 
-from ddclearn import leaves
-from ddclearn.leaves import Leaf, LeafOptions, fit_leaf
+from probanchor.ddclearn import leaves
+from probanchor.ddclearn.leaves import Leaf, LeafOptions, fit_leaf
 
 # ----------------------------------------------------------------------------- helpers
 

@@ -12,8 +12,8 @@ from matplotlib import _pylab_helpers
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from ddclearn.plot import layout, plot_tree, plot_trees, pruned, tree_size, wrap_text
-from ddclearn.tree import Branch, Tree, TreeNode
+from probanchor.ddclearn.plot import layout, plot_tree, plot_trees, pruned, tree_size, wrap_text
+from probanchor.ddclearn.tree import Branch, Tree, TreeNode
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 

@@ -41,10 +41,10 @@ import pytest
 import statsmodels.api as sm
 
 import bridge
-from ddclearn import evaluate, learn
-from ddclearn.search import TargetResult
-from ddclearn.synthetic import sample_data, sample_facts
-from ddclearn.tree import TreeNode
+from probanchor.ddclearn import evaluate, learn
+from probanchor.ddclearn.search import TargetResult
+from probanchor.ddclearn.synthetic import sample_data, sample_facts
+from probanchor.ddclearn.tree import TreeNode
 
 DATA = Path(__file__).resolve().parent / "data" / "learn"
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ddclearn import SearchOptions, evaluate, learn
+from probanchor.ddclearn import SearchOptions, evaluate, learn
 
 
 def write(path: Path, lines: list[str]) -> Path:

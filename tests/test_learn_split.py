@@ -19,8 +19,8 @@ import pytest
 from bridge import DDCError
 from bridge.learning import LearningData, split_files
 from ddc_cli_helpers import ddc
-from ddclearn import evaluate, learn
-from ddclearn.datasets import financial
+from probanchor.ddclearn import evaluate, learn
+from probanchor.ddclearn.datasets import financial
 
 FINANCIAL = financial()
 

@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 
 import bridge
-from app.collect import CollectError, CollectOptions, collect
-from app.learned_theory import (
+from ddc_cli_helpers import Run
+from probanchor.app.collect import CollectError, CollectOptions, collect
+from probanchor.app.learned_theory import (
     BEGIN,
     END,
     TheoryError,
@@ -21,10 +22,9 @@ from app.learned_theory import (
     probability_at,
     theory_text,
 )
-from app.occlusion_data import LabelOptions
-from app.reasoning import DEFAULT_THEORY
-from app.theories import THEORIES, theory_path
-from ddc_cli_helpers import Run
+from probanchor.app.occlusion_data import LabelOptions
+from probanchor.app.reasoning import DEFAULT_THEORY
+from probanchor.app.theories import THEORIES, theory_path
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -149,7 +149,7 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
     import io
     from contextlib import redirect_stderr, redirect_stdout
 
-    from cli.anchoring_cli import main
+    from probanchor.cli.anchoring_cli import main
 
     def anchoring(*args: str | Path) -> Run:
         out, err = io.StringIO(), io.StringIO()

@@ -9,8 +9,9 @@ from pathlib import Path
 
 import pytest
 
-from app.experience import AnchorView, Episode, EpisodeFrame
-from app.occlusion_data import (
+from bridge.learning import LearningData
+from probanchor.app.experience import AnchorView, Episode, EpisodeFrame
+from probanchor.app.occlusion_data import (
     Collection,
     LabelOptions,
     data_text,
@@ -18,7 +19,6 @@ from app.occlusion_data import (
     hindsight_agreement,
     labels,
 )
-from bridge.learning import LearningData
 
 BALL = (0.0, 0.0, 0.03)
 

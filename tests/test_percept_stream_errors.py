@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from percept_helpers import ball_percept
-from percepts import PerceptError, read_percepts
+from probanchor.percepts import PerceptError, read_percepts
 
 
 def stream(tmp_path: Path, *lines: object) -> Path:

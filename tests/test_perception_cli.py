@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from cli.anchoring_cli import main
-from percepts import read_percepts
+from probanchor.cli.anchoring_cli import main
+from probanchor.percepts import read_percepts
 
 ROOT = Path(__file__).resolve().parents[1]
 STATIC = str(ROOT / "scenarios" / "static.yaml")

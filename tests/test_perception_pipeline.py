@@ -8,11 +8,11 @@ import cv2
 import numpy as np
 import pytest
 
-from app.sources import perceive_scenario
-from perception import Pipeline
-from perception.colour import DEFAULT_BINS, colour_names, histogram, hsv_image
-from percepts import read_percepts, write_percepts
-from tabletop import ScenarioBuilder, Simulation, load_scenario
+from probanchor.app.sources import perceive_scenario
+from probanchor.perception import Pipeline
+from probanchor.perception.colour import DEFAULT_BINS, colour_names, histogram, hsv_image
+from probanchor.percepts import read_percepts, write_percepts
+from probanchor.tabletop import ScenarioBuilder, Simulation, load_scenario
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -191,7 +191,7 @@ def test_perception_never_imports_the_simulator() -> None:
     """Any camera's frames go through the pipeline: nothing in perception/ imports tabletop."""
     import ast
 
-    root = Path(__file__).resolve().parents[1] / "python" / "perception"
+    root = Path(__file__).resolve().parents[1] / "python" / "probanchor" / "perception"
     imported = []
     for path in root.glob("*.py"):
         for node in ast.walk(ast.parse(path.read_text())):
@@ -199,11 +199,12 @@ def test_perception_never_imports_the_simulator() -> None:
                 imported += [(path.name, a.name) for a in node.names]
             elif isinstance(node, ast.ImportFrom) and node.module:
                 imported.append((path.name, node.module))
-    assert imported and not [(f, m) for f, m in imported if m.split(".")[0] == "tabletop"]
+    assert imported and not [(f, m) for f, m in imported
+        if m.split(".")[:2] == ["probanchor", "tabletop"]]
 
 
 def test_a_frame_of_another_camera_size_is_perceived_and_a_bad_one_is_a_frame_error() -> None:
-    from perception import CameraIntrinsics, FrameError, RGBDFrame
+    from probanchor.perception import CameraIntrinsics, FrameError, RGBDFrame
 
     scene = ScenarioBuilder("one_ball", duration=0.1).add("ball_1", "ball", "red",
                                                           position=(0.0, 0.0), radius=0.03)

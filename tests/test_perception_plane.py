@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from perception.plane import fit_plane, ransac_inliers
+from probanchor.perception.plane import fit_plane, ransac_inliers
 
 
 def table_with_clutter(seed: int, tilt_deg: float = 0.0) -> np.ndarray:

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from perception import Pipeline
-from perception.features import shape_features
-from tabletop import ScenarioBuilder, Simulation
+from probanchor.perception import Pipeline
+from probanchor.perception.features import shape_features
+from probanchor.tabletop import ScenarioBuilder, Simulation
 
 
 def cylinder_points(radius: float, height: float, n: int = 4000, seed: int = 0

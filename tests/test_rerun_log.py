@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 from rerun.chunk import RrdReader
 
-from app.runner import RunOptions, run
+from probanchor.app.runner import RunOptions, run
+from probanchor.visualise.rerun_log import RerunLog
 from scenario_helpers import scenario_file
-from visualise.rerun_log import RerunLog
 
 SCENARIO = """\
 name: ball_under_mug
@@ -90,7 +90,7 @@ def test_a_log_needs_a_file_or_the_viewer() -> None:
 
 
 def test_a_frame_of_the_log_is_drawn_from_the_logged_data(logged, tmp_path: Path) -> None:
-    from visualise.rrd_picture import draw, frame_data
+    from probanchor.visualise.rrd_picture import draw, frame_data
 
     output, entities, path = logged
     frame = len(output.records) // 2

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from tabletop import ScenarioBuilder, ScenarioError, load_scenario
+from probanchor.tabletop import ScenarioBuilder, ScenarioError, load_scenario
 
 ROOT = Path(__file__).resolve().parents[1]
 SHIPPED = sorted((ROOT / "scenarios").rglob("*.yaml"))

@@ -14,9 +14,9 @@ from pathlib import Path
 
 import pytest
 
-from app.runner import RunOptions, run
-from app.store import StoreError
 from plunit_runner import ROOT
+from probanchor.app.runner import RunOptions, run
+from probanchor.app.store import StoreError
 from scenario_helpers import scenario_file
 
 PARTICLES = 60
@@ -61,7 +61,7 @@ def test_a_run_killed_half_way_and_resumed_ends_as_an_uninterrupted_run(
     db = tmp_path / "world.db"
     env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
     child = subprocess.Popen(
-        [sys.executable, "-m", "cli.anchoring_cli", "run", str(scenario), "--particles",
+        [sys.executable, "-m", "probanchor.cli.anchoring_cli", "run", str(scenario), "--particles",
          str(PARTICLES), "--quiet", "--store", str(db)],
         env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
@@ -138,7 +138,7 @@ def test_the_shell_loads_the_store_into_the_world_model(whole) -> None:
     ball = next(o["symbols"][0] for o in output.summary["objects"] if o["id"] == "ball_2")
     atom = ball.replace("-", "_")  # hidden under the box at the end
     result = subprocess.run(
-        [sys.executable, "-m", "cli.anchoring_cli", "shell", "--store", str(db)],
+        [sys.executable, "-m", "probanchor.cli.anchoring_cli", "shell", "--store", str(db)],
         input=f"prob(occluded_by({atom}, box_1), P), format('P=~4f~n', [P]).\n",
         env={**os.environ, "PYTHONPATH": str(ROOT / "python")}, capture_output=True,
         text=True, timeout=120)

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from cli.anchoring_cli import main
-from tabletop import Simulation, load_scenario
-from tabletop.generate import shell_game
-from tabletop.timeline import Timeline
+from probanchor.cli.anchoring_cli import main
+from probanchor.tabletop import Simulation, load_scenario
+from probanchor.tabletop.generate import shell_game
+from probanchor.tabletop.timeline import Timeline
 
 
 def test_same_seed_same_game_other_seed_other_game():

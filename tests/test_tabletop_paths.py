@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from tabletop import ScenarioBuilder
-from tabletop.timeline import Timeline
+from probanchor.tabletop import ScenarioBuilder
+from probanchor.tabletop.timeline import Timeline
 
 
 def closest_approach(builder: ScenarioBuilder, movers: tuple[str, str], still: str) -> float:

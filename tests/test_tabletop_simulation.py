@@ -6,8 +6,8 @@ import cv2
 import numpy as np
 import pytest
 
-from perception.segments import SkinWindow
-from tabletop import ScenarioBuilder, ScenarioError, Simulation
+from probanchor.perception.segments import SkinWindow
+from probanchor.tabletop import ScenarioBuilder, ScenarioError, Simulation
 
 
 def frames_at(scenario, times, **kw):

@@ -6,7 +6,7 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 
-from visualise import (
+from probanchor.visualise import (
     AnchorView,
     CameraView,
     anchor_colour,

@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from anchoring.attribute import Attribute
-from percepts import Percept
+from probanchor.percepts import Percept
 
 
 @dataclass

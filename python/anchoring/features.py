@@ -16,7 +16,7 @@ from anchoring.similarity import (
     size_similarity,
     time_similarity,
 )
-from percepts import Percept
+from probanchor.percepts import Percept
 
 
 def pair_features(anchors: Sequence[Anchor], percepts: Sequence[Percept]) -> np.ndarray:

@@ -65,7 +65,7 @@ from anchoring.reidentify import looks_alike, unique_lookalikes
 from anchoring.similarity import BELIEF_RADIUS
 from anchoring.validation import histogram_bins, invalid_reason
 from anchoring.views import Withheld, merged_views, withheld_views
-from percepts import Percept, PerceptError
+from probanchor.percepts import Percept, PerceptError
 
 log = logging.getLogger("anchoring")
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from percepts import Percept, PerceptFrame
+from probanchor.percepts import Percept, PerceptFrame
 
 HIST_SHAPE = (8, 4, 4)  # H x S x V bins
 TABLE = np.array([[0.05, 1.15], [0.05, 0.6]])  # x and y ranges in metres

@@ -19,7 +19,7 @@ from anchoring.anchor import Anchor
 from anchoring.features import pair_features
 from anchoring.matcher import RbfSvm
 from anchoring.similarity import FEATURES
-from percepts import PerceptFrame
+from probanchor.percepts import PerceptFrame
 
 
 @dataclass

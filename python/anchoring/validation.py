@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Sequence
 
 from anchoring.anchor import Anchor
-from percepts import Percept, PerceptError
+from probanchor.percepts import Percept, PerceptError
 
 
 def histogram_bins(anchors: Iterable[Anchor], percepts: Sequence[Percept]) -> int | None:

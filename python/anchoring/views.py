@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from anchoring.anchor import Anchor
-from percepts import Percept
+from probanchor.percepts import Percept
 
 
 @dataclass

@@ -62,13 +62,12 @@ import numpy as np
 from bridge import prolog
 from bridge.resampling import RESAMPLERS, Resampling, effective_sample_size, resample_indices
 from bridge.terms import Compound, Text, item_text, to_term
+from bridge.threads import DEFAULT_THREADS
 
 logger = logging.getLogger(__name__)
 
 Engine = Literal["per_particle", "batched", "auto"]
 ENGINES: tuple[Engine, ...] = ("auto", "batched", "per_particle")
-#: Prolog threads that step the particles unless told otherwise (the 2-core machine's cores)
-DEFAULT_THREADS = 2
 _TEMPLATE_VAR = "DdcBridgeValue__"
 
 

@@ -8,7 +8,10 @@ from typing import Any
 
 import janus_swi as janus
 
-PROLOG_DIR = Path(__file__).resolve().parents[2] / "prolog"
+from bridge.resources import prolog_dir
+
+#: The project's Prolog files (package resources, see :mod:`bridge.resources`)
+PROLOG_DIR = prolog_dir()
 
 _lock = threading.Lock()
 _consulted: set[Path] = set()

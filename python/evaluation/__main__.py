@@ -1,7 +1,0 @@
-"""``python -m evaluation SUMMARY.json...``: the results table of saved runs (see table.py)."""
-
-import sys
-
-from evaluation.table import main
-
-sys.exit(main())

@@ -1,0 +1,302 @@
+"""``anchoring learn-theory``: the theory of occlusion with rules learned from experience.
+
+The structure learner (:func:`probanchor.ddclearn.learn`) learns, from the data ``anchoring
+collect`` writes, one distributional logic tree for ``occluder(A, O):t+1``: whether O covers (or
+holds) the hidden object A at t+1. Its branch where A was known to be under O at t is the *tracking
+rule* (does the occlusion go on?), the other branch the *occluder rule* (may O start hiding A?),
+both with statistical models (a logistic regression on a distance, ...) in their leaves.
+
+The theory written is the hand-written one (``prolog/too.pl``) with its hand-written occlusion
+rules (the parts between ``% -- begin hand-written occlusion rules`` and ``% -- end ...``: what
+may occlude what, which container covers which object, which object may be picked as an
+occluder, how long an occlusion lasts) replaced by the learned clauses and three glue clauses
+that use them as the paper's theory does (section 2.3): a hidden object's candidate occluders
+are the perceived objects O for which a particle draws ``occluder(A, O):t+1 ~= true``; it picks
+one uniformly (or ``behind``, when it has just vanished, as in ``too.pl``); an occlusion goes on
+while the particle draws ``occluder(A, O):t+1 ~= true`` and O is perceived. Everything else of
+``too.pl`` stays: motion and observation models, what blind frames do, the transitive clause
+(section 5.3: added by hand).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from probanchor.app.reasoning import DEFAULT_THEORY
+from probanchor.ddclearn import LearnResult, SearchOptions, learn
+from probanchor.ddclearn.files import write_atomically
+from probanchor.ddclearn.learner import Form
+
+__all__ = ["DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError", "along_distance",
+           "coefficient_table",
+           "learn_theory", "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
+
+BEGIN = "% -- begin hand-written occlusion rules"
+END = "% -- end hand-written occlusion rules"
+
+#: The paper's learned clause, P1 = sigmoid(0.8 - 16.9 d) (section 4).
+PAPER = (-16.9, 0.8)
+#: The original system's deployed model, sigmoid(1.948 - 16.488 d) (ProbAnch).
+DEPLOYED = (-16.488, 1.948)
+
+GLUE = """\
+% ------------------------------------------------------------------ learned occlusion rules
+% How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
+% (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples)
+% that the affordances above allow (a ball hides nothing, a hand is never hidden: the paper's
+% experiments keep that knowledge too; the tree gives a ball as occluder a probability of
+% about 1e-4 per frame, and one particle of a hidden ball under the other, identical ball is
+% enough for the matching, which takes the best particle, to swap them);
+% O is a candidate occluder of the hidden A when the particle
+% draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
+% when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
+% occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
+pair(A, O):t+1 :=
+    hidden(A):t+1, observed(O), O \\== A, can_be_occluded(A), can_occlude(O).
+occluder_candidate(A, O):t+1 :=
+    pair(A, O):t+1, \\+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, seen(A):t, \\+ occluded_by(A, _):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \\== [],
+    Os = [behind | Os1].
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, \\+ seen(A):t, \\+ occluded_by(A, _):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \\== [].
+occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \\== behind.
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+"""
+
+
+class TheoryError(ValueError):
+    """A theory that cannot be written: the base has no rules to replace, or the result does
+    not load (the message names the file, line and cause)."""
+
+
+@dataclass
+class LearnedTheory:
+    """What ``learn-theory`` wrote and learned."""
+
+    out: Path
+    result: LearnResult
+    text: str
+
+    @property
+    def logistic(self) -> list[dict[str, object]]:
+        """The leaves whose model is a logistic regression on the distance: their path, the
+        regressors' names and weights (the bias last), their groundings."""
+        return logistic_leaves(self.result)
+
+
+def theory_text(base: str, learned_program: str, header: str) -> str:
+    """The base theory with its hand-written occlusion rules replaced by the learned ones.
+
+    ``learned_program`` is the learner's output (background knowledge and clauses); it goes,
+    after the glue clauses, where the last hand-written part was.
+    """
+    pattern = re.compile(rf"^{re.escape(BEGIN)}.*?^{re.escape(END)}[^\n]*\n", re.S | re.M)
+    parts = list(pattern.finditer(base))
+    if not parts:
+        raise TheoryError(f"the base theory has no '{BEGIN}' ... '{END}' part to replace")
+    body = _program_body(learned_program)
+    out: list[str] = []
+    last = 0
+    for i, m in enumerate(parts):
+        out.append(base[last:m.start()])
+        if i == len(parts) - 1:
+            out.append(GLUE + "\n" + body.rstrip() + "\n")
+        last = m.end()
+    out.append(base[last:])
+    return header + "".join(out)
+
+
+def _program_body(program: str) -> str:
+    """The learned program without its own header comment (the theory's header says it)."""
+    lines = program.splitlines()
+    k = 0
+    while k < len(lines) and (lines[k].startswith("%") or not lines[k].strip()):
+        k += 1
+    intro = ("% The learned rules (ddc learn): a distributional logic tree for occluder/2 (each "
+             "path from its\n% root to a leaf is one clause of the tree), with the background "
+             "knowledge it reads.\n")
+    return intro + "\n".join(lines[k:]) + "\n"
+
+
+def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
+                 options: SearchOptions | None = None, base: str | Path = DEFAULT_THEORY,
+                 command: str | None = None, progress: bool = False,
+                 form: Form = "tree") -> LearnedTheory:
+    """Learn the occlusion rules from ``data`` and write the complete theory to ``out``.
+
+    The tree goes into the theory in its tree form (``form="tree"``: one clause whose body is
+    the tree, each test evaluated once per particle, as fast in the filter as the hand-written
+    rules) or as one clause per path (``form="clauses"``, the paper's form; the same program).
+
+    ``out`` is replaced only once the theory is complete and loads in the engine (a failed run
+    leaves the previous file as it was).
+
+    Raises
+    ------
+    TheoryError
+        The base theory has nothing to replace, or the theory written does not load.
+    bridge.DDCError
+        The data has an error (its message names the file and line).
+    """
+    import bridge
+
+    out = Path(out)
+    base_path = Path(base)
+    result = learn(data, ["occluder:t+1"], seed=seed, options=options, progress=progress)
+    target = result.targets[0]
+    names = ", ".join(Path(d).name for d in data)
+    header = [
+        f"/*  {out.name} -- the theory of occlusion with rules learned from experience.",
+        "",
+        "    Written by `anchoring learn-theory`: the hand-written occlusion rules of",
+        f"    {base_path.name} are replaced by a tree learned (ddc learn) from {names}:",
+        f"    {target.groundings} groundings of occluder(A, O):t+1, {target.clauses} clauses,",
+        f"    training log-likelihood {target.log_likelihood:.6g}; search seed {seed}.",
+    ]
+    if command:
+        header.append(f"    Command: {command}")
+    header += [
+        f"    Everything else is {base_path.name}'s (motion, observations, blind frames, the",
+        "    transitive clause). Regenerate it rather than edit it; edit",
+        f"    {base_path.name} for the rest.",
+        "*/",
+        "",
+    ]
+    text = theory_text(base_path.read_text(encoding="utf-8"), result.program_text(form),
+                       "\n".join(header) + "\n")
+
+    def loads(tmp: Path) -> None:
+        try:
+            bridge.load(str(tmp))
+        except bridge.DDCError as error:
+            raise TheoryError(f"the learned theory does not load: {error}") from None
+
+    write_atomically(out, text, loads)
+    return LearnedTheory(out, result, text)
+
+
+def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:
+    """The leaves of the learned tree whose model is a logistic regression with a distance
+    among its regressors (see :func:`along_distance`): path (the tested literals), regressors
+    (their variables' names), weights (one per regressor, the bias last), rows, weight."""
+    out: list[dict[str, object]] = []
+    for leaf in result.targets[0].leaves:
+        lf = leaf.leaf
+        if lf.family != "logistic" or lf.weights is None:
+            continue
+        m = re.search(r"logistic\(\[([^\]]*)\]", leaf.clause)
+        names = [n.strip() for n in m.group(1).split(",")] if m else []
+        if not any(_is_distance(n) for n in names):
+            continue
+        body = leaf.clause.split(":=", 1)[1]
+        path = [line.strip().rstrip(",") for line in body.splitlines()
+                if line.strip() and "logistic(" not in line and " is 1-" not in line
+                and not line.strip().startswith("pair(")]
+        out.append({"path": path, "regressors": names, "weights": [float(w) for w in lf.weights],
+                    "rows": leaf.rows, "weight": leaf.weight})
+    return out
+
+
+def along_distance(leaf: dict[str, object]) -> tuple[float, float]:
+    """A logistic leaf as sigmoid(bias + slope d) along the table-plane distance d, at equal
+    heights (its 3-D distance is then d too) and its other regressors at 0 (e.g. lift 0: an
+    occluder that does not move up or down): (slope, bias), comparable with the paper's
+    (-16.9, 0.8)."""
+    names = list(leaf["regressors"])  # type: ignore[arg-type]
+    w = [float(x) for x in leaf["weights"]]  # type: ignore[union-attr]
+    slope = sum(wi for n, wi in zip(names, w, strict=False) if _is_distance(n))
+    return slope, w[-1]
+
+
+def _is_distance(name: str) -> bool:
+    """A regressor's variable for distance/2 (Distance, Distance2, ...) or distance3/2
+    (Distance3, Distance32, ...)."""
+    return re.fullmatch(r"Distance\d*", name) is not None
+
+
+def probability_at(leaf: dict[str, object], distance: np.ndarray) -> np.ndarray:
+    """P1 of a logistic leaf along the table-plane ``distance`` (see :func:`along_distance`)."""
+    slope, bias = along_distance(leaf)
+    return 1.0 / (1.0 + np.exp(-(bias + slope * np.asarray(distance, dtype=float))))
+
+
+#: The tree's picture shows this many levels (a deeper subtree is one box: its leaves' count).
+TREE_PICTURE_DEPTH = 3
+
+
+def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Path]:
+    """The learned tree (``<name>_tree.png``, its first levels), P(occluder | distance) of its
+    heaviest logistic leaves beside the paper's sigmoid(0.8 - 16.9 d) and the original system's
+    deployed sigmoid(1.948 - 16.488 d) (``<name>_distance.png``), and their coefficients
+    (``<name>_coefficients.md``, :func:`coefficient_table`)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from probanchor.ddclearn.plot import plot_trees
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    tree = plot_trees([t.tree for t in theory.result.targets], folder / f"{name}_tree.png",
+                      max_depth=TREE_PICTURE_DEPTH)
+    d = np.linspace(0.0, 0.35, 200)
+    fig = Figure(figsize=(7.5, 4.2))
+    ax = fig.add_subplot()
+    for label, (w, b), style in (("paper: sigmoid(0.8 - 16.9 d)", PAPER, "k--"),
+                                 ("original system: sigmoid(1.948 - 16.488 d)", DEPLOYED, "k:")):
+        ax.plot(d, 1.0 / (1.0 + np.exp(-(w * d + b))), style, label=label)
+    for leaf in _heaviest(theory):
+        ax.plot(d, probability_at(leaf, d),
+                label=f"learned ({leaf['rows']} rows): {_path_label(leaf)}")
+    ax.set_xlabel("distance d in the table plane (m)")
+    ax.set_ylabel("P(occluder)")
+    ax.set_ylim(0, 1)
+    ax.legend(fontsize=6, loc="upper right")
+    ax.set_title("P(O hides A | distance), the learned leaves beside the paper's")
+    curve = folder / f"{name}_distance.png"
+    fig.tight_layout()
+    fig.savefig(curve, dpi=110)
+    table = folder / f"{name}_coefficients.md"
+    table.write_text(coefficient_table(theory), encoding="utf-8")
+    return [tree, curve, table]
+
+
+def _heaviest(theory: LearnedTheory, k: int = 6) -> list[dict[str, object]]:
+    """The ``k`` logistic leaves with the most (weighted) groundings."""
+    return sorted(theory.logistic, key=lambda leaf: -float(leaf["weight"]))[:k]  # type: ignore[arg-type]
+
+
+def _path_label(leaf: dict[str, object]) -> str:
+    path = [p for p in leaf["path"] if "~= Distance" not in p]  # type: ignore[union-attr]
+    return ", ".join(p.replace("(Occluded, Occluder)", "").replace("(Occluded)", "(A)")
+                     .replace("(Occluder)", "(O)") for p in path)
+
+
+def coefficient_table(theory: LearnedTheory, k: int = 6) -> str:
+    """A Markdown table: the paper's and the original system's P(occluder | distance) and the
+    ``k`` heaviest learned logistic leaves as sigmoid(bias + slope d) (:func:`along_distance`),
+    with P at 0, 5 and 10 cm."""
+    def row(name: str, n: str, slope: float, bias: float) -> str:
+        ps = " | ".join(f"{1.0 / (1.0 + np.exp(-(bias + slope * d))):.2f}"
+                        for d in (0.0, 0.05, 0.1))
+        return f"| {name} | {n} | {slope:.1f} | {bias:.2f} | {ps} |"
+
+    lines = ["| clause | groundings | slope | bias | P(0 cm) | P(5 cm) | P(10 cm) |",
+             "|---|---:|---:|---:|---:|---:|---:|",
+             row("paper (section 4)", "", *PAPER),
+             row("original system (deployed)", "", *DEPLOYED)]
+    for leaf in _heaviest(theory, k):
+        slope, bias = along_distance(leaf)
+        lines.append(row(f"learned: {_path_label(leaf) or '(root)'}".replace("|", "\\|"),
+                         str(leaf["rows"]), slope, bias))
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,216 @@
+"""A whole run: frames from a scenario or a percept stream through the loop, then the summary,
+pictures, GIF and world file in an output directory."""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from tqdm import tqdm
+
+from probanchor.app.loop import AnchoringLoop, FrameOutcome, LoopConfig, run_frames
+from probanchor.app.pictures import FramePictures
+from probanchor.app.sources import bag_frames, scenario_frames, scenario_length, stream_frames
+from probanchor.app.store import (
+    StoredRun,
+    WorldStore,
+    adopt_stored_options,
+    run_meta,
+    store_source,
+    stored_source,
+)
+from probanchor.app.world_file import write_world
+from probanchor.evaluation import (
+    TrackingRecord,
+    evaluate,
+    make_summary,
+    write_records,
+    write_summary,
+)
+
+logger = logging.getLogger(__name__)
+
+
+@dataclass
+class RunOptions(LoopConfig):
+    """The loop's configuration (particles, theory, seed, reasoning, ...) plus what to play
+    and where to write."""
+
+    scenario: Path | None = None
+    percepts: Path | None = None
+    bag: Path | None = None
+    bag_topics: Any = None  # bags.BagTopics for the bag (the usual topics by default)
+    out: Path | None = None
+    picture_every: int = 1
+    progress: bool = True
+    width: int | None = None
+    height: int | None = None
+    # perceive the next frame while the current one is reasoned about (run_frames)
+    overlap: bool = True
+    rerun: Path | None = None  # log the run to this Rerun .rrd file
+    rerun_spawn: bool = False  # ... and/or to a Rerun viewer started for it
+    store: Path | None = None  # keep the world model in this SQLite store, frame by frame
+    resume: Path | None = None  # continue the run kept in this store
+
+
+@dataclass
+class RunOutput:
+    summary: dict[str, Any]
+    records: list[TrackingRecord]
+    out: Path | None
+    gif: Path | None = None
+    pictures: list[Path] = field(default_factory=list)
+
+
+def run(options: RunOptions) -> RunOutput:
+    if options.store is not None and options.resume is not None:
+        raise ValueError("give --store (a new run) or --resume (continue one), not both")
+    store = WorldStore.open(options.resume) if options.resume is not None else None
+    try:
+        if store is not None and options.scenario is options.percepts is options.bag is None:
+            kind, path = stored_source(store.meta())  # the stored run's own source
+            setattr(options, kind, path)
+        if store is not None:
+            adopt_stored_options(options, store.meta())
+        given = [s for s in (options.scenario, options.percepts, options.bag) if s is not None]
+        if len(given) != 1:
+            raise ValueError("give one of a scenario, a percept stream (--percepts) or a bag "
+                             "(--bag)")
+        if options.reasoning and not options.theory.is_file():
+            raise FileNotFoundError(f"{options.theory}: no such theory file")
+        meta = run_meta(store_source(options.scenario, options.bag, options.percepts), options)
+        if store is not None:
+            store.check_resumable(meta)
+        elif options.store is not None:
+            store = WorldStore.create(options.store, meta)
+        # The loop's filter loads the theory (once) here, before the first frame: a syntax or
+        # distribution error stops the run with the file, line and cause.
+        loop = AnchoringLoop(options)
+        try:
+            stored = store.resume(loop) if options.resume is not None and store is not None \
+                else StoredRun(0, [])
+            return _run(options, loop, store, stored)
+        finally:
+            loop.close()
+    finally:
+        if store is not None:
+            store.close()
+
+
+def _run(options: RunOptions, loop: AnchoringLoop, store: WorldStore | None = None,
+         stored: StoredRun | None = None) -> RunOutput:
+    """Play the frames (from ``stored.next_frame`` on, after its records); what was done is
+    written even when an error stops the run (its summary then says ``stopped``: the error),
+    and the error is raised again."""
+    stored = stored or StoredRun(0, [])
+    start = stored.next_frame
+    skipped: list[str] = []  # lines of a percept stream that are not frames, unpaired images
+    if options.scenario is not None:
+        frames = scenario_frames(options.scenario, seed=options.seed, width=options.width,
+                                 height=options.height, start=start)
+        total = scenario_length(options.scenario)
+        name = options.scenario.stem
+    elif options.bag is not None:
+        from probanchor.bags import BagTopics
+
+        topics = options.bag_topics or BagTopics()
+        skipped = topics.skipped  # images without a partner, filled in as the bag is read
+        frames = bag_frames(options.bag, topics, start=start)
+        total = None
+        name = options.bag.stem
+    else:
+        assert options.percepts is not None
+        frames = stream_frames(options.percepts, skipped, start=start)
+        total = None
+        name = options.percepts.stem
+    pictures = None
+    if options.out is not None:
+        options.out.mkdir(parents=True, exist_ok=True)
+        pictures = FramePictures(options.out, every=options.picture_every)
+    viewer = None
+    if options.rerun is not None or options.rerun_spawn:
+        from probanchor.app.rerun_frames import RerunFrames  # rerun-sdk only when asked for
+
+        viewer = RerunFrames(options.rerun, options.rerun_spawn, name)
+    bar = tqdm(total=None if total is None else max(0, total - start), unit="frame",
+               desc=name, disable=not options.progress)
+
+    def on_frame(outcome: FrameOutcome, loop: AnchoringLoop) -> None:
+        if store is not None:
+            store.write_frame(outcome, loop)
+        if pictures is not None:
+            pictures(outcome, loop)
+        if viewer is not None:
+            viewer(outcome, loop)
+        bar.update(1)
+
+    records: list[TrackingRecord] = list(stored.records)
+    stopped: BaseException | None = None
+    try:
+        run_frames(frames, loop, on_frame, overlap=options.overlap, records=records)
+    except Exception as exc:  # written below with the frames done, then raised again
+        stopped = exc
+    finally:
+        bar.close()
+        if viewer is not None:
+            viewer.close()
+    for message in skipped:
+        logger.warning("skipped: %s", message)
+    output = _finish(options, loop, name, records, skipped, stopped, pictures)
+    if stopped is not None:
+        raise stopped
+    return output
+
+
+def _finish(options: RunOptions, loop: AnchoringLoop, name: str,
+            records: list[TrackingRecord], skipped: list[str], stopped: BaseException | None,
+            pictures: FramePictures | None) -> RunOutput:
+    evaluation = evaluate(records)
+    extra = {
+        "scenario": name,
+        "method": "reasoning" if options.reasoning else "no-reasoning",
+        "particles": options.particles if options.reasoning else 0,
+        "threads": options.threads if options.reasoning else 0,
+        "engine": loop.reasoner.filter.engine if loop.reasoner is not None else "",
+        "seed": options.seed,
+        "zero_weight_events": (loop.reasoner.filter.zero_weight_events
+                               if loop.reasoner is not None else 0),
+        "skipped_frames": len(skipped),
+    }
+    if stopped is not None:
+        extra["stopped"] = f"after {len(records)} frames: {type(stopped).__name__}: {stopped}"
+    if options.out is None:
+        return RunOutput(make_summary(records, evaluation, extra=extra), records, None)
+    summary = write_summary(options.out / "summary.json", records, evaluation, extra=extra)
+    output = RunOutput(summary, records, options.out)
+    write_records(options.out / "records.jsonl", records)
+    perceived = {s for s, h in records[-1].hypotheses.items() if h.perceived} \
+        if records else set()
+    write_world(options.out / "world.pl", loop, perceived)
+    if pictures is not None and stopped is None:
+        output.pictures = pictures.paths
+        output.gif = pictures.finish(options.out / "run.gif")
+    return output
+
+
+def format_summary(summary: dict[str, Any]) -> str:
+    """The summary a person reads at the end of a run."""
+    lines = [f"{summary.get('scenario', 'run')}: {summary['frames']} frames "
+             f"({summary.get('method', '')})"]
+    for obj in summary["objects"]:
+        kept = "identity kept" if obj["identity_kept"] else "IDENTITY LOST"
+        lines.append(f"  {obj['id']:<10} {' -> '.join(obj['symbols']) or '(never anchored)':<30}"
+                     f" {kept}")
+    idf1 = summary.get("idf1")
+    lines.append(f"  ID switches {summary['id_switches']}, IDF1 "
+                 f"{'n/a' if idf1 is None else f'{idf1:.3f}'}, rejected percepts "
+                 f"{summary.get('rejected_percepts', 0)}, ambiguous re-acquisitions "
+                 f"{summary.get('ambiguous_reacquisitions', 0)}")
+    ms = summary["ms_per_frame"]
+    fps = 1000.0 / ms["total"] if ms["total"] > 0 else float("inf")
+    lines.append(f"  ms per frame: perception {ms['perception']:.1f}, anchoring "
+                 f"{ms['anchoring']:.1f}, filter {ms['filter']:.1f}, total {ms['total']:.1f} "
+                 f"({fps:.1f} frames per second)")
+    return "\n".join(lines)
