@@ -1,5 +1,5 @@
-"""Jobs per minute of each back end of ``python/jobs`` with 1 and 2 workers, and the overhead
-per job: when does Ray pay off?
+"""Jobs per minute of each back end of ``python/probanchor/jobs`` with 1 and 2 workers, and the
+overhead per job: when does Ray pay off?
 
     .venv/bin/python bench/cluster_jobs.py [--scenarios can_under_box,transitive] [--seeds 3]
         [--particles 300] [--noop 1000] [--backends local,ray] [--out out/bench_jobs]

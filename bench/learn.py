@@ -1,4 +1,5 @@
-"""Seconds of the structure learner (``ddclearn.learn``) on a synthetic problem and on Financial.
+"""Seconds of the structure learner (``probanchor.ddclearn.learn``) on a synthetic problem and on
+Financial.
 
     .venv/bin/python bench/learn.py                # both parts, about a minute
     .venv/bin/python bench/learn.py --json         # stdout: one JSON object with the figures
@@ -13,13 +14,13 @@ features (one-hot colour, standardised, the learner's L2 penalty 0.01) held in n
 it prints the seconds, the ratios, the learned weights against the true ones, and whether
 ``learn`` is within the 10 s target.
 
-(b) FinancialData.pl (``ddclearn.datasets.financial()``, PKDD'99 Financial, DreaML's input, 13
-targets), every target: ``learn`` on 1/4, 1/2 and all of the facts (the subsets are the test
-parts of ``bridge.learning.split_files(..., unit="d", fraction=0.25 / 0.5)``: whole districts
+(b) FinancialData.pl (``probanchor.ddclearn.datasets.financial()``, PKDD'99 Financial, DreaML's
+input, 13 targets), every target: ``learn`` on 1/4, 1/2 and all of the facts (the subsets are the
+test parts of ``bridge.learning.split_files(..., unit="d", fraction=0.25 / 0.5)``: whole districts
 with their clients, accounts and loans, written to a temporary folder). For each it prints the
 seconds, the groundings (summed over the targets) and the seconds per 1,000 groundings (equal
-figures mean the cost grows linearly), and for all of it the ratio to the original DreaML's
-543 s (its deterministic mode, on this kind of machine) and to the target of 60 s.
+figures mean the cost grows linearly), and for all of it the ratio to the original DreaML's 543 s
+(its deterministic mode, on this kind of machine) and to the target of 60 s.
 
 Wall-clock seconds are reported with the process's CPU seconds beside them: on a shared machine
 the wall time includes waiting for a CPU.

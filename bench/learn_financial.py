@@ -2,14 +2,15 @@
 
     .venv/bin/python bench/learn_financial.py [--out TABLE.md] [--fraction 0.2] [--seed 0] [--json]
 
-FinancialData.pl (PKDD'99 Financial, DreaML's input, 13 targets; ``ddclearn.datasets.financial()``)
-is split by district (``bridge.learning.split_files(..., unit="d")``: a district goes to the
-test part with its clients, accounts and loans; ``--fraction`` of the facts, 0.2 by default).
-Every target is learned on the training part (``ddclearn.learn``) and the learned program is
-scored on the test part (``ddclearn.evaluate``: exact held-out log-likelihood per grounding,
-accuracy or RMSE). On the same split, ``ddclearn.baselines`` fits per target three propositional
-models on the training part's feature table (the root candidates the tree search sees: each
-aggregate, attribute and count as columns) and scores them on the test part's:
+FinancialData.pl (PKDD'99 Financial, DreaML's input, 13 targets;
+``probanchor.ddclearn.datasets.financial()``) is split by district
+(``bridge.learning.split_files(..., unit="d")``: a district goes to the test part with its clients,
+accounts and loans; ``--fraction`` of the facts, 0.2 by default). Every target is learned on the
+training part (``probanchor.ddclearn.learn``) and the learned program is scored on the test part
+(``probanchor.ddclearn.evaluate``: exact held-out log-likelihood per grounding, accuracy or RMSE).
+On the same split, ``probanchor.ddclearn.baselines`` fits per target three propositional models on
+the training part's feature table (the root candidates the tree search sees: each aggregate,
+attribute and count as columns) and scores them on the test part's:
 
 - ``constant``: class frequencies with add-one smoothing, or a Gaussian with the mean and
   variance (what knowing none of the features gives);
@@ -41,7 +42,12 @@ sys.path.insert(0, str(HERE.parent / "python"))
 
 from bridge.learning import LearningData, split_files  # noqa: E402
 from probanchor.ddclearn import evaluate, learn, target_key  # noqa: E402
-from probanchor.ddclearn.baselines import BASELINES, feature_table, fit_baselines, score  # noqa: E402
+from probanchor.ddclearn.baselines import (  # noqa: E402
+    BASELINES,
+    feature_table,
+    fit_baselines,
+    score,
+)
 from probanchor.ddclearn.datasets import financial  # noqa: E402
 
 FINANCIAL = financial()
@@ -147,7 +153,7 @@ def main(argv: list[str] | None = None) -> int:
              f"training facts, {split['cut']} facts across the cut dropped). Held-out mean "
              f"log-likelihood per grounding (LL, nats; higher is better, the best of a row in "
              f"bold) and accuracy or RMSE; baselines on the root candidates' features "
-             f"(ddclearn.baselines).")
+             f"(probanchor.ddclearn.baselines).")
     table = markdown(rows)
     print(intro + "\n")
     print(table)

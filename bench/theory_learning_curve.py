@@ -4,19 +4,17 @@
         [--labels truth,hindsight] [--particles 1000] [--jobs 2] [--cluster BACKEND]
         [--out out/curve] [--md FILE]
 
-For each number of episodes n and each kind of labels, the first n generated occlusion games
-(seeds 0..n-1, as ``make learned-theory`` collects them; percept streams cached) are collected
-(``anchoring collect``) and a theory is learned from them (``anchoring learn-theory``); each
-theory then runs the four shipped scenarios over ``--seeds`` seeds (the simulator's noise and
-the filter's seed, percept streams cached as ``anchoring evaluate`` caches them) with
-``--particles`` particles in one thread per run (as ``anchoring evaluate --threads 1``). It
-prints, and with ``--md`` writes, a Markdown table: labels,
-episodes, collected pairs, the seconds of collecting (perception included, summed over workers)
-and of learning, and the identity kept (objects and runs) of the shipped runs; the
-hand-written theory's row on the same runs comes last, for reference. The collection episodes
-and the theories' runs are jobs (``python/jobs``) on ``--jobs`` spawned processes or, with
-``--cluster ray|auto|ray://HOST:PORT``, on Ray; the figures are the same on either.
-"""
+For each number of episodes n and each kind of labels, the first n generated occlusion games (seeds
+0..n-1, as ``make learned-theory`` collects them; percept streams cached) are collected (``anchoring
+collect``) and a theory is learned from them (``anchoring learn-theory``); each theory then runs the
+four shipped scenarios over ``--seeds`` seeds (the simulator's noise and the filter's seed, percept
+streams cached as ``anchoring evaluate`` caches them) with ``--particles`` particles in one thread
+per run (as ``anchoring evaluate --threads 1``). It prints, and with ``--md`` writes, a Markdown
+table: labels, episodes, collected pairs, the seconds of collecting (perception included, summed
+over workers) and of learning, and the identity kept (objects and runs) of the shipped runs; the
+hand-written theory's row on the same runs comes last, for reference. The collection episodes and
+the theories' runs are jobs (``python/probanchor/jobs``) on ``--jobs`` spawned processes or, with
+``--cluster ray|auto|ray://HOST:PORT``, on Ray; the figures are the same on either. """
 
 from __future__ import annotations
 

@@ -2,7 +2,7 @@
     candidate literals, partial possible worlds, learned clauses.
 
     The search itself (which literal to add, the leaves' statistical
-    models, the score) runs in Python (python/ddclearn/); it asks this
+    models, the score) runs in Python (python/probanchor/ddclearn/); it asks this
     module for the groundings of a target, the literals the declarative
     bias allows at a node of the tree, what each literal says of each
     grounding, and finally for the clauses of the tree in DC syntax.  The

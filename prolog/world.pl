@@ -4,8 +4,9 @@
 
     The world file (written by `anchoring run`) holds plain facts in module user: anchors
     (anchor/5), their attributes (attribute/3) and the particle set of the filter
-    (particle/2, particle_fact/2); see python/app/world_file.py.  Both files given to swipl
-    are loaded, so the facts can also be asked directly (?- anchor(A, S, C, Seen, T).).
+    (particle/2, particle_fact/2); see python/probanchor/app/world_file.py.  Both files
+    given to swipl are loaded, so the facts can also be asked directly
+    (?- anchor(A, S, C, Seen, T).).
     Examples:
 
         ?- anchors(As).

@@ -1,5 +1,5 @@
-"""Many independent jobs (python/jobs) on local processes and on Ray: every outcome comes back,
-a job that raised is reported with its cause, a job whose worker died is tried again, and a
+"""Many independent jobs (python/probanchor/jobs) on local processes and on Ray: every outcome comes
+back, a job that raised is reported with its cause, a job whose worker died is tried again, and a
 small evaluation gives the same table whichever back end ran it."""
 
 from __future__ import annotations

@@ -1,4 +1,5 @@
-"""K-fold cross-validation of the learner (``ddc cross-validate``, ``ddclearn.crossval``)."""
+"""K-fold cross-validation of the learner (``ddc cross-validate``,
+``probanchor.ddclearn.crossval``)."""
 
 from __future__ import annotations
 

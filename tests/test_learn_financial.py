@@ -2,9 +2,8 @@
 
 FinancialData.pl (DreaML's input for PKDD'99 Financial, 13 targets) is split by district; every
 target is learned on the training part and scored on the test part, and so are the baselines of
-``ddclearn.baselines`` on the same root features (bench/learn_financial.py prints the table).
-The first tests check the feature table and the baselines on a small hand-made data set.
-"""
+``probanchor.ddclearn.baselines`` on the same root features (bench/learn_financial.py prints the
+table). The first tests check the feature table and the baselines on a small hand-made data set. """
 
 from __future__ import annotations
 

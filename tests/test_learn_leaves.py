@@ -1,4 +1,4 @@
-"""Leaf models of the distributional logic tree learner (python/ddclearn/leaves.py).
+"""Leaf models of the distributional logic tree learner (python/probanchor/ddclearn/leaves.py).
 
 Reference fits come from statsmodels (WLS, Logit, MNLogit, GLM Poisson), which estimate the
 unpenalised maximum likelihood. The leaves carry a tiny L2 penalty (0.01 on standardised

@@ -1,8 +1,8 @@
-"""Recovery of known programs by the structure learner (ddclearn.learn).
+"""Recovery of known programs by the structure learner (probanchor.ddclearn.learn).
 
 Data are sampled with the project's own engine (``bridge.Program.sample`` through
-``ddclearn.synthetic.sample_data``) from DC programs whose structure and parameters are known,
-the generators of ``tests/data/learn/``:
+``probanchor.ddclearn.synthetic.sample_data``) from DC programs whose structure and parameters are
+known, the generators of ``tests/data/learn/``:
 
 (a) ``discrete_tree.pl``: a discrete tree of depth 2 (a at the root, b in each of its
     subtrees) and an irrelevant discrete feature c;
@@ -13,15 +13,15 @@ the generators of ``tests/data/learn/``:
     neighbours of the entity, beside distracting aggregates (the mean of w, the max of v, the
     count of neighbours, a single neighbour's v).
 
-For each, on training data of n groundings the learned tree has the generator's structure
-(the tested literals on each path, the irrelevant features absent), each parameter lies within
-4 standard errors of the generator's (the standard errors of the sample size, or of a
-statsmodels fit on the same rows) and the learned leaf agrees with that unpenalised fit; on
-held-out data sampled with another seed, the learned program's mean log-likelihood
-(``ddclearn.evaluate``) is within 1 % of the generating program's and not better than it by
-more than sampling noise: the excess of an estimate with k parameters fitted on n_train rows,
-scored on n_test rows, has a standard deviation of about sqrt(k / (n_train n_test)) (its mean is
-minus the Kullback-Leibler divergence, about -k / (2 n_train)), so the bound is 5 of those.
+For each, on training data of n groundings the learned tree has the generator's structure (the
+tested literals on each path, the irrelevant features absent), each parameter lies within 4 standard
+errors of the generator's (the standard errors of the sample size, or of a statsmodels fit on the
+same rows) and the learned leaf agrees with that unpenalised fit; on held-out data sampled with
+another seed, the learned program's mean log-likelihood (``probanchor.ddclearn.evaluate``) is within
+1 % of the generating program's and not better than it by more than sampling noise: the excess of an
+estimate with k parameters fitted on n_train rows, scored on n_test rows, has a standard deviation
+of about sqrt(k / (n_train n_test)) (its mean is minus the Kullback-Leibler divergence, about -k /
+(2 n_train)), so the bound is 5 of those.
 
 Sizes are chosen for tight statistics in about 10 s per case (sampling, learning, two
 evaluations): 100,000 groundings of (c) take about 35 s on two cores (sampling 8 s, learning

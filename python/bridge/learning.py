@@ -2,8 +2,8 @@
 
 ``prolog/ddc_learn.pl`` owns the data (facts, background knowledge, declarative bias), the
 groundings of each node of a tree, the candidate literals and their outcomes in partial possible
-worlds, and the translation of a tree's leaves into DC clauses; the search and the leaf models
-live in :mod:`ddclearn`. Every call returns plain Python values (dicts, lists, numpy arrays).
+worlds, and the translation of a tree's leaves into DC clauses; the search and the leaf models live
+in :mod:`probanchor.ddclearn`. Every call returns plain Python values (dicts, lists, numpy arrays).
 
 Example::
 

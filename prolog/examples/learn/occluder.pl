@@ -1,4 +1,4 @@
-% Sampled from occluder_generator.pl by ddclearn.synthetic.sample_data: 1500 entities,
+% Sampled from occluder_generator.pl by probanchor.ddclearn.synthetic.sample_data: 1500 entities,
 % seed 1, 4046 facts (one world of the program).
 observed(a1):t+1.
 distance(a1,o1):t~=0.3543733205266348.

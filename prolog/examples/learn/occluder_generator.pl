@@ -8,7 +8,7 @@
 %       seen at t+1: never; hidden by O before and not seen: 0.92;
 %       else the paper's logistic on the distance, P1 = sigmoid(0.8 - 16.9 D).
 %
-% Sampled with ddclearn.synthetic.sample_data (see occluder.pl's header).
+% Sampled with probanchor.ddclearn.synthetic.sample_data (see occluder.pl's header).
 
 hid(A, O):t ~ finite([0.4:true, 0.6:false]).
 occluded_by(A, O):t := hid(A, O):t ~= true.
