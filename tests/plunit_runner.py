@@ -23,10 +23,12 @@ def swipl_executable() -> str:
 
 
 def run_plunit(path: Path, timeout: float = 600) -> subprocess.CompletedProcess[str]:
-    """Load ``path`` and run all its plunit tests; exit status 0 only if every test passed."""
-    goal = "(catch(run_tests, E, (print_message(error, E), fail)) -> halt(0) ; halt(1))"
+    """Load ``path`` and run all its plunit tests; exit status 0 only if every test passed and
+    nothing printed an error (a clause that does not load, e.g. a syntax error in a test, is
+    skipped by the loader: ``--on-error=status`` makes ``halt`` exit 1 after it)."""
+    goal = "(catch(run_tests, E, (print_message(error, E), fail)) -> halt ; halt(1))"
     env = dict(os.environ)
     return subprocess.run(
-        [swipl_executable(), "-q", "-g", goal, "-t", "halt(2)", str(path)],
+        [swipl_executable(), "-q", "--on-error=status", "-g", goal, "-t", "halt(2)", str(path)],
         cwd=ROOT, env=env, capture_output=True, text=True, timeout=timeout,
     )

@@ -30,6 +30,20 @@ def test_runner_reports_a_failing_plunit_test(tmp_path: Path) -> None:
     assert "one_is_two" in result.stdout + result.stderr
 
 
+def test_runner_reports_a_plunit_file_that_does_not_load(tmp_path: Path) -> None:
+    broken = tmp_path / "test_broken.pl"
+    broken.write_text(
+        ":- use_module(library(plunit)).\n"
+        ":- begin_tests(half_loaded).\n"
+        "test(loads) :- true.\n"
+        "test(syntax_error) :- foo(.\n"
+        ":- end_tests(half_loaded).\n"
+    )
+    result = run_plunit(broken)
+    assert result.returncode != 0
+    assert "Syntax error" in result.stdout + result.stderr
+
+
 def test_runner_reports_a_passing_plunit_test(tmp_path: Path) -> None:
     passing = tmp_path / "test_passing.pl"
     passing.write_text(
