@@ -393,8 +393,10 @@ test(rows_of_floats) :-
     filter_rows(Fi, X, x:t ~= X, 1, Stored, []),
     filter_rows(Fi, X1, (x:t ~= X1, true), 1, Proved, []),
     Stored == Proved, length(Stored, 40),
-    ddc:filter_state(Fi, filter(_, N, T, Ws, _, _, sh(SS, _, _, _, _, _))),
-    ddc:stored_rows(1, N, Ws, SS, x-T, 1, Stored),     % (read from the stores)
+    ddc_filter:filter_state(Fi, St), ddc_particles:particles_size(St, N),
+    ddc_particles:particles_time(St, T), ddc_particles:particles_worlds(St, Ws),
+    ddc_particles:particles_shared(St, Sh), ddc_world:shared_store(Sh, SS),
+    ddc_particles:stored_rows(1, N, Ws, SS, x-T, 1, Stored),     % (read from the stores)
     filter_values(Fi, C, c:t ~= C, Cs),
     maplist([Ci, Xi]>>( Ci == a -> Xi =:= Xi ; Xi =\= Xi ), Cs, Stored),
     memberchk(a, Cs), memberchk(b, Cs),
