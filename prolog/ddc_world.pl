@@ -549,8 +549,8 @@ group_facts(Facts, Groups) :-
     group_pairs_by_key(Sorted, Groups).
 
 '$memo'(W, G, Call) :-
-    world_time(W, Tc),
-    K = '$memo'(G, Tc),
+    world_time(W, Now),
+    K = '$memo'(G, Now),
     (   known(W, K, V)
     ->  V == true
     ;   world_module(W, M),
