@@ -163,7 +163,8 @@ new_world(M, Time, Frozen, Ev, Check, W) :-
     ('$swept'(Id, T), the sweep skips it).  At the end of a step, a value
     that all particles hold on their own but that came out the same in
     every one (an object seen again: wherever each particle had it, it is
-    now where it was seen) moves to the shared store (share_agreed/4).
+    now where it was seen) moves to the shared store (ddc_particles.pl,
+    share_agreed/5).
     Outside the filter (static queries) there is no shared store. */
 
 %   known(+W, +K, -V): K's value in W, from its own store (which makes the
