@@ -228,8 +228,9 @@ filter_server :-
 %   the calling thread, once no other thread runs it; the first solution's
 %   bindings come back (copied).  Errors name the program's file where
 %   they named the filter's module; an unknown Filter is
-%   error(ddc(unknown_filter(Filter), query), _).  Not exported: called as
-%   ddc:filter_call/2.
+%   error(ddc(unknown_filter(Filter), query), _).  Goal runs in this
+%   module.  Not exported by ddc.pl: called as ddc:filter_call/2 (or
+%   ddc_filter:filter_call/2).
 filter_call(F, Goal) :-
     (   atom(F)
     ->  with_mutex(F, (   filter_engine_(F, E, M, File)

@@ -294,6 +294,26 @@ test(pit_world_four_steps) :-
     close_to(PJ, 0.551724, 0.07),
     filter_free(Fi).
 
+%   The filter API calls one engine interface (ddc_filter.pl's header):
+%   both engines implement all of it.
+test(both_engines_implement_the_engine_interface) :-
+    forall(( member(M, [ddc_particles, ddc_filter_batched]),
+             member(N/A, [ engine_step/4, engine_undo/1, engine_resample/2, engine_holds/3,
+                           engine_values/4, engine_rows/5, engine_time/2, engine_size/2,
+                           engine_statistics/2, engine_free/1 ]) ),
+           ( functor(H, N, A), assertion(predicate_property(M:H, defined)) )).
+
+%   Compiled program clauses call the world runtime by its module, and read
+%   a world's time by the position its record declares.
+test(compiled_clauses_call_the_world_runtime) :-
+    load_text(['a ~ val(1).', 'b ~ val(X) := a ~= Y, X is Y+1.', 'c := b ~= 2.'], M),
+    forall(( member(H, [M:'$rv'(_, _, _, _, _, _, _, _, _), M:'$d:c'(_)]), clause(H, B) ),
+           \+ ( sub_term(G, B), compound(G), G = ddc:_ )),
+    once(( clause(M:'$rv'(b, _, _, _, _, _, _, _, _), B2),
+           sub_term(R, B2), subsumes_term(ddc_world:read_key(a, u, _, _), R) )),
+    ddc_world:world_time_goal(w, T, G3), G3 = arg(I, w, T),
+    ddc_world:world_fields(Fields), nth1(I, Fields, time).
+
 test(undo_resample_values) :-
     pit_world(F),
     filter_new(F, 4, 1, Fi),
