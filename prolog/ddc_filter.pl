@@ -120,16 +120,17 @@ filter_new(File, N, Seed, F) :-
 %
 %   As filter_new/4.  Options:
 %     - share(false): compute every value in every particle, none once for
-%       all (see "Shared values" in ddc_world.pl): the same particles, slower; for
-%       comparison.
-%     - threads(K) (default 1): a step's particles after the first are
+%       all (see "Shared values" in ddc_world.pl): the same particles,
+%       slower; for comparison.
+%     - threads(K) (default 1, default_threads/1): a step's particles after the first are
 %       split into K groups, stepped at the same time by K threads (the
 %       calling one and K-1 others), each drawing from its own random
 %       stream seeded from the filter's.  The particles depend on Seed and
 %       K, not on the machine; K = 1 steps them one after the other in the
 %       calling thread.
-%     - engine(E): auto (the default: batched if the program is in the
-%       batched engine's fragment, else per_particle), batched
+%     - engine(E): auto (the default, default_engine/1: batched if the
+%       program is in the batched engine's fragment, else per_particle),
+%       batched
 %       (ddc_batch.pl: each clause evaluated once for a batch of
 %       particles; a program outside its fragment is an error naming the
 %       clause) or per_particle (ddc_particles.pl: one particle at a
@@ -203,8 +204,10 @@ new_filter_name(F, Id) :-
     flag(ddc_filter_id, Id, Id+1),
     atom_concat('$ddc_particles_', Id, F).
 
-%   filter_engine_(?Filter, ?Engine, ?Module, ?File): the engine holding
-%   Filter's particles, the module of its program and the program's file.
+%!  filter_engine_(?Filter, ?PrologEngine, ?Module, ?File) is nondet.
+%
+%   The Prolog engine (engine_create/3) holding Filter's particles, the
+%   module of its program and the program's file.
 :- dynamic filter_engine_/4.
 
 %   filter_server: the goal of a filter's engine: runs each goal posted to
