@@ -4,7 +4,7 @@
     batch of particles) that its hot paths read and update in place.  This
     module lets a module declare such a record once, by the names of its
     fields, and then read and write the fields by name; the accessors are
-    compiled inline, to the same arg/3, setarg/3 and nb_setarg/3
+    compiled inline, to the same arg/3, setarg/3, nb_setarg/3 and nb_linkarg/3
     instructions that positional code would use, so naming a field costs
     nothing at run time.
 */
@@ -16,7 +16,6 @@
 :- use_module(library(error)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module(library(yall)).
 :- use_module(library(pairs)).
 
 /** <module> Records with named fields, accessed inline
@@ -32,11 +31,13 @@ The declaration defines and exports, for each field F at position I:
   - world_F(+World, -Value): Value is the field (arg(I, World, Value));
   - set_world_F(!World, +Value): setarg(I, World, Value) (backtrackable);
   - nb_set_world_F(!World, +Value): nb_setarg(I, World, Value);
+  - nb_link_world_F(!World, +Value): nb_linkarg(I, World, Value) (no
+    copy: Value must be a term that outlives the update, see nb_linkarg/3);
 
 and new_world(-World), a record whose fields are fresh variables, and
 world_fields(-Names), the field names in order.  In every module that
 loads ddc_records (the declaring one and those importing its
-accessors), a call to an accessor is compiled to the arg/setarg/nb_setarg
+accessors), a call to an accessor is compiled to the arg/setarg/nb_setarg/nb_linkarg
 goal itself.  The accessors remain ordinary predicates, so they can also
 be called from the top level or passed to maplist/3.
 
@@ -44,10 +45,10 @@ Field names must be distinct within a record; two records declared in
 the same program must not generate the same accessor name.
 */
 
-%!  field(?Accessor:atom, ?Kind:oneof([get,set,nb_set]), ?Index:integer,
+%!  field(?Accessor:atom, ?Kind:oneof([get,set,nb_set,nb_link]), ?Index:integer,
 %!        ?Module:atom) is nondet.
 %
-%   Accessor/2 reads (get) or writes (set, nb_set) argument Index of the
+%   Accessor/2 reads (get) or writes (set, nb_set, nb_link) argument Index of the
 %   record; Module declared it.
 
 :- dynamic field/4.
@@ -82,6 +83,7 @@ system:goal_expansion(Goal, Expanded) :-
 inline(get,    I, R, V, arg(I, R, V)).
 inline(set,    I, R, V, setarg(I, R, V)).
 inline(nb_set, I, R, V, nb_setarg(I, R, V)).
+inline(nb_link, I, R, V, nb_linkarg(I, R, V)).
 
 %!  record_clauses(+Template, +Module, -Clauses) is det.
 %
@@ -114,13 +116,20 @@ record_clauses(Template, Module, Clauses) :-
             ),
             Pairs),
     pairs_keys_values(Pairs, Accessors, PIs),
-    foldl([PI, E0, (PI, E0)]>>true, PIs, FieldsName/1, Exports0),
+    foldl(export_conj, PIs, FieldsName/1, Exports0),
     Clauses = [ (:- export((NewName/1, Exports0))),
                 NewHead,
                 FieldsHead
               | Accessors
               ].
 
+%   (Not a yall lambda: loading library(yall) here would turn on its goal
+%   expansion in every file compiled after the engine, which gives a
+%   lambda's free variables other semantics: copied at the call without
+%   it, shared with the clause with it.)
+export_conj(PI, E0, (PI, E0)).
+
 accessor(get,    Functor, F, A) :- atomic_list_concat([Functor, '_', F], A).
 accessor(set,    Functor, F, A) :- atomic_list_concat([set_, Functor, '_', F], A).
 accessor(nb_set, Functor, F, A) :- atomic_list_concat([nb_set_, Functor, '_', F], A).
+accessor(nb_link, Functor, F, A) :- atomic_list_concat([nb_link_, Functor, '_', F], A).

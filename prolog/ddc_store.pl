@@ -25,10 +25,12 @@
 
 /** <module> Non-backtrackable hash table for DDC worlds
 
-Store = tbl(Count, Data, Indexed); Data is a list of Key-Value while
-Count =< 8, else Buckets = b(L1, ..., Ln), each Li unbound (empty) or a
-list of Key-Value.  Keys must be ground.  Indexed (true or false): whether
-keys X-Time are also indexed by functor and time (store_put/3).
+A store is a record store(Count, Data, Indexed) (fields count, data and
+indexed); Data is a list of Key-Value while Count =< 8, else Buckets =
+b(L1, ..., Ln), each Li unbound (empty) or a list of Key-Value.  Keys
+must be ground.  Indexed (true or false): whether keys X-Time are also
+indexed by functor and time (store_put/3), in entries '$by'(Name/Arity,
+Time) -> ix(Xs) (record ix, field keys).
 */
 
 %   Arithmetic compiled inline (local to this file; see ddc.pl).
@@ -37,6 +39,10 @@ keys X-Time are also indexed by functor and time (store_put/3).
 :- use_module(library(apply)).
 :- use_module(library(aggregate)).
 :- use_module(library(lists)).
+:- use_module(ddc_records).
+
+:- record_type store(count, data, indexed).
+:- record_type ix(keys).
 
 :- meta_predicate store_filter(+, 2, -), store_retain(+, 2).
 
@@ -55,11 +61,12 @@ store_new(S) :-
 %   and the time (see store_put/3), which pays in a store that non-ground
 %   reads search and costs an index entry per insertion in one that they
 %   do not (a small store is scanned as fast).
-store_new(tbl(0, [], Ix), Ix) :-
+store_new(store(0, [], Ix), Ix) :-
     must_be(boolean, Ix).
 
 %!  store_get(+Store, +Key, -Value) is semidet.
-store_get(tbl(_, D, _), K, V) :-
+store_get(Store, K, V) :-
+    store_data(Store, D),
     (   D = [_|_]
     ->  memberchk(K-V0, D)
     ;   D \== [],
@@ -81,33 +88,35 @@ store_get(tbl(_, D, _), K, V) :-
 %   only those keys instead of the whole table.
 store_put(T, K, V) :-
     put_(T, K, V),
-    (   arg(3, T, true), K = X-Tm, compound(X), integer(Tm)
+    (   store_indexed(T, true), K = X-Tm, compound(X), integer(Tm)
     ->  functor(X, N, A),
         (   store_get(T, '$by'(N/A, Tm), Cell)
-        ->  arg(1, Cell, Xs),
-            set_entries(1, Cell, [X|Xs])
+        ->  ix_keys(Cell, Xs),
+            duplicate_term(X, X1),      % (as set_entries/3)
+            nb_link_ix_keys(Cell, [X1|Xs])
         ;   put_(T, '$by'(N/A, Tm), ix([X]))
         )
     ;   true
     ).
 
 put_(T, K, V) :-
-    T = tbl(C, D, _),
+    store_count(T, C),
+    store_data(T, D),
     (   D = [_|_]
     ->  (   C >= 8
         ->  functor(B, b, 16),
             forall(member(K0-V0, [K-V|D]), bucket_put(B, K0, V0)),
-            nb_setarg(2, T, B)
-        ;   set_entries(2, T, [K-V|D])
+            nb_set_store_data(T, B)
+        ;   set_data_entries(T, [K-V|D])
         ),
         C1 is C + 1,
-        nb_setarg(1, T, C1)
+        nb_set_store_count(T, C1)
     ;   D == []
-    ->  set_entries(2, T, [K-V]),
-        nb_setarg(1, T, 1)
+    ->  set_data_entries(T, [K-V]),
+        nb_set_store_count(T, 1)
     ;   bucket_put(D, K, V),
         C1 is C + 1,
-        nb_setarg(1, T, C1),
+        nb_set_store_count(T, C1),
         functor(D, _, S),
         (   C1 > 2*S -> grow(T) ; true )
     ).
@@ -117,12 +126,13 @@ put_(T, K, V) :-
 %   Removes Key's entry (if any), in place.  (A key X-Time stays in the
 %   index of its functor and time; store_match/3 skips it.)
 store_delete(T, K) :-
-    T = tbl(C, D, _),
+    store_count(T, C),
+    store_data(T, D),
     (   D = [_|_]
     ->  (   select_kv(D, K, D1)
-        ->  nb_setarg(2, T, D1),
+        ->  nb_set_store_data(T, D1),
             C1 is C-1,
-            nb_setarg(1, T, C1)
+            nb_set_store_count(T, C1)
         ;   true
         )
     ;   D == []
@@ -134,7 +144,7 @@ store_delete(T, K) :-
         (   nonvar(L), select_kv(L, K, L1)
         ->  (   L1 == [] -> nb_setarg(I, D, _) ; nb_setarg(I, D, L1) ),
             C1 is C-1,
-            nb_setarg(1, T, C1)
+            nb_set_store_count(T, C1)
         ;   true
         )
     ).
@@ -153,8 +163,8 @@ bucket_put(B, K, V) :-
     arg(I, B, L),
     (   var(L) -> set_entries(I, B, [K-V]) ; set_entries(I, B, [K-V|L]) ).
 
-%   set_entries(+I, +Term, +[K-V|Rest]): non-backtrackable assignment of a
-%   chain whose Rest is already held by the store.  Only the new entry is
+%   set_entries(+I, +Buckets, +[K-V|Rest]): non-backtrackable assignment
+%   of bucket I, a chain whose Rest is already held by the store.  Only the new entry is
 %   copied (it may share bindings that backtracking would undo); the new cell
 %   that joins it to Rest is linked (nb_linkarg/3 freezes the global stack as
 %   nb_setarg/3 does, and the cell holds no variable): an insertion copies
@@ -163,13 +173,19 @@ set_entries(I, T, [KV|Rest]) :-
     duplicate_term(KV, E),
     nb_linkarg(I, T, [E|Rest]).
 
+%   set_data_entries(+Store, +[K-V|Rest]): the same for a small store's
+%   list of entries.
+set_data_entries(T, [KV|Rest]) :-
+    duplicate_term(KV, E),
+    nb_link_store_data(T, [E|Rest]).
+
 grow(T) :-
-    T = tbl(_, B, _),
+    store_data(T, B),
     functor(B, _, S),
     S2 is S*4,
     functor(B2, b, S2),
     forall(( arg(_, B, L), nonvar(L), member(K-V, L) ), bucket_put(B2, K, V)),
-    nb_setarg(2, T, B2).
+    nb_set_store_data(T, B2).
 
 %!  store_entries(+Store, -Pairs) is det.
 store_entries(T, Pairs) :-
@@ -181,12 +197,13 @@ store_entries(T, Pairs) :-
 %   for a key X-Time with a compound X and an integer time, else a scan; the
 %   index entries themselves are never enumerated).
 store_match(T, K, V) :-
-    arg(3, T, true), nonvar(K), K = X-Tm, compound(X), integer(Tm), !,
+    store_indexed(T, true), nonvar(K), K = X-Tm, compound(X), integer(Tm), !,
     functor(X, N, A),
     store_get(T, '$by'(N/A, Tm), ix(Xs)),
     member(X, Xs),
     store_get(T, X-Tm, V).
-store_match(tbl(_, D, _), K, V) :-
+store_match(T, K, V) :-
+    store_data(T, D),
     (   D = [_|_]
     ->  member(K-V, D)
     ;   compound(D),
@@ -204,7 +221,7 @@ store_size(T, C) :-
 %
 %   New holds the entries K-V of Store for which call(Keep, K, V) succeeds.
 store_filter(T, Keep, New) :-
-    arg(3, T, Ix),
+    store_indexed(T, Ix),
     store_new(New, Ix),   % (store_match/3 leaves the index out: store_put/3 rebuilds it)
     forall(( store_match(T, K, V), call(Keep, K, V) ), store_put(New, K, V)).
 
@@ -212,16 +229,16 @@ store_filter(T, Keep, New) :-
 %
 %   Removes, in place, the entries K-V for which call(Keep, K, V) fails.
 store_retain(T, Keep) :-
-    T = tbl(_, D, _),
+    store_data(T, D),
     (   D == []
     ->  true
     ;   D = [_|_]
     ->  include_kv(D, Keep, D1, 0, C),
-        nb_setarg(2, T, D1),
-        nb_setarg(1, T, C)
+        nb_set_store_data(T, D1),
+        nb_set_store_count(T, C)
     ;   functor(D, _, S),
         retain_buckets(1, S, D, Keep, 0, C),
-        nb_setarg(1, T, C)
+        nb_set_store_count(T, C)
     ).
 
 retain_buckets(I, S, B, Keep, C0, C) :-
@@ -255,16 +272,16 @@ include_kv([K-V|T], Keep, Out, C0, C) :-
 %   integer T) and those whose key is in DropKeys.  The specialised form
 %   of store_retain/2 the particle filter runs at every step.
 store_prune(T, MinT, Drop) :-
-    T = tbl(_, D, _),
+    store_data(T, D),
     (   D == []
     ->  true
     ;   D = [_|_]
     ->  prune_list(D, MinT, Drop, D1, 0, C),
-        nb_setarg(2, T, D1),
-        nb_setarg(1, T, C)
+        nb_set_store_data(T, D1),
+        nb_set_store_count(T, C)
     ;   functor(D, _, S),
         prune_buckets(1, S, D, MinT, Drop, 0, C),
-        nb_setarg(1, T, C)
+        nb_set_store_count(T, C)
     ).
 
 prune_buckets(I, S, B, MinT, Drop, C0, C) :-

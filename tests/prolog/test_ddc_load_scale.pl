@@ -87,8 +87,8 @@ is_rivals(rivals(_, _)).
 is_key(_/_/_).
 
 %   The definition of a body that depends on the particle.
-reference_dirty(B, _) :- ddc:body_call(B, '$var'), !.
-reference_dirty(B, _) :- ddc:body_call(B, u/N/_), ( N == call ; sub_atom(N, _, _, _, random) ), !.
+reference_dirty(B, _) :- ddc_compile:body_call(B, '$var'), !.
+reference_dirty(B, _) :- ddc_compile:body_call(B, u/N/_), ( N == call ; sub_atom(N, _, _, _, random) ), !.
 reference_dirty(B, Rvs) :-
     sub_term(S, B), nonvar(S),
     (   S = (_ ~= _)
@@ -100,7 +100,7 @@ reference_dirty(B, Rvs) :-
 
 check_program(File) :-
     ddc_load(File, M),
-    ddc:program_items(M, All),
+    ddc_programs:program_items(M, All),
     M:'$ddc_info'(info(_, _, _, _, _, Impure, First)),
     exclude(is_rivals, All, Items),
     findall(rivals(Id, R), reference_rivals(Items, First, Id, R), Expected),
@@ -109,7 +109,7 @@ check_program(File) :-
     %   the memoised (impure) and the clean derived predicates
     findall(K-Calls, ( member(der(_, X, Kind, B, _), Items), functor(X, N, A),
                        ( Kind == u -> TK = u ; TK = t ), K = TK/N/A,
-                       ddc:body_calls(B, Calls) ), Edges),
+                       ddc_compile:body_calls(B, Calls) ), Edges),
     findall(K, ( member(K-Cs, Edges), memberchk(random, Cs) ), Seed0),
     sort(Seed0, Seed),
     reference_closure(Seed, Edges, ImpureKs),
@@ -128,7 +128,7 @@ check_program(File) :-
     %   the sweep reads each distinct key of the transition clauses once
     M:'$ddc_info'(Info),
     findall(Id-K-C, ( member(rv(Id, X, K, _, B, _), Items), K \== u, K \== state,
-                      ddc:sweep_key_clause(Id, X, K, B, Info, C) ), SwKs),
+                      ddc_compile:sweep_key_clause(Id, X, K, B, Info, C) ), SwKs),
     reference_distinct(SwKs, Distinct),
     findall(Id, member(Id-_-_, Distinct), Ids),
     findall(Id, M:'$sweep'(rv, _, _, Id), GotIds),
@@ -152,7 +152,7 @@ test(rivals_and_purity_of_every_kind_of_head) :-
 
 test(rivals_of_every_kind_of_head_by_name) :-
     kinds_program(File),
-    call_cleanup(( ddc_load(File, M), ddc:program_items(M, All),
+    call_cleanup(( ddc_load(File, M), ddc_programs:program_items(M, All),
                    findall(L-R, ( member(rv(Id, _, _, _, _, L), All), memberchk(rivals(Id, R), All) ),
                            Pairs) ),
                  delete_file(File)),

@@ -205,7 +205,7 @@ test(grouped_shared_values_are_joined) :-
     sort(Ps, [_]),                  % the box, shared, the same in every group
     filter_free(F).
 
-%   Joining a group's shared values (ddc:merge_shared/4): new shared values
+%   Joining a group's shared values (ddc_particles:merge_shared/4): new shared values
 %   join, new per-particle keys join the impure keys, and a value one side
 %   shared while the other held it per particle ends up in every particle of
 %   the sharing side instead (a defensive case: with both sides starting from
@@ -222,8 +222,8 @@ test(joining_a_group_keeps_each_value_where_it_is_read) :-
     Ws =.. [ws|L],
     arg(1, Ws, w(S1)), ddc_store:store_put(S1, b-1, 9.0),
     arg(4, Ws, w(S4)), ddc_store:store_put(S4, a-1, 7.0),
-    Sh = sh(Sh1, Im1, [], true, 0, 2),
-    ddc:merge_shared(Sh, sh(Sh2, Im2, [], true, 0, 2), Ws, 3-2),
+    Sh = shared(Sh1, Im1, [], true, 0, 2),
+    ddc_particles:merge_shared(Sh, shared(Sh2, Im2, [], true, 0, 2), Ws, 3-2),
     ddc_store:store_get(Sh1, c-1, 3.0),
     \+ ddc_store:store_get(Sh1, a-1, _), ddc_store:store_get(Im1, a-1, _),
     \+ ddc_store:store_get(Sh1, b-1, _),
@@ -237,7 +237,7 @@ test(joining_a_group_keeps_each_value_where_it_is_read) :-
                  ( ddc_store:store_get(S, b-1, V) -> true ; V = none ) ), [9.0, none, 2.0, 2.0]).
 
 %   A query that is a single read `h ~= V` of a ground variable answers from
-%   the stores (ddc:stored_read/6, stored_values/8); the answers are those of
+%   the stores (ddc_particles:stored_read/6, stored_values/8); the answers are those of
 %   proving it (the same read in a conjunction goes the general way), for a
 %   value of the particle's own, a shared one, one undefined in some
 %   particles (pick/1 once the ball is seen), and a key no particle holds
@@ -248,8 +248,8 @@ test(stored_reads_answer_as_proofs_do) :-
     frames(Frames),
     forall(member(Seen, Frames),
            (   step(F, Seen),
-               ddc:filter_state(F, filter(_, N, T, Ws, _, _, sh(SS, _, _, _, _, _))),
-               \+ ddc:stored_values(1, N, Ws, SS, pos(cup)-T, _, _, _),
+               particles_state(F, N, T, Ws, SS, _),
+               \+ ddc_particles:stored_values(1, N, Ws, SS, pos(cup)-T, _, _, _),
                forall(member(X, [pos(ball), pos(box), pick(ball), pos(cup)]),
                       (   filter_values(F, v(V), X:t ~= V, Stored),
                           filter_values(F, v(V1), (X:t ~= V1, true), Proved),
@@ -259,8 +259,8 @@ test(stored_reads_answer_as_proofs_do) :-
     filter_values(F, v(V2), pos(cup):t ~= V2, Cup), maplist(==(none), Cup),
     filter_values(F, v(V3), pos(ball):t ~= V3, Ball), \+ memberchk(none, Ball),
     %   the stored path did answer for the ball
-    ddc:filter_state(F, filter(_, N1, T1, Ws1, _, _, sh(SS1, _, _, _, _, _))),
-    ddc:stored_values(1, N1, Ws1, SS1, pos(ball)-T1, V4, v(V4), Ball),
+    particles_state(F, N1, T1, Ws1, SS1, _),
+    ddc_particles:stored_values(1, N1, Ws1, SS1, pos(ball)-T1, V4, v(V4), Ball),
     filter_free(F).
 
 %   A particle's own store is not indexed: a read with a partly bound key
@@ -276,7 +276,7 @@ test(unindexed_store_finds_what_an_index_finds) :-
     \+ ddc_store:store_get(U, '$by'(pos/1, 3), _),
     ddc_store:store_get(I, '$by'(pos/1, 3), _).
 
-%   The sweep plan (ddc:plan_sweep/3): after the first particle, the other
+%   The sweep plan (ddc_world:plan_sweep/3): after the first particle, the other
 %   particles sweep exactly the transition clauses that are some particle's
 %   own (their '$swept' marks among the impure keys), and skip the shared
 %   ones.
@@ -285,7 +285,7 @@ test(the_sweep_plan_lists_the_clauses_particles_sweep_on_their_own) :-
     filter_new(File, 20, 3, [engine(per_particle)], F),
     frames([S1, S2, S3|_]),
     step(F, S1), step(F, S2), step(F, S3),     % the ball vanishes in S3
-    ddc:filter_state(F, filter(_, _, T, _, _, _, sh(Shared, Impure, _, _, _, _))),
+    particles_state(F, _, T, _, Shared, Impure),
     ddc_store:store_get(Shared, '$plan'(T), plan(Ids, _)),
     Ids \== [],
     findall(Id, ddc_store:store_match(Impure, '$swept'(Id, T), _), Own0),
@@ -294,7 +294,7 @@ test(the_sweep_plan_lists_the_clauses_particles_sweep_on_their_own) :-
     filter_free(F).
 
 %   Agreement is found by the thread that steps each group of particles
-%   (ddc:group_agreement/6) and combined after the step: with 1, 2 or 3
+%   (ddc_particles:group_agreement/6) and combined after the step: with 1, 2 or 3
 %   threads the ball's position, seen again, moves to the shared store;
 %   the particles' own copies (the same value) stay until each particle
 %   next steps, and are dropped then.
@@ -303,16 +303,27 @@ test(agreed_values_move_with_any_number_of_threads, [forall(member(K, [1, 2, 3])
     filter_new(File, 30, 5, [engine(per_particle), threads(K)], F),
     frames(Frames), length(Pre, 6), append(Pre, [S7|_], Frames),
     maplist(step(F), Pre),          % the ball is seen again in the 6th frame
-    ddc:filter_state(F, filter(_, N, T, Ws, _, _, sh(Shared, Impure, _, _, _, _))),
+    particles_state(F, N, T, Ws, Shared, Impure),
     ddc_store:store_get(Shared, pos(ball)-T, V),
     \+ ddc_store:store_get(Impure, pos(ball)-T, _),
     ddc_store:store_get(Shared, '$moved'(T), Moved), memberchk(pos(ball)-T, Moved),
-    forall(( between(1, N, I), arg(I, Ws, W), arg(1, W, S) ),
+    forall(( between(1, N, I), arg(I, Ws, W), ddc_world:world_store(W, S) ),
            ( ddc_store:store_get(S, pos(ball)-T, V1), V1 == V )),
     step(F, S7),
-    ddc:filter_state(F, filter(_, _, _, Ws7, _, _, _)),
-    forall(( between(1, N, I), arg(I, Ws7, W), arg(1, W, S) ),
+    particles_state(F, _, _, Ws7, _, _),
+    forall(( between(1, N, I), arg(I, Ws7, W), ddc_world:world_store(W, S) ),
            \+ ddc_store:store_get(S, pos(ball)-T, _)),
     filter_free(F).
 
 :- end_tests(ddc_shared).
+
+%   particles_state(+F, -N, -T, -Worlds, -SharedStore, -ImpureKeys): a
+%   per-particle filter's state, read by the names of its fields.
+particles_state(F, N, T, Ws, SS, Imp) :-
+    ddc_filter:filter_state(F, St),
+    ddc_particles:particles_size(St, N),
+    ddc_particles:particles_time(St, T),
+    ddc_particles:particles_worlds(St, Ws),
+    ddc_particles:particles_shared(St, Sh),
+    ddc_world:shared_store(Sh, SS),
+    ddc_world:shared_impure_keys(Sh, Imp).

@@ -194,16 +194,16 @@ test(an_error_names_the_programs_file_not_the_filters_module) :-
 test(free_and_a_failed_new_leave_nothing_behind) :-
     pit_world(File),
     filter_new(File, 5, 1, F),
-    once(ddc:filter_engine_(F, _, M, File)),
+    once(ddc_filter:filter_engine_(F, _, M, File)),
     once(current_predicate(M:_)),
     filter_free(F),
-    \+ ddc:filter_engine_(F, _, _, _),
+    \+ ddc_filter:filter_engine_(F, _, _, _),
     \+ current_predicate(M:_),
-    \+ ddc:program_file_(M, _),
+    \+ ddc_programs:program_file_(M, _),
     filter_free(F),                                     % (again: nothing to do)
     write_program(['x:0 ~ val(1).', 'x:t+1 ~ val(X) := x:t ~= X, (.'], Bad),
-    aggregate_all(count, ddc:filter_engine_(_, _, _, _), Before),
+    aggregate_all(count, ddc_filter:filter_engine_(_, _, _, _), Before),
     catch(filter_new(Bad, 5, 1, _), error(ddc(syntax_error(_), Bad:2), _), true),
-    aggregate_all(count, ddc:filter_engine_(_, _, _, _), Before).
+    aggregate_all(count, ddc_filter:filter_engine_(_, _, _, _), Before).
 
 :- end_tests(ddc_threads).
