@@ -19,7 +19,7 @@ def test_call_counts_count_the_engine_predicates_of_the_steps() -> None:
     more = filter_step.call_counts(particles=40, objects=3, steps=2, seed=1,
                                    engine="per_particle")
     lookups = "ddc_store:store_get/3"
-    assert few[lookups] > 0 and any(name.startswith("ddc:read_key/") for name in few)
+    assert few[lookups] > 0 and any(name.startswith("ddc_world:read_key/") for name in few)
     # the steps' work grows with the particles: the counts are of those steps, not of a
     # fixed overhead (e.g. loading the program)
     assert more[lookups] > 2 * few[lookups]
