@@ -1,6 +1,6 @@
 /*  ddc_batch.pl -- the batched particle filter of the DDC engine.
 
-    The engine's other filter (ddc_filter.pl) proves each particle's
+    The engine's other filter (ddc_particles.pl) proves each particle's
     clauses one particle at a time.  This one evaluates each clause once
     for a *batch* of particles (docs/batched-filter.md): the particles'
     values of a random variable at a time are one column term
@@ -11,12 +11,15 @@
     batch, and a goal that needs a particle's value as a term (a key
     argument such as pos(H), a static call) splits the batch by that value.
 
-    ddc.pl's filter_new/5 (option engine(batched)) loads the program and
-    hands its items here; the filter_* predicates dispatch on the state.
-    The module knows nothing of the engine's stores.
+    ddc_filter.pl's filter_new/5 (option engine(batched)) loads the
+    program and hands its items here through the engine interface's
+    batched adapter (ddc_filter_batched.pl).  The module knows nothing of
+    the engine's stores.
 
     This module is the API (filter states, steps, resampling, queries) and
-    the groups of particles stepped in worker threads; the work is done by:
+    the groups of particles stepped in worker threads (the split, the
+    seeds and the threads are ddc_pool.pl's, shared with the per-particle
+    engine); the work is done by:
 
       ddc_batch_program.pl  the fragment check and the compiled program
       ddc_batch_tables.pl   the tables of columns of a time, resampling
@@ -25,7 +28,7 @@
       ddc_batch_eval.pl     clause bodies, random variables' values, the sweep
       ddc_batch_state.pl    a group's state record, kept across queries
 
-    Semantics (as ddc_filter.pl's, see its header): a random variable's
+    Semantics (as ddc_particles.pl's, see its header): a random variable's
     value in a particle is drawn lazily, at most once, from the first
     applicable clause (h:0 or h:t+1, then h:t as a fallback); a step
     weighs each observation by its first applicable clause's density
@@ -75,6 +78,7 @@
 :- use_module(ddc_batch_rv, [weigh_branch/5]).
 :- use_module(ddc_batch_eval).
 :- use_module(ddc_batch_state).
+:- use_module(ddc_pool, [group_seeds/2, group_sizes/3, pool_run/3]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -99,7 +103,7 @@ state for undo and for errors.
 
 %!  batch_new(+Module, +Items, +N, +Seed, +Threads, -State) is det.
 %
-%   N particles at time 0 of the program Items (ddc.pl's classified
+%   N particles at time 0 of the program Items (ddc_read.pl's classified
 %   clauses, already loaded into Module, in the fragment: see
 %   batch_check_program/2): every h:0 clause's ground heads drawn.
 %   Threads > 1: the particles are split into that many contiguous groups
@@ -113,21 +117,15 @@ batch_new(M, Items, N, Seed, K0, State) :-
     (   K =:= 1
     ->  new_group(M, N, Seed, true, State)
     ;   K1 is K-1,
-        length(Seeds, K1),
         random_property(state(Saved)),
         call_cleanup(( set_random(seed(Seed)),
-                       maplist(random_between(0, 0x3fffffffffffffff), Seeds) ),
+                       group_seeds(K, Seeds) ),
                      set_random(state(Saved))),
         group_sizes(N, K, Sizes),
         length(NoChecks, K1), maplist(=(false), NoChecks),
         maplist(new_group(M), Sizes, [Seed|Seeds], [true|NoChecks], Gs),
         State = groups(Gs)
     ).
-
-%   group_sizes(+N, +K, -Sizes): N particles in K contiguous groups whose
-%   sizes differ by at most one.
-group_sizes(N, K, Sizes) :-
-    findall(S, ( between(1, K, G), S is (N*G)//K - (N*(G-1))//K ), Sizes).
 
 %   new_group(+M, +N, +Seed, +Check, -State): a group of N particles at
 %   time 0, drawn from a stream seeded with Seed; Check: whether its first
@@ -188,18 +186,9 @@ sets_each([I|Is], LC, C) :-
 %   t+1 with the Facts (actions and plain observations) of t+1 and
 %   weighted by the Observations (terms H ~= V).  State0 is not changed.
 batch_step(groups([G1|Gs]), Obs, Facts, step(groups([S1|Ss]), LWs)) :- !,
-    length(Gs, K1),
-    numlist(1, K1, Tags),
-    message_queue_create(Q),
-    setup_call_cleanup(
-        maplist(start_step(Q, Obs, Facts), Tags, Gs),
-        (   catch(group_step(G1, Obs, Facts, true, step(S10, LWs1)), E, true),
-            maplist(step_result(Q), Tags, Results)
-        ),
-        message_queue_destroy(Q)),
-    (   nonvar(E) -> throw(E) ; true ),
+    maplist(step_job(Obs, Facts), Gs, Jobs),
+    pool_run(group_step(G1, Obs, Facts, true, step(S1, LWs1)), Jobs, Results),
     maplist(group_done(Facts), Gs, Results, Ss, LWss),
-    S1 = S10,
     append([LWs1|LWss], LWs).
 batch_step(State0, Obs, Facts, Result) :-
     group_step(State0, Obs, Facts, true, Result).
@@ -207,11 +196,11 @@ batch_step(State0, Obs, Facts, Result) :-
 %!  overlap_checked_particles(-N) is det.
 %
 %   Overlapping clauses are looked for in the first N particles of every
-%   filter step, by both engines (ddc_filter.pl's step_range_at/10 too):
+%   filter step, by both engines (ddc_particles.pl's step_range_at/10 too):
 %   the horizon of that check, a constant of the engine.  Checking a
 %   particle costs an evaluation of each rival clause's body in it, so the
 %   check looks at a few particles, not at all of them.  (Static queries
-%   have a horizon of their own: ddc.pl's overlap_checked_worlds/1.)
+%   have a horizon of their own: ddc_world.pl's overlap_checked_worlds/1.)
 overlap_checked_particles(20).
 
 %   check_list(+Check, +N, -Checked): the particles a group checks for
@@ -474,10 +463,10 @@ value_each([I|Is], Bs, Tmpl, Done, VC) :-
 %   state, resamples it and splits it again (each group keeps its stream);
 %   queries ask each group in turn.
 
-%   start_step(+Q, +Obs, +Facts, +Tag, +G): group G's step sent to worker
-%   Tag, which answers on queue Q; the worker gets G with its latest table
-%   only (the older one none).
-start_step(Q, Obs, Facts, Tag, G) :-
+%   step_job(+Obs, +Facts, +G, -Job): the job (ddc_pool.pl's pool_run/3)
+%   that steps group G in a worker thread; the worker gets G with its
+%   latest table only (the older one none).
+step_job(Obs, Facts, G, worker_step(Sent, Obs, Facts, Out)-Out) :-
     batch_state_module(G, M), batch_state_size(G, N), batch_state_time(G, T),
     batch_state_tables(G, Tables0), tables_latest_time(Tables0, T), tables_latest(Tables0, Tab),
     batch_state_facts(G, Fs), batch_state_random(G, R),
@@ -486,16 +475,17 @@ start_step(Q, Obs, Facts, Tag, G) :-
     tables_latest_time(Tables, T), tables_latest(Tables, Tab),
     new_batch_state(Sent),
     batch_state_module(Sent, M), batch_state_size(Sent, N), batch_state_time(Sent, T),
-    batch_state_tables(Sent, Tables), batch_state_facts(Sent, Fs), batch_state_random(Sent, R),
-    batch_worker(Tag, Thread),
-    thread_send_message(Thread, step_job(Q, Tag, Sent, Obs, Facts)).
-
-step_result(Q, Tag, Out) :-
-    thread_get_message(Q, Tag-Out).
+    batch_state_tables(Sent, Tables), batch_state_facts(Sent, Fs), batch_state_random(Sent, R).
 
 %   A worker sends back only what is new: the table of t+1, the weights
 %   and its stream; the group's table of t is the one this thread holds.
-group_done(Facts, G, done(T1, Tab1, R, LWs), S, LWs) :- !,
+worker_step(S0, Obs, Facts, done(T1, Tab1, R, LWs)) :-
+    group_step(S0, Obs, Facts, false, step(S, LWs)),
+    batch_state_time(S, T1),
+    batch_state_tables(S, Tables), tables_latest(Tables, Tab1),
+    batch_state_random(S, R).
+
+group_done(Facts, G, done(T1, Tab1, R, LWs), S, LWs) :-
     batch_state_module(G, M), batch_state_size(G, N), batch_state_time(G, T),
     batch_state_tables(G, Tables0), tables_latest(Tables0, Tab),
     duplicate_term(Facts, Facts1),
@@ -505,27 +495,3 @@ group_done(Facts, G, done(T1, Tab1, R, LWs), S, LWs) :- !,
     new_batch_state(S),
     batch_state_module(S, M), batch_state_size(S, N), batch_state_time(S, T1),
     batch_state_tables(S, Tables), batch_state_facts(S, Facts1), batch_state_random(S, R).
-group_done(_, _, error(E), _, _) :- throw(E).
-
-%   batch_worker(+Tag, -Alias): the worker thread for groups Tag.
-batch_worker(Tag, Alias) :-
-    atom_concat('$ddc_batch_worker_', Tag, Alias),
-    with_mutex('$ddc_batch_workers',
-               (   catch(thread_property(Alias, status(running)), _, fail)
-               ->  true
-               ;   thread_create(worker_loop, _, [alias(Alias), detached(true)])
-               )).
-
-worker_loop :-
-    thread_get_message(Job),
-    (   Job = step_job(Q, Tag, S0, Obs, Facts)
-    ->  catch(( group_step(S0, Obs, Facts, false, step(S, LWs)),
-                batch_state_time(S, T1),
-                batch_state_tables(S, Tables), tables_latest(Tables, Tab1),
-                batch_state_random(S, R),
-                Out = done(T1, Tab1, R, LWs) ),
-              E, Out = error(E)),
-        catch(thread_send_message(Q, Tag-Out), _, true)
-    ;   true
-    ),
-    worker_loop.

@@ -189,7 +189,7 @@ eval_body(G, E, Ps0, Ps) :-
     ).
 
 %   linear_expr(+Inputs, +Weights, -Expr): w1*x1 + ... + wn*xn + b, with
-%   Weights = [w1, ..., wn, b] (ddc.pl's linear/3).
+%   Weights = [w1, ..., wn, b] (ddc_models.pl's linear/3).
 linear_expr(Is, Ws, Ex) :-
     must_be(list, Is), must_be(list, Ws),
     length(Is, N), N1 is N+1,
@@ -311,7 +311,7 @@ append_each([I|Is], Bs, Tmpl, LC) :-
 
 %   one branch per key, the keys held at T and the ground heads that
 %   clauses h:t (and h:0 at time 0) define at T, as the per-particle
-%   engine enumerates them (ddc.pl, read_enum/4); each key is computed for
+%   engine enumerates them (ddc_world.pl, read_enum/4); each key is computed for
 %   the particles that lack it and read where it is defined.
 read_key(X, T, E, Ps0, X, Entry, Ps) :-
     ground(X), !,
@@ -465,7 +465,7 @@ uncomputed_at(C, I) :- arg(I, C, V), V == '$u'.
 
 %   clause_error(+Error, +Where): an error raised in the body of the clause
 %   at Where is the program's error there, as the per-particle engine
-%   reports it (ddc.pl, program_error/4): a distribution error, any other
+%   reports it (ddc_errors.pl, program_error/4): a distribution error, any other
 %   Prolog error or a term the program threw; the engine's own errors (which
 %   name their clause) pass unchanged.
 clause_error(error(ddc(Cause, W), _), Where) :-

@@ -51,14 +51,14 @@ checks the clause for overlaps (ddc_batch_eval:run_clause/9).
 %   (its line, ddc.pl's clause id) and whether it has rivals (above).
 :- record_type origin(line, id, rivals).
 
-%   Items (ddc.pl's classified program):
+%   Items (ddc_read.pl's classified program):
 %     rv(Id, X, Kind, Dist, Body, Line), der(Id, X, Kind, Body, Line),
 %     plain(Clause, Line), rivals(Id, Rivals)
 %   with Kind u, state, trans, fixed(N) or persist.
 
 %!  batch_check_program(+Items:list, +File:atom) is det.
 %
-%   True if every clause of Items (ddc.pl's classified program) is in the
+%   True if every clause of Items (ddc_read.pl's classified program) is in the
 %   batched filter's fragment (ddc_batch.pl's header).
 %
 %   @error ddc(batched_unsupported(What), File:Line) for the first clause
@@ -199,12 +199,12 @@ body_read_at_t(findall_forward(_, A, _), G) :- !, body_read_at_t(A, G).
 body_read_at_t(_ ~= _, _) :- !, fail.
 body_read_at_t(G0:TE, G) :- TE == t, callable(G0), G = G0.
 
-%   (rivals(Id, R) items: ddc.pl's rivals/7, whether a later clause can
+%   (rivals(Id, R) items: ddc_compile.pl's rivals/3, whether a later clause can
 %   define what clause Id defines: then overlaps are looked for.)
 
 %   param_goals(+Dist0, -Dist, -Goals): Dist0 with each arithmetic
 %   expression among its numeric parameters replaced by a variable that
-%   Goals compute (V is Expr, run after the body: as ddc.pl's eval_dist/2
+%   Goals compute (V is Expr, run after the body: as ddc_world.pl's eval_dist/2
 %   evaluates them), so that a parameter over columns is a deferred
 %   expression like any other.
 param_goals(D0, D, Goals) :-

@@ -355,18 +355,10 @@ step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs, [Agreed0|GAgreed]) :-
     length(Seeds, K1),
     K is K1+1,
     group_bounds(2, N, K, [Lo-Hi|Others]),
-    length(Others, KO),
-    numlist(1, KO, Tags),
-    message_queue_create(Q),
-    setup_call_cleanup(
-        maplist(start_group(Q, Ws, T1, Keys, Facts, Sh), Tags, Seeds, Others),
-        (   catch(( step_range(Lo, Hi, Ws, M, T1, Keys, Facts, Sh, LWs0),
-                     group_agreement(Ws, Lo, Hi, Sh, T1, Agreed0) ), E, true),
-            maplist(pool_result(Q), Tags, Results)
-        ),
-        message_queue_destroy(Q)),      % (a worker still busy after an abort
-                                        % finds the queue gone, and goes on)
-    (   nonvar(E) -> throw(E) ; true ),
+    maplist(group_job(Ws, T1, Keys, Facts, Sh), Seeds, Others, Jobs),
+    pool_run(( step_range(Lo, Hi, Ws, M, T1, Keys, Facts, Sh, LWs0),
+               group_agreement(Ws, Lo, Hi, Sh, T1, Agreed0) ),
+             Jobs, Results),
     maplist(join_particles(Ws), Others, Results, GLWss),
     maplist(join_shared(Ws, Sh), Others, Results),
     maplist(result_agreement, Results, GAgreed),
@@ -375,13 +367,13 @@ step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs, [Agreed0|GAgreed]) :-
 result_agreement(done(_, _, _, Agreed), Agreed).
 
 
-%   start_group(+Q, +Ws, ..., +Tag, +Seed, +Lo-Hi): sends group Tag's
-%   particles (copied by the message) to worker thread Tag, which answers
-%   on Q.
-start_group(Q, Ws, T1, Keys, Facts, Sh, Tag, Seed, Lo-Hi) :-
+%   group_job(+Ws, ..., +Seed, +Lo-Hi, -Job): the job (ddc_pool.pl's
+%   pool_run/3) that steps the particles Lo..Hi of Ws, copied into a vector
+%   of their own, from random seed Seed.
+group_job(Ws, T1, Keys, Facts, Sh, Seed, Lo-Hi, Job) :-
     sub_vector(Lo, Hi, Ws, L),
     GWs =.. [ws|L],
-    pool_start(Q, Tag, step_group(Seed, Lo, GWs, T1, Keys, Facts, Sh, Out), Out, _).
+    Job = step_group(Seed, Lo, GWs, T1, Keys, Facts, Sh, Out)-Out.
 
 %   step_group(+Seed, +Lo, !GWs, ..., -Out): a worker's job, the particles
 %   GWs (Lo..: their places in the filter) stepped from random seed Seed;
@@ -404,12 +396,9 @@ sub_vector(I, Hi, Ws, L) :-
 %   The particles a worker stepped replace their originals in Ws (all
 %   groups first: joining shared values may add to any group's particles).
 join_particles(Ws, Lo-_, done(GWs, _, GLWs, _), GLWs) :-
-    !,
     functor(GWs, _, Len),
     forall(between(1, Len, J),
            ( I is Lo+J-1, arg(J, GWs, W), nb_linkarg(I, Ws, W) )).
-join_particles(_, _, error(E), _) :-
-    throw(E).
 
 join_shared(Ws, Sh, Lo-_, done(GWs, GSh, _, _)) :-
     functor(GWs, _, Len),

@@ -1,25 +1,27 @@
-/*  ddc_pool.pl -- the per-particle filter's worker threads and group split.
+/*  ddc_pool.pl -- the filters' worker threads and group split.
 
-    Part of the DDC engine (ddc.pl is the module users load).  A filter
-    step's particles are split into contiguous groups, each stepped by a
-    thread of its own from a seed drawn from the filter's random stream
-    (ddc_particles.pl, step_groups/10).  This module holds that machinery,
-    apart from what a group's job does: the split, the seeds, the worker
-    threads (kept for the process) and the sending and collecting of jobs.
-    (ddc_batch.pl has its own, batch_worker/2; the two are to become one.)
+    Part of the DDC engine (ddc.pl is the module users load).  With
+    threads(K), K > 1, a filter's particles are split into K contiguous
+    groups, each with a random stream of its own seeded from the filter's,
+    and a step runs the groups at the same time: the first in the calling
+    thread, each other one as a job of a worker thread.  Both engines do
+    so (ddc_particles.pl, step_groups/10; ddc_batch.pl, batch_step/4); this
+    module holds what they share, apart from what a group's job does: the
+    split, the seeds, the worker threads (kept for the process, shared by
+    every filter) and the sending and collecting of jobs.
 */
 
 :- module(ddc_pool,
           [ group_seeds/2,              % +K, -Seeds
             group_bounds/4,             % +From, +To, +K, -Bounds
-            pool_start/5,               % +Queue, +Tag, :Goal, ?Out, -Thread
-            pool_result/3               % +Queue, +Tag, -Out
+            group_sizes/3,              % +N, +K, -Sizes
+            pool_run/3                  % :Local, +Jobs, -Outs
           ]).
 
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 
-:- meta_predicate pool_start(+, +, 0, ?, -).
+:- meta_predicate pool_run(0, :, -).
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).
@@ -50,20 +52,54 @@ group_bounds(From, To, K, Bounds) :-
               Hi >= Lo ),
             Bounds).
 
-%!  pool_start(+Queue, +Tag, :Goal, ?Out, -Thread) is det.
+%!  group_sizes(+N, +K, -Sizes) is det.
 %
-%   Sends Goal (copied by the message) to worker thread Tag, which runs it
-%   and answers Tag-Out on Queue: Out as Goal bound it, error(E) if Goal
-%   raised E, error(failed(Goal)) if it failed.
-pool_start(Q, Tag, Goal, Out, Thread) :-
-    group_thread(Tag, Thread),
-    thread_send_message(Thread, pool_job(Q, Tag, Goal, Out)).
+%   The sizes of the K groups of group_bounds(1, N, K, Bounds), in order
+%   (K =< N: none is empty).
+group_sizes(N, K, Sizes) :-
+    group_bounds(1, N, K, Bounds),
+    maplist(bound_size, Bounds, Sizes).
 
-%!  pool_result(+Queue, +Tag, -Out) is det.
+bound_size(Lo-Hi, Size) :-
+    Size is Hi-Lo+1.
+
+%!  pool_run(:Local, +Jobs:list, -Outs:list) is det.
 %
-%   Waits for the answer of worker Tag on Queue.
-pool_result(Q, Tag, Out) :-
-    thread_get_message(Q, Tag-Out).
+%   Runs the jobs at the same time as Local: each job Goal-Out of Jobs,
+%   the I-th one sent (copied by the message) to worker thread I, which
+%   runs Goal and sends back its Out as Goal bound it; Local runs in the
+%   calling thread meanwhile.  Outs are the jobs' Outs in the order of
+%   Jobs.  Every job is waited for, also when Local raises an error; then
+%   the first error is raised, Local's first, then the jobs' in order.
+%
+%   @error whatever Local or a job's Goal raised;
+%          goal_failed(Goal) if a job's Goal failed.
+pool_run(Local, M:Jobs, Outs) :-
+    length(Jobs, K),
+    numlist(1, K, Tags),
+    message_queue_create(Q),
+    setup_call_cleanup(
+        maplist(pool_start(Q, M), Tags, Jobs),
+        (   catch(Local, E, true),
+            maplist(pool_result(Q), Tags, Results)
+        ),
+        message_queue_destroy(Q)),      % (a worker still busy after an abort
+                                        % finds the queue gone, and goes on)
+    (   nonvar(E) -> throw(E) ; true ),
+    maplist(job_out, Results, Outs).
+
+%   pool_start(+Queue, +Module, +Tag, +Goal-Out): Goal (of Module) sent to
+%   worker thread Tag, which answers Tag-done(Out) (Out as Goal bound it)
+%   or Tag-error(E) on Queue.
+pool_start(Q, M, Tag, Goal-Out) :-
+    group_thread(Tag, Thread),
+    thread_send_message(Thread, pool_job(Q, Tag, M:Goal, Out)).
+
+pool_result(Q, Tag, Result) :-
+    thread_get_message(Q, Tag-Result).
+
+job_out(error(E), _) :- !, throw(E).
+job_out(done(Out), Out).
 
 %   group_thread(+Tag, -Thread): the worker thread for groups Tag.  Workers
 %   are kept for the life of the process (a new thread for every step would
@@ -84,8 +120,8 @@ group_loop :-
     thread_get_message(Job),
     (   Job = pool_job(Q, Tag, Goal, Out)
     ->  (   catch(Goal, E, true)
-        ->  (   var(E) -> Result = Out ; Result = error(E) )
-        ;   Result = error(failed(Goal))
+        ->  (   var(E) -> Result = done(Out) ; Result = error(E) )
+        ;   Result = error(error(goal_failed(Goal), context(ddc_pool:pool_run/3, _)))
         ),
         catch(thread_send_message(Q, Tag-Result), _, true)
     ;   true
