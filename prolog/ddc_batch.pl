@@ -136,21 +136,15 @@ new_group(M, N, Seed, Check, State) :-
     call_cleanup(
         ( set_random(seed(Seed)),
           table_new(Tab0), table_new(Tab),
-          new_tables(Tables),           % (new records' fields bound by their accessors)
-          tables_older_time(Tables, -1), tables_older(Tables, Tab0),
-          tables_latest_time(Tables, 0), tables_latest(Tables, Tab),
-          new_env(E),
-          env_module(E, M), env_size(E, N), env_now(E, -1), env_tables(E, Tables),
-          env_facts(E, []), env_observations(E, []), env_checked(E, Checked),
+          make_tables([older_time(-1), older(Tab0), latest_time(0), latest(Tab)], Tables),
+          make_env([module(M), size(N), now(-1), tables(Tables), facts([]),
+                    observations([]), checked(Checked)], E),
           numlist(1, N, All),
           sweep(M, zero, E, 0, All),
           materialise_derived(M, E, 0, All),
           random_property(state(R)) ),
         set_random(state(Saved))),
-    new_batch_state(State),
-    batch_state_module(State, M), batch_state_size(State, N), batch_state_time(State, 0),
-    batch_state_tables(State, Tables), batch_state_facts(State, []),
-    batch_state_random(State, R).
+    make_batch_state([module(M), size(N), time(0), tables(Tables), facts([]), random(R)], State).
 
 %   materialise_derived(+M, +E, +T, +All): each lookback predicate's
 %   instances at T, per particle (a list without repeats, in the order
@@ -220,12 +214,9 @@ group_step(State0, Obs, Facts, Check, step(State, LWs)) :-
     T1 is T+1,
     table_new(Tab1),
     findall(H-V, member(H ~= V, Obs), HVs),
-    new_tables(Tables),                 % (new records' fields bound by their accessors)
-    tables_older_time(Tables, T), tables_older(Tables, Tab),
-    tables_latest_time(Tables, T1), tables_latest(Tables, Tab1),
-    new_env(E),
-    env_module(E, M), env_size(E, N), env_now(E, T), env_tables(E, Tables),
-    env_facts(E, Facts), env_observations(E, HVs), env_checked(E, Checked),
+    make_tables([older_time(T), older(Tab), latest_time(T1), latest(Tab1)], Tables),
+    make_env([module(M), size(N), now(T), tables(Tables), facts(Facts),
+              observations(HVs), checked(Checked)], E),
     numlist(1, N, All),
     random_property(state(Saved)),
     call_cleanup(
@@ -238,10 +229,8 @@ group_step(State0, Obs, Facts, Check, step(State, LWs)) :-
         set_random(state(Saved))),
     LW =.. [_|LWs],
     duplicate_term(Facts, Facts1),
-    new_batch_state(State),
-    batch_state_module(State, M), batch_state_size(State, N), batch_state_time(State, T1),
-    batch_state_tables(State, Tables), batch_state_facts(State, Facts1),
-    batch_state_random(State, R).
+    make_batch_state([module(M), size(N), time(T1), tables(Tables), facts(Facts1),
+                      random(R)], State).
 
 %   weigh_observation(+E, +H, +V, +Ps, +LW): the log density of V under
 %   H's first applicable clause at t+1, added to each particle's LW.
@@ -320,12 +309,10 @@ resampled_group(Src0, Src1, S0, Pairs, S) :-
     tables_older_time(Tables0, T0), tables_latest_time(Tables0, T1),
     batch_state_facts(S0, Facts), batch_state_random(S0, R),
     resample_tables(Src1, Pairs, New1),
-    new_tables(Tables),                 % (new records' fields bound by their accessors)
-    tables_older_time(Tables, T0), tables_older(Tables, pending(Src0, Pairs)),
-    tables_latest_time(Tables, T1), tables_latest(Tables, New1),
-    new_batch_state(S),
-    batch_state_module(S, M), batch_state_size(S, Size), batch_state_time(S, T),
-    batch_state_tables(S, Tables), batch_state_facts(S, Facts), batch_state_random(S, R).
+    make_tables([older_time(T0), older(pending(Src0, Pairs)), latest_time(T1), latest(New1)],
+                Tables),
+    make_batch_state([module(M), size(Size), time(T), tables(Tables), facts(Facts),
+                      random(R)], S).
 
 %!  batch_keep(+State, -Kept) is det.
 %
@@ -339,9 +326,8 @@ resampled_group(Src0, Src1, S0, Pairs, S) :-
 batch_keep(groups(Gs), Kept) :- !,
     maplist(batch_keep, Gs, Ks),
     kept_list(Ks, L),
-    groups_fields(Fields),
     new_groups(Kept),
-    nb_link_field(Fields, states, Kept, L).
+    nb_link_groups_states(Kept, L).
 batch_keep(S, Kept) :-
     state_keep(S, Kept).
 
@@ -470,12 +456,8 @@ step_job(Obs, Facts, G, worker_step(Sent, Obs, Facts, Out)-Out) :-
     batch_state_module(G, M), batch_state_size(G, N), batch_state_time(G, T),
     batch_state_tables(G, Tables0), tables_latest_time(Tables0, T), tables_latest(Tables0, Tab),
     batch_state_facts(G, Fs), batch_state_random(G, R),
-    new_tables(Tables),                 % (new records' fields bound by their accessors)
-    tables_older_time(Tables, none), tables_older(Tables, none),
-    tables_latest_time(Tables, T), tables_latest(Tables, Tab),
-    new_batch_state(Sent),
-    batch_state_module(Sent, M), batch_state_size(Sent, N), batch_state_time(Sent, T),
-    batch_state_tables(Sent, Tables), batch_state_facts(Sent, Fs), batch_state_random(Sent, R).
+    make_tables([older_time(none), older(none), latest_time(T), latest(Tab)], Tables),
+    make_batch_state([module(M), size(N), time(T), tables(Tables), facts(Fs), random(R)], Sent).
 
 %   A worker sends back only what is new: the table of t+1, the weights
 %   and its stream; the group's table of t is the one this thread holds.
@@ -489,9 +471,6 @@ group_done(Facts, G, done(T1, Tab1, R, LWs), S, LWs) :-
     batch_state_module(G, M), batch_state_size(G, N), batch_state_time(G, T),
     batch_state_tables(G, Tables0), tables_latest(Tables0, Tab),
     duplicate_term(Facts, Facts1),
-    new_tables(Tables),                 % (new records' fields bound by their accessors)
-    tables_older_time(Tables, T), tables_older(Tables, Tab),
-    tables_latest_time(Tables, T1), tables_latest(Tables, Tab1),
-    new_batch_state(S),
-    batch_state_module(S, M), batch_state_size(S, N), batch_state_time(S, T1),
-    batch_state_tables(S, Tables), batch_state_facts(S, Facts1), batch_state_random(S, R).
+    make_tables([older_time(T), older(Tab), latest_time(T1), latest(Tab1)], Tables),
+    make_batch_state([module(M), size(N), time(T1), tables(Tables), facts(Facts1), random(R)],
+                     S).

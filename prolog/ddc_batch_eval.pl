@@ -93,8 +93,7 @@ env_time_table(E, T, Tab) :-
     ;   T == T0, Tab0 \== none
     ->  (   Tab0 = pending(_, _)
         ->  real_table(Tab0, Tab),
-            tables_fields(Fields),
-            nb_link_field(Fields, older, Tables, Tab)
+            nb_link_tables_older(Tables, Tab)
         ;   Tab = Tab0
         )
     ).
@@ -105,9 +104,8 @@ env_time_table(E, T, Tab) :-
 env_at_time(E0, Now, E) :-
     env_module(E0, M), env_size(E0, N), env_tables(E0, Tables),
     env_facts(E0, Facts), env_observations(E0, Obs), env_checked(E0, Checked),
-    new_env(E),                     % (a new record's fields bound by their accessors)
-    env_module(E, M), env_size(E, N), env_now(E, Now), env_tables(E, Tables),
-    env_facts(E, Facts), env_observations(E, Obs), env_checked(E, Checked).
+    make_env([module(M), size(N), now(Now), tables(Tables), facts(Facts), observations(Obs),
+              checked(Checked)], E).
 
 %!  read_time(+TimeExpr, +Env, -T) is semidet.
 %

@@ -161,8 +161,7 @@ compile_batch_program(M, Items) :-
                param_goals(D0, D, Ps),
                operand_reads(B0, Rvs, B1),
                conj_with(B1, Ps, B),
-               new_origin(Origin),          % (a new record's fields bound by their accessors)
-               origin_line(Origin, L), origin_id(Origin, Id), origin_rivals(Origin, R),
+               make_origin([line(L), id(Id), rivals(R)], Origin),
                assertz(M:'$b_rv'(X, K1, D, B, Origin))
            )),
     forall(member(der(_, X, K, B0, L), Items),

@@ -52,22 +52,20 @@ state_keep(S, Kept) :-
     batch_state_tables(S, Tables),
     tables_older_time(Tables, T0), tables_older(Tables, Tab0),
     tables_latest_time(Tables, T1), tables_latest(Tables, Tab1),
-    tables_fields(TablesFields),
     new_tables(KeptTables),
     nb_set_tables_older_time(KeptTables, T0),
-    nb_link_field(TablesFields, older, KeptTables, Tab0),
+    nb_link_tables_older(KeptTables, Tab0),
     nb_set_tables_latest_time(KeptTables, T1),
-    nb_link_field(TablesFields, latest, KeptTables, Tab1),
+    nb_link_tables_latest(KeptTables, Tab1),
     batch_state_module(S, M), batch_state_size(S, N), batch_state_time(S, T),
     batch_state_facts(S, Facts), batch_state_random(S, R),
-    batch_state_fields(StateFields),
     new_batch_state(Kept),
     nb_set_batch_state_module(Kept, M),
     nb_set_batch_state_size(Kept, N),
     nb_set_batch_state_time(Kept, T),
-    nb_link_field(StateFields, tables, Kept, KeptTables),
-    nb_link_field(StateFields, facts, Kept, Facts),
-    nb_link_field(StateFields, random, Kept, R).
+    nb_link_batch_state_tables(Kept, KeptTables),
+    nb_link_batch_state_facts(Kept, Facts),
+    nb_link_batch_state_random(Kept, R).
 
 %!  query_env(+State, -Env, -All:list(integer)) is det.
 %
@@ -76,9 +74,8 @@ state_keep(S, Kept) :-
 query_env(S, E, All) :-
     batch_state_module(S, M), batch_state_size(S, N), batch_state_time(S, T),
     batch_state_tables(S, Tables), batch_state_facts(S, Facts),
-    new_env(E),                     % (a new record's fields bound by their accessors)
-    env_module(E, M), env_size(E, N), env_now(E, T), env_tables(E, Tables),
-    env_facts(E, Facts), env_observations(E, []), env_checked(E, []),
+    make_env([module(M), size(N), now(T), tables(Tables), facts(Facts), observations([]),
+              checked([])], E),
     numlist(1, N, All).
 
 %!  with_state(+State, :Goal) is semidet.

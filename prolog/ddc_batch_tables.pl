@@ -21,8 +21,7 @@
             entry_tuple_arity/2,        % !Entry, -Arity
             tuple_shape/2,              % +K, -Shape
             real_table/2,               % +Table0, -Table
-            resample_tables/3,          % +Sources, +Pairs, -Table
-            nb_link_field/4             % +Fields, +Field, !Record, +Value
+            resample_tables/3           % +Sources, +Pairs, -Table
           ]).
 
 :- use_module(library(apply)).
@@ -59,15 +58,6 @@ until a query first reads it (real_table/2).
 %   tables(OlderTime, Older, LatestTime, Latest): the tables of two times
 %   (Older none at time 0, or in a worker's copy of a group).
 :- record_type tables(older_time, older, latest_time, latest).
-
-%!  nb_link_field(+Fields:list(atom), +Field:atom, !Record, +Value) is det.
-%
-%   nb_linkarg/3 of Record's Field, whose record type has the fields
-%   Fields (as its Type_fields/1 gives them): Value linked, not copied
-%   (ddc_records' nb_set_ accessors copy, as nb_setarg/3 does).
-nb_link_field(Fields, Field, Record, Value) :-
-    nth1(I, Fields, Field), !,
-    nb_linkarg(I, Record, Value).
 
                  /*******************************
                  *        TABLES OF A TIME      *
@@ -264,11 +254,10 @@ resampled_entry(Es, Pairs, N, E) :-
 %   when the query backtracks over its making (a field bound by its
 %   accessor, arg/3, would be unbound again): for table_link/3.
 linked_entry(C, S, A, E) :-
-    entry_fields(Fields),
     new_entry(E),
-    nb_link_field(Fields, column, E, C),
-    nb_link_field(Fields, status, E, S),
-    nb_link_field(Fields, arity, E, A).
+    nb_link_entry_column(E, C),
+    nb_link_entry_status(E, S),
+    nb_link_entry_arity(E, A).
 
 same_entry(E, V) :- E \== none, entry_status(E, same(V1)), V1 == V.
 

@@ -34,15 +34,20 @@ The declaration defines and exports, for each field F at position I:
   - nb_link_world_F(!World, +Value): nb_linkarg(I, World, Value) (no
     copy: Value must be a term that outlives the update, see nb_linkarg/3);
 
-and new_world(-World), a record whose fields are fresh variables, and
-world_fields(-Names), the field names in order.  In every module that
-loads ddc_records (the declaring one and those importing its
-accessors), a call to an accessor is compiled to the arg/setarg/nb_setarg/nb_linkarg
-goal itself.  The accessors remain ordinary predicates, so they can also
-be called from the top level or passed to maplist/3.
+and new_world(-World), a record whose fields are fresh variables,
+make_world(+Fields, -World), a record with the fields given as a list
+of Name(Value) (the others fresh variables), e.g.
+make_world([store(S), time(0)], W), and world_fields(-Names), the field
+names in order.  In every module that loads ddc_records (the declaring
+one and those importing its accessors), a call to an accessor is
+compiled to the arg/setarg/nb_setarg/nb_linkarg goal itself, and a call
+of make_world/2 whose list is known at compile time to the unification
+World = world(...).  The accessors remain ordinary predicates, so they
+can also be called from the top level or passed to maplist/3.
 
-Field names must be distinct within a record; two records declared in
-the same program must not generate the same accessor name.
+Field names must be distinct within a record.  Two modules may not
+declare records that generate the same accessor name (an error names
+both modules); a module that is loaded again declares its own afresh.
 */
 
 %!  field(?Accessor:atom, ?Kind:oneof([get,set,nb_set,nb_link]), ?Index:integer,
@@ -50,8 +55,13 @@ the same program must not generate the same accessor name.
 %
 %   Accessor/2 reads (get) or writes (set, nb_set, nb_link) argument Index of the
 %   record; Module declared it.
+%
+%!  constructor(?Name:atom, ?Functor:atom, ?Fields:list(atom), ?Module:atom) is nondet.
+%
+%   Name/2 makes records Functor(...) with the field names Fields; Module
+%   declared it.
 
-:- dynamic field/4.
+:- dynamic field/4, constructor/4.
 
 %!  record_type(+Template:compound) is det.
 %
@@ -70,15 +80,57 @@ system:term_expansion((:- record_type(Template)), Clauses) :-
 system:goal_expansion(Goal, Expanded) :-
     compound(Goal),
     compound_name_arity(Goal, Name, 2),
-    field(Name, Kind, Index, Declarer),
+    (   field(Name, Kind, Index, Declarer)
+    ->  visible(Goal, Declarer),
+        arg(1, Goal, Record),
+        arg(2, Goal, Value),
+        inline(Kind, Index, Record, Value, Expanded)
+    ;   constructor(Name, Functor, Names, Declarer),
+        visible(Goal, Declarer),
+        arg(1, Goal, Fields),
+        is_list(Fields),
+        arg(2, Goal, Record),
+        catch(record_term(Functor, Names, Fields, Term), _, fail)   % (else: at run time)
+    ->  Expanded = (Record = Term)
+    ).
+
+%   visible(+Goal, +Declarer): Goal, compiled in the current module, is
+%   the accessor that Declarer defines (not a predicate of the same name).
+visible(Goal, Declarer) :-
     prolog_load_context(module, Module),
     (   Module == Declarer
     ->  true
     ;   predicate_property(Module:Goal, imported_from(Declarer))
+    ).
+
+%!  make_record(+Functor, +Names, +Fields, -Record) is det.
+%
+%   The run-time part of make_<record>/2: Record is Functor(...) with the
+%   fields of Fields (a list of Name(Value)), the others fresh variables.
+%
+%   @error type_error(record_field, F) if an element of Fields is not
+%          Name(Value); existence_error(record_field, Name) if Name is not
+%          a field of the record.
+
+make_record(Functor, Names, Fields, Record) :-
+    must_be(list, Fields),
+    record_term(Functor, Names, Fields, Record).
+
+record_term(Functor, Names, Fields, Record) :-
+    length(Names, N),
+    functor(Record, Functor, N),
+    maplist(set_field(Names, Record), Fields).
+
+set_field(Names, Record, Field) :-
+    (   compound(Field), compound_name_arguments(Field, Name, [Value])
+    ->  true
+    ;   type_error(record_field, Field)
     ),
-    arg(1, Goal, Record),
-    arg(2, Goal, Value),
-    inline(Kind, Index, Record, Value, Expanded).
+    (   nth1(I, Names, Name)
+    ->  arg(I, Record, Value)
+    ;   functor(Record, Functor, _),
+        existence_error(record_field, Functor:Name)
+    ).
 
 inline(get,    I, R, V, arg(I, R, V)).
 inline(set,    I, R, V, setarg(I, R, V)).
@@ -89,6 +141,8 @@ inline(nb_link, I, R, V, nb_linkarg(I, R, V)).
 %
 %   @error type_error(record_template, Template) unless Template is a
 %          compound whose arguments are distinct atoms.
+%   @error permission_error(declare, record_accessor, Accessor) if
+%          another module declared a record with that accessor.
 
 record_clauses(Template, Module, Clauses) :-
     (   compound(Template),
@@ -101,13 +155,22 @@ record_clauses(Template, Module, Clauses) :-
     length(Fresh, N),
     New =.. [Functor|Fresh],
     atom_concat(new_, Functor, NewName),
+    atom_concat(make_, Functor, MakeName),
     atom_concat(Functor, '_fields', FieldsName),
     NewHead =.. [NewName, New],
+    MakeHead =.. [MakeName, Fields, Record],
     FieldsHead =.. [FieldsName, Names],
+    findall(Accessor, ( member(F, Names), accessor(_, Functor, F, Accessor) ), Generated),
+    forall(( member(A, [MakeName|Generated]),
+             ( field(A, _, _, Other) ; constructor(A, _, _, Other) ),
+             Other \== Module ),
+           permission_error(declare, record_accessor, A)),
+    forall(member(A, [MakeName|Generated]),     % a reload declares them again
+           ( retractall(field(A, _, _, _)), retractall(constructor(A, _, _, _)) )),
+    assertz(constructor(MakeName, Functor, Names, Module)),
     findall(Clause-PI,
             ( nth1(I, Names, F),
               accessor(Kind, Functor, F, Accessor),
-              retractall(field(Accessor, _, _, _)),   % a reload declares it again
               assertz(field(Accessor, Kind, I, Module)),
               inline(Kind, I, R, V, Body),
               Head =.. [Accessor, R, V],
@@ -117,8 +180,9 @@ record_clauses(Template, Module, Clauses) :-
             Pairs),
     pairs_keys_values(Pairs, Accessors, PIs),
     foldl(export_conj, PIs, FieldsName/1, Exports0),
-    Clauses = [ (:- export((NewName/1, Exports0))),
+    Clauses = [ (:- export((NewName/1, MakeName/2, Exports0))),
                 NewHead,
+                (MakeHead :- ddc_records:make_record(Functor, Names, Fields, Record)),
                 FieldsHead
               | Accessors
               ].
