@@ -25,11 +25,7 @@
 :- use_module(ddc_body).
 :- use_module(ddc_world, [needs_eval/1, eval_dist/2, world_time_goal/3]).
 
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
-:- op(1105, xfx, :=).
-:- op(1105, xfx, <-).
-:- op(1150, xfx, pr).
+:- use_module(ddc_ops).
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).

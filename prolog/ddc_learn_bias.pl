@@ -12,11 +12,7 @@
 :- use_module(library(apply)).
 :- use_module(library(error)).
 
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
-:- op(1105, xfx, :=).
-:- op(1105, xfx, <-).
-:- op(1150, xfx, pr).
+:- use_module(ddc_ops).
 :- op(700, xfx, ::).
 
 /** <module> Declarative bias of learning data

@@ -20,11 +20,7 @@
 :- use_module(ddc_learn_syntax, [dc_goal/4]).
 :- use_module(ddc_learn_bias, [bias_term/2]).
 
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
-:- op(1105, xfx, :=).
-:- op(1105, xfx, <-).
-:- op(1150, xfx, pr).
+:- use_module(ddc_ops).
 :- op(700, xfx, ::).
 
 /** <module> Facts and background clauses of learning data

@@ -14,11 +14,7 @@
 :- use_module(library(apply)).
 :- use_module(ddc_models).
 
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
-:- op(1105, xfx, :=).
-:- op(1105, xfx, <-).
-:- op(1150, xfx, pr).
+:- use_module(ddc_ops).
 :- op(700, xfx, ::).
 
 /** <module> DC syntax of learning data, internally

@@ -26,11 +26,7 @@
 :- use_module(ddc_nesting).
 :- use_module(dc_compat_load).   % the original DC's option directives and arithmetic
 
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
-:- op(1105, xfx, :=).
-:- op(1105, xfx, <-).
-:- op(1150, xfx, pr).
+:- use_module(ddc_ops).
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).
