@@ -124,6 +124,7 @@ particle_store(S) :-
 
 %   Each filter owns its random generator state: a filter's draws do not
 %   depend on what other filters or queries did in between.
+:- meta_predicate with_rng(+, 0, -).
 with_rng(R, Goal, R1) :-
     random_property(state(Saved)),
     set_random(state(R)),

@@ -4,6 +4,10 @@
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module('../../prolog/ddc_records').
+:- use_module('../../prolog/ddc').
+:- use_module('../../prolog/ddc_belief').
+:- use_module('../../prolog/ddc_learn').
+:- use_module('../../prolog/ddc_learn_data').
 
 % load_text(+Module, +Text): a module file declaring what Text says,
 % written and loaded (again, when the module was loaded from it before).
@@ -73,5 +77,23 @@ test(a_module_loaded_again_declares_afresh) :-
 
 test(template_must_name_distinct_fields, [error(type_error(record_template, dup(a, a)), _)]) :-
     ddc_records:record_clauses(dup(a, a), rt_dup, _).
+
+% The engine's hot paths read their records through accessors: each one
+% must be compiled to the arg/3 (...) instruction, not left as a call.
+test(every_accessor_of_the_engine_is_compiled_inline) :-
+    findall(M:N/A-Called,
+            ( current_module(M),
+              module_property(M, file(F)),
+              sub_atom(F, _, _, _, '/prolog/ddc'),
+              current_predicate(M:N/A),
+              functor(H, N, A),
+              \+ predicate_property(M:H, imported_from(_)),
+              catch(clause(M:H, B), _, fail),
+              sub_term(G, B), compound(G), compound_name_arity(G, Called, 2),
+              ( ddc_records:field(Called, _, _, _)
+              ; ddc_records:constructor(Called, _, _, _)
+              ) ),
+            Calls),
+    assertion(Calls == []).
 
 :- end_tests(ddc_records).
