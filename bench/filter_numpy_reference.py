@@ -22,6 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from bridge.resampling import systematic_indices  # (pure numpy: the DDC filter's resampler)
+
 PROCESS_VAR = 0.000025  # (0.5 cm)^2 per step and axis
 SENSOR_VAR = 0.0004  # (2 cm)^2 per axis
 OCCLUDER_RADIUS = 0.3
@@ -143,7 +145,7 @@ def scenario(m: int, steps: int, seed: int = 0) -> list[Frame]:
 
 class NumpyOcclusionFilter:
     """The same model, particles as numpy arrays; bootstrap filter with systematic resampling
-    when the ESS falls below ``threshold`` * N (as the DDC filter)."""
+    (bridge.resampling's, the DDC filter's) when the ESS falls below ``threshold`` * N."""
 
     def __init__(self, m: int, particles: int, seed: int = 0, threshold: float = 0.9) -> None:
         self.m, self.n, self.threshold = m, particles, threshold
@@ -204,10 +206,7 @@ class NumpyOcclusionFilter:
         self.pos, self.seen, self.hidden_under = new, seen_new.copy(), hidden_under
         w = np.exp(self.log_weights)
         if 1.0 / np.dot(w, w) < self.threshold * n:
-            positions = (self.rng.random() + np.arange(n)) / n
-            cumulative = np.cumsum(w)
-            cumulative[-1] = 1.0
-            idx = np.minimum(np.searchsorted(cumulative, positions, side="right"), n - 1)
+            idx = systematic_indices(w, self.rng)
             self.pos, self.hidden_under = self.pos[idx], self.hidden_under[idx]
             self.log_weights = np.full(n, -math.log(n))
 

@@ -34,7 +34,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "python"))
 
 from bridge import DEFAULT_THREADS, Filter  # noqa: E402
-from bridge.filter import ENGINES  # noqa: E402
+from bridge.engines import ENGINES  # noqa: E402
 from probanchor.app.reasoning import DEFAULT_THEORY  # noqa: E402
 from probanchor.app.runner import RunOptions, run  # noqa: E402
 

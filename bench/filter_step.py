@@ -47,7 +47,7 @@ sys.path.insert(0, str(HERE.parent / "python"))
 import filter_numpy_reference as model  # noqa: E402
 from bridge import DEFAULT_THREADS, Filter, FilterError  # noqa: E402
 from bridge import prolog as bridge_prolog  # noqa: E402
-from bridge.filter import ENGINES  # noqa: E402
+from bridge.engines import ENGINES  # noqa: E402
 
 TARGET_MS = 33.0
 

@@ -32,7 +32,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "python"))
 
 from bridge import Filter, terms  # noqa: E402
-from bridge.filter import ENGINES  # noqa: E402
+from bridge.engines import ENGINES  # noqa: E402
 
 PROGRAM = HERE.parent / "prolog" / "too.pl"
 TARGET_MS = 33.0

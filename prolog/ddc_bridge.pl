@@ -1,11 +1,13 @@
-/*  ddc_bridge.pl -- the Prolog side of the Python bridge (python/bridge/filter.py).
+/*  ddc_bridge.pl -- the Prolog side of the Python bridge (python/bridge/filter.py,
+    python/bridge/frames.py).
 
     bridge.Filter calls these predicates through janus, one call per step or
-    query.  They parse the texts Python sends (in the operator context of
-    module ddc), run the engine's filter predicates (filter_new/5,
-    filter_step/4, ...), turn errors into one-line messages and particle
-    values into data janus maps onto Python values.  Nothing here keeps
-    state: the filter is the engine's, named by the text of its atom.
+    query, and bridge.frames one per frame file.  They parse the texts
+    Python sends (in the operator context of module ddc), run the engine's
+    filter predicates (filter_new/5, filter_step/4, ...), turn errors into
+    one-line messages and particle values into data janus maps onto Python
+    values.  Nothing here keeps state: the filter is the engine's, named by
+    the text of its atom.
 */
 
 :- module(ddc_bridge,
@@ -22,7 +24,6 @@
             bridge_frames/3             % +File, -Frames, -Err
           ]).
 
-:- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(error)).
 :- use_module(ddc, [ filter_new/5, filter_step/4, filter_undo/1, filter_resample/2,

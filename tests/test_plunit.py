@@ -17,39 +17,29 @@ def test_plunit_file(path: Path) -> None:
     assert result.returncode == 0, f"plunit failed in {path}:\n{result.stdout}\n{result.stderr}"
 
 
+def plunit_file(folder: Path, unit: str, *clauses: str) -> Path:
+    """A plunit file in ``folder`` with one unit of the given clauses (one a line)."""
+    path = folder / f"test_{unit}.pl"
+    path.write_text(":- use_module(library(plunit)).\n"
+                    f":- begin_tests({unit}).\n"
+                    + "".join(f"{clause}\n" for clause in clauses)
+                    + f":- end_tests({unit}).\n")
+    return path
+
+
 def test_runner_reports_a_failing_plunit_test(tmp_path: Path) -> None:
-    failing = tmp_path / "test_failing.pl"
-    failing.write_text(
-        ":- use_module(library(plunit)).\n"
-        ":- begin_tests(meant_to_fail).\n"
-        "test(one_is_two) :- 1 =:= 2.\n"
-        ":- end_tests(meant_to_fail).\n"
-    )
-    result = run_plunit(failing)
+    result = run_plunit(plunit_file(tmp_path, "meant_to_fail", "test(one_is_two) :- 1 =:= 2."))
     assert result.returncode != 0
     assert "one_is_two" in result.stdout + result.stderr
 
 
 def test_runner_reports_a_plunit_file_that_does_not_load(tmp_path: Path) -> None:
-    broken = tmp_path / "test_broken.pl"
-    broken.write_text(
-        ":- use_module(library(plunit)).\n"
-        ":- begin_tests(half_loaded).\n"
-        "test(loads) :- true.\n"
-        "test(syntax_error) :- foo(.\n"
-        ":- end_tests(half_loaded).\n"
-    )
-    result = run_plunit(broken)
+    result = run_plunit(plunit_file(tmp_path, "half_loaded",
+                                    "test(loads) :- true.", "test(syntax_error) :- foo(."))
     assert result.returncode != 0
     assert "Syntax error" in result.stdout + result.stderr
 
 
 def test_runner_reports_a_passing_plunit_test(tmp_path: Path) -> None:
-    passing = tmp_path / "test_passing.pl"
-    passing.write_text(
-        ":- use_module(library(plunit)).\n"
-        ":- begin_tests(meant_to_pass).\n"
-        "test(two) :- 2 =:= 1 + 1.\n"
-        ":- end_tests(meant_to_pass).\n"
-    )
+    passing = plunit_file(tmp_path, "meant_to_pass", "test(two) :- 2 =:= 1 + 1.")
     assert run_plunit(passing).returncode == 0

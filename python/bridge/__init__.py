@@ -1,9 +1,10 @@
 """The only place that talks to Prolog (janus-swi): the DDC filter and static programs.
 
-Importing the package does not start Prolog: :data:`DEFAULT_THREADS` (:mod:`bridge.threads`)
-and the places of the Prolog files (:mod:`bridge.resources`) come from pure modules, and the
-names that need Prolog (:class:`Filter`, :func:`load`, ...) are imported when first used, so
-that a command line can be parsed (``anchoring --help``) without starting Prolog.
+Importing the package does not start Prolog: :data:`DEFAULT_THREADS` (:mod:`bridge.threads`),
+the engines' names (:mod:`bridge.engines`) and the places of the Prolog files
+(:mod:`bridge.resources`) come from pure modules, and the names that need Prolog
+(:class:`Filter`, :func:`load`, ...) are imported when first used, so that a command line can
+be parsed (``anchoring --help``) without starting Prolog.
 """
 
 from __future__ import annotations

@@ -54,20 +54,19 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from functools import wraps
 from pathlib import Path
-from typing import Any, Concatenate, Literal, ParamSpec, TypeVar
+from typing import Any, Concatenate, ParamSpec, TypeVar
 
 import janus_swi as janus
 import numpy as np
 
 from bridge import prolog
+from bridge.engines import ENGINES, Engine
 from bridge.resampling import RESAMPLERS, Resampling, effective_sample_size, resample_indices
 from bridge.terms import Compound, Text, item_text, to_term
 from bridge.threads import DEFAULT_THREADS
 
 logger = logging.getLogger(__name__)
 
-Engine = Literal["per_particle", "batched", "auto"]
-ENGINES: tuple[Engine, ...] = ("auto", "batched", "per_particle")
 _TEMPLATE_VAR = "DdcBridgeValue__"
 
 

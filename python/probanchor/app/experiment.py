@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from bridge.filter import Engine
+from bridge.engines import Engine
 from probanchor.app.reasoning import DEFAULT_THREADS
 from probanchor.app.runner import RunOptions, run
 from probanchor.app.theories import theory_path

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from anchoring import AnchorManager, FrameResult
-from bridge.filter import Engine
+from bridge.engines import Engine
 from probanchor.app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS, AnchorState, OcclusionReasoner
 from probanchor.app.sources import PendingFrame, SourceFrame
 from probanchor.evaluation import (

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from bridge import DEFAULT_THREADS, Filter, terms
-from bridge.filter import Engine
+from bridge.engines import Engine
 from probanchor.app.naming import category_atom, symbol_atom
 from probanchor.app.theories import DEFAULT_THEORY
 

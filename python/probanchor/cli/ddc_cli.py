@@ -155,7 +155,7 @@ def run_filter(args: argparse.Namespace) -> int:
         raise CliError(f"{program}: no such file")
     if not observations.is_file():
         raise CliError(f"{observations}: no such file")
-    frames = list(read_frames(observations))  # a bad line fails before any work is done
+    frames = read_frames(observations)  # a bad line fails before any work is done
     try:
         f = Filter(program, particles=args.particles, seed=args.seed,
                    resample_threshold=args.threshold, resampling=args.resampling,

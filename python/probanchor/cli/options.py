@@ -6,11 +6,8 @@ import argparse
 from collections.abc import Callable
 from pathlib import Path
 
+from bridge.engines import ENGINES  # (pure modules: no Prolog started)
 from bridge.threads import DEFAULT_THREADS, MAX_DEFAULT_THREADS
-
-#: bridge.Filter's engines, auto first (the default), for --engine (not imported from the
-#: bridge here: importing it starts Prolog)
-ENGINES = ("auto", "batched", "per_particle")
 
 
 def add_engine_option(parser: argparse.ArgumentParser, what: str) -> None:

@@ -113,6 +113,67 @@ def _place_objects(b: ScenarioBuilder, rng: np.random.Generator,
     return ids, where
 
 
+# Events both random tables use; each returns the time after it (``t`` itself when the event
+# cannot take place on this table and nothing was added).
+
+
+def _swap(b: ScenarioBuilder, rng: np.random.Generator, t: float, containers: Sequence[str],
+          where: dict[str, tuple[float, float]]) -> float:
+    """Two random containers swapped (whatever they cover goes with them)."""
+    a, c = (str(x) for x in rng.choice(containers, 2, replace=False))
+    b.swap(t, a, c, duration=float(rng.uniform(1.5, 2.5)))
+    where[a], where[c] = where[c], where[a]
+    return t + 3.0
+
+
+def _lift(b: ScenarioBuilder, rng: np.random.Generator, t: float, hidden: dict[str, str],
+          where: dict[str, tuple[float, float]], free: Callable[[float], tuple[float, float]]
+          ) -> float:
+    """The container over a random hidden object lifted off it, set down at a free spot."""
+    obj = str(rng.choice(sorted(hidden)))
+    box = hidden.pop(obj)
+    where[box] = free(0.12)
+    b.lift(t, box, to=where[box], duration=2.5)
+    return t + 3.0
+
+
+def _pass_in_front(b: ScenarioBuilder, rng: np.random.Generator, t: float,
+                   boxes: Sequence[str], ids: dict[str, list[str]], hidden: dict[str, str],
+                   where: dict[str, tuple[float, float]], spots: list[tuple[float, float]]
+                   ) -> float:
+    """A container (one of ``boxes``) moved in front of another object (between it and the
+    camera, which looks from -y): the object is partly hidden, its percept a fragment."""
+    box = str(rng.choice(boxes))
+    others = [o for os_ in ids.values() for o in os_ if o != box and o not in hidden]
+    if box in hidden.values() or not others:
+        return t
+    target = str(rng.choice(others))
+    tx, ty = where[target]
+    spot = (tx + float(rng.uniform(-0.03, 0.03)), ty - float(rng.uniform(0.15, 0.18)))
+    if not (-0.32 < spot[0] < 0.32 and -0.2 < spot[1] < 0.22):
+        return t
+    spots.append(spot)
+    b.move(t, box, to=spot, speed=float(rng.uniform(0.08, 0.2)))
+    where[box] = spot
+    return t + float(rng.uniform(3.0, 4.5))
+
+
+def _cover(b: ScenarioBuilder, rng: np.random.Generator, t: float) -> float:
+    """A hand over the camera for 1 to 2.5 s."""
+    b.cover_camera(t, duration=float(rng.uniform(1.0, 2.5)))
+    return t + 3.0
+
+
+def _reveal_all(b: ScenarioBuilder, t: float, hidden: dict[str, str],
+                free: Callable[[float], tuple[float, float]]) -> None:
+    """The end of a table: every hidden object's container lifted off it, one after the
+    other, and the scenario's duration set (1 s after the last)."""
+    for obj in sorted(hidden):
+        b.lift(t, hidden[obj], to=free(0.12), duration=2.5)
+        t += 3.0
+    b.data["duration"] = t + 1.0
+
+
 def random_scene(seed: int) -> Scenario:
     """A random table scene with the events the scenarios use: objects pushed around (also past
     each other), balls and cans put under containers, containers swapped, moved and lifted, the
@@ -149,48 +210,21 @@ def random_scene(seed: int) -> Scenario:
                 where[box] = where[obj]
                 t += 3.0
             elif what == "swap" and len(containers) >= 2:
-                a, c = (str(x) for x in rng.choice(containers, 2, replace=False))
-                b.swap(t, a, c, duration=float(rng.uniform(1.5, 2.5)))
-                where[a], where[c] = where[c], where[a]
-                t += 3.0
+                t = _swap(b, rng, t, containers, where)
             elif what == "lift" and hidden:
-                obj = str(rng.choice(sorted(hidden)))
-                box = hidden.pop(obj)
-                where[box] = free(0.12)
-                b.lift(t, box, to=where[box], duration=2.5)
-                t += 3.0
+                t = _lift(b, rng, t, hidden, where, free)
             elif what == "front" and containers:
-                # a container passes in front of another object (between it and the camera,
-                # which looks from -y): the object is partly hidden, its percept a fragment
-                box = str(rng.choice([c for c in containers if c not in hidden.values()]
-                                     or containers))
-                others = [o for os_ in ids.values() for o in os_
-                          if o != box and o not in hidden]
-                if box in hidden.values() or not others:
-                    continue
-                target = str(rng.choice(others))
-                tx, ty = where[target]
-                spot = (tx + float(rng.uniform(-0.03, 0.03)),
-                        ty - float(rng.uniform(0.15, 0.18)))
-                if not (-0.32 < spot[0] < 0.32 and -0.2 < spot[1] < 0.22):
-                    continue
-                spots.append(spot)
-                b.move(t, box, to=spot, speed=float(rng.uniform(0.08, 0.2)))
-                where[box] = spot
-                t += float(rng.uniform(3.0, 4.5))
+                free_c = [c for c in containers if c not in hidden.values()]
+                t = _pass_in_front(b, rng, t, free_c or containers, ids, hidden, where, spots)
             elif what == "cover":
-                b.cover_camera(t, duration=float(rng.uniform(1.0, 2.5)))
-                t += 3.0
+                t = _cover(b, rng, t)
             else:
                 movable = [o for os_ in ids.values() for o in os_ if o not in hidden]
                 obj = str(rng.choice(movable))
                 where[obj] = free(0.12)
                 b.move(t, obj, to=where[obj], speed=float(rng.uniform(0.08, 0.25)))
                 t += float(rng.uniform(2.0, 3.5))
-        for obj in sorted(hidden):
-            b.lift(t, hidden[obj], to=free(0.12), duration=2.5)
-            t += 3.0
-        b.data["duration"] = t + 1.0
+        _reveal_all(b, t, hidden, free)
         try:
             return b.build()
         except ScenarioError:
@@ -256,16 +290,9 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
                 where[box] = where[obj] = to
                 t += float(rng.uniform(3.0, 4.5))
             elif what == "swap" and len(containers) >= 2:
-                a, c = (str(x) for x in rng.choice(containers, 2, replace=False))
-                b.swap(t, a, c, duration=float(rng.uniform(1.5, 2.5)))
-                where[a], where[c] = where[c], where[a]
-                t += 3.0
+                t = _swap(b, rng, t, containers, where)
             elif what == "lift" and hidden:
-                obj = str(rng.choice(sorted(hidden)))
-                box = hidden.pop(obj)
-                where[box] = free(0.12)
-                b.lift(t, box, to=where[box], duration=2.5)
-                t += 3.0
+                t = _lift(b, rng, t, hidden, where, free)
             elif what == "grasp" and visible_small and held is None:
                 obj = str(rng.choice(visible_small))
                 b.pick_up(t, obj, duration=2.0)
@@ -274,22 +301,9 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
                 b.put_down(t, obj, to=where[obj], duration=float(rng.uniform(2.0, 3.0)))
                 t += 3.5
             elif what == "front" and containers:
-                box = str(rng.choice(free_c or containers))
-                others = [o for os_ in ids.values() for o in os_ if o != box and o not in hidden]
-                if box in hidden.values() or not others:
-                    continue
-                target = str(rng.choice(others))
-                tx, ty = where[target]
-                spot = (tx + float(rng.uniform(-0.03, 0.03)), ty - float(rng.uniform(0.15, 0.18)))
-                if not (-0.32 < spot[0] < 0.32 and -0.2 < spot[1] < 0.22):
-                    continue
-                spots.append(spot)
-                b.move(t, box, to=spot, speed=float(rng.uniform(0.08, 0.2)))
-                where[box] = spot
-                t += float(rng.uniform(3.0, 4.5))
+                t = _pass_in_front(b, rng, t, free_c or containers, ids, hidden, where, spots)
             elif what == "cover":
-                b.cover_camera(t, duration=float(rng.uniform(1.0, 2.5)))
-                t += 3.0
+                t = _cover(b, rng, t)
             else:
                 movable = [o for os_ in ids.values() for o in os_
                            if o not in hidden and o not in hidden.values()]
@@ -299,10 +313,7 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
                 where[obj] = free(0.12)
                 b.move(t, obj, to=where[obj], speed=float(rng.uniform(0.08, 0.25)))
                 t += float(rng.uniform(2.0, 3.5))
-        for obj in sorted(hidden):
-            b.lift(t, hidden[obj], to=free(0.12), duration=2.5)
-            t += 3.0
-        b.data["duration"] = t + 1.0
+        _reveal_all(b, t, hidden, free)
         try:
             b.build()
         except ScenarioError:
