@@ -597,7 +597,3 @@ static_goal(G, M) :-
     ;   model_goal(G) -> true
     ;   \+ visible(M, G)                              % a fact of the step
     ).
-
-%!  batch_step(+State0, +Observations, +Facts, -Result) is det.
-%
-%   Result = step(State, LogWeights): every particle advanced from t to
