@@ -16,7 +16,7 @@
 :- use_module(library(lists)).
 :- use_module(library(assoc)).
 :- use_module(ddc_records).
-:- use_module(ddc_batch_columns, [list_conj/2]).
+:- use_module(ddc_body, [conj_from_list/2]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -235,7 +235,7 @@ param(X, X, Gs, Gs) :- atom(X), \+ catch(_ is X, _, fail), !.
 param(X, V, Gs, [V is X|Gs]).
 
 conj_with(B, [], B) :- !.
-conj_with(B, [G|Gs], (B, C)) :- list_conj([G|Gs], C).
+conj_with(B, [G|Gs], (B, C)) :- conj_from_list([G|Gs], C).
 
 %   operand_reads(+Body, +Rvs, -Body1): a comparison whose operand is a
 %   random variable at a time (pos(1):t > 0, the paper's shorthand) reads
@@ -254,7 +254,7 @@ operand_reads(G, _, G1) :-
     ( rv_operand(A) ; rv_operand(B) ), !,
     operand(A, VA, RA), operand(B, VB, RB),
     G2 =.. [Op, VA, VB],
-    list_conj([RA, RB, G2], G1).
+    conj_from_list([RA, RB, G2], G1).
 operand_reads(G, _, G).
 
 rv_operand(X) :- nonvar(X), X = Y:_, nonvar(Y), \+ number(X).
