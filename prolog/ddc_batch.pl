@@ -79,11 +79,9 @@
 :- use_module(ddc_batch_eval).
 :- use_module(ddc_batch_state).
 :- use_module(ddc_pool, [group_seeds/2, group_sizes/3, pool_run/3]).
+:- use_module(ddc_ops).
 
 :- set_prolog_flag(optimise, true).
-
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
 
 /** <module> Batched particle filter for DDC programs
 

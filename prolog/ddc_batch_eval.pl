@@ -31,11 +31,9 @@
 :- use_module(ddc_batch_tables).
 :- use_module(ddc_batch_columns).
 :- use_module(ddc_batch_rv, [assign/3, set_each/3]).
+:- use_module(ddc_ops).
 
 :- set_prolog_flag(optimise, true).
-
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
 
 /** <module> Clause bodies and random variables over a batch
 

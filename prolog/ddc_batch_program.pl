@@ -17,12 +17,9 @@
 :- use_module(library(assoc)).
 :- use_module(ddc_records).
 :- use_module(ddc_body, [conj_from_list/2]).
+:- use_module(ddc_ops).
 
 :- set_prolog_flag(optimise, true).
-
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
-:- op(1105, xfx, :=).
 
 /** <module> The batched filter's fragment and compiled program
 
