@@ -160,8 +160,7 @@ materialise_derived(M, E, T, All) :-
                ->  sets_each(All, LC, C)
                ;   list_to_set(L, Set), fill_column(Size, C, Set)
                ),
-               new_entry(Entry0),
-               entry_column(Entry0, C), entry_status(Entry0, open), entry_arity(Entry0, none),
+               make_entry([column(C), status(open), arity(none)], Entry0),
                table_put(Tab, '$inst'(N/A), Entry0),
                table_get(Tab, '$inst'(N/A), Entry),
                settle(Entry)

@@ -260,7 +260,7 @@ branch_union(G, E, Ps0, Union) :-
 if_then_else(C, T, F, E, Ps0, Ps) :-
     findall(Ps1, eval_body(C, E, Ps0, Ps1), Ls),
     firsts(Ls, [], Firsts, Taken),
-    (   new_cell(Counter), cell_value(Counter, 0),
+    (   make_cell([value(0)], Counter),
         eval_body(C, E, Ps0, Ps1),
         cell_value(Counter, K0), K is K0+1, nb_set_cell_value(Counter, K),
         nth1(K, Firsts, Ps2),
@@ -376,8 +376,7 @@ value(E, X, T, Ps, Entry) :-
     ->  true
     ;   env_size(E, N),
         new_column(N, '$u', C0),
-        new_entry(New), entry_column(New, C0), entry_status(New, open),
-        entry_arity(New, unknown),
+        make_entry([column(C0), status(open), arity(unknown)], New),
         table_put(Tab, X, New),
         table_get(Tab, X, Entry0)
     ),
@@ -415,7 +414,7 @@ assign_clauses([clause_of(K, D, B, At)|Cls], EK, ES, X, T, Ps, C, Rest) :-
     (   Ps == []
     ->  Rest = []
     ;   ( K == now -> E = ES ; E = EK ),
-        new_cell(Any), cell_value(Any, false),
+        make_cell([value(false)], Any),
         assign_clause(E, X, T, K, B, D, At, Ps, C, Any),
         (   cell_value(Any, true) -> uncomputed(Ps, C, Ps1) ; Ps1 = Ps ),   % (nothing given)
         assign_clauses(Cls, EK, ES, X, T, Ps1, C, Rest)
