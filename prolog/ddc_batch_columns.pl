@@ -11,7 +11,6 @@
 :- module(ddc_batch_columns,
           [ plan/3,                     % +Term, -Template, -Binds
             bind/2,                     % +Binds, +I
-            column_ref/3,               % +Column, ?V, -Ref
             has_column/1,               % +Term
             has_free_var/1,             % +Term
             materialise/3,              % +Term, +Ps, -Term1
@@ -104,9 +103,8 @@ bind([B|Bs], I) :- bind_one(B, I), bind(Bs, I).
 bind_one(C-P, I) :- arg(I, C, P).
 bind_one('$e'(W, Ex, _), _) :- W is Ex.
 
-%!  column_ref(+Column, ?V, -Ref) is det.
-%
-%   Ref is a reference to Column whose particle value is V itself.
+%   column_ref(+Column, ?V, -Ref): Ref is a reference to Column whose
+%   particle value is V itself.
 column_ref(C, V, '$c'(C, V, V)).
 
 %!  has_column(+T) is semidet.
