@@ -65,7 +65,7 @@
             batch_size/2,               % +State, -N
             batch_keep/2,               % +State, -Kept
             batch_module/2,             % +State, -Module
-            overlap_checked_particles/1 % -N
+            overlap_checked_particles/1 % -N (ddc_pool.pl's)
           ]).
 
 :- use_module(library(apply)).
@@ -78,7 +78,8 @@
 :- use_module(ddc_batch_rv, [weigh_branch/5]).
 :- use_module(ddc_batch_eval).
 :- use_module(ddc_batch_state).
-:- use_module(ddc_pool, [group_seeds/2, group_sizes/3, pool_run/3]).
+:- use_module(ddc_pool, [group_seeds/2, group_sizes/3, pool_run/3,
+                          overlap_checked_particles/1]).
 :- use_module(ddc_ops).
 
 :- set_prolog_flag(optimise, true).
@@ -183,16 +184,6 @@ batch_step(groups([G1|Gs]), Obs, Facts, step(groups([S1|Ss]), LWs)) :- !,
     append([LWs1|LWss], LWs).
 batch_step(State0, Obs, Facts, Result) :-
     group_step(State0, Obs, Facts, true, Result).
-
-%!  overlap_checked_particles(-N) is det.
-%
-%   Overlapping clauses are looked for in the first N particles of every
-%   filter step, by both engines (ddc_particles.pl's step_range_at/10 too):
-%   the horizon of that check, a constant of the engine.  Checking a
-%   particle costs an evaluation of each rival clause's body in it, so the
-%   check looks at a few particles, not at all of them.  (Static queries
-%   have a horizon of their own: ddc_world.pl's overlap_checked_worlds/1.)
-overlap_checked_particles(20).
 
 %   check_list(+Check, +N, -Checked): the particles a group checks for
 %   overlapping clauses (none unless Check is true).

@@ -8,14 +8,16 @@
     so (ddc_particles.pl, step_groups/10; ddc_batch.pl, batch_step/4); this
     module holds what they share, apart from what a group's job does: the
     split, the seeds, the worker threads (kept for the process, shared by
-    every filter) and the sending and collecting of jobs.
+    every filter) and the sending and collecting of jobs; and how many of
+    a step's first particles are checked for overlapping clauses.
 */
 
 :- module(ddc_pool,
           [ group_seeds/2,              % +K, -Seeds
             group_bounds/4,             % +From, +To, +K, -Bounds
             group_sizes/3,              % +N, +K, -Sizes
-            pool_run/3                  % :Local, +Jobs, -Outs
+            pool_run/3,                 % :Local, +Jobs, -Outs
+            overlap_checked_particles/1 % -N
           ]).
 
 :- use_module(library(lists)).
@@ -62,6 +64,17 @@ group_sizes(N, K, Sizes) :-
 
 bound_size(Lo-Hi, Size) :-
     Size is Hi-Lo+1.
+
+%!  overlap_checked_particles(-N) is det.
+%
+%   Overlapping clauses are looked for in the first N particles of every
+%   filter step, by both engines (ddc_particles.pl's step_range_at/10,
+%   ddc_batch.pl's check_list/3): the horizon of that check, a constant of
+%   the engine.  Checking a particle costs an evaluation of each rival
+%   clause's body in it, so the check looks at a few particles, not at all
+%   of them.  (Static queries have a horizon of their own: ddc_world.pl's
+%   overlap_checked_worlds/1.)
+overlap_checked_particles(20).
 
 %!  pool_run(:Local, +Jobs:list, -Outs:list) is det.
 %
