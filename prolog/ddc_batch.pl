@@ -78,7 +78,7 @@
 :- use_module(ddc_batch_rv, [weigh_branch/5]).
 :- use_module(ddc_batch_eval).
 :- use_module(ddc_batch_state).
-:- use_module(ddc_pool, [group_seeds/2, group_sizes/3, pool_run/3,
+:- use_module(ddc_pool, [group_seeds/2, group_sizes/3, pool_run/3, with_random_stream/3,
                           overlap_checked_particles/1]).
 :- use_module(ddc_ops).
 
@@ -116,10 +116,7 @@ batch_new(M, Items, N, Seed, K0, State) :-
     (   K =:= 1
     ->  new_group(M, N, Seed, true, State)
     ;   K1 is K-1,
-        random_property(state(Saved)),
-        call_cleanup(( set_random(seed(Seed)),
-                       group_seeds(K, Seeds) ),
-                     set_random(state(Saved))),
+        with_random_stream(seed(Seed), group_seeds(K, Seeds), _),
         group_sizes(N, K, Sizes),
         length(NoChecks, K1), maplist(=(false), NoChecks),
         maplist(new_group(M), Sizes, [Seed|Seeds], [true|NoChecks], Gs),
@@ -131,18 +128,15 @@ batch_new(M, Items, N, Seed, K0, State) :-
 %   particles are checked for overlapping clauses (the first group's).
 new_group(M, N, Seed, Check, State) :-
     check_list(Check, N, Checked),
-    random_property(state(Saved)),
-    call_cleanup(
-        ( set_random(seed(Seed)),
-          table_new(Tab0), table_new(Tab),
-          make_tables([older_time(-1), older(Tab0), latest_time(0), latest(Tab)], Tables),
-          make_env([module(M), size(N), now(-1), tables(Tables), facts([]),
-                    observations([]), checked(Checked)], E),
-          numlist(1, N, All),
-          sweep(M, zero, E, 0, All),
-          materialise_derived(M, E, 0, All),
-          random_property(state(R)) ),
-        set_random(state(Saved))),
+    table_new(Tab0), table_new(Tab),
+    make_tables([older_time(-1), older(Tab0), latest_time(0), latest(Tab)], Tables),
+    make_env([module(M), size(N), now(-1), tables(Tables), facts([]),
+              observations([]), checked(Checked)], E),
+    numlist(1, N, All),
+    with_random_stream(seed(Seed),
+                       ( sweep(M, zero, E, 0, All),
+                         materialise_derived(M, E, 0, All) ),
+                       R),
     make_batch_state([module(M), size(N), time(0), tables(Tables), facts([]), random(R)], State).
 
 %   materialise_derived(+M, +E, +T, +All): each lookback predicate's
@@ -206,15 +200,12 @@ group_step(State0, Obs, Facts, Check, step(State, LWs)) :-
     make_env([module(M), size(N), now(T), tables(Tables), facts(Facts),
               observations(HVs), checked(Checked)], E),
     numlist(1, N, All),
-    random_property(state(Saved)),
-    call_cleanup(
-        ( set_random(state(R0)),
-          new_column(N, 0.0, LW),
-          forall(member(H-V, HVs), weigh_observation(E, H, V, All, LW)),
-          sweep(M, next, E, T1, All),
-          materialise_derived(M, E, T1, All),
-          random_property(state(R)) ),
-        set_random(state(Saved))),
+    new_column(N, 0.0, LW),
+    with_random_stream(state(R0),
+                       ( forall(member(H-V, HVs), weigh_observation(E, H, V, All, LW)),
+                         sweep(M, next, E, T1, All),
+                         materialise_derived(M, E, T1, All) ),
+                       R),
     LW =.. [_|LWs],
     duplicate_term(Facts, Facts1),
     make_batch_state([module(M), size(N), time(T1), tables(Tables), facts(Facts1),
