@@ -65,7 +65,7 @@
             batch_size/2,               % +State, -N
             batch_keep/2,               % +State, -Kept
             batch_module/2,             % +State, -Module
-            overlap_checked_particles/1 % -N
+            overlap_checked_particles/1 % -N (ddc_pool.pl's)
           ]).
 
 :- use_module(library(apply)).
@@ -78,12 +78,11 @@
 :- use_module(ddc_batch_rv, [weigh_branch/5]).
 :- use_module(ddc_batch_eval).
 :- use_module(ddc_batch_state).
-:- use_module(ddc_pool, [group_seeds/2, group_sizes/3, pool_run/3]).
+:- use_module(ddc_pool, [group_seeds/2, group_sizes/3, pool_run/3, with_random_stream/3,
+                          overlap_checked_particles/1]).
+:- use_module(ddc_ops).
 
 :- set_prolog_flag(optimise, true).
-
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
 
 /** <module> Batched particle filter for DDC programs
 
@@ -117,10 +116,7 @@ batch_new(M, Items, N, Seed, K0, State) :-
     (   K =:= 1
     ->  new_group(M, N, Seed, true, State)
     ;   K1 is K-1,
-        random_property(state(Saved)),
-        call_cleanup(( set_random(seed(Seed)),
-                       group_seeds(K, Seeds) ),
-                     set_random(state(Saved))),
+        with_random_stream(seed(Seed), group_seeds(K, Seeds), _),
         group_sizes(N, K, Sizes),
         length(NoChecks, K1), maplist(=(false), NoChecks),
         maplist(new_group(M), Sizes, [Seed|Seeds], [true|NoChecks], Gs),
@@ -132,18 +128,15 @@ batch_new(M, Items, N, Seed, K0, State) :-
 %   particles are checked for overlapping clauses (the first group's).
 new_group(M, N, Seed, Check, State) :-
     check_list(Check, N, Checked),
-    random_property(state(Saved)),
-    call_cleanup(
-        ( set_random(seed(Seed)),
-          table_new(Tab0), table_new(Tab),
-          make_tables([older_time(-1), older(Tab0), latest_time(0), latest(Tab)], Tables),
-          make_env([module(M), size(N), now(-1), tables(Tables), facts([]),
-                    observations([]), checked(Checked)], E),
-          numlist(1, N, All),
-          sweep(M, zero, E, 0, All),
-          materialise_derived(M, E, 0, All),
-          random_property(state(R)) ),
-        set_random(state(Saved))),
+    table_new(Tab0), table_new(Tab),
+    make_tables([older_time(-1), older(Tab0), latest_time(0), latest(Tab)], Tables),
+    make_env([module(M), size(N), now(-1), tables(Tables), facts([]),
+              observations([]), checked(Checked)], E),
+    numlist(1, N, All),
+    with_random_stream(seed(Seed),
+                       ( sweep(M, zero, E, 0, All),
+                         materialise_derived(M, E, 0, All) ),
+                       R),
     make_batch_state([module(M), size(N), time(0), tables(Tables), facts([]), random(R)], State).
 
 %   materialise_derived(+M, +E, +T, +All): each lookback predicate's
@@ -162,8 +155,7 @@ materialise_derived(M, E, T, All) :-
                ->  sets_each(All, LC, C)
                ;   list_to_set(L, Set), fill_column(Size, C, Set)
                ),
-               new_entry(Entry0),
-               entry_column(Entry0, C), entry_status(Entry0, open), entry_arity(Entry0, none),
+               make_entry([column(C), status(open), arity(none)], Entry0),
                table_put(Tab, '$inst'(N/A), Entry0),
                table_get(Tab, '$inst'(N/A), Entry),
                settle(Entry)
@@ -187,16 +179,6 @@ batch_step(groups([G1|Gs]), Obs, Facts, step(groups([S1|Ss]), LWs)) :- !,
 batch_step(State0, Obs, Facts, Result) :-
     group_step(State0, Obs, Facts, true, Result).
 
-%!  overlap_checked_particles(-N) is det.
-%
-%   Overlapping clauses are looked for in the first N particles of every
-%   filter step, by both engines (ddc_particles.pl's step_range_at/10 too):
-%   the horizon of that check, a constant of the engine.  Checking a
-%   particle costs an evaluation of each rival clause's body in it, so the
-%   check looks at a few particles, not at all of them.  (Static queries
-%   have a horizon of their own: ddc_world.pl's overlap_checked_worlds/1.)
-overlap_checked_particles(20).
-
 %   check_list(+Check, +N, -Checked): the particles a group checks for
 %   overlapping clauses (none unless Check is true).
 check_list(true, N, Checked) :- !,
@@ -218,15 +200,12 @@ group_step(State0, Obs, Facts, Check, step(State, LWs)) :-
     make_env([module(M), size(N), now(T), tables(Tables), facts(Facts),
               observations(HVs), checked(Checked)], E),
     numlist(1, N, All),
-    random_property(state(Saved)),
-    call_cleanup(
-        ( set_random(state(R0)),
-          new_column(N, 0.0, LW),
-          forall(member(H-V, HVs), weigh_observation(E, H, V, All, LW)),
-          sweep(M, next, E, T1, All),
-          materialise_derived(M, E, T1, All),
-          random_property(state(R)) ),
-        set_random(state(Saved))),
+    new_column(N, 0.0, LW),
+    with_random_stream(state(R0),
+                       ( forall(member(H-V, HVs), weigh_observation(E, H, V, All, LW)),
+                         sweep(M, next, E, T1, All),
+                         materialise_derived(M, E, T1, All) ),
+                       R),
     LW =.. [_|LWs],
     duplicate_term(Facts, Facts1),
     make_batch_state([module(M), size(N), time(T1), tables(Tables), facts(Facts1),

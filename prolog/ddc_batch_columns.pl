@@ -11,7 +11,6 @@
 :- module(ddc_batch_columns,
           [ plan/3,                     % +Term, -Template, -Binds
             bind/2,                     % +Binds, +I
-            column_ref/3,               % +Column, ?V, -Ref
             has_column/1,               % +Term
             has_free_var/1,             % +Term
             materialise/3,              % +Term, +Ps, -Term1
@@ -24,14 +23,14 @@
             unify_value/4,              % ?P, +V, +Ps0, -Ps
             unify_column/4,             % ?P, +Column, +Ps0, -Ps
             unify_column/5,             % ?P, +Column, +Arity, +Ps0, -Ps
-            tuple_of_vars/2,            % +P, -Vars
-            list_conj/2                 % +Goals, -Conjunction
+            tuple_of_vars/2             % +P, -Vars
           ]).
 
 :- use_module(library(apply)).
 :- use_module(library(lists)).
 :- use_module(library(pairs)).
 :- use_module(ddc_batch_tables, [tuple_shape/2]).
+:- use_module(ddc_body, [conj_from_list/2]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -104,9 +103,8 @@ bind([B|Bs], I) :- bind_one(B, I), bind(Bs, I).
 bind_one(C-P, I) :- arg(I, C, P).
 bind_one('$e'(W, Ex, _), _) :- W is Ex.
 
-%!  column_ref(+Column, ?V, -Ref) is det.
-%
-%   Ref is a reference to Column whose particle value is V itself.
+%   column_ref(+Column, ?V, -Ref): Ref is a reference to Column whose
+%   particle value is V itself.
 column_ref(C, V, '$c'(C, V, V)).
 
 %!  has_column(+T) is semidet.
@@ -219,7 +217,7 @@ test_loop(G, Ps0, Ps) :-
 compiled_test(Ps0, Bs, Tmpl, Ps) :-
     bind_goals(Bs, I, Cs, CVs, Gets, Evals),
     append([Gets, Evals, [Tmpl]], Gs),
-    list_conj(Gs, Cond0),
+    conj_from_list(Gs, Cond0),
     abstract_numbers(Cond0, Cond, Ks),
     pairs_keys_values(Ks, KVs, Ns),
     Head =.. [cols|CVs],
@@ -236,7 +234,7 @@ compiled_test(Ps0, Bs, Tmpl, Ps) :-
 compiled_instance(Ps, Bs, Tmpl, C) :-
     bind_goals(Bs, I, Cs, CVs, Gets, Evals),
     append(Gets, Evals, Gs0),
-    (   Gs0 == [] -> Cond1 = true ; list_conj(Gs0, Cond1) ),
+    conj_from_list(Gs0, Cond1),
     abstract_numbers(Cond1-Tmpl, Cond-Value, Ks),
     pairs_keys_values(Ks, KVs, Ns),
     Head =.. [cols|CVs],
@@ -292,12 +290,6 @@ bind_goals([C-P|Bs], I, [C|Cs], [CV|CVs], [arg(I, CV, P)|Gs], Es) :- !,
     bind_goals(Bs, I, Cs, CVs, Gs, Es).
 bind_goals(['$e'(W, Ex, _)|Bs], I, Cs, CVs, Gs, [W is Ex|Es]) :-
     bind_goals(Bs, I, Cs, CVs, Gs, Es).
-
-%!  list_conj(+Goals:list, -Conj) is det.
-%
-%   Conj is the conjunction of Goals (not empty).
-list_conj([G], G) :- !.
-list_conj([G|Gs], (G, C)) :- list_conj(Gs, C).
 
 optimised_assert(Clauses) :-
     current_prolog_flag(optimise, Old),

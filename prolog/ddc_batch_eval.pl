@@ -27,15 +27,14 @@
 :- use_module(library(error)).
 :- use_module(ddc_records).
 :- use_module(ddc_models, []).
+:- use_module(ddc_errors, [engine_error/1]).
 :- use_module(ddc_batch_program, [timed_read/3, origin_line/2, origin_id/2, origin_rivals/2]).
 :- use_module(ddc_batch_tables).
 :- use_module(ddc_batch_columns).
 :- use_module(ddc_batch_rv, [assign/3, set_each/3]).
+:- use_module(ddc_ops).
 
 :- set_prolog_flag(optimise, true).
-
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
 
 /** <module> Clause bodies and random variables over a batch
 
@@ -262,7 +261,7 @@ branch_union(G, E, Ps0, Union) :-
 if_then_else(C, T, F, E, Ps0, Ps) :-
     findall(Ps1, eval_body(C, E, Ps0, Ps1), Ls),
     firsts(Ls, [], Firsts, Taken),
-    (   new_cell(Counter), cell_value(Counter, 0),
+    (   make_cell([value(0)], Counter),
         eval_body(C, E, Ps0, Ps1),
         cell_value(Counter, K0), K is K0+1, nb_set_cell_value(Counter, K),
         nth1(K, Firsts, Ps2),
@@ -378,8 +377,7 @@ value(E, X, T, Ps, Entry) :-
     ->  true
     ;   env_size(E, N),
         new_column(N, '$u', C0),
-        new_entry(New), entry_column(New, C0), entry_status(New, open),
-        entry_arity(New, unknown),
+        make_entry([column(C0), status(open), arity(unknown)], New),
         table_put(Tab, X, New),
         table_get(Tab, X, Entry0)
     ),
@@ -417,7 +415,7 @@ assign_clauses([clause_of(K, D, B, At)|Cls], EK, ES, X, T, Ps, C, Rest) :-
     (   Ps == []
     ->  Rest = []
     ;   ( K == now -> E = ES ; E = EK ),
-        new_cell(Any), cell_value(Any, false),
+        make_cell([value(false)], Any),
         assign_clause(E, X, T, K, B, D, At, Ps, C, Any),
         (   cell_value(Any, true) -> uncomputed(Ps, C, Ps1) ; Ps1 = Ps ),   % (nothing given)
         assign_clauses(Cls, EK, ES, X, T, Ps1, C, Rest)
@@ -431,7 +429,8 @@ assign_clauses([clause_of(K, D, B, At)|Cls], EK, ES, X, T, Ps, C, Rest) :-
 rv_clause(M, X, K, D, B, At) :-
     M:'$b_rv'(X, K, D, B, At).
 
-%   A distribution error names the clause (file:line), as in ddc.pl.  The
+%   A distribution error names the clause (file:line), as the per-particle
+%   engine's does (ddc_world.pl, '$clause_error'/3).  The
 %   particles of the env's checked list that this clause gave a value are
 %   checked for a later clause that also applies (check_rivals/7).
 assign_clause(E, X, T, K, B, D, At, Rest, C, Any) :-
@@ -472,7 +471,7 @@ clause_error(error(ddc(Cause, W), _), Where) :-
 clause_error(error(ddc_distribution(D, Why), _), Where) :- !,
     throw(error(ddc(distribution(D, Why), Where), _)).
 clause_error(E, _) :-
-    ddc:engine_error(E), !,
+    engine_error(E), !,
     throw(E).
 clause_error(E, Where) :-
     throw(error(ddc(prolog_error(E), Where), _)).
@@ -521,7 +520,7 @@ derived(G, T, E, Ps0, Ps) :-
     G1 = G,
     env_at_time(E, Now1, E1),
     catch(eval_body(B, E1, Ps0, Ps), Err, clause_error(Err, M:L)),
-    (   has_free_var(G)                 % not range-restricted: as ddc.pl, an error
+    (   has_free_var(G)                 % not range-restricted: as ddc_compile.pl's, an error
     ->  throw(error(ddc(non_ground_head(G), M:L), _))
     ;   true
     ).
@@ -551,8 +550,9 @@ sweep(M, K, E, T, All) :-
 %   (Ps is all when the prefix is static: every particle.  A head whose
 %   key reads a column, x(K):t+1 := k:t ~= K, ..., gives a key per group
 %   of particles with the same value.)
-%   A head the whole body leaves non-ground is an error, as in ddc.pl (a
-%   prefix that is not the whole body may leave it to the rest).
+%   A head the whole body leaves non-ground is an error, as in the
+%   per-particle engine (ddc_world.pl's sweep_clause/5; a prefix that is
+%   not the whole body may leave it to the rest).
 sweep_head(M, K, E, All, X, Ps) :-
     M:'$b_rv'(H, K, _, B, At), H \= observation(_),
     origin_line(At, L),
@@ -597,7 +597,3 @@ static_goal(G, M) :-
     ;   model_goal(G) -> true
     ;   \+ visible(M, G)                              % a fact of the step
     ).
-
-%!  batch_step(+State0, +Observations, +Facts, -Result) is det.
-%
-%   Result = step(State, LogWeights): every particle advanced from t to

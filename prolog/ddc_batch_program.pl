@@ -16,13 +16,10 @@
 :- use_module(library(lists)).
 :- use_module(library(assoc)).
 :- use_module(ddc_records).
-:- use_module(ddc_batch_columns, [list_conj/2]).
+:- use_module(ddc_body, [conj_from_list/2]).
+:- use_module(ddc_ops).
 
 :- set_prolog_flag(optimise, true).
-
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
-:- op(1105, xfx, :=).
 
 /** <module> The batched filter's fragment and compiled program
 
@@ -48,7 +45,7 @@ checks the clause for overlaps (ddc_batch_eval:run_clause/9).
 */
 
 %   origin(Line, Id, Rivals): where a random variable's clause comes from
-%   (its line, ddc.pl's clause id) and whether it has rivals (above).
+%   (its line, ddc_read.pl's clause id) and whether it has rivals (above).
 :- record_type origin(line, id, rivals).
 
 %   Items (ddc_read.pl's classified program):
@@ -129,7 +126,7 @@ static_body(G, Is) :-
 %!  timed_read(+Read, -X, -TimeExpr) is semidet.
 %
 %   The original language's current(h), next(h) and prior(h) are h:t,
-%   h:t+1 and h:0 (as in ddc.pl).
+%   h:t+1 and h:0 (as in ddc_read.pl's heads and ddc_body.pl's reads).
 timed_read(R, X, TE) :-
     nonvar(R),
     (   R = current(X) -> TE = t
@@ -235,11 +232,11 @@ param(X, X, Gs, Gs) :- atom(X), \+ catch(_ is X, _, fail), !.
 param(X, V, Gs, [V is X|Gs]).
 
 conj_with(B, [], B) :- !.
-conj_with(B, [G|Gs], (B, C)) :- list_conj([G|Gs], C).
+conj_with(B, [G|Gs], (B, C)) :- conj_from_list([G|Gs], C).
 
 %   operand_reads(+Body, +Rvs, -Body1): a comparison whose operand is a
 %   random variable at a time (pos(1):t > 0, the paper's shorthand) reads
-%   it first, as ddc.pl's compiler does.
+%   it first, as ddc_body.pl's compiler does.
 operand_reads(V, _, V) :- var(V), !.
 operand_reads((A, B), R, (A1, B1)) :- !, operand_reads(A, R, A1), operand_reads(B, R, B1).
 operand_reads((A ; B), R, (A1 ; B1)) :- !, operand_reads(A, R, A1), operand_reads(B, R, B1).
@@ -254,7 +251,7 @@ operand_reads(G, _, G1) :-
     ( rv_operand(A) ; rv_operand(B) ), !,
     operand(A, VA, RA), operand(B, VB, RB),
     G2 =.. [Op, VA, VB],
-    list_conj([RA, RB, G2], G1).
+    conj_from_list([RA, RB, G2], G1).
 operand_reads(G, _, G).
 
 rv_operand(X) :- nonvar(X), X = Y:_, nonvar(Y), \+ number(X).

@@ -15,6 +15,7 @@
 :- use_module(ddc_records).
 :- use_module(ddc_batch_tables).
 :- use_module(ddc_batch_eval).
+:- use_module(ddc_pool, [with_random_stream/3]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -84,7 +85,5 @@ query_env(S, E, All) :-
 %   goes on from there (in place: State is the filter's own term).
 with_state(S, Goal) :-
     batch_state_random(S, R0),
-    random_property(state(Saved)),
-    call_cleanup(( set_random(state(R0)), Goal, random_property(state(R1)) ),
-                 set_random(state(Saved))),
+    with_random_stream(state(R0), Goal, R1),
     nb_set_batch_state_random(S, R1).

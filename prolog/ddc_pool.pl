@@ -8,20 +8,24 @@
     so (ddc_particles.pl, step_groups/10; ddc_batch.pl, batch_step/4); this
     module holds what they share, apart from what a group's job does: the
     split, the seeds, the worker threads (kept for the process, shared by
-    every filter) and the sending and collecting of jobs.
+    every filter) and the sending and collecting of jobs; a filter's (or
+    a group's) own random stream; and how many of a step's first
+    particles are checked for overlapping clauses.
 */
 
 :- module(ddc_pool,
           [ group_seeds/2,              % +K, -Seeds
             group_bounds/4,             % +From, +To, +K, -Bounds
             group_sizes/3,              % +N, +K, -Sizes
-            pool_run/3                  % :Local, +Jobs, -Outs
+            pool_run/3,                 % :Local, +Jobs, -Outs
+            with_random_stream/3,       % +Start, :Goal, -R
+            overlap_checked_particles/1 % -N
           ]).
 
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 
-:- meta_predicate pool_run(0, :, -).
+:- meta_predicate pool_run(0, :, -), with_random_stream(+, 0, -).
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).
@@ -38,6 +42,18 @@ group_seeds(K, Seeds) :-
 
 random_seed(S) :-
     random_between(0, 0x3fffffffffffffff, S).
+
+%!  with_random_stream(+Start, :Goal, -R) is semidet.
+%
+%   Runs Goal with Prolog's random stream set by set_random(Start)
+%   (seed(S) or state(R0)), R the stream's state after Goal; the caller's
+%   stream is restored, also when Goal fails or raises an error.  A filter,
+%   and each group of one, owns its stream: its draws do not depend on what
+%   other filters or queries drew in between.
+with_random_stream(Start, Goal, R) :-
+    random_property(state(Saved)),
+    call_cleanup(( set_random(Start), Goal, random_property(state(R)) ),
+                 set_random(state(Saved))).
 
 %!  group_bounds(+From, +To, +K, -Bounds) is det.
 %
@@ -62,6 +78,17 @@ group_sizes(N, K, Sizes) :-
 
 bound_size(Lo-Hi, Size) :-
     Size is Hi-Lo+1.
+
+%!  overlap_checked_particles(-N) is det.
+%
+%   Overlapping clauses are looked for in the first N particles of every
+%   filter step, by both engines (ddc_particles.pl's step_range_at/10,
+%   ddc_batch.pl's check_list/3): the horizon of that check, a constant of
+%   the engine.  Checking a particle costs an evaluation of each rival
+%   clause's body in it, so the check looks at a few particles, not at all
+%   of them.  (Static queries have a horizon of their own: ddc_world.pl's
+%   overlap_checked_worlds/1.)
+overlap_checked_particles(20).
 
 %!  pool_run(:Local, +Jobs:list, -Outs:list) is det.
 %

@@ -299,11 +299,9 @@ test(pit_world_non_ground_reads_agree_with_the_per_particle_engine) :-
 %   fields are linked, not bound.
 test(a_resampled_table_survives_backtracking) :-
     table_new(Tab),
-    new_entry(E0), entry_column(E0, c(1, 2, 3)), entry_status(E0, defined),
-    entry_arity(E0, unknown),
+    make_entry([column(c(1, 2, 3)), status(defined), arity(unknown)], E0),
     table_put(Tab, x, E0),
-    new_entry(S0), entry_column(S0, c(a, a, a)), entry_status(S0, same(a)),
-    entry_arity(S0, none),
+    make_entry([column(c(a, a, a)), status(same(a)), arity(none)], S0),
     table_put(Tab, y, S0),
     functor(Holder, holder, 1),
     forall(true, ( resample_tables([Tab], [1-3, 1-2, 1-1], New),

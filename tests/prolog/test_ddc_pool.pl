@@ -38,6 +38,21 @@ test(seeds_come_from_the_current_stream) :-
     assertion(S1 \== S3),
     length(S1, 2).
 
+test(a_random_stream_of_its_own_leaves_the_callers_as_it_was) :-
+    set_random(seed(1)), random_property(state(Caller)),
+    with_random_stream(seed(7), random(X1), R1),
+    random_property(state(After)),
+    assertion(After == Caller),
+    with_random_stream(seed(7), random(X2), R2),
+    assertion(X1 == X2), assertion(R1 == R2),
+    with_random_stream(state(R1), random(Y1), _),
+    set_random(seed(7)), random(_), random(Y2),
+    assertion(Y1 == Y2),
+    catch(with_random_stream(seed(8), domain_error(x, y), _), _, true),
+    random_property(state(AfterError)),
+    set_random(seed(7)), random(_), random(_), random_property(state(Expected)),
+    assertion(AfterError == Expected).
+
 test(jobs_run_in_other_threads_and_come_back_in_order) :-
     thread_self(Me),
     findall(job(I, Out)-Out, between(1, 5, I), Jobs),
