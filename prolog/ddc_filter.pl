@@ -80,7 +80,7 @@
 :- use_module(ddc_particles, [particles_new/7]).
 :- use_module(ddc_filter_batched, [batched_init/6]).
 
-:- op(700, xfx, ~=).
+:- use_module(ddc_ops).
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).

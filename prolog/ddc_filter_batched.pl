@@ -15,7 +15,7 @@
 :- use_module(ddc_body, [info_derived_timed/2, info_rvs_untimed/2, info_rvs_timed/2]).
 :- use_module(ddc_batch).
 
-:- op(700, xfx, ~=).
+:- use_module(ddc_ops).
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).
