@@ -10,7 +10,6 @@
           [ batched_init/6              % !State, +Module, +Items, +N, +Seed, +Threads
           ]).
 
-:- use_module(library(lists)).
 :- use_module(ddc_records).
 :- use_module(ddc_body, [info_derived_timed/2, info_rvs_untimed/2, info_rvs_timed/2]).
 :- use_module(ddc_batch).

@@ -36,7 +36,6 @@ Time) -> ix(Xs) (record ix, field keys).
 %   Arithmetic compiled inline (local to this file; see ddc.pl).
 :- set_prolog_flag(optimise, true).
 
-:- use_module(library(apply)).
 :- use_module(library(aggregate)).
 :- use_module(library(lists)).
 :- use_module(ddc_records).
