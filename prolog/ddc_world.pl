@@ -740,7 +740,7 @@ materialised_shared(SS, T, _-NA) :-
 
 %   sweep_clause(+W, +M, +Id, ?X, +T): samples the keys X-T that clause Id
 %   defines.  If none of them needed anything of a particle's own (all
-%   shared, see "Shared values" in ddc.pl), that holds in every particle:
+%   shared, see "Shared values" above), that holds in every particle:
 %   marked '$swept'(Id, T) in the shared store, the clause is skipped in
 %   the particles that come after.
 sweep_clause(W, _, Id, _, T) :-
