@@ -57,6 +57,7 @@
 :- reexport(ddc, [ddc_load/1, ddc_load/2, ddc_program/1, query/5, query/8]).
 :- use_module(ddc_belief).
 :- use_module(dc_compat_load).
+:- use_module(ddc_programs, [program_file_/2]).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(error)).
@@ -337,7 +338,7 @@ remove_duplicates(L, S) :-
 init_particle(N) :-
     must_be(positive_integer, N),
     (   ddc_program(M) -> true ; throw(error(ddc(no_program_loaded, query), _)) ),
-    ddc:program_file_(M, File),
+    program_file_(M, File),
     (   current_belief_(B0, _) -> catch(belief_free(B0), _, true) ; true ),
     retractall(current_belief_(_, _)),
     retractall(ll_offset_(_)),

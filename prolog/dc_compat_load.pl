@@ -1,7 +1,7 @@
-/*  dc_compat_load.pl -- what the loader of ddc.pl needs to read programs
+/*  dc_compat_load.pl -- what the engine's reader needs to read programs
     written for the original Distributional Clauses system (DC/DCPF, YAP).
 
-    Two things, both called from ddc.pl while it compiles a program:
+    Two things, both called from ddc_read.pl while it reads a program:
     the original's option directives (set_options/1, set_inference/1, ...),
     accepted with a warning where an option changes nothing in this engine,
     and the original's arithmetic (`X is random`), rewritten to SWI-Prolog's.
@@ -30,7 +30,7 @@ The original programs start with
     :- set_options(default), set_inference(backward(lw)).
     :- initialization(init).
 
-ddc.pl ignores the use_module/1 and initialization/1 directives itself;
+ddc_read.pl ignores the use_module/1 and initialization/1 directives itself;
 this module accepts the option setters, alone or in a conjunction.  An
 option whose value is what this engine does anyway is silent; one that the
 original honoured and this engine does not (another inference mode, lifted
@@ -111,7 +111,7 @@ boolean(B) :- B == true ; B == false.
 
 %!  original_program(+Items0:list, -Items:list) is det.
 %
-%   Items0 are the terms of a program as ddc.pl read them, t(Term, Line);
+%   Items0 are the terms of a program as ddc_read.pl read them, t(Term, Line);
 %   Items has the original's arithmetic rewritten in every term
 %   (original_arithmetic/2) and, in a program written for the original
 %   (one with a set_options/1 directive, which the original requires),

@@ -13,8 +13,6 @@
 
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module(library(aggregate)).
-:- use_module(library(error)).
 :- use_module(library(pairs)).
 :- use_module(library(assoc)).
 :- use_module(library(ordsets)).

@@ -80,7 +80,7 @@
 :- use_module(ddc_particles, [particles_new/7]).
 :- use_module(ddc_filter_batched, [batched_init/6]).
 
-:- op(700, xfx, ~=).
+:- use_module(ddc_ops).
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).
@@ -264,9 +264,14 @@ outside_filter(F) :-
 %   filter_handle(+F, -Module, -State): F's engine (the module implementing
 %   it) and its state, updated in place.  (In F's engine.)
 filter_handle(F, Module, State) :-
-    (   atom(F), nb_current(F, H), H = filter_handle(_, _, _)
-    ->  filter_handle_module(H, Module),
-        filter_handle_state(H, State)
+    current_handle(F, H),
+    filter_handle_module(H, Module),
+    filter_handle_state(H, State).
+
+%   current_handle(+F, -H): F's filter_handle record.  (In F's engine.)
+current_handle(F, H) :-
+    (   atom(F), nb_current(F, H0), H0 = filter_handle(_, _, _)
+    ->  H = H0
     ;   throw(error(ddc(unknown_filter(F), query), _))
     ).
 
@@ -288,10 +293,8 @@ filter_engine(F, E) :-
     outside_filter(F), !,
     filter_call(F, filter_engine(F, E)).
 filter_engine(F, E) :-
-    (   atom(F), nb_current(F, H), H = filter_handle(_, _, _)
-    ->  filter_handle_engine(H, E)
-    ;   throw(error(ddc(unknown_filter(F), query), _))
-    ).
+    current_handle(F, H),
+    filter_handle_engine(H, E).
 
 %!  filter_time(+Filter, -T) is det.
 filter_time(F, T) :-

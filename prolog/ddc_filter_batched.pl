@@ -10,12 +10,11 @@
           [ batched_init/6              % !State, +Module, +Items, +N, +Seed, +Threads
           ]).
 
-:- use_module(library(lists)).
 :- use_module(ddc_records).
 :- use_module(ddc_body, [info_derived_timed/2, info_rvs_untimed/2, info_rvs_timed/2]).
 :- use_module(ddc_batch).
 
-:- op(700, xfx, ~=).
+:- use_module(ddc_ops).
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).

@@ -64,7 +64,7 @@
 :- use_module(ddc_rows).
 :- use_module(ddc_batch, [overlap_checked_particles/1]).
 
-:- op(700, xfx, ~=).
+:- use_module(ddc_ops).
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).

@@ -18,7 +18,6 @@
           ]).
 
 :- use_module(library(lists)).
-:- use_module(library(apply)).
 :- use_module(library(error)).
 :- use_module(ddc_records).
 :- use_module(ddc_read).

@@ -18,8 +18,7 @@
             ddc_query_text/6,           % +Module, +QueryText, +EvidenceText, +N, +Seed, -Result
             ddc_expectation_text/7,     % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Result
             ddc_distribution_text/7,    % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Pairs
-            ddc_sample_world/4,         % +Module, +Query, +Options, -Facts
-            '$ev_holds'/1               % +World
+            ddc_sample_world/4          % +Module, +Query, +Options, -Facts
           ]).
 
 :- use_module(library(lists)).

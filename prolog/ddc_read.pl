@@ -19,9 +19,7 @@
           ]).
 
 :- use_module(library(lists)).
-:- use_module(library(apply)).
 :- use_module(library(aggregate)).
-:- use_module(library(error)).
 :- use_module(library(modules)).
 :- use_module(ddc_nesting).
 :- use_module(dc_compat_load).   % the original DC's option directives and arithmetic

@@ -17,8 +17,6 @@
             store_delete/2,         % +Store, +Key
             store_entries/2,        % +Store, -Pairs
             store_match/3,          % +Store, ?Key, -Value   (non-ground key: scan)
-            store_filter/3,         % +Store, :Keep, -NewStore
-            store_retain/2,         % +Store, :Keep  (in place)
             store_prune/3,          % +Store, +MinTime, +DropKeys (in place)
             store_size/2            % +Store, -Count
           ]).
@@ -36,15 +34,12 @@ Time) -> ix(Xs) (record ix, field keys).
 %   Arithmetic compiled inline (local to this file; see ddc.pl).
 :- set_prolog_flag(optimise, true).
 
-:- use_module(library(apply)).
 :- use_module(library(aggregate)).
 :- use_module(library(lists)).
 :- use_module(ddc_records).
 
 :- record_type store(count, data, indexed).
 :- record_type ix(keys).
-
-:- meta_predicate store_filter(+, 2, -), store_retain(+, 2).
 
 %   Small stores (up to 8 entries) are a list of Key-Value in argument 2;
 %   larger ones a bucket term b(L1, ..., Ln).
@@ -217,60 +212,12 @@ store_match(T, K, V) :-
 store_size(T, C) :-
     aggregate_all(count, store_match(T, _, _), C).
 
-%!  store_filter(+Store, :Keep, -New) is det.
-%
-%   New holds the entries K-V of Store for which call(Keep, K, V) succeeds.
-store_filter(T, Keep, New) :-
-    store_indexed(T, Ix),
-    store_new(New, Ix),   % (store_match/3 leaves the index out: store_put/3 rebuilds it)
-    forall(( store_match(T, K, V), call(Keep, K, V) ), store_put(New, K, V)).
-
-%!  store_retain(+Store, :Keep) is det.
-%
-%   Removes, in place, the entries K-V for which call(Keep, K, V) fails.
-store_retain(T, Keep) :-
-    store_data(T, D),
-    (   D == []
-    ->  true
-    ;   D = [_|_]
-    ->  include_kv(D, Keep, D1, 0, C),
-        nb_set_store_data(T, D1),
-        nb_set_store_count(T, C)
-    ;   functor(D, _, S),
-        retain_buckets(1, S, D, Keep, 0, C),
-        nb_set_store_count(T, C)
-    ).
-
-retain_buckets(I, S, B, Keep, C0, C) :-
-    (   I > S
-    ->  C = C0
-    ;   arg(I, B, L),
-        (   var(L)
-        ->  C1 = C0
-        ;   include_kv(L, Keep, L1, C0, C1),
-            (   L1 == L -> true
-            ;   L1 == [] -> nb_setarg(I, B, _)
-            ;   nb_setarg(I, B, L1)
-            )
-        ),
-        I1 is I+1,
-        retain_buckets(I1, S, B, Keep, C1, C)
-    ).
-
-include_kv([], _, [], C, C).
-include_kv([K-V|T], Keep, Out, C0, C) :-
-    (   ( K = '$by'(_, _) ; call(Keep, K, V) )
-    ->  Out = [K-V|Out1], C1 is C0+1
-    ;   Out = Out1, C1 = C0
-    ),
-    include_kv(T, Keep, Out1, C1, C).
-
 %!  store_prune(+Store, +MinTime, +DropKeys) is det.
 %
 %   In place: removes the entries whose key has a time below MinTime (keys
 %   X-T, '$memo'(G, T), '$mat'(S, T), '$w'(X, T), '$swept'(I, T) with an
-%   integer T) and those whose key is in DropKeys.  The specialised form
-%   of store_retain/2 the particle filter runs at every step.
+%   integer T) and those whose key is in DropKeys.  The particle filter
+%   runs it at every step.
 store_prune(T, MinT, Drop) :-
     store_data(T, D),
     (   D == []

@@ -15,17 +15,10 @@
             world_time_goal/3,          % ?World, ?Time, -Goal
             static_world/1,             % !World
             group_facts/2,              % +Facts, -Groups
-            known/3,                    % +World, +Key, -Value
-            shared_known/2,             % +World, +Key
-            impure/1,                   % !World
-            begin_value/2,              % !World, -Pure0
-            end_value/4,                % !World, +Pure0, +Key, +Value
-            end_memo/5,                 % !World, +Pure0, +Shared, +Key, +Memo
             weigh_key/5,                % +X, +T, +Value, !World, +Accumulator
             with_shared/1,              % :Goal
             overlap_checked_worlds/1,   % -N
             sweep/2,                    % !World, +T
-            sweep_items/4,              % +Module, +T, -Ids, -Ders
             sweep_kind/2,               % +Kind, +T
             plan_sweep/3,               % +Module, +Shared, +T
             needs_eval/1,               % +Dist
@@ -740,7 +733,7 @@ materialised_shared(SS, T, _-NA) :-
 
 %   sweep_clause(+W, +M, +Id, ?X, +T): samples the keys X-T that clause Id
 %   defines.  If none of them needed anything of a particle's own (all
-%   shared, see "Shared values" in ddc.pl), that holds in every particle:
+%   shared, see "Shared values" above), that holds in every particle:
 %   marked '$swept'(Id, T) in the shared store, the clause is skipped in
 %   the particles that come after.
 sweep_clause(W, _, Id, _, T) :-
