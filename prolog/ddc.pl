@@ -73,11 +73,10 @@
                             filter_resample/2, filter_holds/3, filter_values/4,
                             filter_rows/6, filter_time/2, filter_engine/2, filter_size/2,
                             filter_statistics/2, filter_free/1, filter_call/2 ]).
-:- use_module(ddc_errors, [engine_error/1]).
 :- use_module(ddc_world, [eval_dist/2]).
-%   (engine_error/1, filter_call/2, dist_sugar/2 and eval_dist/2 are
-%   imported for the callers that reach them as ddc:...: ddc_batch_eval.pl,
-%   bench/filter_step.py and ddc_learn_facts.pl.)
+%   (filter_call/2, dist_sugar/2 and eval_dist/2 are imported for the
+%   callers that reach them as ddc:...: bench/filter_step.py and
+%   ddc_learn_facts.pl.)
 :- reexport(ddc_models).       % logistic/3, linear/3, softmax/3, mean_list/2, ...
 
 /** <module> Dynamic Distributional Clauses

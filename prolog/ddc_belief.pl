@@ -50,6 +50,7 @@
 :- use_module(library(readutil)).
 :- use_module(library(http/json)).
 :- use_module(ddc_nesting).
+:- use_module(ddc_pool, [with_random_stream/3]).
 
 :- meta_predicate belief_run(+, +, 1).
 
@@ -98,15 +99,7 @@ belief_new(File, Options, belief(Key)) :-
 %   but not equal to the particles' stream.
 resampling_stream(Seed, R) :-
     term_hash(resampling(Seed), S),
-    with_stream(_, set_random(seed(S)), R).
-
-%   with_stream(+R0, :Goal, -R): runs Goal with the random stream in state
-%   R0 (fresh if unbound), R the state after; the caller's stream is kept.
-with_stream(R0, Goal, R) :-
-    random_property(state(Saved)),
-    (   var(R0) -> true ; set_random(state(R0)) ),
-    call_cleanup(( call(Goal), random_property(state(R)) ),
-                 set_random(state(Saved))).
+    with_random_stream(seed(S), true, R).
 
 state(belief(Key), S) :-
     (   atom(Key), nb_current(Key, S0), S0 = belief(_, _, _, _, _, _, _, _, _)
@@ -167,7 +160,7 @@ belief_step(B, Obs, Acts, Step) :-
         (   ESS < Th * N
         ->  maplist(exp_weight, LWs1, Ws),
             length(Us, N),
-            with_stream(R0, maplist(random_float_, Us), R),
+            with_random_stream(state(R0), maplist(random_float_, Us), R),
             resample_indices(Scheme, Ws, Us, Is),
             filter_resample(F, Is),
             uniform_log_weights(N, LWs),

@@ -62,7 +62,6 @@
 :- use_module(ddc_programs, [optimised/1]).
 :- use_module(ddc_pool).
 :- use_module(ddc_rows).
-:- use_module(ddc_batch, [overlap_checked_particles/1]).
 
 :- use_module(ddc_ops).
 
@@ -122,15 +121,6 @@ init_particle(M, Sh, W) :-
 particle_store(S) :-
     store_new(S, false).
 
-%   Each filter owns its random generator state: a filter's draws do not
-%   depend on what other filters or queries did in between.
-:- meta_predicate with_rng(+, 0, -).
-with_rng(R, Goal, R1) :-
-    random_property(state(Saved)),
-    set_random(state(R)),
-    call_cleanup(( Goal, random_property(state(R1)) ),
-                 set_random(state(Saved))).
-
 %   engine_step(!State, +Weighted, +Facts, -LogWeights)
 engine_step(State, Weighted, Facts0, LogWs) :-
     particles_module(State, M),
@@ -146,7 +136,10 @@ engine_step(State, Weighted, Facts0, LogWs) :-
     particles_name(State, F),
     scratch_copy(F, Ws0, Sh0, Ws, Sh),
     record_observations(Sh, T, Keys),
-    with_rng(R0, with_shared(step_particles(Ws, N, M, T1, Keys, Facts, Sh, LogWs, Agreed)), R1),
+    with_random_stream(state(R0),
+                       with_shared(step_particles(Ws, N, M, T1, Keys, Facts, Sh, LogWs,
+                                                  Agreed)),
+                       R1),
     share_agreed(Ws, N, Sh, T1, Agreed),
     commit(State, T1, Ws, Sh, T, Ws0, Sh0, R1).
 
@@ -634,7 +627,7 @@ proved_values(State, M, N, T, Ws, R0, Sh, Info, Goal, Template, Values) :-
     conj_from_list(Cs, Code),
     optimised(assertz(M:('$ddc_tmp'(Id, q, W, X1) :- Code))),
     call_cleanup(
-        with_rng(R0,
+        with_random_stream(state(R0),
                  with_shared(
                      findall(V, ( between(1, N, I), arg(I, Ws, Wi),
                                   nb_link_world_shared(Wi, Sh),

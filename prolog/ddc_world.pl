@@ -116,7 +116,7 @@ new_shared(Share, K, shared(Shared, Impure, [], Share, 0, K)) :-
 %
 %   Overlapping clauses are looked for in the first N sampled worlds of a
 %   query (and in the first overlap_checked_particles/1 particles of every
-%   filter step, ddc_batch.pl): a check proves the later clauses' bodies,
+%   filter step, ddc_pool.pl): a check proves the later clauses' bodies,
 %   too dear for every world.
 overlap_checked_worlds(200).
 
