@@ -121,6 +121,7 @@ init_particle(M, Sh, W) :-
 particle_store(S) :-
     store_new(S, false).
 
+
 %   engine_step(!State, +Weighted, +Facts, -LogWeights)
 engine_step(State, Weighted, Facts0, LogWs) :-
     particles_module(State, M),
@@ -330,8 +331,18 @@ step_particles(Ws, N, M, T1, Keys, Facts, Sh, [LW1|LWs], Agreed) :-
                        settled_step(W, T1, Facts, LW1, DX, Moved) ), LWs),
         Agreed = none
     ;   plan_sweep(M, Sh, T1),
-        step_groups(Seeds, Ws, N, M, T1, Keys, Facts, Sh, LWs, Agreed)
+        groups_seeds(Seeds, N, GroupSeeds),
+        step_groups(GroupSeeds, Ws, N, M, T1, Keys, Facts, Sh, LWs, Agreed)
     ).
+
+%   groups_seeds(+Seeds, +N, -GroupSeeds): the seeds of the groups that
+%   are not empty: particles 2..N make at most N-1 groups (each group but
+%   the first has a seed of its own).
+groups_seeds(Seeds, N, GroupSeeds) :-
+    length(Seeds, K1),
+    Used is max(0, min(K1, N-2)),
+    length(GroupSeeds, Used),
+    append(GroupSeeds, _, Seeds).
 
 
 %   step_groups(+Seeds, +Ws, +N, +M, +T1, +Keys, +Facts, +Sh, -LogWs,

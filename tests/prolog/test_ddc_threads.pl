@@ -71,6 +71,19 @@ in_thread_result(Goal, Template, Result) :-
 
 :- begin_tests(ddc_threads).
 
+% More threads than particles to share among them: the groups that would
+% be empty are not made (the per-particle engine failed the step).
+test(more_threads_than_particles_steps,
+     [forall(( member(N-K, [1-2, 2-2, 3-3, 3-4, 5-8]),
+               member(Engine, [per_particle, batched]) ))]) :-
+    pit_world(File),
+    filter_new(File, N, 7, [threads(K), engine(Engine)], F),
+    filter_step(F, [observation(breeze) ~= false], [action(up)], LWs),
+    filter_step(F, [observation(breeze) ~= true], [action(right)], LWs2),
+    filter_free(F),
+    length(LWs, N),
+    length(LWs2, N).
+
 test(made_and_stepped_in_a_thread_gives_the_main_threads_particles,
      [forall(setup(Options))]) :-
     pit_world(File),
