@@ -31,6 +31,7 @@
 :- use_module(library(pairs)).
 :- use_module(ddc_batch_tables, [tuple_shape/2]).
 :- use_module(ddc_body, [conj_from_list/2]).
+:- use_module(ddc_programs, [optimised/1]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -255,7 +256,7 @@ compiled_loop(Kind, Head, Consts, I, Cond, Name) :-
                    (   '$b_loop_ready'(Name) -> true
                    ;   copy_term(Shape, loop(Kind1, Head1, Consts1, I1, Cond1)),
                        loop_clauses(Kind1, Name, Head1, Consts1, I1, Cond1, Clauses),
-                       optimised_assert(Clauses),
+                       optimised(forall(member(C, Clauses), assertz(C))),
                        compile_predicates([Name/4]),
                        assertz('$b_loop_ready'(Name))   % (last: another thread may look)
                    ))
@@ -290,12 +291,6 @@ bind_goals([C-P|Bs], I, [C|Cs], [CV|CVs], [arg(I, CV, P)|Gs], Es) :- !,
     bind_goals(Bs, I, Cs, CVs, Gs, Es).
 bind_goals(['$e'(W, Ex, _)|Bs], I, Cs, CVs, Gs, [W is Ex|Es]) :-
     bind_goals(Bs, I, Cs, CVs, Gs, Es).
-
-optimised_assert(Clauses) :-
-    current_prolog_flag(optimise, Old),
-    setup_call_cleanup(set_prolog_flag(optimise, true),
-                       forall(member(C, Clauses), assertz(C)),
-                       set_prolog_flag(optimise, Old)).
 
 test_each([], _, _, []).
 test_each([I|Is], Bs, G, Ps) :-
