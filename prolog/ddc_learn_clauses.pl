@@ -16,8 +16,7 @@
 :- use_module(ddc_learn_records).
 :- use_module(ddc_learn_text, [clause_names/3, conj_list/2, learn_clause_text/3, new_var/4,
                                print_conj/1, print_literal/1, print_dc_term/1, term_text/3]).
-:- use_module(ddc_learn_candidates, [agg_call/4, bind_in/2, branch_literal/6, fresh_names/3,
-                                     fresh_values/2]).
+:- use_module(ddc_learn_candidates, [agg_call/4, fresh_values/2, node_branch_literal/8]).
 :- use_module(ddc_learn_background, [learn_background/3]).
 
 :- set_prolog_flag(optimise, true).
@@ -25,7 +24,7 @@
 /** <module> Learned clauses
 
 A leaf's clause is the target's head, the literals of the path from the
-root (each step's branch, branch_literal/6) and the leaf's model: its
+root (each step's branch, node_branch_literal/8) and the leaf's model: its
 distribution and, for a model with regressors, the goals that compute the
 distribution's parameters from the path's values.  The tree form says
 the same program as one clause per target (learn_tree_text/3).
@@ -313,14 +312,10 @@ renamed_dc(_, G, G).
 path_literal(M, step(Id, B), path_state(Lits, VT0, Bs0, K0, Xs0),
              path_state([Lit|Lits], VT, Bs, K, [K0-X|Xs0])) :-
     M:'$ddcl_cand'(Id, _, Spec0),
-    copy_term(Spec0, Spec),
+    node_branch_literal(M, Spec0, VT0, B, Spec, Lit, Bs0, Bs),
     candidate_kind(Spec, Kind),
-    candidate_inputs(Spec, Ins),
     candidate_fresh(Spec, Fresh),
     candidate_value(Spec, Val),
-    maplist(bind_in(VT0), Ins),
-    fresh_names(Fresh, Bs0, Bs1),
-    branch_literal(M, Spec, B, Lit, Bs1, Bs),
     (   B =:= 0, Fresh \== []
     ->  fresh_values(Fresh, FVs), append(VT0, FVs, VT)
     ;   VT = VT0
