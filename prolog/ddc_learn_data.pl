@@ -31,13 +31,8 @@
             fact_where/3,               % +Data, +Key, -Where
             dist_points/3,              % +Dist, +Samples, -Points
             data_read_terms/3,          % +File, +Mode, -Items
-            op(700, xfx, ~),
-            op(700, xfx, ~=),
-            op(1105, xfx, :=),
-            op(1105, xfx, <-),
-            op(1150, xfx, pr),
-            op(700, xfx, ::)
-          ]).
+            op(700, xfx, ::)            % P :: Atom, a probabilistic atom (the DC
+          ]).                           % operators: reexported from ddc_ops)
 
 :- use_module(library(lists)).
 :- use_module(library(apply)).
@@ -53,13 +48,8 @@
 :- reexport(ddc_learn_syntax, [dc_goal/4, internal_key/3, dc_term/3]).
 :- reexport(ddc_learn_facts, [pick/3, fact_where/3, dist_points/3]).
 :- reexport(ddc_learn_messages, [message_text/2]).
-
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
-:- op(1105, xfx, :=).
-:- op(1105, xfx, <-).
-:- op(1150, xfx, pr).
-:- op(700, xfx, ::).
+:- reexport(ddc_ops).                   % data_read_terms/3 reads with them; the learner's
+                                        % modules read and write DC terms with them
 
 /** <module> Learning data for the DC structure learner
 

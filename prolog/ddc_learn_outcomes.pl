@@ -13,7 +13,6 @@
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
 :- use_module(ddc_models).
-:- use_module(ddc_learn_data).
 :- use_module(ddc_learn_records).
 :- use_module(ddc_learn_worlds, [world_alternatives/6, in_world/2]).
 :- use_module(ddc_learn_candidates, [candidate_id/3, fresh_values/2]).
