@@ -90,8 +90,7 @@ literal_preds(L, [N]) :- functor(L, N, _).
 
 %   instance(+M, +Vars, +MId, +Agg, +Cond, +Lit, +Where, -Spec) is nondet.
 %
-%   Spec is a candidate(Mode, Kind, Goal, Inputs, Fresh, Value, Domain,
-%   Thresholds, Aggregate, Literal) record (its fields: ddc_learn_records.pl).
+%   Spec is a candidate record (its fields: ddc_learn_records.pl).
 instance(M, Vars, MId, none, none, L, W, Spec) :- !,
     literal_args(M, L, W, N, KModes, VMode, KTypes, VSpec),
     bind_keys(M, KModes, KTypes, Vars, KArgs, [], Ins0, [], Fresh0),
@@ -102,7 +101,9 @@ instance(M, Vars, MId, none, none, L, W, Spec) :- !,
         ( Kind == test -> Val = none ; Val = Val0 )
     ),
     reverse(Fresh0, Fresh),
-    Spec = candidate(MId, Kind, G, Ins, Fresh, Val, Dom, Ts, none, lit(true, G, [])).
+    make_candidate([mode(MId), kind(Kind), goal(G), inputs(Ins), fresh(Fresh), value(Val),
+                    domain(Dom), thresholds(Ts), aggregate(none), literal(lit(true, G, []))],
+                   Spec).
 instance(M, Vars, MId, Agg, Cond, L, W, Spec) :-
     (   Cond == none
     ->  CG = true, CIns = [], CFresh = []
@@ -127,7 +128,9 @@ instance(M, Vars, MId, Agg, Cond, L, W, Spec) :-
     conj(CG, LG, G),
     literal_locals(M, LG, KModes, KTypes, KArgs, LLocal),
     append(Local, LLocal, Locals),
-    Spec = candidate(MId, Kind, G, Ins, [], Val, Dom, [], Agg, lit(CG, LG, Locals)).
+    make_candidate([mode(MId), kind(Kind), goal(G), inputs(Ins), fresh([]), value(Val),
+                    domain(Dom), thresholds([]), aggregate(Agg), literal(lit(CG, LG, Locals))],
+                   Spec).
 
 %   literal_locals: the aggregated literal's own new variables (- keys).
 literal_locals(_, _, Modes, Types, Args, Locals) :-

@@ -108,7 +108,8 @@ learn_tree_text(M, Leaves, Text) :-
     once(model_goals(Model0, Spec, _, Dist0, _, [], _)),
     dist_template(Dist0, Dist, Bs0, Bs1),
     maplist(leaf_item(M), Leaves, Items),
-    tree_node(Items, tree_context(M, Spec, Dist), path_state([], HeadVars, Bs1, 0, []), Bs, Tree),
+    start_path(HeadVars, Bs1, S0),
+    tree_node(Items, tree_context(M, Spec, Dist), S0, Bs, Tree),
     dedupe_names(Bs, Bs2),
     copy_term(t(Head, Dist, Guard, Tree)-Bs2, t(H1, D1, G1, T1)-Bs3),
     maplist([Name=V]>>( var(V) -> V = '$VAR'(Name) ; true ), Bs3),
@@ -272,8 +273,11 @@ clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs) :-
     length(HeadVars, A),
     clause_names(HeadInfo, HeadVars, Bs0),
     K =.. [N|HeadVars], dc_term(M, K, Head),
-    foldl(path_literal(M), Path, path_state([], HeadVars, Bs0, 0, []),
-          path_state(RevLits, _, Bs1, _, Xs0)),
+    start_path(HeadVars, Bs0, S0),
+    foldl(path_literal(M), Path, S0, S),
+    path_state_literals(S, RevLits),
+    path_state_names(S, Bs1),
+    path_state_regressors(S, Xs0),
     reverse(RevLits, Lits1),
     examples_guard(M, N, A, HeadVars, Lits1, Lits),
     regressor_vars(Regs, Xs0, Xs),
@@ -306,11 +310,21 @@ renamed_dc(M, K ~= V, DK ~= V) :- !, dc_term(M, K, DK).
 renamed_dc(M, G, DG) :- callable(G), !, dc_term(M, G, DG).
 renamed_dc(_, G, G).
 
-%   path_literal(+M, +Step, +S0, -S): S0 and S are path_state(Literals,
-%   VarTerms, Names, Step, Regressors) records (ddc_learn_records.pl): the
-%   step's literal is added to the body, its new variables to the node's.
-path_literal(M, step(Id, B), path_state(Lits, VT0, Bs0, K0, Xs0),
-             path_state([Lit|Lits], VT, Bs, K, [K0-X|Xs0])) :-
+%   start_path(+HeadVars, +Names, -S): the path_state record
+%   (ddc_learn_records.pl) at the root: no literal yet, the head's
+%   variables, their names.
+start_path(HeadVars, Bs, S) :-
+    make_path_state([literals([]), values(HeadVars), names(Bs), step(0), regressors([])], S).
+
+%   path_literal(+M, +Step, +S0, -S): S0 and S are path_state records
+%   (ddc_learn_records.pl): the step's literal is added to the body, its
+%   new variables to the node's.
+path_literal(M, step(Id, B), S0, S) :-
+    path_state_literals(S0, Lits),
+    path_state_values(S0, VT0),
+    path_state_names(S0, Bs0),
+    path_state_step(S0, K0),
+    path_state_regressors(S0, Xs0),
     M:'$ddcl_cand'(Id, _, Spec0),
     node_branch_literal(M, Spec0, VT0, B, Spec, Lit, Bs0, Bs),
     candidate_kind(Spec, Kind),
@@ -321,7 +335,9 @@ path_literal(M, step(Id, B), path_state(Lits, VT0, Bs0, K0, Xs0),
     ;   VT = VT0
     ),
     regressor_of(Kind, Lit, Val, X),
-    K is K0+1.
+    K is K0+1,
+    make_path_state([literals([Lit|Lits]), values(VT), names(Bs), step(K),
+                     regressors([K0-X|Xs0])], S).
 
 %   regressor_of(+Kind, +Literal, +Val, -X): the variable whose value a
 %   step gives the leaf's model (an attribute's value, a count, a mean).

@@ -63,7 +63,8 @@ learn_root(M, N, _Options, _{node: Id, y: Ys, weight: Ws, example: Es}) :-
     Goal = ( once(M:TG) -> Y = V ; Y = Missing ),
     retractall(M:'$ddcl_node_target'(_)), assertz(M:'$ddcl_node_target'(N)),
     foldl(root_rows(M, Spec, Ks, Goal, Y, E0), Keys, 0-Rows-Ys-Ws-Es, _-[]-[]-[]-[]),
-    new_node(M, node_info(target(N, A, Spec), Vars, [], []), Rows, Id).
+    make_node_info([target(target(N, A, Spec)), vars(Vars), used([]), path([])], Info),
+    new_node(M, Info, Rows, Id).
 
 root_rows(M, Spec, Ks, Goal, Y, E0, Key, I0-Rows0-Ys0-Ws0-Es0, I-Rows-Ys-Ws-Es) :-
     I is I0+1,
@@ -166,7 +167,8 @@ child(M, T, Vars, Used, Path, Id, Fresh, Pairs, B,
     ;   Vars1 = Vars
     ),
     append(Path, [step(Id, B)], Path1),
-    new_node(M, node_info(T, Vars1, [Id|Used], Path1), Rows, C).
+    make_node_info([target(T), vars(Vars1), used([Id|Used]), path(Path1)], Info1),
+    new_node(M, Info1, Rows, C).
 
 fresh_var(v(Type, _), Vars0-Used0, Vars-[Name|Used0]) :-
     type_var_base(Type, Base),
