@@ -45,10 +45,8 @@ the same program as one clause per target (learn_tree_text/3).
 %   softmax(WeightRows), poisson(Rate), poisson_log_linear(Weights);
 %   weights are [w1, ..., wn, b].  Clause is clause(Term, Bindings) for
 %   learn_clause_text/3.
-learn_clause(M, Node, Model, Regs, clause((Head ~ Dist := Body), Bs)) :-
-    clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs),
-    append(Lits, Goals, Ls),
-    ( Ls == [] -> Body = true ; conj_list(Ls, Body) ).
+learn_clause(M, Node, Model, Regs, Clause) :-
+    leaf_clause(M, Node, Model, Regs, Clause, _, _).
 
 %!  learn_leaf_text(+Data, +Node, +ModelText, +Regressors, -Texts:dict) is det.
 %
@@ -57,14 +55,21 @@ learn_clause(M, Node, Model, Regs, clause((Head ~ Dist := Body), Bs)) :-
 %   statistical model's goals, "" without regressors).
 learn_leaf_text(M, Node, ModelText, Regs, _{clause: CT, distribution: DT, model: MT}) :-
     term_string(Model, ModelText),
-    clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs),
-    append(Lits, Goals, Ls),
-    ( Ls == [] -> Body = true ; conj_list(Ls, Body) ),
-    learn_clause_text(M, clause((Head ~ Dist := Body), Bs), CT),
+    leaf_clause(M, Node, Model, Regs, Clause, Dist, Goals),
+    Clause = clause(_, Bs),
+    learn_clause_text(M, Clause, CT),
     term_text(Dist, Bs, DT),
     (   Goals == [] -> MT = ""
     ;   conj_list(Goals, GC), term_text(GC, Bs, MT0), strip_parens(MT0, MT)
     ).
+
+%   leaf_clause(+M, +Node, +Model, +Regs, -Clause, -Dist, -Goals): the
+%   leaf's clause(Term, Bindings) (learn_clause/5), its head's distribution
+%   and its model's goals.
+leaf_clause(M, Node, Model, Regs, clause((Head ~ Dist := Body), Bs), Dist, Goals) :-
+    clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs),
+    append(Lits, Goals, Ls),
+    ( Ls == [] -> Body = true ; conj_list(Ls, Body) ).
 
 strip_parens(S0, S) :-
     (   sub_string(S0, 0, 1, _, "("), sub_string(S0, _, 1, 0, ")")
@@ -98,11 +103,7 @@ learn_tree_text(M, Leaves, Text) :-
     Leaves = [[N0, MT0|_]|_],
     M:'$ddcl_node'(N0, Info, _),
     node_info_target(Info, target(N, A, Spec)),
-    node_info_vars(Info, Vars),
-    length(HeadInfo, A), append(HeadInfo, _, Vars),
-    length(HeadVars, A),
-    clause_names(HeadInfo, HeadVars, Bs0),
-    K =.. [N|HeadVars], dc_term(M, K, Head),
+    tree_head(M, Info, Head, HeadVars, Bs0),
     examples_guard(M, N, A, HeadVars, [], Guard),
     term_string(Model0, MT0),
     once(model_goals(Model0, Spec, _, Dist0, _, [], _)),
@@ -267,12 +268,8 @@ print_cond(G) :- print_literal(G).
 clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs) :-
     M:'$ddcl_node'(Node, Info, _),
     node_info_target(Info, target(N, A, Spec)),
-    node_info_vars(Info, Vars),
     node_info_path(Info, Path),
-    length(HeadInfo, A), append(HeadInfo, _, Vars),
-    length(HeadVars, A),
-    clause_names(HeadInfo, HeadVars, Bs0),
-    K =.. [N|HeadVars], dc_term(M, K, Head),
+    tree_head(M, Info, Head, HeadVars, Bs0),
     start_path(HeadVars, Bs0, S0),
     foldl(path_literal(M), Path, S0, S),
     path_state_literals(S, RevLits),
@@ -284,6 +281,17 @@ clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs) :-
     (   model_goals(Model, Spec, Xs, Dist, Goals, Bs1, Bs) -> true
     ;   throw(error(ddc_learn(bad_model(Model, Spec), Node), _))
     ).
+
+%   tree_head(+M, +Info, -Head, -HeadVars, -Names): the DC head of the
+%   tree of a node (Info, a node_info record), with a fresh variable for
+%   each key argument, named as the node's first variables.
+tree_head(M, Info, Head, HeadVars, Bs) :-
+    node_info_target(Info, target(N, A, _)),
+    node_info_vars(Info, Vars),
+    length(HeadInfo, A), append(HeadInfo, _, Vars),
+    length(HeadVars, A),
+    clause_names(HeadInfo, HeadVars, Bs),
+    K =.. [N|HeadVars], dc_term(M, K, Head).
 
 %   examples_guard(+M, +N, +A, +HeadVars, +Lits0, -Lits): a target whose
 %   groundings examples/2 declares gets its goal as the first literal of
