@@ -16,6 +16,7 @@
 :- use_module(library(assoc)).
 :- use_module(library(pairs)).
 :- use_module(ddc_learn_data).
+:- use_module(ddc_learn_facts, [prob_table/2]).
 :- use_module(ddc_learn_records).
 :- use_module(ddc_learn_text, [type_var_base/2, unique_name/3]).
 :- use_module(ddc_learn_worlds, [world_alternatives/6]).
@@ -51,9 +52,8 @@ branch.
 %
 %   @error ddc_learn(target_without_facts(N/A), Where)
 learn_root(M, N, _Options, _{node: Id, y: Ys, weight: Ws, example: Es}) :-
-    M:'$ddcl_target'(N, A, How, W),
-    M:'$ddcl_pred'(N, A, rv(Spec)),
-    ( How = own(Names) -> true ; length(Names, A), maplist(=('_'), Names) ),
+    learn_data_targets(M, Ts),
+    memberchk(target(N, A, Spec, Names, W), Ts),
     head_vars(M, N, A, Names, Vars),
     target_examples(M, N, A, Keys),
     (   Keys == [] -> throw(error(ddc_learn(target_without_facts(N/A), W), _)) ; true ),
@@ -102,7 +102,7 @@ target_examples(M, N, A, Keys) :-
         list_to_set(Keys0, Keys)
     ;   length(Ks, A), append(Ks, [_], As), F =.. [N|As],
         findall(Ks, clause(M:F, true), K1),
-        atom_concat('$prob:', N, PN), append(Ks, [_], PAs), PF =.. [PN|PAs],
+        prob_table(N, PN), append(Ks, [_], PAs), PF =.. [PN|PAs],
         (   M:'$ddcl_prob_pred'(N, A) -> findall(Ks, clause(M:PF, true), K2) ; K2 = [] ),
         append(K1, K2, Keys)
     ).
@@ -170,10 +170,8 @@ child(M, T, Vars, Used, Path, Id, Fresh, Pairs, B,
     make_node_info([target(T), vars(Vars1), used([Id|Used]), path(Path1)], Info1),
     new_node(M, Info1, Rows, C).
 
-fresh_var(v(Type, _), Vars0-Used0, Vars-[Name|Used0]) :-
-    type_var_base(Type, Base),
-    unique_name(Base, Used0, Name),
-    append(Vars0, [v(Name, Type)], Vars).
+fresh_var(v(Type, _), S0, S) :-
+    head_var('_', Type, S0, S).                 % a name after its type
 
 new_node(M, Info, Rows, Id) :-
     next_id(M, node, Id),
