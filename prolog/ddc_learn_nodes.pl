@@ -8,6 +8,7 @@
             learn_forget/2,             % +Data, +Node
             learn_groundings/3,         % +Data, +Node, -Groundings
             target_examples/4,          % +Data, +Name, +KeyArity, -Keys
+            target_value_goal/6,        % +Data, +Name, +KeyArity, -Key, -Value, -Goal
             head_vars/5                 % +Data, +Name, +KeyArity, +Names, -Vars
           ]).
 
@@ -58,9 +59,7 @@ learn_root(M, N, _Options, _{node: Id, y: Ys, weight: Ws, example: Es}) :-
     target_examples(M, N, A, Keys),
     (   Keys == [] -> throw(error(ddc_learn(target_without_facts(N/A), W), _)) ; true ),
     empty_assoc(E0),
-    length(Ks, A), append(Ks, [V], As), TG =.. [N|As],
-    (   M:'$ddcl_examples'(N/A, _, _, _) -> Missing = false ; Missing = '$none' ),
-    Goal = ( once(M:TG) -> Y = V ; Y = Missing ),
+    target_value_goal(M, N, A, Ks, Y, Goal),
     retractall(M:'$ddcl_node_target'(_)), assertz(M:'$ddcl_node_target'(N)),
     foldl(root_rows(M, Spec, Ks, Goal, Y, E0), Keys, 0-Rows-Ys-Ws-Es, _-[]-[]-[]-[]),
     make_node_info([target(target(N, A, Spec)), vars(Vars), used([]), path([])], Info),
@@ -106,6 +105,18 @@ target_examples(M, N, A, Keys) :-
         (   M:'$ddcl_prob_pred'(N, A) -> findall(Ks, clause(M:PF, true), K2) ; K2 = [] ),
         append(K1, K2, Keys)
     ).
+
+%!  target_value_goal(+Data, +Name:atom, +KeyArity:integer, -Key:list,
+%!                    -Value, -Goal) is det.
+%
+%   Goal, once the variables Key are bound to a grounding, binds Value to
+%   the target's value in the data: false where examples/2 declares the
+%   groundings and the grounding has no fact (a Boolean target given as
+%   atoms), '$none' where it has none otherwise.
+target_value_goal(M, N, A, Ks, Y, Goal) :-
+    length(Ks, A), append(Ks, [V], As), TG =.. [N|As],
+    (   M:'$ddcl_examples'(N/A, _, _, _) -> Missing = false ; Missing = '$none' ),
+    Goal = ( once(M:TG) -> Y = V ; Y = Missing ).
 
 %!  head_vars(+Data, +Name:atom, +KeyArity:integer, +Names:list,
 %!            -Vars:list) is det.
