@@ -5,7 +5,8 @@
 :- module(ddc_learn_bias,
           [ bias_items/2,               % +Data, +Items
             bias_term/2,                % +Dialect, +Term
-            finish_preds/2              % +Data, +Items
+            finish_preds/2,             % +Data, +Items
+            given_weight/3              % +Data, +Key, -Weight
           ]).
 
 :- use_module(library(lists)).
@@ -120,15 +121,28 @@ bias_item(M, own, mode(T, Agg, L), _, W) :- !,
     add_mode(M, T, Agg, L, W).
 bias_item(M, own, weight(K, W), _, W0) :- !,
     (   ground(K), callable(K), number(W), W > 0
-    ->  K =.. [N|Ks], atom_concat('$weight:', N, WN),
-        append(Ks, [X], WAs), WF =.. [WN|WAs],
-        (   length(WAs, WA), current_predicate(M:WN/WA), M:WF
+    ->  (   given_weight(M, K, X)
         ->  throw(error(ddc_learn(weighted_twice(K, X, W), W0), _))
-        ;   append(Ks, [W], As), F =.. [WN|As], assertz(M:F)
+        ;   weight_fact(K, W, _, F), assertz(M:F)
         )
     ;   throw(error(ddc_learn(bad_weight(weight(K, W)), W0), _))
     ).
 bias_item(_, _, rank(_), _, _) :- !.       % rank_levels/2, once all files are read
+
+%!  given_weight(+Data, +Key, -Weight:number) is semidet.
+%
+%   The weight a weight(Key, W) item of the data gave the grounding Key.
+given_weight(M, K, W) :-
+    weight_fact(K, W, WN/WA, F),
+    current_predicate(M:WN/WA),
+    M:F.
+
+%   weight_fact(+Key, ?Weight, -PI, -Fact): the clause of the data module
+%   that holds Key's weight ('$weight:N'(K1, ..., Weight) for N(K1, ...)).
+weight_fact(K, W, WN/WA, F) :-
+    K =.. [N|Ks], atom_concat('$weight:', N, WN),
+    append(Ks, [W], As), F =.. [WN|As],
+    length(As, WA).
 
 must_be_callable(P, W) :-
     (   callable(P) -> true ; throw(error(ddc_learn(not_callable(P), W), _)) ).

@@ -9,10 +9,9 @@
             candidate_id/3,             % +Data, +Spec, -Id
             next_id/3,                  % +Data, +Kind, -Id
             branch_count/2,             % +Spec, -Branches
-            bind_in/2,                  % +VarTerms, +Input
-            branch_literal/6,           % +Data, +Spec, +Branch, -Literal, +Names0, -Names
+            node_branch_literal/8,      % +Data, +Spec, +VarTerms, +Branch, -Bound, -Literal,
+                                        % +Names0, -Names
             dc_literal/3,               % +Data, +Internal, -DC
-            fresh_names/3,              % +Fresh, +Names0, -Names
             fresh_values/2,             % +Fresh, -Vars
             agg_call/4                  % ?Aggregate, ?List, ?Result, ?Goal
           ]).
@@ -33,7 +32,7 @@ to the node's variables, its constants chosen), stored in the data
 module as '$ddcl_cand'(Id, Key, Spec) under one id per distinct instance.
 Spec is a candidate record (ddc_learn_records.pl); its kind decides its
 branches (the table in ddc_learn.pl).
-branch_literal/6 writes a branch as the body literal of a learned clause.
+node_branch_literal/8 writes a branch as the body literal of a learned clause.
 */
 
                  /*******************************
@@ -91,8 +90,7 @@ literal_preds(L, [N]) :- functor(L, N, _).
 
 %   instance(+M, +Vars, +MId, +Agg, +Cond, +Lit, +Where, -Spec) is nondet.
 %
-%   Spec is a candidate(Mode, Kind, Goal, Inputs, Fresh, Value, Domain,
-%   Thresholds, Aggregate, Literal) record (its fields: ddc_learn_records.pl).
+%   Spec is a candidate record (its fields: ddc_learn_records.pl).
 instance(M, Vars, MId, none, none, L, W, Spec) :- !,
     literal_args(M, L, W, N, KModes, VMode, KTypes, VSpec),
     bind_keys(M, KModes, KTypes, Vars, KArgs, [], Ins0, [], Fresh0),
@@ -103,7 +101,9 @@ instance(M, Vars, MId, none, none, L, W, Spec) :- !,
         ( Kind == test -> Val = none ; Val = Val0 )
     ),
     reverse(Fresh0, Fresh),
-    Spec = candidate(MId, Kind, G, Ins, Fresh, Val, Dom, Ts, none, lit(true, G, [])).
+    make_candidate([mode(MId), kind(Kind), goal(G), inputs(Ins), fresh(Fresh), value(Val),
+                    domain(Dom), thresholds(Ts), aggregate(none), literal(lit(true, G, []))],
+                   Spec).
 instance(M, Vars, MId, Agg, Cond, L, W, Spec) :-
     (   Cond == none
     ->  CG = true, CIns = [], CFresh = []
@@ -128,7 +128,9 @@ instance(M, Vars, MId, Agg, Cond, L, W, Spec) :-
     conj(CG, LG, G),
     literal_locals(M, LG, KModes, KTypes, KArgs, LLocal),
     append(Local, LLocal, Locals),
-    Spec = candidate(MId, Kind, G, Ins, [], Val, Dom, [], Agg, lit(CG, LG, Locals)).
+    make_candidate([mode(MId), kind(Kind), goal(G), inputs(Ins), fresh([]), value(Val),
+                    domain(Dom), thresholds([]), aggregate(Agg), literal(lit(CG, LG, Locals))],
+                   Spec).
 
 %   literal_locals: the aggregated literal's own new variables (- keys).
 literal_locals(_, _, Modes, Types, Args, Locals) :-
@@ -290,17 +292,25 @@ branch_regressor(agg_numeric, 0, true) :- !.
 branch_regressor(_, _, false).
 
 branch_label(M, Spec, VarTerms, Bs0, B, Text) :-
+    node_branch_literal(M, Spec, VarTerms, B, _, Lit, Bs0, Bs),
+    term_text(Lit, Bs, Text).
+
+%!  node_branch_literal(+Data, +Spec, +VarTerms:list, +Branch:integer, -Bound,
+%!                      -Literal, +Names0:list, -Names:list) is det.
+%
+%   The body literal of a candidate's branch (branch_literal/6) at a node
+%   whose variables are the terms VarTerms: Bound is a copy of Spec with
+%   its inputs bound to them; Names0 gains names for its new variables.
+node_branch_literal(M, Spec, VarTerms, B, S1, Lit, Bs0, Bs) :-
     copy_term(Spec, S1),
     candidate_inputs(S1, Ins),
     candidate_fresh(S1, Fresh),
     maplist(bind_in(VarTerms), Ins),
     fresh_names(Fresh, Bs0, Bs1),
-    branch_literal(M, S1, B, Lit, Bs1, Bs),
-    term_text(Lit, Bs, Text).
+    branch_literal(M, S1, B, Lit, Bs1, Bs).
 
-%!  bind_in(+VarTerms:list, +Input:pair) is det.
-%
-%   Input P-V: V is the node's variable at position P of VarTerms.
+%   bind_in(+VarTerms, +Input): Input P-V: V is the node's variable at
+%   position P of VarTerms.
 bind_in(VarTerms, P-V) :- nth0(P, VarTerms, V).
 
 %!  fresh_values(+Fresh:list, -Vars:list) is det.
@@ -309,10 +319,9 @@ bind_in(VarTerms, P-V) :- nth0(P, VarTerms, V).
 fresh_values([], []).
 fresh_values([v(_, V)|Fs], [V|Vs]) :- fresh_values(Fs, Vs).
 
-%!  fresh_names(+Fresh:list, +Names0:list, -Names:list) is det.
-%
-%   Names (Name=Var) for the unbound variables of Fresh ([v(Type, Var)]),
-%   after their type (type_var_base/2), unique among Names0.
+%   fresh_names(+Fresh, +Names0, -Names): names (Name=Var) for the unbound
+%   variables of Fresh ([v(Type, Var)]), after their type (type_var_base/2),
+%   unique among Names0.
 fresh_names(Fresh, Bs0, Bs) :-
     foldl(fresh_name, Fresh, Bs0, Bs).
 
@@ -325,11 +334,9 @@ fresh_name(v(Type, V), Bs0, Bs) :-
     ;   Bs = Bs0
     ).
 
-%!  branch_literal(+Data, +Spec, +Branch:integer, -Literal,
-%!                 +Names0:list, -Names:list) is det.
-%
-%   The body literal of a candidate's branch in DC syntax; names for its
-%   new variables added to Names0.
+%   branch_literal(+Data, +Spec, +Branch, -Literal, +Names0, -Names): the
+%   body literal of a candidate's branch in DC syntax; names for its new
+%   variables added to Names0.
 branch_literal(M, Spec, B, Lit, Bs0, Bs) :-
     candidate_kind(Spec, Kind),
     candidate_goal(Spec, G),

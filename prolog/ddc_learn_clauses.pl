@@ -16,8 +16,7 @@
 :- use_module(ddc_learn_records).
 :- use_module(ddc_learn_text, [clause_names/3, conj_list/2, learn_clause_text/3, new_var/4,
                                print_conj/1, print_literal/1, print_dc_term/1, term_text/3]).
-:- use_module(ddc_learn_candidates, [agg_call/4, bind_in/2, branch_literal/6, fresh_names/3,
-                                     fresh_values/2]).
+:- use_module(ddc_learn_candidates, [agg_call/4, fresh_values/2, node_branch_literal/8]).
 :- use_module(ddc_learn_background, [learn_background/3]).
 
 :- set_prolog_flag(optimise, true).
@@ -25,7 +24,7 @@
 /** <module> Learned clauses
 
 A leaf's clause is the target's head, the literals of the path from the
-root (each step's branch, branch_literal/6) and the leaf's model: its
+root (each step's branch, node_branch_literal/8) and the leaf's model: its
 distribution and, for a model with regressors, the goals that compute the
 distribution's parameters from the path's values.  The tree form says
 the same program as one clause per target (learn_tree_text/3).
@@ -46,10 +45,8 @@ the same program as one clause per target (learn_tree_text/3).
 %   softmax(WeightRows), poisson(Rate), poisson_log_linear(Weights);
 %   weights are [w1, ..., wn, b].  Clause is clause(Term, Bindings) for
 %   learn_clause_text/3.
-learn_clause(M, Node, Model, Regs, clause((Head ~ Dist := Body), Bs)) :-
-    clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs),
-    append(Lits, Goals, Ls),
-    ( Ls == [] -> Body = true ; conj_list(Ls, Body) ).
+learn_clause(M, Node, Model, Regs, Clause) :-
+    leaf_clause(M, Node, Model, Regs, Clause, _, _).
 
 %!  learn_leaf_text(+Data, +Node, +ModelText, +Regressors, -Texts:dict) is det.
 %
@@ -58,14 +55,21 @@ learn_clause(M, Node, Model, Regs, clause((Head ~ Dist := Body), Bs)) :-
 %   statistical model's goals, "" without regressors).
 learn_leaf_text(M, Node, ModelText, Regs, _{clause: CT, distribution: DT, model: MT}) :-
     term_string(Model, ModelText),
-    clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs),
-    append(Lits, Goals, Ls),
-    ( Ls == [] -> Body = true ; conj_list(Ls, Body) ),
-    learn_clause_text(M, clause((Head ~ Dist := Body), Bs), CT),
+    leaf_clause(M, Node, Model, Regs, Clause, Dist, Goals),
+    Clause = clause(_, Bs),
+    learn_clause_text(M, Clause, CT),
     term_text(Dist, Bs, DT),
     (   Goals == [] -> MT = ""
     ;   conj_list(Goals, GC), term_text(GC, Bs, MT0), strip_parens(MT0, MT)
     ).
+
+%   leaf_clause(+M, +Node, +Model, +Regs, -Clause, -Dist, -Goals): the
+%   leaf's clause(Term, Bindings) (learn_clause/5), its head's distribution
+%   and its model's goals.
+leaf_clause(M, Node, Model, Regs, clause((Head ~ Dist := Body), Bs), Dist, Goals) :-
+    clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs),
+    append(Lits, Goals, Ls),
+    ( Ls == [] -> Body = true ; conj_list(Ls, Body) ).
 
 strip_parens(S0, S) :-
     (   sub_string(S0, 0, 1, _, "("), sub_string(S0, _, 1, 0, ")")
@@ -99,17 +103,14 @@ learn_tree_text(M, Leaves, Text) :-
     Leaves = [[N0, MT0|_]|_],
     M:'$ddcl_node'(N0, Info, _),
     node_info_target(Info, target(N, A, Spec)),
-    node_info_vars(Info, Vars),
-    length(HeadInfo, A), append(HeadInfo, _, Vars),
-    length(HeadVars, A),
-    clause_names(HeadInfo, HeadVars, Bs0),
-    K =.. [N|HeadVars], dc_term(M, K, Head),
+    tree_head(M, Info, Head, HeadVars, Bs0),
     examples_guard(M, N, A, HeadVars, [], Guard),
     term_string(Model0, MT0),
     once(model_goals(Model0, Spec, _, Dist0, _, [], _)),
     dist_template(Dist0, Dist, Bs0, Bs1),
     maplist(leaf_item(M), Leaves, Items),
-    tree_node(Items, tree_context(M, Spec, Dist), path_state([], HeadVars, Bs1, 0, []), Bs, Tree),
+    start_path(HeadVars, Bs1, S0),
+    tree_node(Items, tree_context(M, Spec, Dist), S0, Bs, Tree),
     dedupe_names(Bs, Bs2),
     copy_term(t(Head, Dist, Guard, Tree)-Bs2, t(H1, D1, G1, T1)-Bs3),
     maplist([Name=V]>>( var(V) -> V = '$VAR'(Name) ; true ), Bs3),
@@ -267,20 +268,30 @@ print_cond(G) :- print_literal(G).
 clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs) :-
     M:'$ddcl_node'(Node, Info, _),
     node_info_target(Info, target(N, A, Spec)),
-    node_info_vars(Info, Vars),
     node_info_path(Info, Path),
-    length(HeadInfo, A), append(HeadInfo, _, Vars),
-    length(HeadVars, A),
-    clause_names(HeadInfo, HeadVars, Bs0),
-    K =.. [N|HeadVars], dc_term(M, K, Head),
-    foldl(path_literal(M), Path, path_state([], HeadVars, Bs0, 0, []),
-          path_state(RevLits, _, Bs1, _, Xs0)),
+    tree_head(M, Info, Head, HeadVars, Bs0),
+    start_path(HeadVars, Bs0, S0),
+    foldl(path_literal(M), Path, S0, S),
+    path_state_literals(S, RevLits),
+    path_state_names(S, Bs1),
+    path_state_regressors(S, Xs0),
     reverse(RevLits, Lits1),
     examples_guard(M, N, A, HeadVars, Lits1, Lits),
     regressor_vars(Regs, Xs0, Xs),
     (   model_goals(Model, Spec, Xs, Dist, Goals, Bs1, Bs) -> true
     ;   throw(error(ddc_learn(bad_model(Model, Spec), Node), _))
     ).
+
+%   tree_head(+M, +Info, -Head, -HeadVars, -Names): the DC head of the
+%   tree of a node (Info, a node_info record), with a fresh variable for
+%   each key argument, named as the node's first variables.
+tree_head(M, Info, Head, HeadVars, Bs) :-
+    node_info_target(Info, target(N, A, _)),
+    node_info_vars(Info, Vars),
+    length(HeadInfo, A), append(HeadInfo, _, Vars),
+    length(HeadVars, A),
+    clause_names(HeadInfo, HeadVars, Bs),
+    K =.. [N|HeadVars], dc_term(M, K, Head).
 
 %   examples_guard(+M, +N, +A, +HeadVars, +Lits0, -Lits): a target whose
 %   groundings examples/2 declares gets its goal as the first literal of
@@ -307,26 +318,34 @@ renamed_dc(M, K ~= V, DK ~= V) :- !, dc_term(M, K, DK).
 renamed_dc(M, G, DG) :- callable(G), !, dc_term(M, G, DG).
 renamed_dc(_, G, G).
 
-%   path_literal(+M, +Step, +S0, -S): S0 and S are path_state(Literals,
-%   VarTerms, Names, Step, Regressors) records (ddc_learn_records.pl): the
-%   step's literal is added to the body, its new variables to the node's.
-path_literal(M, step(Id, B), path_state(Lits, VT0, Bs0, K0, Xs0),
-             path_state([Lit|Lits], VT, Bs, K, [K0-X|Xs0])) :-
+%   start_path(+HeadVars, +Names, -S): the path_state record
+%   (ddc_learn_records.pl) at the root: no literal yet, the head's
+%   variables, their names.
+start_path(HeadVars, Bs, S) :-
+    make_path_state([literals([]), values(HeadVars), names(Bs), step(0), regressors([])], S).
+
+%   path_literal(+M, +Step, +S0, -S): S0 and S are path_state records
+%   (ddc_learn_records.pl): the step's literal is added to the body, its
+%   new variables to the node's.
+path_literal(M, step(Id, B), S0, S) :-
+    path_state_literals(S0, Lits),
+    path_state_values(S0, VT0),
+    path_state_names(S0, Bs0),
+    path_state_step(S0, K0),
+    path_state_regressors(S0, Xs0),
     M:'$ddcl_cand'(Id, _, Spec0),
-    copy_term(Spec0, Spec),
+    node_branch_literal(M, Spec0, VT0, B, Spec, Lit, Bs0, Bs),
     candidate_kind(Spec, Kind),
-    candidate_inputs(Spec, Ins),
     candidate_fresh(Spec, Fresh),
     candidate_value(Spec, Val),
-    maplist(bind_in(VT0), Ins),
-    fresh_names(Fresh, Bs0, Bs1),
-    branch_literal(M, Spec, B, Lit, Bs1, Bs),
     (   B =:= 0, Fresh \== []
     ->  fresh_values(Fresh, FVs), append(VT0, FVs, VT)
     ;   VT = VT0
     ),
     regressor_of(Kind, Lit, Val, X),
-    K is K0+1.
+    K is K0+1,
+    make_path_state([literals([Lit|Lits]), values(VT), names(Bs), step(K),
+                     regressors([K0-X|Xs0])], S).
 
 %   regressor_of(+Kind, +Literal, +Val, -X): the variable whose value a
 %   step gives the leaf's model (an attribute's value, a count, a mean).

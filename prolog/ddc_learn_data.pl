@@ -31,13 +31,8 @@
             fact_where/3,               % +Data, +Key, -Where
             dist_points/3,              % +Dist, +Samples, -Points
             data_read_terms/3,          % +File, +Mode, -Items
-            op(700, xfx, ~),
-            op(700, xfx, ~=),
-            op(1105, xfx, :=),
-            op(1105, xfx, <-),
-            op(1150, xfx, pr),
-            op(700, xfx, ::)
-          ]).
+            op(700, xfx, ::)            % P :: Atom, a probabilistic atom (the DC
+          ]).                           % operators: reexported from ddc_ops)
 
 :- use_module(library(lists)).
 :- use_module(library(apply)).
@@ -48,18 +43,13 @@
 :- use_module(ddc_dist).
 :- use_module(ddc_models).
 :- use_module(ddc_learn_syntax, [time_rename_items/3]).
-:- use_module(ddc_learn_bias, [bias_items/2, finish_preds/2]).
+:- use_module(ddc_learn_bias, [bias_items/2, finish_preds/2, given_weight/3]).
 :- use_module(ddc_learn_facts, [load_item/2, prob_table/2]).
 :- reexport(ddc_learn_syntax, [dc_goal/4, internal_key/3, dc_term/3]).
 :- reexport(ddc_learn_facts, [pick/3, fact_where/3, dist_points/3]).
 :- reexport(ddc_learn_messages, [message_text/2]).
-
-:- op(700, xfx, ~).
-:- op(700, xfx, ~=).
-:- op(1105, xfx, :=).
-:- op(1105, xfx, <-).
-:- op(1150, xfx, pr).
-:- op(700, xfx, ::).
+:- reexport(ddc_ops).                   % data_read_terms/3 reads with them; the learner's
+                                        % modules read and write DC terms with them
 
 /** <module> Learning data for the DC structure learner
 
@@ -352,10 +342,7 @@ learn_data_targets(M, Targets) :-
 %   The weight of a grounding (weight(Key, W) in the data; 1 when none is
 %   given): how many examples it stands for.
 example_weight(M, K, W) :-
-    K =.. [N|Ks], atom_concat('$weight:', N, WN),
-    append(Ks, [W0], As), F =.. [WN|As],
-    length(As, A),
-    (   current_predicate(M:WN/A), M:F -> W = W0 ; W = 1.0 ).
+    (   given_weight(M, K, W0) -> W = W0 ; W = 1.0 ).
 
 %!  learn_data_pred(+Data, ?Name, ?KeyArity, ?Kind) is nondet.
 %

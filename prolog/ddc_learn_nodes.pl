@@ -8,6 +8,7 @@
             learn_forget/2,             % +Data, +Node
             learn_groundings/3,         % +Data, +Node, -Groundings
             target_examples/4,          % +Data, +Name, +KeyArity, -Keys
+            target_value_goal/6,        % +Data, +Name, +KeyArity, -Key, -Value, -Goal
             head_vars/5                 % +Data, +Name, +KeyArity, +Names, -Vars
           ]).
 
@@ -16,6 +17,7 @@
 :- use_module(library(assoc)).
 :- use_module(library(pairs)).
 :- use_module(ddc_learn_data).
+:- use_module(ddc_learn_facts, [prob_table/2]).
 :- use_module(ddc_learn_records).
 :- use_module(ddc_learn_text, [type_var_base/2, unique_name/3]).
 :- use_module(ddc_learn_worlds, [world_alternatives/6]).
@@ -51,19 +53,17 @@ branch.
 %
 %   @error ddc_learn(target_without_facts(N/A), Where)
 learn_root(M, N, _Options, _{node: Id, y: Ys, weight: Ws, example: Es}) :-
-    M:'$ddcl_target'(N, A, How, W),
-    M:'$ddcl_pred'(N, A, rv(Spec)),
-    ( How = own(Names) -> true ; length(Names, A), maplist(=('_'), Names) ),
+    learn_data_targets(M, Ts),
+    memberchk(target(N, A, Spec, Names, W), Ts),
     head_vars(M, N, A, Names, Vars),
     target_examples(M, N, A, Keys),
     (   Keys == [] -> throw(error(ddc_learn(target_without_facts(N/A), W), _)) ; true ),
     empty_assoc(E0),
-    length(Ks, A), append(Ks, [V], As), TG =.. [N|As],
-    (   M:'$ddcl_examples'(N/A, _, _, _) -> Missing = false ; Missing = '$none' ),
-    Goal = ( once(M:TG) -> Y = V ; Y = Missing ),
+    target_value_goal(M, N, A, Ks, Y, Goal),
     retractall(M:'$ddcl_node_target'(_)), assertz(M:'$ddcl_node_target'(N)),
     foldl(root_rows(M, Spec, Ks, Goal, Y, E0), Keys, 0-Rows-Ys-Ws-Es, _-[]-[]-[]-[]),
-    new_node(M, node_info(target(N, A, Spec), Vars, [], []), Rows, Id).
+    make_node_info([target(target(N, A, Spec)), vars(Vars), used([]), path([])], Info),
+    new_node(M, Info, Rows, Id).
 
 root_rows(M, Spec, Ks, Goal, Y, E0, Key, I0-Rows0-Ys0-Ws0-Es0, I-Rows-Ys-Ws-Es) :-
     I is I0+1,
@@ -101,10 +101,22 @@ target_examples(M, N, A, Keys) :-
         list_to_set(Keys0, Keys)
     ;   length(Ks, A), append(Ks, [_], As), F =.. [N|As],
         findall(Ks, clause(M:F, true), K1),
-        atom_concat('$prob:', N, PN), append(Ks, [_], PAs), PF =.. [PN|PAs],
+        prob_table(N, PN), append(Ks, [_], PAs), PF =.. [PN|PAs],
         (   M:'$ddcl_prob_pred'(N, A) -> findall(Ks, clause(M:PF, true), K2) ; K2 = [] ),
         append(K1, K2, Keys)
     ).
+
+%!  target_value_goal(+Data, +Name:atom, +KeyArity:integer, -Key:list,
+%!                    -Value, -Goal) is det.
+%
+%   Goal, once the variables Key are bound to a grounding, binds Value to
+%   the target's value in the data: false where examples/2 declares the
+%   groundings and the grounding has no fact (a Boolean target given as
+%   atoms), '$none' where it has none otherwise.
+target_value_goal(M, N, A, Ks, Y, Goal) :-
+    length(Ks, A), append(Ks, [V], As), TG =.. [N|As],
+    (   M:'$ddcl_examples'(N/A, _, _, _) -> Missing = false ; Missing = '$none' ),
+    Goal = ( once(M:TG) -> Y = V ; Y = Missing ).
 
 %!  head_vars(+Data, +Name:atom, +KeyArity:integer, +Names:list,
 %!            -Vars:list) is det.
@@ -166,12 +178,11 @@ child(M, T, Vars, Used, Path, Id, Fresh, Pairs, B,
     ;   Vars1 = Vars
     ),
     append(Path, [step(Id, B)], Path1),
-    new_node(M, node_info(T, Vars1, [Id|Used], Path1), Rows, C).
+    make_node_info([target(T), vars(Vars1), used([Id|Used]), path(Path1)], Info1),
+    new_node(M, Info1, Rows, C).
 
-fresh_var(v(Type, _), Vars0-Used0, Vars-[Name|Used0]) :-
-    type_var_base(Type, Base),
-    unique_name(Base, Used0, Name),
-    append(Vars0, [v(Name, Type)], Vars).
+fresh_var(v(Type, _), S0, S) :-
+    head_var('_', Type, S0, S).                 % a name after its type
 
 new_node(M, Info, Rows, Id) :-
     next_id(M, node, Id),

@@ -12,11 +12,10 @@
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
-:- use_module(ddc_models).
-:- use_module(ddc_learn_data).
+:- use_module(ddc_models).                % the aggregates' mean_list/2, mode_list/2, ...
 :- use_module(ddc_learn_records).
 :- use_module(ddc_learn_worlds, [world_alternatives/6, in_world/2]).
-:- use_module(ddc_learn_candidates, [candidate_id/3, fresh_values/2]).
+:- use_module(ddc_learn_candidates, [agg_call/4, candidate_id/3, fresh_values/2]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -157,15 +156,17 @@ kind_goal(test, _, G, _, _, _, B, X, Goal) :-
 kind_goal(count, _, G, _, _, _, B, X, Goal) :-
     Goal = ( findall(x, G, L), length(L, X), B = 0 ).
 kind_goal(agg_numeric, Agg, G, V, _, _, B, X, Goal) :-
+    agg_call(Agg, L, X, Call),                  % mean_list(L, X), ...
     Goal = ( findall(V, G, L),
              (   L == [] -> B = 1, X = nan
-             ;   ddc_learn_outcomes:numeric_list(L), ddc_learn_outcomes:aggregate(Agg, L, X), B = 0
+             ;   ddc_learn_outcomes:numeric_list(L), ddc_learn_outcomes:Call, B = 0
              ) ).
 kind_goal(agg_discrete, Agg, G, V, Dom, _, B, X, Goal) :-
     length(Dom, K),
+    agg_call(Agg, L, Mo, Call),                 % mode_list(L, Mo), ...
     Goal = ( findall(V, G, L),
              (   L == [] -> B = K, X = nan
-             ;   ddc_learn_outcomes:aggregate(Agg, L, Mo), ddc_learn_outcomes:domain_index(Mo, Dom, B), X = nan
+             ;   ddc_learn_outcomes:Call, ddc_learn_outcomes:domain_index(Mo, Dom, B), X = nan
              ) ).
 
 domain_index(V, Dom, B) :-
@@ -185,9 +186,3 @@ numeric_list(L) :-
 
 threshold_bin(X, [], B, B) :- !, number(X).
 threshold_bin(X, [T|Ts], B0, B) :- ( X < T -> B = B0 ; B1 is B0+1, threshold_bin(X, Ts, B1, B) ).
-
-aggregate(mean, L, X) :- mean_list(L, X).
-aggregate(max, L, X) :- max_list(L, X).
-aggregate(min, L, X) :- min_list(L, X).
-aggregate(mode, L, X) :- mode_list(L, X).
-aggregate(antimode, L, X) :- antimode_list(L, X).

@@ -13,7 +13,7 @@
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_text, [term_text/3]).
 :- use_module(ddc_learn_worlds, [world_alternatives/6]).
-:- use_module(ddc_learn_nodes, [target_examples/4]).
+:- use_module(ddc_learn_nodes, [target_examples/4, target_value_goal/6]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -103,9 +103,8 @@ target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_l
     length(Vs, A), K0 =.. [N|Vs], dc_term(M, K0, T0), term_text(T0, [], Text),
     target_examples(M, N, A, Keys),
     length(Keys, NE),
-    length(Ks, A), append(Ks, [V], As), TG =.. [N|As],
-    (   M:'$ddcl_examples'(N/A, _, _, _) -> Missing = false ; Missing = '$none' ),
-    Goal = ( ( once(M:TG) -> Y = V ; Y = Missing ),
+    target_value_goal(M, N, A, Ks, Y, ValueGoal),
+    Goal = ( ValueGoal,
              ( M:'$prog_clause'(N/A, Ks-D0-CW, G), once(M:G)
              ->  ddc_learn_facts:eval_dist_at(D0, CW, D), R = d(D)
              ;   R = uncovered

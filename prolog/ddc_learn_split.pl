@@ -23,6 +23,7 @@
 :- use_module(library(ordsets)).
 :- use_module(library(random)).
 :- use_module(ddc_learn_data).
+:- use_module(ddc_learn_bias, [bias_term/2]).
 
 /** <module> Splitting learning data into training and test worlds
 
@@ -389,14 +390,12 @@ clause_form(T) :-
     functor(T, N, Ar),
     memberchk(N/Ar, [(:-)/1, (:-)/2, (:=)/2, (<-)/2, (~)/2, (~=)/2, (::)/2, (pr)/2, (?-)/1]).
 
-own_bias(T) :-
-    functor(T, N, A),
-    memberchk(N/A, [type/1, rv/1, rv/2, mode/2, mode/3, threshold/2, learn/1,
-                    examples/2, rank/1]).
+%   own_bias(+T), dreaml_bias(+T): T is a declaration of the bias
+%   (bias_term/2), written to both parts; a weight(Key, W) is not one here:
+%   it is split with the facts.
+own_bias(T) :- bias_term(own, T), T \= weight(_, _).
 
-dreaml_bias(T) :-
-    functor(T, N, A),
-    memberchk(N/A, [base/1, thres/4, randomVariableNames/1, rank/1, mode/3, learn/4]).
+dreaml_bias(T) :- bias_term(dreaml, T).
 
 %   key_constants(+Data, +Unit, +Name, +KeyArgs, -Consts): the atomic key
 %   arguments, each with true when it stands in a position of the type of

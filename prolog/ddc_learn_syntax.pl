@@ -15,7 +15,6 @@
 :- use_module(ddc_models).
 
 :- use_module(ddc_ops).
-:- op(700, xfx, ::).
 
 /** <module> DC syntax of learning data, internally
 

@@ -103,23 +103,16 @@ conj_to_list(A, [A]).
 %
 %   Write a body literal in DC syntax (negations, if-then, comparisons
 %   with their operators, findall_forward/3 with a conjunction).
-print_literal(\+ G) :- !, write('\\+ '), print_inner(G).
+print_literal(\+ G) :- !, write('\\+ '), print_literal(G).
 print_literal((A -> B)) :- !, write('('), print_literal(A), write(' -> '), print_literal(B), write(')').
 print_literal((A, B)) :- !, write('('), print_conj((A, B)), write(')').
 print_literal(findall_forward(T, G, L)) :- !,
-    write('findall_forward('), print_dc_term(T), write(', '),
-    (   G = (_, _) -> write('('), print_conj(G), write(')') ; print_literal(G) ),
+    write('findall_forward('), print_dc_term(T), write(', '), print_literal(G),
     write(', '), print_dc_term(L), write(')').
 print_literal(G) :-
     compound(G), G =.. [Op, A, B], memberchk(Op, [~=, <, >, =<, >=, ==, is, =, =:=, =\=]), !,
     print_dc_term(A, 699), format(' ~w ', [Op]), print_dc_term(B, 699).
 print_literal(G) :- print_dc_term(G).
-
-print_inner(G) :-
-    (   G = (_, _) -> write('('), print_conj(G), write(')')
-    ;   G = (_ ~= _) -> print_literal(G)
-    ;   print_literal(G)
-    ).
 
 %!  print_conj(+Conjunction) is det.
 %

@@ -241,6 +241,32 @@ test(count_and_mean_over_neighbours, [nondet]) :-
     get_dict(x, OM, [Mean, _]), close_to(Mean, 0.6, 1e-12), get_dict(branch, OM, [0, 1]),
     learn_free(M).
 
+test(weights_of_groundings) :-
+    load([ 'learn(y(X)).', 'y(1) ~= a.', 'y(2) ~= b.', 'weight(y(2), 3).' ], M),
+    example_weight(M, y(1), W1), example_weight(M, y(2), W2),
+    learn_root(M, y, [], R), get_dict(weight, R, Ws),
+    learn_free(M),
+    W1 =:= 1, W2 =:= 3, Ws == [1.0, 3].
+
+test(a_grounding_weighted_twice) :-
+    load_error([ 'learn(y(X)).', 'y(1) ~= a.', 'weight(y(1), 3).', 'weight(y(1), 2).' ],
+               Cause, Line),
+    Cause == weighted_twice(y(1), 3, 2), Line =:= 4.
+
+test(mode_and_antimode_over_neighbours_take_their_values_branch, [nondet]) :-
+    load([ 'type(y(e)).', 'type(link(e, e)).', 'type(c(e)).', 'rv(c(_), discrete([r, g])).',
+           'learn(y(X)).', 'mode(y(_), mode, (link(+, -), c(+))).',
+           'mode(y(_), antimode, (link(+, -), c(+))).',
+           'y(1) ~= a.', 'y(2) ~= b.', 'y(3) ~= a.', 'link(1, 10).', 'link(1, 11).',
+           'link(1, 12).', 'link(3, 12).', 'c(10) ~= g.', 'c(11) ~= g.', 'c(12) ~= r.' ], M),
+    learn_root(M, y, [], R), get_dict(node, R, N),
+    learn_candidates(M, N, Cs),
+    findall(Id, ( member(C, Cs), get_dict(kind, C, agg_discrete), get_dict(id, C, Id) ), [IdMo, IdAnti]),
+    %  branches: one per value of the domain [r, g], then the empty list
+    learn_evaluate(M, N, [IdMo, IdAnti], [OMo, OAnti]),
+    get_dict(branch, OMo, [1, 2, 0]), get_dict(branch, OAnti, [0, 2, 0]),
+    learn_free(M).
+
 :- end_tests(ddc_learn_groundings).
 
 :- begin_tests(ddc_learn_clauses).
