@@ -14,8 +14,9 @@
 :- use_module(library(apply)).
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_records).
-:- use_module(ddc_learn_text, [clause_names/3, conj_list/2, learn_clause_text/3, new_var/4,
-                               print_conj/1, print_literal/1, print_dc_term/1, term_text/3]).
+:- use_module(ddc_body, [conj_from_list/2]).
+:- use_module(ddc_learn_text, [clause_names/3, learn_clause_text/3, new_var/4, print_conj/1,
+                               print_literal/1, print_dc_term/1, term_text/3]).
 :- use_module(ddc_learn_candidates, [agg_call/4, fresh_values/2, node_branch_literal/8]).
 :- use_module(ddc_learn_background, [learn_background/3]).
 
@@ -60,7 +61,7 @@ learn_leaf_text(M, Node, ModelText, Regs, _{clause: CT, distribution: DT, model:
     learn_clause_text(M, Clause, CT),
     term_text(Dist, Bs, DT),
     (   Goals == [] -> MT = ""
-    ;   conj_list(Goals, GC), term_text(GC, Bs, MT0), strip_parens(MT0, MT)
+    ;   conj_from_list(Goals, GC), term_text(GC, Bs, MT0), strip_parens(MT0, MT)
     ).
 
 %   leaf_clause(+M, +Node, +Model, +Regs, -Clause, -Dist, -Goals): the
@@ -69,7 +70,7 @@ learn_leaf_text(M, Node, ModelText, Regs, _{clause: CT, distribution: DT, model:
 leaf_clause(M, Node, Model, Regs, clause((Head ~ Dist := Body), Bs), Dist, Goals) :-
     clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs),
     append(Lits, Goals, Ls),
-    ( Ls == [] -> Body = true ; conj_list(Ls, Body) ).
+    conj_from_list(Ls, Body).
 
 strip_parens(S0, S) :-
     (   sub_string(S0, 0, 1, _, "("), sub_string(S0, _, 1, 0, ")")

@@ -13,8 +13,7 @@
             capitalise/2,               % +Atom, -Capitalised
             unique_name/3,              % +Base, +Used, -Name
             clause_names/3,             % +Vars, +VarTerms, -Bindings
-            new_var/4,                  % +Base, ?Var, +Bindings0, -Bindings
-            conj_list/2                 % +Goals, -Conjunction
+            new_var/4                   % +Base, ?Var, +Bindings0, -Bindings
           ]).
 
 :- use_module(library(lists)).
@@ -39,12 +38,6 @@ new_var(Base, V, Bs0, Bs) :-
     findall(N, member(N=_, Bs0), Used),
     unique_name(Base, Used, Name),
     append(Bs0, [Name=V], Bs).
-
-%!  conj_list(+Goals:list, -Conjunction) is det.
-%
-%   The conjunction of a non-empty list of goals.
-conj_list([G], G) :- !.
-conj_list([G|Gs], (G, C)) :- conj_list(Gs, C).
 
                  /*******************************
                  *           PRINTING           *
