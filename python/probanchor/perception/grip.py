@@ -172,3 +172,106 @@ def arms(skins: list[Segment], image_shape: tuple[int, int],
             joined.add(i)
     return [(s, grip_point(s, e, config))
             for i, (s, e) in enumerate(zip(skins, entries, strict=True)) if i not in joined]
+
+
+def join_across_arms(segments: list[Segment], skin: np.ndarray, hsv: np.ndarray,
+                     min_skin: float = 0.6, margin: float = 0.01, min_hue: float = 0.5,
+                     depth: float = 0.1) -> list[Segment]:
+    """Join the pieces of an object that an arm in front of it cuts in two.
+
+    A forearm reaching over a mug hides the mug's middle; its top is seen above the arm, its
+    foot below, as two segments, each described as an object of its own (the top as a
+    lifted something, the foot as a small ball). Two object segments are joined when they
+    stand in one column of the table plane (:func:`_same_column`; pieces up to ``depth``
+    apart: an object's near and far rims), the pixels on the image line
+    between their centroids that belong to neither are mostly skin (``min_skin``), and their
+    hues agree (the correlation of their hue histograms is at least ``min_hue``, or both are
+    grey: the top of a container and its side are shaded differently, not coloured so).
+
+    Parameters
+    ----------
+    segments:
+        The frame's segments (object pieces are joined in place into the larger one).
+    skin:
+        The frame's skin mask (uint8, non-zero on skin).
+    hsv:
+        The frame in HSV (OpenCV ranges).
+
+    Returns
+    -------
+    The segments without the pieces joined into others.
+    """
+    objects = [s for s in segments if s.kind == "object"]
+    if len(objects) < 2 or not skin.any():
+        return segments
+    objects.sort(key=lambda s: -len(s.rows))
+    owner = np.full(skin.shape, -1, np.int32)
+    for k, s in enumerate(objects):
+        owner[s.rows, s.cols] = k
+    lo = [s.points.min(axis=0) for s in objects]
+    hi = [s.points.max(axis=0) for s in objects]
+    centre = [(float(s.rows.mean()), float(s.cols.mean())) for s in objects]
+    hue: list[np.ndarray | None] = [None] * len(objects)
+    joined: set[int] = set()
+    for a in range(len(objects)):
+        if a in joined:
+            continue
+        for b in range(a + 1, len(objects)):
+            if b in joined or not _same_column(lo[a], hi[a], lo[b], hi[b], margin, depth):
+                continue
+            (r0, c0), (r1, c1) = centre[a], centre[b]
+            n = int(max(abs(r1 - r0), abs(c1 - c0))) + 1
+            rr = np.rint(np.linspace(r0, r1, n)).astype(int)
+            cc = np.rint(np.linspace(c0, c1, n)).astype(int)
+            between = (owner[rr, cc] != a) & (owner[rr, cc] != b)
+            if between.sum() < 2 or float(np.mean(skin[rr, cc][between] > 0)) < min_skin:
+                continue
+            for k in (a, b):
+                if hue[k] is None:
+                    hue[k] = _hue_histogram(hsv, objects[k])
+            if not _same_hue(hue[a], hue[b], min_hue):  # type: ignore[arg-type]
+                continue
+            _join(objects[a], objects[b])
+            owner[objects[b].rows, objects[b].cols] = a
+            lo[a], hi[a] = np.minimum(lo[a], lo[b]), np.maximum(hi[a], hi[b])
+            hue[a] = None
+            joined.add(b)
+    gone = {id(objects[b]) for b in joined}
+    return [s for s in segments if id(s) not in gone]
+
+
+def _same_column(lo_a: np.ndarray, hi_a: np.ndarray, lo_b: np.ndarray, hi_b: np.ndarray,
+                 margin: float, depth: float) -> bool:
+    """Whether two 3-D boxes are parts of one object's column in the table plane: they overlap
+    over at least half of the smaller extent along one horizontal axis, and along the other
+    they overlap (within ``margin``) or are apart by less than ``depth`` or the larger one's
+    extent along the first (an arm across a cup hides its middle; the near and far rims are
+    as far apart as the cup is wide)."""
+    overlap = np.minimum(hi_a[:2], hi_b[:2]) - np.maximum(lo_a[:2], lo_b[:2])
+    extent = np.maximum(hi_a[:2] - lo_a[:2], hi_b[:2] - lo_b[:2])
+    smaller = np.minimum(hi_a[:2] - lo_a[:2], hi_b[:2] - lo_b[:2])
+    for along, other in ((0, 1), (1, 0)):
+        if overlap[along] >= 0.5 * smaller[along] and \
+                overlap[other] >= -max(margin, depth, extent[along]):
+            return True
+    return False
+
+
+#: Below this mean saturation (OpenCV's 0-255) a segment is grey and its hue is noise.
+GREY_SATURATION = 40
+
+
+def _hue_histogram(hsv: np.ndarray, segment: Segment) -> np.ndarray:
+    """The segment's normalised 18-bin hue histogram, and its mean saturation last."""
+    pixels = hsv[segment.rows, segment.cols]
+    hist = np.bincount(pixels[:, 0].astype(np.int64) * 18 // 180, minlength=18).astype(float)
+    return np.append(hist / max(hist.sum(), 1.0), float(pixels[:, 1].mean()))
+
+
+def _same_hue(a: np.ndarray, b: np.ndarray, min_hue: float) -> bool:
+    grey_a, grey_b = a[-1] < GREY_SATURATION, b[-1] < GREY_SATURATION
+    if grey_a or grey_b:
+        return bool(grey_a and grey_b)
+    ha, hb = a[:-1] - a[:-1].mean(), b[:-1] - b[:-1].mean()
+    norm = float(np.sqrt((ha @ ha) * (hb @ hb)))
+    return norm > 0 and float(ha @ hb) / norm >= min_hue

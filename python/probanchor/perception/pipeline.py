@@ -26,7 +26,7 @@ from probanchor.perception.camera import check_frame
 from probanchor.perception.classifier import DEFAULT_MODEL, CategoryModel
 from probanchor.perception.colour import DEFAULT_BINS, colour_names, histogram, hue_shift
 from probanchor.perception.features import box_attributes, shape_features
-from probanchor.perception.grip import GripConfig, arms
+from probanchor.perception.grip import GripConfig, arms, join_across_arms
 from probanchor.perception.plane import Plane, fit_plane
 from probanchor.perception.pointcloud import Backprojector
 from probanchor.perception.segments import (
@@ -159,6 +159,7 @@ class Pipeline:
         segments = merge_fragments(segments, cfg.fragment_pixels * scale, cfg.fragment_gap)
         skins = [s for s in segments if s.kind == "skin"]
         if skins:
+            segments = join_across_arms(segments, skin, hsv)
             kept = arms(skins, (h, w), cfg.workspace, cfg.max_height, cfg.grip)
             for seg, grip in kept:
                 seg.grip = grip
