@@ -46,8 +46,9 @@ cover_height(0.12).         % a container whose centre rises more than this abov
 grip_reach(0.06).           % a carrier (a hand) closes over an object within 6 cm of where it
 grip_height(0.1).           % grips in the table plane, its grip at most 10 cm above the object
 lift_margin(0.03).          % a carried object lifted 3 cm above where it stood was picked up ...
-release_margin(0.015).      % ... and is put down when carried back within 1.5 cm of that height,
-release_p(0.5).             % ... where the hand lets go of it with this probability per frame
+release_margin(0.02).       % ... and is put down when carried back within 2 cm of that height,
+release_p(0.6).             % ... where the hand lets go of it with this probability per frame
+grip_drop(0.02).            % what a hand holds is about 2 cm below its grip point
 
 % ------------------------------------------------------------------ background knowledge
 % Affordances (anchoring learn-theory keeps them beside the learned rules, as the paper's
@@ -530,9 +531,10 @@ occluded_by(A, O):t+1 :=
 % runner gives a hand's grip point), so what it holds is near it, however much of the
 % forearm is in view.
 % O closes over the hidden A: its grip is within grip_reach of where A was in the table plane,
-% at most grip_height above A and not below it.
+% at most grip_height above A and not below it, and it holds nothing else.
 closes_over(O, A):t+1 :=
     hidden(A):t+1, can_be_occluded(A), observed(O), O \== A, is_carrier(O),
+    \+ carried(_, O):t,
     pos(A):t ~= (X, Y, Z), pos(O):t+1 ~= (XO, YO, ZO),
     grip_reach(R), grip_height(H), occluder_rise(L),
     D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, ZO - Z < H, Z < ZO + L.
@@ -553,10 +555,11 @@ occluded_by(A, O):t+1 :=
 % Where A stood when it vanished (its height): a carried object is not lowered below it.
 rest_z(A):t+1 ~ val(Z) := hidden(A):t+1, seen(A):t, pos(A):t ~= (_, _, Z).
 rest_z(A):t+1 ~ val(Z) := hidden(A):t+1, \+ seen(A):t, rest_z(A):t ~= Z.
-% A has been carried up, lift_margin above where it stood, since it was picked ...
+% A has been carried up (the hand rising with it, lift_margin above where it stood) since it
+% was picked ...
 lifted(A):t+1 :=
-    carried(A, _):t+1, pos(A):t+1 ~= (_, _, Z), rest_z(A):t+1 ~= R, lift_margin(M),
-    Z > R + M.
+    carried(A, O):t+1, pos(O):t ~= (_, _, ZO0), pos(O):t+1 ~= (_, _, ZO1), ZO1 > ZO0,
+    pos(A):t+1 ~= (_, _, Z), rest_z(A):t+1 ~= R, lift_margin(M), Z > R + M.
 lifted(A):t+1 := lifted(A):t, carried(A, _):t+1.
 % ... and carried back down to within release_margin of that height: put down.  The hand lets
 % it go with probability release_p per frame there (it stays where it is; the hand leaves).
@@ -616,10 +619,16 @@ pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
     ;   MZ = Z
     ),
     follow_var(V), VZ is V / 100.
-% Hidden under an occluder that has just been picked: under it, at the object's own height.
+% Hidden under an occluder that has just been picked: under it, at the object's own height
+% (in a hand that picked it up late, as it was already rising: at most grip_drop below the
+% grip).
 pos(A):t+1 ~ gaussian([XO, YO, Z], C) :=
     hidden(A):t+1, occluded_by(A, O):t+1, \+ occluded_by(A, O):t,
-    pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (_, _, Z),
+    pos(O):t+1 ~= (XO, YO, ZO), pos(A):t ~= (_, _, Z0),
+    (   is_carrier(O)
+    ->  grip_drop(G), Z is max(Z0, ZO - G)
+    ;   Z = Z0
+    ),
     follow_var(V), diagonal(V, C).
 % Hidden under nothing (behind something, or left on the table): it may be moved while unseen
 % (a mug carried behind a box, a container swapped while merged with another in the image).

@@ -11,18 +11,21 @@ none).
 
 Per frame (:func:`match_hands`):
 
-- a skin percept may re-acquire a hand anchor whose last grip point is within ``reach`` plus
-  ``speed`` times the time since the hand was last perceived (a hand moving at up to
-  ``speed`` m/s); percepts and hands are assigned one to one, nearest first (Hungarian method
-  on the distances);
-- a skin percept left over whose 3-D box is within ``piece_gap`` of the box of a percept that
-  re-acquired or acquired a hand this frame is a piece of that hand (withheld: no symbol of
-  its own);
+- a skin percept may re-acquire a hand anchor when its grip point is within ``reach`` plus
+  ``speed`` times the time since of one of the hand's grip points of the last second (a hand
+  moving at up to ``speed`` m/s; one frame's wrong grip point, two arms seen as one segment,
+  does not lose it); percepts and hands are assigned one to one, the likeliest first
+  (Hungarian method on the negative log density of a Gaussian around the hand's last grip
+  point whose spread grows with the time since it was seen);
+- a skin percept left over, no longer than ``PIECE_LENGTH`` in the table plane, whose 3-D box
+  is within ``piece_gap`` of the box of a percept that re-acquired or acquired a hand this
+  frame is a piece of that hand (withheld: no symbol of its own; a forearm beside it is another
+  arm);
 - any other skin percept acquires a new hand anchor.
 
-A hand that leaves the view and comes back re-acquires the hand anchor that has not been
-perceived for the longest time, its gate having grown with the time (hands look alike: which
-hand came back is not told by appearance; one anchor per hand the view has held at once keeps
+A hand that leaves the view and comes back re-acquires a hand anchor not in view (the
+likeliest by the rule above, its gate and spread having grown with the time: the hand that
+left last, unless another left nearer; hands look alike: which hand came back is not told by appearance; one anchor per hand the view has held at once keeps
 the theory of occlusion's objects few and lets a hand carry what it held out of view back in).
 
 Knows nothing of the reasoning or of the simulator.
@@ -41,6 +44,10 @@ from probanchor.percepts import Percept
 
 #: The categories of hands' percepts and anchors.
 HAND_CATEGORIES = frozenset({"skin", "hand"})
+#: A skin percept longer than this (metres, in the table plane) is an arm, never a piece.
+PIECE_LENGTH = 0.15
+#: A hand's grip points of the last this many seconds gate its matching.
+RECENT = 1.0
 
 
 @dataclass(frozen=True)
@@ -99,6 +106,19 @@ def last_grip(anchor: Anchor) -> np.ndarray:
     return np.asarray(anchor.position.mean(), dtype=float)
 
 
+def _reach_needed(hand: Anchor, grips: np.ndarray, time: float, speed: float) -> np.ndarray:
+    """For each grip point (P, 3): how far it is from the hand anchor's grip points of the
+    last ``RECENT`` seconds, beyond what ``speed`` covers since each (the least over them), so
+    that one frame's wrong grip point (two arms seen as one segment) does not lose the hand."""
+    recent = [p for p in hand.history if time - p.time <= RECENT] or list(hand.history)[-1:]
+    if not recent:
+        return np.linalg.norm(grips - np.asarray(hand.position.mean()), axis=1)
+    past = np.array([grip_of(p) for p in recent])
+    ago = np.array([max(time - p.time, 0.0) for p in recent])
+    dist = np.linalg.norm(past[:, None, :] - grips[None, :, :], axis=2) - speed * ago[:, None]
+    return np.maximum(dist, 0.0).min(axis=0)
+
+
 def _box_gap(a: Percept, b: Percept) -> float:
     """The distance between two percepts' 3-D boxes (0 when they overlap)."""
     gap = np.abs(a.position - b.position) - (a.size + b.size) / 2
@@ -130,14 +150,18 @@ def match_hands(hands: Sequence[Anchor], percepts: Sequence[Percept], time: floa
     taken: dict[int, int] = {}
     if hands:
         grips = np.array([grip_of(p) for p in percepts])
+        gate = np.array([_reach_needed(h, grips, time, rules.speed) for h in hands]) \
+            <= rules.reach
         lasts = np.array([last_grip(h) for h in hands])
         dist = np.linalg.norm(lasts[:, None, :] - grips[None, :, :], axis=2)
         since = np.array([max(time - h.last_seen, 0.0) for h in hands])
-        gate = dist <= rules.reach + rules.speed * since[:, None]
         if gate.any():
-            # among as many gated pairs as possible, the nearest; a hand unseen for longer
-            # costs a little less, so a hand coming back takes the one that left first
-            cost = np.where(gate, dist - 1e-3 * np.minimum(since, 10.0)[:, None], 1e9)
+            # among as many gated pairs as possible, the likeliest: a hand is where it was last
+            # seen, give or take a spread that grows with the time since (an isotropic Gaussian,
+            # its negative log density); so a hand seen a frame ago takes a percept beside it
+            # before one that left the view long ago, whose spread covers the whole table
+            spread = (rules.reach / 2 + rules.speed * since)[:, None]
+            cost = np.where(gate, 0.5 * (dist / spread) ** 2 + 3 * np.log(spread), 1e9)
             rows, cols = linear_sum_assignment(cost)
             for r, c in zip(rows, cols, strict=True):
                 if gate[r, c]:
@@ -146,7 +170,8 @@ def match_hands(hands: Sequence[Anchor], percepts: Sequence[Percept], time: floa
     for j, percept in enumerate(percepts):
         if j in taken:
             continue
-        owners = [k for k in taken if _box_gap(percept, percepts[k]) <= rules.piece_gap]
+        owners = [k for k in taken if _box_gap(percept, percepts[k]) <= rules.piece_gap
+                  and float(percept.size[:2].max()) <= PIECE_LENGTH]
         if owners:
             out.pieces[j] = min(owners, key=lambda k: _box_gap(percept, percepts[k]))
         else:

@@ -11,9 +11,9 @@ within ``hand_length`` of its free end along the arm's horizontal axis.
   height band); the free end is the far end of the axis from the entry. A segment that enters
   nowhere (a hand whose arm is hidden) has its box centre as grip point.
 - An object standing in front of the arm cuts its segment in two: a piece that enters nowhere
-  and whose points come within ``piece_gap`` of an arm's free end is joined to that arm (the
-  hand beyond the object), so the hand is where its grip point is. Two arms that both enter
-  the view are never joined.
+  and lies on the axis of another skin segment, within ``piece_gap`` of it, is joined to it
+  (the hand beyond the object), so the hand is where its grip point is. Two arms that both
+  enter the view are never joined.
 
 Nothing here knows of anchors or of the simulator.
 """
@@ -34,7 +34,7 @@ class GripConfig:
     hand_length: float = 0.10  # the hand: the segment's last part along the arm's axis
     edge_pixels: int = 2  # pixels this close to the image's border: the arm enters there
     edge_margin: float = 0.01  # points this close to the workspace's sides or top: likewise
-    piece_gap: float = 0.12  # a piece that enters nowhere, this close to an arm's free end
+    piece_gap: float = 0.12  # a piece that enters nowhere, this close to an arm on its axis
 
 
 def _axis(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -113,16 +113,6 @@ def grip_point(segment: Segment, entry: np.ndarray, config: GripConfig) -> np.nd
     return (lo + hi) / 2
 
 
-def _end_point(segment: Segment, entry: np.ndarray) -> np.ndarray | None:
-    """The free end, in the table plane, of a segment that enters the view (else None)."""
-    if not entry.any():
-        return None
-    centre, axis, proj = _projections(segment)
-    if proj[entry].mean() > 0:
-        proj, axis = -proj, -axis
-    return centre + _robust(proj)[1] * axis
-
-
 def _join(big: Segment, piece: Segment) -> None:
     big.rows = np.concatenate([big.rows, piece.rows])
     big.cols = np.concatenate([big.cols, piece.cols])
@@ -133,10 +123,27 @@ def _join(big: Segment, piece: Segment) -> None:
     big.bbox = (min(x0, a0), min(y0, b0), max(x1, a1), max(y1, b1))
 
 
+def _aligned(a: Segment, b: Segment, gap: float) -> bool:
+    """Whether b lies on a's axis (their centroids along it, within 25 degrees) with its
+    nearest point within ``gap`` of a's in the table plane: two pieces of one arm."""
+    centre, axis = _axis(a.points)
+    offset = b.points[:, :2].mean(axis=0) - centre
+    norm = float(np.linalg.norm(offset))
+    if norm < 1e-6 or abs(float(offset @ axis)) < 0.9 * norm:
+        return False
+    pa, pb = a.points[::7, :2], b.points[::7, :2]
+    nearest = np.sqrt(((pa[:, None, :] - pb[None, :, :]) ** 2).sum(axis=2)).min()
+    return float(nearest) <= gap
+
+
 def arms(skins: list[Segment], image_shape: tuple[int, int],
          workspace: tuple[float, float, float, float], max_height: float,
          config: GripConfig) -> list[tuple[Segment, np.ndarray]]:
     """The skin segments with pieces of one arm joined, each with its grip point.
+
+    Two skin segments are pieces of one arm (an object in front of it hides a stretch) when
+    at most one of them enters the view and one lies on the other's axis, within
+    ``piece_gap``; two arms that both enter the view are never joined.
 
     Parameters
     ----------
@@ -154,22 +161,23 @@ def arms(skins: list[Segment], image_shape: tuple[int, int],
     ``[(segment, grip), ...]``, in the order of ``skins`` (joined pieces left out).
     """
     entries = [entering(s, image_shape, workspace, max_height, config) for s in skins]
-    ends = [_end_point(s, e) for s, e in zip(skins, entries, strict=True)]
     joined: set[int] = set()
-    for i, piece in enumerate(skins):
-        if ends[i] is not None:
-            continue
-        best, best_d = None, config.piece_gap
-        for k, end in enumerate(ends):
-            if end is None:
+    changed = True
+    while changed:
+        changed = False
+        for i in range(len(skins)):
+            if i in joined or entries[i].any():
                 continue
-            d = float(np.min(np.linalg.norm(piece.points[:, :2] - end, axis=1)))
-            if d < best_d:
-                best, best_d = k, d
-        if best is not None:
-            _join(skins[best], piece)
-            entries[best] = np.concatenate([entries[best], np.zeros(len(piece.rows), bool)])
-            joined.add(i)
+            # a piece that enters nowhere joins the arm it lies along (one that enters first)
+            for k in sorted((k for k in range(len(skins)) if k != i and k not in joined),
+                            key=lambda k: not entries[k].any()):
+                if _aligned(skins[k], skins[i], config.piece_gap) or \
+                        _aligned(skins[i], skins[k], config.piece_gap):
+                    _join(skins[k], skins[i])
+                    entries[k] = np.concatenate([entries[k], entries[i]])
+                    joined.add(i)
+                    changed = True
+                    break
     return [(s, grip_point(s, e, config))
             for i, (s, e) in enumerate(zip(skins, entries, strict=True)) if i not in joined]
 
