@@ -148,20 +148,20 @@ occluded_by(A, O):t+1 :=
 % affordances and the transitive clause are).  A carrier's position is where it closes (the
 % runner gives a hand's grip point), so what it holds is near it, however much of the
 % forearm is in view.
-% O closes over the hidden A: its grip is within grip_reach of where A was in the table plane,
-% at most grip_height above A and not below it, and it holds nothing else.
-closes_over(O, A):t+1 :=
+% O's grip is over the hidden A: within grip_reach of where A was in the table plane, at
+% most grip_height above A and not below it; O closes over A if it holds nothing else.
+grip_over(O, A):t+1 :=
     hidden(A):t+1, can_be_occluded(A), observed(O), O \== A, is_carrier(O),
-    \+ carried(_, O):t,
     pos(A):t ~= (X, Y, Z), pos(O):t+1 ~= (XO, YO, ZO),
     grip_reach(R), grip_height(H), occluder_rise(L),
     D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, ZO - Z < H, Z < ZO + L.
-% O may have picked A up when A vanished just now under it, or when O has just come to close
-% over A (not in the previous frame): a candidate occluder, picked as any other by the
+closes_over(O, A):t+1 := grip_over(O, A):t+1, \+ carried(_, O):t.
+% O may have picked A up when A vanished just now under it, or when O's grip has just come
+% over A (it was not in the previous frame): a candidate occluder, picked as any other by the
 % occlusion rules above (hand-written or learned).  A hand hovering over what it has just let
 % go of does not pick it up again.
 grasp_candidate(A, O):t+1 :=
-    closes_over(O, A):t+1, (seen(A):t -> true ; \+ closes_over(O, A):t).
+    closes_over(O, A):t+1, (seen(A):t -> true ; \+ grip_over(O, A):t).
 occluder_candidate(A, O):t+1 := grasp_candidate(A, O):t+1.
 carried(A, O):t+1 := occluded_by(A, O):t+1, is_carrier(O).
 
