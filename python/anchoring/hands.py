@@ -25,8 +25,9 @@ Per frame (:func:`match_hands`):
 
 A hand that leaves the view and comes back re-acquires a hand anchor not in view (the
 likeliest by the rule above, its gate and spread having grown with the time: the hand that
-left last, unless another left nearer; hands look alike: which hand came back is not told by appearance; one anchor per hand the view has held at once keeps
-the theory of occlusion's objects few and lets a hand carry what it held out of view back in).
+left last, unless another left nearer). Hands look alike: which hand came back is not told by
+appearance; one anchor per hand the view has held at once keeps the theory of occlusion's
+objects few and lets a hand carry what it held out of view back in.
 
 Knows nothing of the reasoning or of the simulator.
 """

@@ -49,8 +49,24 @@ def _axis(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _robust(v: np.ndarray, trim: float = 0.01) -> tuple[float, float]:
-    lo, hi = np.quantile(v, [trim, 1.0 - trim]) if len(v) > 20 else (v.min(), v.max())
-    return float(lo), float(hi)
+    """(low, high) of ``v`` leaving out the ``trim`` fraction at each end (a partition, not a
+    sort: this runs on every skin segment of every frame)."""
+    n = len(v)
+    k = int(trim * n)
+    if k == 0:
+        return float(v.min()), float(v.max())
+    part = np.partition(v, [k, n - 1 - k])
+    return float(part[k]), float(part[n - 1 - k])
+
+
+def _box_centre(points: np.ndarray, trim: float = 0.01) -> np.ndarray:
+    """The centre of the points' 3-D box, the ``trim`` fraction left out at each end."""
+    n = len(points)
+    k = int(trim * n)
+    if k == 0:
+        return (points.min(axis=0) + points.max(axis=0)) / 2
+    part = np.partition(points, [k, n - 1 - k], axis=0)
+    return (part[k] + part[n - 1 - k]).astype(np.float64) / 2
 
 
 def entering(segment: Segment, image_shape: tuple[int, int],
@@ -91,8 +107,8 @@ def free_end(segment: Segment, entry: np.ndarray, config: GripConfig
     lo, hi = _robust(proj)
     if hi - lo < 1.5 * config.hand_length:
         return None
-    low_plus = float(np.quantile(segment.heights[proj >= hi - config.hand_length], 0.05))
-    low_minus = float(np.quantile(segment.heights[proj <= lo + config.hand_length], 0.05))
+    low_plus = _robust(segment.heights[proj >= hi - config.hand_length], 0.05)[0]
+    low_minus = _robust(segment.heights[proj <= lo + config.hand_length], 0.05)[0]
     if low_plus < low_minus - 0.01:
         return proj
     if low_minus < low_plus - 0.01:
@@ -108,9 +124,7 @@ def grip_point(segment: Segment, entry: np.ndarray, config: GripConfig) -> np.nd
         hand = proj >= _robust(proj)[1] - config.hand_length
         if hand.sum() >= 3:
             points = points[hand]
-    lo = np.array([_robust(points[:, k])[0] for k in range(3)])
-    hi = np.array([_robust(points[:, k])[1] for k in range(3)])
-    return (lo + hi) / 2
+    return _box_centre(points)
 
 
 def _join(big: Segment, piece: Segment) -> None:
