@@ -55,7 +55,7 @@ RECENT = 1.0
 class HandRules:
     """How hands are matched (lengths in metres, ``speed`` in metres per second)."""
 
-    speed: float = 3.0
+    speed: float = 6.0
     reach: float = 0.12
     piece_gap: float = 0.05
 
