@@ -49,6 +49,7 @@ lift_margin(0.03).          % a carried object lifted 3 cm above where it stood 
 release_margin(0.02).       % ... and is put down when carried back within 2 cm of that height,
 release_p(0.6).             % ... where the hand lets go of it with this probability per frame
 grip_drop(0.02).            % what a hand holds is about 2 cm below its grip point
+grip_rise(0.01).            % a hand rises when its grip goes up more than 1 cm in a frame
 
 % ------------------------------------------------------------------ background knowledge
 % Affordances (anchoring learn-theory keeps them beside the learned rules, as the paper's
@@ -331,6 +332,16 @@ closes_over(O, A):t+1 := grip_over(O, A):t+1, \+ carried(_, O):t.
 % go of does not pick it up again.
 grasp_candidate(A, O):t+1 :=
     closes_over(O, A):t+1, (seen(A):t -> true ; \+ grip_over(O, A):t).
+% O has picked A up when it rises from over A and A stays unseen: left on the table, A would be
+% in view once the hand is off it (a particle that had A stay `behind` when it vanished under
+% the hand).  Not what O has let go of itself (held_before/2).
+grasp_candidate(A, O):t+1 := lifted_from(O, A):t+1.
+lifted_from(O, A):t+1 :=
+    grip_over(O, A):t, hidden(A):t+1, \+ occluded_by(A, _):t, observed(O),
+    \+ carried(_, O):t, \+ held_before(A, O):t,
+    pos(O):t ~= (_, _, Z0), pos(O):t+1 ~= (_, _, Z1), grip_rise(E), Z1 > Z0 + E.
+held_before(A, O):t+1 := carried(A, O):t, hidden(A):t+1.
+held_before(A, O):t+1 := held_before(A, O):t, hidden(A):t+1.
 occluder_candidate(A, O):t+1 := grasp_candidate(A, O):t+1.
 carried(A, O):t+1 := occluded_by(A, O):t+1, is_carrier(O).
 

@@ -59,18 +59,16 @@ def test_a_hand_carries_the_ball_it_closes_over_and_puts_it_down(theory: str) ->
                 assert belief is not None
                 inside = np.linalg.norm(belief.positions - np.array([PUT[0], BALL[1], 0.21]),
                                         axis=1) < 0.03
-                assert belief.weights[inside].sum() == pytest.approx(carried_at_vanish,
-                                                                     abs=0.1)
-                if theory == "hand":  # (the learned rules may put the rest under the mug)
-                    rest = belief.positions[~inside]
-                    assert np.all(np.linalg.norm(rest[:, :2] - np.array(BALL[:2]), axis=1)
-                                  < 0.15)
+                # all of it: the particles that had it stay behind took it when the hand rose
+                # from it and it stayed unseen (the learned rules put some under the mug, 21
+                # cm away, meanwhile)
+                assert belief.weights[inside].sum() > (0.95 if theory == "hand" else 0.7)
         # put down and the hand rises: let go (it no longer moves with the hand), on the table
         assert reasoner.probability("occluded_by(ball_1, skin_1):t") < 0.1
         belief = reasoner.belief("ball-1")
         assert belief is not None
         near = np.linalg.norm(belief.positions - np.array(PUT), axis=1) < 0.05
-        assert belief.weights[near].sum() > 0.35
+        assert belief.weights[near].sum() > (0.85 if theory == "hand" else 0.5)
         # seen there
         step(reasoner, (PUT[0], BALL[1], 0.14), True, ball_at=PUT)
         assert reasoner.probability("occluded_by(ball_1, _):t") == pytest.approx(0.0)

@@ -63,21 +63,22 @@ def assert_all_kept(summary) -> None:
 
 def test_a_hand_carries_a_ball_over_a_mug_and_past_others() -> None:
     """scenarios/hand_carries_past_others.yaml: one hand anchor; the ball is believed in the
-    hand (half the mass: the other half has it left where it stood) for the whole carry, and
-    is ball-1 again where it is put down; the mug under the forearm stays mug-1."""
+    hand for the whole carry (half the mass as it vanishes under the hand, the rest too once the
+    hand rises from it and it is not seen), and is ball-1 again where it is put down; the mug
+    under the forearm stays mug-1."""
     summary, hands, held = play("hand_carries_past_others")
     assert_all_kept(summary)
     assert hands == {"hand_1": {"skin-1"}}
-    carried = held["ball_1"][3:]  # (from the frame after the hand closed over it)
+    carried = held["ball_1"][8:]  # (from the frames after the hand rose with it)
     assert len(carried) > 40
-    assert min(carried) > 0.3, carried
+    assert min(carried) > 0.8, carried
 
 
 @pytest.mark.parametrize("theory", ["learned", "hindsight"])
 def test_the_learned_theories_carry_too(theory: str) -> None:
     summary, hands, held = play("hand_carries_past_others", theory)
     assert_all_kept(summary)
-    assert np.median(held["ball_1"]) > 0.3
+    assert np.median(held["ball_1"]) > 0.5
 
 
 def test_a_hand_picks_a_ball_uncovered_by_a_lifted_mug() -> None:
@@ -90,8 +91,9 @@ def test_a_hand_picks_a_ball_uncovered_by_a_lifted_mug() -> None:
 
 
 def test_a_look_alike_put_down_while_the_original_is_held_is_a_new_object() -> None:
-    """scenarios/lookalike_put_down_while_held.yaml: the second hand's ball is not the first
-    hand's; each keeps its symbol, and each hand its own."""
+    """scenarios/lookalike_put_down_while_held.yaml: the second hand's ball, put down just where
+    the first hand picked its look-alike up, is not the first hand's; each keeps its symbol, and
+    each hand its own."""
     summary, hands, _ = play("lookalike_put_down_while_held")
     assert_all_kept(summary)
     objects = {o["id"]: o["symbols"] for o in summary["objects"]}
@@ -104,4 +106,4 @@ def test_two_hands_carry_two_objects_at_once() -> None:
     summary, hands, held = play("two_hands")
     assert_all_kept(summary)
     assert hands == {"hand_1": {"skin-1"}, "hand_2": {"skin-2"}}
-    assert np.median(held["ball_1"]) > 0.3 and np.median(held["can_1"]) > 0.3
+    assert np.median(held["ball_1"]) > 0.8 and np.median(held["can_1"]) > 0.8
