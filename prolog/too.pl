@@ -58,6 +58,7 @@ carrier(hand) := true.
 % (the carriers' rules below, kept beside learned occlusion rules as the affordances are).
 can_occlude(O) := category(O, C), \+ cannot_occlude(C), \+ carrier(C).
 is_carrier(O) := category(O, C), carrier(C).
+hand_known := object(O), is_carrier(O).
 can_be_occluded(A) := category(A, C), \+ cannot_be_occluded(C).
 
 % ------------------------------------------------------------------ seen and hidden
@@ -114,7 +115,7 @@ lowered_over(O, A):t+1 :=
     ;   true
     ).
 % A hand that has just come to close over A (the carriers' rules below).
-lowered_over(O, A):t+1 := grasp_candidate(A, O):t+1.
+lowered_over(O, A):t+1 := hand_known, grasp_candidate(A, O):t+1.
 
 % Each particle picks uniformly among the choices (the paper's sample_occluder, plus
 % `behind`).  (In these bodies and in pos/1's, the goals every particle agrees on, such as
@@ -149,53 +150,66 @@ occluded_by(A, O):t+1 :=
 % affordances and the transitive clause are).  A carrier's position is where it closes (the
 % runner gives a hand's grip point), so what it holds is near it, however much of the
 % forearm is in view.
-% O's grip is over the hidden A: within grip_reach of where A was in the table plane, at
-% most grip_height above A and not below it; O closes over A if it holds nothing else.
+% (Every rule starts with the carriers, `object(O), is_carrier(O)` or `hand_known`: with no
+% hand in the scene they cost nothing; and none reads a derived predicate at t other than
+% seen/1 and occluded_by/2, which the filter keeps anyway: rest_z/1 and raised/1 are variables
+% of the objects a hand holds.)
+% O's grip is over the hidden A: within grip_reach of where A was in the table plane, at most
+% grip_height above A and not below it (grip_was_over/2: so it was in the previous frame).
 grip_over(O, A):t+1 :=
-    hidden(A):t+1, can_be_occluded(A), observed(O), O \== A, is_carrier(O),
+    object(O), is_carrier(O), observed(O), hidden(A):t+1, O \== A, can_be_occluded(A),
     pos(A):t ~= (X, Y, Z), pos(O):t+1 ~= (XO, YO, ZO),
     grip_reach(R), grip_height(H), occluder_rise(L),
     D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, ZO - Z < H, Z < ZO + L.
-closes_over(O, A):t+1 := grip_over(O, A):t+1, \+ carried(_, O):t.
-% O may have picked A up when A vanished just now under it, or when O's grip has just come
-% over A (it was not in the previous frame): a candidate occluder, picked as any other by the
-% occlusion rules above (hand-written or learned).  A hand hovering over what it has just let
-% go of does not pick it up again.
+grip_was_over(O, A):t+1 :=
+    object(O), is_carrier(O), seen(O):t, object(A), A \== O, \+ seen(A):t,
+    can_be_occluded(A), pos(A):t ~= (X, Y, Z), pos(O):t ~= (XO, YO, ZO),
+    grip_reach(R), grip_height(H), occluder_rise(L),
+    D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, ZO - Z < H, Z < ZO + L.
+% O, holding nothing else, may have picked A up when A vanished just now under its grip, or
+% when its grip has just come over A (it was not in the previous frame): a candidate occluder,
+% picked as any other by the occlusion rules above (hand-written or learned).  A hand hovering
+% over what it has just let go of does not pick it up again.
 grasp_candidate(A, O):t+1 :=
-    closes_over(O, A):t+1, (seen(A):t -> true ; \+ grip_over(O, A):t).
+    grip_over(O, A):t+1, \+ occluded_by(_, O):t,
+    (seen(A):t -> true ; \+ grip_was_over(O, A):t+1).
 % O has picked A up when it rises from over A and A stays unseen: left on the table, A would be
 % in view once the hand is off it (a particle that had A stay `behind` when it vanished under
-% the hand).  Not what O has let go of itself (held_before/2).
-grasp_candidate(A, O):t+1 := lifted_from(O, A):t+1.
-lifted_from(O, A):t+1 :=
-    grip_over(O, A):t, hidden(A):t+1, \+ occluded_by(A, _):t, observed(O),
-    \+ carried(_, O):t, \+ held_before(A, O):t,
+% the hand).  Not what a hand has let go of (it has rest_z/1 since).
+grasp_candidate(A, O):t+1 :=
+    grip_was_over(O, A):t+1, observed(O), hidden(A):t+1, \+ occluded_by(A, _):t,
+    \+ occluded_by(_, O):t, \+ rest_z(A):t ~= _,
     pos(O):t ~= (_, _, Z0), pos(O):t+1 ~= (_, _, Z1), grip_rise(E), Z1 > Z0 + E.
-held_before(A, O):t+1 := carried(A, O):t, hidden(A):t+1.
-held_before(A, O):t+1 := held_before(A, O):t, hidden(A):t+1.
-occluder_candidate(A, O):t+1 := grasp_candidate(A, O):t+1.
-carried(A, O):t+1 := occluded_by(A, O):t+1, is_carrier(O).
+occluder_candidate(A, O):t+1 := hand_known, grasp_candidate(A, O):t+1.
 
 % The carrier holds A while it is perceived (and, by the transitive clause, while it is not)
 % until it lets A go.
 occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, is_carrier(O), hidden(A):t+1, observed(O),
+    object(O), is_carrier(O), occluded_by(A, O):t, hidden(A):t+1, observed(O),
     \+ released(A):t+1 ~= true.
-% Where A stood when it vanished (its height): a carried object is not lowered below it.
-rest_z(A):t+1 ~ val(Z) := hidden(A):t+1, seen(A):t, pos(A):t ~= (_, _, Z).
-rest_z(A):t+1 ~ val(Z) := hidden(A):t+1, \+ seen(A):t, rest_z(A):t ~= Z.
+% Where A stood when a hand took it (its height): a carried object is not lowered below it;
+% kept while A is hidden.
+rest_z(A):t+1 ~ val(Z) :=
+    object(O), is_carrier(O), occluded_by(A, O):t+1, \+ occluded_by(A, O):t,
+    pos(A):t ~= (_, _, Z).
+rest_z(A):t+1 ~ val(Z) :=
+    hand_known, hidden(A):t+1, rest_z(A):t ~= Z,
+    \+ (object(O), is_carrier(O), occluded_by(A, O):t+1, \+ occluded_by(A, O):t).
 % A has been carried up (the hand rising with it, lift_margin above where it stood) since it
-% was picked ...
-lifted(A):t+1 :=
-    carried(A, O):t+1, pos(O):t ~= (_, _, ZO0), pos(O):t+1 ~= (_, _, ZO1), ZO1 > ZO0,
-    pos(A):t+1 ~= (_, _, Z), rest_z(A):t+1 ~= R, lift_margin(M), Z > R + M.
-lifted(A):t+1 := lifted(A):t, carried(A, _):t+1.
+% was taken ...
+raised(A):t+1 ~ val(true) :=
+    object(O), is_carrier(O), occluded_by(A, O):t+1,
+    (   raised(A):t ~= true
+    ->  true
+    ;   pos(O):t ~= (_, _, ZO0), pos(O):t+1 ~= (_, _, ZO1), ZO1 > ZO0,
+        pos(A):t+1 ~= (_, _, Z), rest_z(A):t+1 ~= R, lift_margin(M), Z > R + M
+    ).
 % ... and carried back down to within release_margin of that height: put down.  The hand lets
 % it go with probability release_p per frame there (it stays where it is; the hand leaves).
 released(A):t+1 ~ finite([P:true, Q:false]) :=
-    carried(A, O):t, observed(O), hidden(A):t+1, lifted(A):t,
-    pos(A):t ~= (_, _, Z), rest_z(A):t ~= R, release_margin(M), Z =< R + M,
-    release_p(P), Q is 1 - P.
+    object(O), is_carrier(O), occluded_by(A, O):t, observed(O), hidden(A):t+1,
+    raised(A):t ~= true, pos(A):t ~= (_, _, Z), rest_z(A):t ~= R, release_margin(M),
+    Z =< R + M, release_p(P), Q is 1 - P.
 
 % ------------------------------------------------------------------ positions
 % A perceived object's position is the same in every particle: its filtered estimate, a point
