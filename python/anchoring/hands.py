@@ -209,7 +209,7 @@ def _alike(anchor: Anchor, percept: Percept, colour: float, min_colour: float) -
 
 def views_under_hands(anchors: Sequence[Anchor], frame: Sequence[Percept],
                       colour: np.ndarray, left: Sequence[int], hands: Sequence[Percept],
-                      margin: float = 0.01, min_colour: float = 0.7, pixels: int = 2
+                      margin: float = 0.05, min_colour: float = 0.7, pixels: int = 2
                       ) -> dict[int, list[str]]:
     """Percepts that are what an arm in front leaves in view of an anchor: withheld.
 
@@ -218,7 +218,8 @@ def views_under_hands(anchors: Sequence[Anchor], frame: Sequence[Percept],
     own, at the height of the part seen, often of another category; left to the matcher it
     acquired a new anchor (``ball-2`` for the foot of ``mug-1``), and the object's identity was
     lost. A percept left unmatched whose image box touches a hand's percept's (within
-    ``pixels``), whose footprint in the table plane overlaps (within ``margin``) that of an
+    ``pixels``), whose footprint in the table plane overlaps (within ``margin``: the part in
+    view may be the near rim of a mug whose far rim was seen last, 8 cm away) that of an
     anchor (at its last perceived position or at a particle; perceived this frame or not: the
     other part of it may be in view too) and whose
     colour is not unlike that anchor's (similarity >= ``min_colour``, or its first colour name

@@ -323,7 +323,7 @@ class AnchorManager:
             views.update(views_under_hands(
                 anchors, frame, features[:, :, 1],
                 [j for j in range(len(frame)) if j not in matched_anchor and j not in views],
-                [percepts[i] for i in skin], self.view_margin, self.view_colour))
+                [percepts[i] for i in skin], min_colour=self.view_colour))
         result.ambiguous = self._ambiguities(
             anchors, believed, lost_blind & np.array([a.confirmed for a in anchors], bool),
             features, mass,
