@@ -30,6 +30,7 @@
 :- use_module(library(lists)).
 :- use_module(library(pairs)).
 :- use_module(ddc_batch_tables, [tuple_shape/2]).
+:- use_module(ddc_batch_col).
 :- use_module(ddc_body, [conj_from_list/2]).
 :- use_module(ddc_programs, [optimised/1]).
 
@@ -38,8 +39,8 @@
 /** <module> Goals over columns for the batched filter
 
 A particle index is an integer 1..N; a batch is a sorted list of them.
-Column terms c(V1, ..., VN) are read and written by particle index
-(arg/3, nb_setarg/3): they are arrays, not records.
+Columns (ddc_batch_col.pl) are read and written by particle index
+(col_arg/3, col_setarg/3): they are arrays, not records.
 
 Body variables are bound to values (the same for the whole batch) or
 to column references '$c'(C, Pattern, V): the particle's value in
@@ -101,7 +102,7 @@ map_args([X|Xs], Leaf, [Y|Ys], A0, A) :-
 bind([], _).
 bind([B|Bs], I) :- bind_one(B, I), bind(Bs, I).
 
-bind_one(C-P, I) :- arg(I, C, P).
+bind_one(C-P, I) :- col_arg(I, C, P).
 bind_one('$e'(W, Ex, _), _) :- W is Ex.
 
 %   column_ref(+Column, ?V, -Ref): Ref is a reference to Column whose
@@ -123,9 +124,9 @@ materialise(T, Ps, T1) :-
     (   deferred_in(T, X)
     ->  X = '$x'(Ex),
         once(column_in(Ex, C0)),
-        functor(C0, _, N),
+        col_size(C0, N),
         plan(X, W, Bs),
-        functor(C, c, N),
+        col_new(N, '$u', C),
         arith_loop(Ps, Bs, W, C),
         column_ref(C, _, Ref),
         replace_eq(T, X, Ref, T2),
@@ -189,7 +190,7 @@ test_goal(G) :-
 
 arith_loop([], _, _, _).
 arith_loop([I|Is], Bs, Ex, C) :-
-    \+ \+ ( bind(Bs, I), X is Ex, nb_setarg(I, C, X) ),
+    \+ \+ ( bind(Bs, I), X is Ex, col_setarg(I, C, X) ),
     arith_loop(Is, Bs, Ex, C).
 
 %!  test_loop(+G, +Ps0:list(integer), -Ps:list(integer)) is semidet.
@@ -270,8 +271,9 @@ loop_clauses(test, Name, Head, Consts, I, Cond,
     Rec =.. [Name, [I|Is], Head, Consts, Out],
     Next =.. [Name, Is, Head, Consts, Out1].
 loop_clauses(instance(Value), Name, Head, Consts, I, Cond,
-             [ Base, (Rec :- ( arg(I, Out, U), U == '$u', Cond -> nb_setarg(I, Out, Value)
-                              ; true ), Next) ]) :-
+             [ Base, (Rec :- ( IsU, Cond -> SetArg ; true ), Next) ]) :-
+    is_u_goal(I, Out, IsU),
+    setarg_goal(I, Out, Value, SetArg),
     Base =.. [Name, [], _, _, _],
     Rec =.. [Name, [I|Is], Head, Consts, Out],
     Next =.. [Name, Is, Head, Consts, Out].
@@ -287,10 +289,24 @@ number_leaf(T, V, [V-T|Ps], Ps) :- number(T).
 %   that bind/2 runs for particle I, each column a variable (a clause must
 %   not hold a column: asserting it would copy it).
 bind_goals([], _, [], [], [], []).
-bind_goals([C-P|Bs], I, [C|Cs], [CV|CVs], [arg(I, CV, P)|Gs], Es) :- !,
+bind_goals([C-P|Bs], I, [C|Cs], [CV|CVs], [Arg|Gs], Es) :- !,
+    arg_goal(I, CV, P, Arg),
     bind_goals(Bs, I, Cs, CVs, Gs, Es).
+
 bind_goals(['$e'(W, Ex, _)|Bs], I, Cs, CVs, Gs, [W is Ex|Es]) :-
     bind_goals(Bs, I, Cs, CVs, Gs, Es).
+
+%   arg_goal(?I, ?C, ?V, -G), is_u_goal(?I, ?C, -G), setarg_goal(?I, ?C,
+%   ?V, -G): a compiled loop's goals that read and write a column: with
+%   columns as terms, the builtins themselves (compiled inline).
+arg_goal(I, C, V, G) :-
+    (   col_backend(prolog) -> G = arg(I, C, V) ; G = col_arg(I, C, V) ).
+
+is_u_goal(I, C, G) :-
+    (   col_backend(prolog) -> G = (arg(I, C, U), U == '$u') ; G = col_is_u(I, C) ).
+
+setarg_goal(I, C, V, G) :-
+    (   col_backend(prolog) -> G = nb_setarg(I, C, V) ; G = col_setarg(I, C, V) ).
 
 test_each([], _, _, []).
 test_each([I|Is], Bs, G, Ps) :-
@@ -322,7 +338,7 @@ split_pairs([I|Is], Cs, [Vs-I|Ps]) :-
     split_pairs(Is, Cs, Ps).
 
 args_at([], _, []).
-args_at([C|Cs], I, [V|Vs]) :- arg(I, C, V), args_at(Cs, I, Vs).
+args_at([C|Cs], I, [V|Vs]) :- col_arg(I, C, V), args_at(Cs, I, Vs).
 
 %!  unify_value(?P, +V, +Ps0:list(integer), -Ps:list(integer)) is semidet.
 %
@@ -373,19 +389,19 @@ with_arity(Ps0, C, K, Ps) :-
 
 with_shape([], _, _, []).
 with_shape([I|Is], C, Shape, Ps) :-
-    arg(I, C, V),
+    col_arg(I, C, V),
     (   subsumes_term(Shape, V), V \== '$undef', V \== '$u' -> Ps = [I|Ps1] ; Ps = Ps1 ),
     with_shape(Is, C, Shape, Ps1).
 
 with_value([], _, _, []).
 with_value([I|Is], C, P, Ps) :-
-    arg(I, C, V),
+    col_arg(I, C, V),
     (   ( V = P -> true ; number(V), number(P), V =:= P ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
     with_value(Is, C, P, Ps1).
 
 unifiable_at([], _, _, _, []).
 unifiable_at([I|Is], C, Bs, Tmpl, Ps) :-
-    arg(I, C, V),
+    col_arg(I, C, V),
     (   \+ \+ ( bind(Bs, I), Tmpl = V ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
     unifiable_at(Is, C, Bs, Tmpl, Ps1).
 
@@ -394,7 +410,7 @@ unifiable_at([I|Is], C, Bs, Tmpl, Ps) :-
 %   For each value V that particles of Ps0 hold in column C, Ps those
 %   particles (in the standard order of the values).
 split_column(C, Ps0, V, Ps) :-
-    findall(V0-I, ( member(I, Ps0), arg(I, C, V0) ), Pairs),
+    findall(V0-I, ( member(I, Ps0), col_arg(I, C, V0) ), Pairs),
     keysort(Pairs, Sorted),
     group_pairs_by_key(Sorted, Groups),
     member(V-Ps, Groups).

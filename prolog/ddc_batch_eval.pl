@@ -30,6 +30,7 @@
 :- use_module(ddc_errors, [engine_error/1]).
 :- use_module(ddc_batch_program, [timed_read/3, origin_line/2, origin_id/2, origin_rivals/2]).
 :- use_module(ddc_batch_tables).
+:- use_module(ddc_batch_col).
 :- use_module(ddc_batch_columns).
 :- use_module(ddc_batch_rv, [assign/3, set_each/3]).
 :- use_module(ddc_ops).
@@ -285,24 +286,19 @@ firsts([L|Ls], Taken0, [F|Fs], Taken) :-
 %   on, or a column of lists.
 collect(T, G, L, E, Ps0, Ps) :-
     env_size(E, N),
-    functor(LC, c, N),
-    set_all(Ps0, LC, []),
+    col_new(N, '$u', LC),
+    col_set_each(Ps0, LC, []),
     forall(eval_body(G, E, Ps0, Ps1),
            ( plan(T, Tmpl, Bs), append_each(Ps1, Bs, Tmpl, LC) )),
-    (   Ps0 = [I0|_], arg(I0, LC, L0), all_same(Ps0, LC, L0)
-    ->  unify_value(L, L0, Ps0, Ps)
+    (   Ps0 = [I0|_], col_all_same(Ps0, LC, I0)
+    ->  col_arg(I0, LC, L0),
+        unify_value(L, L0, Ps0, Ps)
     ;   unify_column(L, LC, Ps0, Ps)
     ).
 
-set_all([], _, _).
-set_all([I|Is], C, V) :- nb_setarg(I, C, V), set_all(Is, C, V).
-
-all_same([], _, _).
-all_same([I|Is], C, V) :- arg(I, C, V1), V1 == V, all_same(Is, C, V).
-
 append_each([], _, _, _).
 append_each([I|Is], Bs, Tmpl, LC) :-
-    \+ \+ ( bind(Bs, I), arg(I, LC, L0), append(L0, [Tmpl], L1), nb_setarg(I, LC, L1) ),
+    \+ \+ ( bind(Bs, I), col_arg(I, LC, L0), append(L0, [Tmpl], L1), col_setarg(I, LC, L1) ),
     append_each(Is, Bs, Tmpl, LC).
 
 
@@ -458,7 +454,7 @@ run_clause(E, X, T, K, B, At, Rest, C, Action) :-
     ;   true
     ).
 
-uncomputed_at(C, I) :- arg(I, C, V), V == '$u'.
+uncomputed_at(C, I) :- col_is_u(I, C).
 
 %   clause_error(+Error, +Where): an error raised in the body of the clause
 %   at Where is the program's error there, as the per-particle engine

@@ -1,0 +1,796 @@
+/*  ddc_columns.c -- the batched filter's columns as arrays, and their loops.
+
+    Part of the batched particle filter (prolog/ddc_batch.pl): the values of
+    a random variable at a time, one per particle, held in C memory as a
+    blob (an atom whose data is a column struct), and the loops over a
+    batch of particles that the engine runs most (what is drawn and what
+    not, a column's status, draws and densities of a gaussian, resampling).
+    prolog/ddc_batch_col.pl loads it (use_foreign_library/1) and falls back
+    on plain Prolog terms c(V1, ..., VN) when it is not built; the set-up
+    builds it (scripts/setup.sh, with the swipl-ld of the SWI-Prolog it
+    installs).
+
+    A cell holds one particle's value: '$u' (not drawn yet), '$undef' (no
+    clause applies), a number tuple (K floats, K the column's arity, fixed
+    by the first such value: a float is a 1-tuple, (X, Y, Z) of floats a
+    3-tuple), an atom, or any other term (recorded: PL_record/3).  A
+    column is updated in place (as nb_setarg/3 updates a term: not undone
+    on backtracking) and freed when the atom garbage collector finds it
+    unreferenced.
+
+    The random draws come from a xoshiro256+ generator seeded, at each
+    call, with a seed that the caller draws from the filter's own Prolog
+    random stream: the particles still depend on the filter's seed alone.
+*/
+
+#include <SWI-Stream.h>
+#include <SWI-Prolog.h>
+#include <stdlib.h>
+#include <string.h>
+#include <stdint.h>
+#include <math.h>
+
+#define DDC_COLUMNS_VERSION 1
+
+#define T_U      0                      /* '$u': not drawn yet */
+#define T_UNDEF  1                      /* '$undef': no clause applies */
+#define T_NUM    2                      /* a tuple of k floats */
+#define T_ATOM   3                      /* an atom (registered) */
+#define T_TERM   4                      /* any other term (a record) */
+
+typedef struct column
+{ size_t    n;                          /* particles */
+  int       k;                          /* arity of the T_NUM cells (0: none yet) */
+  uint8_t  *tag;                        /* n tags */
+  double   *f;                          /* n*k floats (k > 0) */
+  uintptr_t *x;                         /* n atoms or records (allocated lazily) */
+} column;
+
+static atom_t ATOM_u, ATOM_undef, ATOM_open, ATOM_defined, ATOM_mixed, ATOM_done, ATOM_none;
+static functor_t FUNCTOR_comma2, FUNCTOR_same1, FUNCTOR_minus2;
+
+		 /*******************************
+		 *             BLOB             *
+		 *******************************/
+
+static void
+free_cells(column *c)
+{ if ( c->x )
+  { for(size_t i=0; i<c->n; i++)
+    { if ( c->tag[i] == T_ATOM )
+	PL_unregister_atom((atom_t)c->x[i]);
+      else if ( c->tag[i] == T_TERM )
+	PL_erase((record_t)c->x[i]);
+    }
+  }
+  free(c->tag); free(c->f); free(c->x);
+  free(c);
+}
+
+static int
+release_column(atom_t a)
+{ column *c = PL_blob_data(a, NULL, NULL);
+  if ( c ) free_cells(c);
+  return TRUE;
+}
+
+static int
+write_column(IOSTREAM *s, atom_t a, int flags)
+{ column *c = PL_blob_data(a, NULL, NULL);
+  (void)flags;
+  Sfprintf(s, "<ddc_column>(%zu)", c ? c->n : (size_t)0);
+  return TRUE;
+}
+
+static PL_blob_t column_blob =
+{ .magic   = PL_BLOB_MAGIC,
+  .flags   = PL_BLOB_NOCOPY|PL_BLOB_UNIQUE,
+  .name    = "ddc_column",
+  .release = release_column,
+  .write   = write_column
+};
+
+static int
+get_column(term_t t, column **cp)
+{ void *data; PL_blob_t *type;
+  *cp = NULL;
+  if ( PL_get_blob(t, &data, NULL, &type) && type == &column_blob )
+  { *cp = (column*)data;
+    return TRUE;
+  }
+  return PL_type_error("ddc_column", t);
+}
+
+static column *
+new_column(size_t n)
+{ column *c = calloc(1, sizeof(*c));
+  if ( !c ) return NULL;
+  c->n = n;
+  c->tag = calloc(n ? n : 1, 1);
+  if ( !c->tag ) { free(c); return NULL; }
+  return c;
+}
+
+static int
+unify_column(term_t t, column *c)
+{ if ( !PL_unify_blob(t, c, sizeof(*c), &column_blob) )
+  { /* (the blob is not made: nothing refers to c) */
+    return FALSE;
+  }
+  return TRUE;
+}
+
+static int
+ensure_x(column *c)
+{ if ( !c->x )
+  { c->x = calloc(c->n ? c->n : 1, sizeof(uintptr_t));
+    if ( !c->x ) return PL_resource_error("memory");
+  }
+  return TRUE;
+}
+
+static int
+set_k(column *c, int k)
+{ c->f = calloc((c->n ? c->n : 1)*(size_t)k, sizeof(double));
+  if ( !c->f ) return PL_resource_error("memory");
+  c->k = k;
+  return TRUE;
+}
+
+		 /*******************************
+		 *            CELLS             *
+		 *******************************/
+
+static void
+clear_cell(column *c, size_t i)
+{ if ( c->tag[i] == T_ATOM )
+    PL_unregister_atom((atom_t)c->x[i]);
+  else if ( c->tag[i] == T_TERM )
+    PL_erase((record_t)c->x[i]);
+  c->tag[i] = T_U;
+}
+
+/* float_tuple(t, fs, max): the number of elements of t as a tuple of
+   floats (a float: 1; (A, B, ...) of floats: their number), 0 if it is
+   not one; fs gets them (at most max). */
+static int
+float_tuple(term_t t, double *fs, int max)
+{ term_t h = PL_new_term_ref();
+  term_t r = PL_copy_term_ref(t);
+  int m = 0;
+
+  for(;;)
+  { if ( PL_is_functor(r, FUNCTOR_comma2) )
+    { _PL_get_arg(1, r, h);
+      if ( !PL_is_float(h) || m >= max || !PL_get_float(h, &fs[m++]) ) return 0;
+      _PL_get_arg(2, r, r);
+    } else if ( PL_is_float(r) )
+    { if ( m >= max || !PL_get_float(r, &fs[m++]) ) return 0;
+      return m;
+    } else
+      return 0;
+  }
+}
+
+#define MAX_K 16
+
+/* set_cell(c, i, v): cell i gets the value v (the previous one freed) */
+static int
+set_cell(column *c, size_t i, term_t v)
+{ atom_t a;
+  double fs[MAX_K];
+  int m;
+
+  if ( PL_get_atom(v, &a) )
+  { clear_cell(c, i);
+    if ( a == ATOM_u ) { c->tag[i] = T_U; return TRUE; }
+    if ( a == ATOM_undef ) { c->tag[i] = T_UNDEF; return TRUE; }
+    if ( !ensure_x(c) ) return FALSE;
+    PL_register_atom(a);
+    c->x[i] = (uintptr_t)a;
+    c->tag[i] = T_ATOM;
+    return TRUE;
+  }
+  if ( (m=float_tuple(v, fs, MAX_K)) > 0 )
+  { if ( c->k == 0 && !set_k(c, m) ) return FALSE;
+    if ( c->k == m )
+    { clear_cell(c, i);
+      memcpy(&c->f[i*(size_t)m], fs, sizeof(double)*(size_t)m);
+      c->tag[i] = T_NUM;
+      return TRUE;
+    }
+  }
+  { record_t r;
+    if ( !ensure_x(c) ) return FALSE;
+    if ( !(r = PL_record(v)) ) return FALSE;
+    clear_cell(c, i);
+    c->x[i] = (uintptr_t)r;
+    c->tag[i] = T_TERM;
+    return TRUE;
+  }
+}
+
+/* put_floats(t, fs, k): t is the k-tuple of the floats fs */
+static int
+put_floats(term_t t, const double *fs, int k)
+{ if ( k == 1 )
+    return PL_put_float(t, fs[0]);
+  { term_t h = PL_new_term_ref();
+    if ( !PL_put_float(t, fs[k-1]) ) return FALSE;
+    for(int j=k-2; j>=0; j--)
+    { if ( !PL_put_float(h, fs[j]) ||
+	   !PL_cons_functor(t, FUNCTOR_comma2, h, t) )
+	return FALSE;
+    }
+    return TRUE;
+  }
+}
+
+/* put_cell(t, c, i): t is particle i's value in c */
+static int
+put_cell(term_t t, column *c, size_t i)
+{ switch(c->tag[i])
+  { case T_U:     return PL_put_atom(t, ATOM_u);
+    case T_UNDEF: return PL_put_atom(t, ATOM_undef);
+    case T_NUM:   return put_floats(t, &c->f[i*(size_t)c->k], c->k);
+    case T_ATOM:  return PL_put_atom(t, (atom_t)c->x[i]);
+    case T_TERM:  return PL_recorded((record_t)c->x[i], t);
+  }
+  return FALSE;
+}
+
+/* copy_cell(d, j, s, i): d's cell j is s's cell i */
+static int
+copy_cell(column *d, size_t j, column *s, size_t i)
+{ switch(s->tag[i])
+  { case T_U:
+    case T_UNDEF:
+      clear_cell(d, j);
+      d->tag[j] = s->tag[i];
+      return TRUE;
+    case T_NUM:
+      if ( d->k == 0 && !set_k(d, s->k) ) return FALSE;
+      if ( d->k == s->k )
+      { clear_cell(d, j);
+	memcpy(&d->f[j*(size_t)d->k], &s->f[i*(size_t)s->k], sizeof(double)*(size_t)d->k);
+	d->tag[j] = T_NUM;
+	return TRUE;
+      }
+      { term_t t = PL_new_term_ref();
+	int rc = put_cell(t, s, i) && set_cell(d, j, t);
+	PL_reset_term_refs(t);
+	return rc;
+      }
+    case T_ATOM:
+      if ( !ensure_x(d) ) return FALSE;
+      clear_cell(d, j);
+      PL_register_atom((atom_t)s->x[i]);
+      d->x[j] = s->x[i];
+      d->tag[j] = T_ATOM;
+      return TRUE;
+    case T_TERM:
+      if ( !ensure_x(d) ) return FALSE;
+      clear_cell(d, j);
+      d->x[j] = (uintptr_t)PL_duplicate_record((record_t)s->x[i]);
+      d->tag[j] = T_TERM;
+      return TRUE;
+  }
+  return FALSE;
+}
+
+/* same_cell(a, i, b, j): the two values are == */
+static int
+same_cell(column *a, size_t i, column *b, size_t j)
+{ if ( a->tag[i] != b->tag[j] )
+  { if ( a->tag[i] == T_TERM || b->tag[j] == T_TERM )
+      goto general;
+    return FALSE;
+  }
+  switch(a->tag[i])
+  { case T_U:
+    case T_UNDEF:
+      return TRUE;
+    case T_NUM:
+      if ( a->k != b->k ) goto general;
+      return memcmp(&a->f[i*(size_t)a->k], &b->f[j*(size_t)b->k],
+		    sizeof(double)*(size_t)a->k) == 0;
+    case T_ATOM:
+      return a->x[i] == b->x[j];
+    case T_TERM:
+      goto general;
+  }
+general:
+  { fid_t fid = PL_open_foreign_frame();
+    term_t t1 = PL_new_term_ref(), t2 = PL_new_term_ref();
+    int rc = put_cell(t1, a, i) && put_cell(t2, b, j) && PL_compare(t1, t2) == 0;
+    PL_discard_foreign_frame(fid);
+    return rc;
+  }
+}
+
+/* index(t, c, &i): t is a particle index of c, i its 0-based index */
+static int
+get_index(term_t t, column *c, size_t *ip)
+{ int64_t i;
+  if ( !PL_get_int64_ex(t, &i) ) return FALSE;
+  if ( i < 1 || (uint64_t)i > c->n ) return FALSE;
+  *ip = (size_t)(i-1);
+  return TRUE;
+}
+
+		 /*******************************
+		 *          PREDICATES          *
+		 *******************************/
+
+/* col_new(+N, +V, -C) */
+static foreign_t
+col_new(term_t tn, term_t v, term_t tc)
+{ int64_t n;
+  column *c;
+  if ( !PL_get_int64_ex(tn, &n) ) return FALSE;
+  if ( n < 0 ) return PL_domain_error("not_less_than_zero", tn);
+  if ( !(c = new_column((size_t)n)) ) return PL_resource_error("memory");
+  { atom_t a;
+    if ( PL_get_atom(v, &a) && a == ATOM_u )
+      ;					/* (calloc: all T_U) */
+    else
+    { for(size_t i=0; i<c->n; i++)
+      { if ( !set_cell(c, i, v) ) { free_cells(c); return FALSE; }
+      }
+    }
+  }
+  if ( !unify_column(tc, c) ) { free_cells(c); return FALSE; }
+  return TRUE;
+}
+
+/* col_arg(+I, +C, ?V) */
+static foreign_t
+col_arg(term_t ti, term_t tc, term_t v)
+{ column *c = NULL; size_t i;
+  if ( !get_column(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
+  { term_t t = PL_new_term_ref();
+    return put_cell(t, c, i) && PL_unify(t, v);
+  }
+}
+
+/* col_setarg(+I, +C, +V) */
+static foreign_t
+col_setarg(term_t ti, term_t tc, term_t v)
+{ column *c = NULL; size_t i;
+  if ( !get_column(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
+  return set_cell(c, i, v);
+}
+
+/* col_is_u(+I, +C): particle I's value is not drawn yet */
+static foreign_t
+col_is_u(term_t ti, term_t tc)
+{ column *c = NULL; size_t i;
+  if ( !get_column(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
+  return c->tag[i] == T_U;
+}
+
+/* col_size(+C, -N) */
+static foreign_t
+col_size(term_t tc, term_t tn)
+{ column *c = NULL;
+  if ( !get_column(tc, &c) ) return FALSE;
+  return PL_unify_int64(tn, (int64_t)c->n);
+}
+
+/* col_is(@C) */
+static foreign_t
+col_is(term_t tc)
+{ void *data; PL_blob_t *type;
+  return PL_get_blob(tc, &data, NULL, &type) && type == &column_blob;
+}
+
+/* col_list(+C, -Vs) */
+static foreign_t
+col_list(term_t tc, term_t vs)
+{ column *c = NULL;
+  if ( !get_column(tc, &c) ) return FALSE;
+  { term_t l = PL_new_term_ref(), h = PL_new_term_ref();
+    PL_put_nil(l);
+    for(size_t i=c->n; i-- > 0; )
+    { if ( !put_cell(h, c, i) || !PL_cons_list(l, h, l) ) return FALSE;
+    }
+    return PL_unify(l, vs);
+  }
+}
+
+/* col_from_list(+Vs, -C) */
+static foreign_t
+col_from_list(term_t vs, term_t tc)
+{ size_t n;
+  column *c;
+  if ( !PL_skip_list(vs, 0, &n) ) return PL_type_error("list", vs);
+  if ( !(c = new_column(n)) ) return PL_resource_error("memory");
+  { term_t l = PL_copy_term_ref(vs), h = PL_new_term_ref();
+    for(size_t i=0; PL_get_list(l, h, l); i++)
+    { if ( !set_cell(c, i, h) ) { free_cells(c); return FALSE; }
+    }
+  }
+  if ( !unify_column(tc, c) ) { free_cells(c); return FALSE; }
+  return TRUE;
+}
+
+/* Walks a batch, a list of particle indices (1-based), with the
+   particles whose cell satisfies a test collected in a list. */
+typedef int (*cell_test)(column *c, size_t i);
+
+static int test_u(column *c, size_t i) { return c->tag[i] == T_U; }
+static int test_defined(column *c, size_t i) { return c->tag[i] >= T_NUM; }
+
+static foreign_t
+select_cells(term_t ps, term_t tc, term_t out, cell_test test)
+{ column *c = NULL;
+  if ( !get_column(tc, &c) ) return FALSE;
+  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
+    term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref();
+    size_t i;
+    while( PL_get_list(l, h, l) )
+    { if ( !get_index(h, c, &i) )
+	return PL_exception(0) ? FALSE : PL_domain_error("particle_index", h);
+      if ( (*test)(c, i) )
+      { if ( !PL_unify_list(tail, oh, tail) || !PL_unify(oh, h) ) return FALSE;
+      }
+    }
+    return PL_unify_nil(tail);
+  }
+}
+
+/* col_uncomputed(+Ps, +C, -Missing) */
+static foreign_t
+col_uncomputed(term_t ps, term_t tc, term_t out)
+{ return select_cells(ps, tc, out, test_u);
+}
+
+/* col_defined_at(+Ps, +C, -Defined) */
+static foreign_t
+col_defined_at(term_t ps, term_t tc, term_t out)
+{ return select_cells(ps, tc, out, test_defined);
+}
+
+/* col_set_each(+Ps, +C, +V): each particle of Ps not drawn yet gets V */
+static foreign_t
+col_set_each(term_t ps, term_t tc, term_t v)
+{ column *c = NULL;
+  if ( !get_column(tc, &c) ) return FALSE;
+  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
+    size_t i, first = (size_t)-1;
+    while( PL_get_list(l, h, l) )
+    { if ( !get_index(h, c, &i) ) return FALSE;
+      if ( c->tag[i] == T_U )
+      { if ( first == (size_t)-1 )
+	{ if ( !set_cell(c, i, v) ) return FALSE;
+	  first = i;
+	} else if ( !copy_cell(c, i, c, first) )
+	  return FALSE;
+      }
+    }
+    return TRUE;
+  }
+}
+
+/* col_status(+C, -S): open (a cell not drawn), same(V) (every cell V),
+   defined (values, not all the same), mixed (some '$undef') */
+static foreign_t
+col_status(term_t tc, term_t ts)
+{ column *c = NULL;
+  if ( !get_column(tc, &c) ) return FALSE;
+  if ( c->n == 0 ) return FALSE;
+  { int same = TRUE, undef = FALSE;
+    for(size_t i=0; i<c->n; i++)
+    { if ( c->tag[i] == T_U ) return PL_unify_atom(ts, ATOM_open);
+      if ( c->tag[i] == T_UNDEF ) undef = TRUE;
+      if ( same && i > 0 && !same_cell(c, i, c, 0) ) same = FALSE;
+    }
+    if ( same )
+    { term_t v = PL_new_term_ref();
+      return put_cell(v, c, 0) &&
+	     PL_unify_term(ts, PL_FUNCTOR, FUNCTOR_same1, PL_TERM, v);
+    }
+    return PL_unify_atom(ts, undef ? ATOM_mixed : ATOM_defined);
+  }
+}
+
+/* col_all_same(+Ps, +C, +I0): every particle of Ps has particle I0's value */
+static foreign_t
+col_all_same(term_t ps, term_t tc, term_t ti)
+{ column *c = NULL; size_t i0, i;
+  if ( !get_column(tc, &c) || !get_index(ti, c, &i0) ) return FALSE;
+  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
+    while( PL_get_list(l, h, l) )
+    { if ( !get_index(h, c, &i) ) return FALSE;
+      if ( !same_cell(c, i, c, i0) ) return FALSE;
+    }
+    return TRUE;
+  }
+}
+
+/* col_num_arity(+C, -K): the arity of the column's number tuples when
+   every cell holds one (fails otherwise) */
+static foreign_t
+col_num_arity(term_t tc, term_t tk)
+{ column *c = NULL;
+  if ( !get_column(tc, &c) ) return FALSE;
+  if ( c->k == 0 ) return FALSE;
+  for(size_t i=0; i<c->n; i++)
+    if ( c->tag[i] != T_NUM ) return FALSE;
+  return PL_unify_integer(tk, c->k);
+}
+
+/* col_gather(+Sources, +Pairs, -C): C's particle j is particle L of the
+   G-th source of the j-th pair G-L (1-based; a source '$none' gives '$u') */
+static foreign_t
+col_gather(term_t srcs, term_t pairs, term_t tc)
+{ size_t nsrc, n;
+  column **src;
+  column *c;
+  if ( !PL_skip_list(srcs, 0, &nsrc) ) return PL_type_error("list", srcs);
+  if ( !PL_skip_list(pairs, 0, &n) ) return PL_type_error("list", pairs);
+  if ( !(src = calloc(nsrc ? nsrc : 1, sizeof(column*))) ) return PL_resource_error("memory");
+  { term_t l = PL_copy_term_ref(srcs), h = PL_new_term_ref();
+    for(size_t g=0; PL_get_list(l, h, l); g++)
+    { atom_t a;
+      if ( PL_get_atom(h, &a) && a == ATOM_none )
+	src[g] = NULL;			/* '$none' */
+      else if ( !get_column(h, &src[g]) ) { free(src); return FALSE; }
+    }
+  }
+  if ( !(c = new_column(n)) ) { free(src); return PL_resource_error("memory"); }
+  { term_t l = PL_copy_term_ref(pairs), h = PL_new_term_ref(), a = PL_new_term_ref();
+    for(size_t j=0; PL_get_list(l, h, l); j++)
+    { int64_t g, li;
+      if ( !PL_is_functor(h, FUNCTOR_minus2) ) goto type;
+      _PL_get_arg(1, h, a); if ( !PL_get_int64_ex(a, &g) ) goto error;
+      _PL_get_arg(2, h, a); if ( !PL_get_int64_ex(a, &li) ) goto error;
+      if ( g < 1 || (size_t)g > nsrc ) goto type;
+      { column *s = src[g-1];
+	if ( !s ) continue;			/* (T_U) */
+	if ( li < 1 || (size_t)li > s->n ) goto type;
+	if ( !copy_cell(c, j, s, (size_t)(li-1)) ) goto error;
+      }
+    }
+  }
+  free(src);
+  if ( !unify_column(tc, c) ) { free_cells(c); return FALSE; }
+  return TRUE;
+type:
+  PL_domain_error("group_index_pair", pairs);
+error:
+  free(src); free_cells(c);
+  return FALSE;
+}
+
+		 /*******************************
+		 *        RANDOM NUMBERS        *
+		 *******************************/
+
+typedef struct rng { uint64_t s[4]; int has; double spare; } rng;
+
+static uint64_t
+splitmix64(uint64_t *x)
+{ uint64_t z = (*x += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+static void
+rng_seed(rng *r, uint64_t seed)
+{ for(int i=0; i<4; i++) r->s[i] = splitmix64(&seed);
+  r->has = 0;
+}
+
+static inline uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+
+static inline uint64_t
+rng_next(rng *r)
+{ uint64_t *s = r->s;
+  const uint64_t result = s[0] + s[3];
+  const uint64_t t = s[1] << 17;
+  s[2] ^= s[0]; s[3] ^= s[1]; s[1] ^= s[2]; s[0] ^= s[3];
+  s[2] ^= t;
+  s[3] = rotl(s[3], 45);
+  return result;
+}
+
+/* a uniform in (0, 1] */
+static inline double
+rng_uniform(rng *r)
+{ return ((rng_next(r) >> 11) + 1) * 0x1.0p-53;
+}
+
+/* a standard normal (Box-Muller, both outputs used) */
+static inline double
+rng_normal(rng *r)
+{ if ( r->has ) { r->has = 0; return r->spare; }
+  { double u1 = rng_uniform(r), u2 = rng_uniform(r);
+    double rad = sqrt(-2.0*log(u1)), th = 2.0*M_PI*u2;
+    r->spare = rad*sin(th); r->has = 1;
+    return rad*cos(th);
+  }
+}
+
+static int
+get_seed(term_t t, rng *r)
+{ int64_t s;
+  if ( !PL_get_int64_ex(t, &s) ) return FALSE;
+  rng_seed(r, (uint64_t)s);
+  return TRUE;
+}
+
+		 /*******************************
+		 *       GAUSSIAN OVER BATCH    *
+		 *******************************/
+
+/* get_factor(t, L, &k): t is chol(L11, L21, L22, L31, L32, L33) (k = 3)
+   or sd(SD) (k = 1) */
+static int
+get_factor(term_t t, double *L, int *kp)
+{ atom_t name; size_t arity;
+  term_t a = PL_new_term_ref();
+  if ( !PL_get_name_arity(t, &name, &arity) ) return FALSE;
+  if ( arity != 6 && arity != 1 ) return FALSE;
+  for(size_t j=0; j<arity; j++)
+  { _PL_get_arg(j+1, t, a);
+    if ( !PL_get_float(a, &L[j]) ) return FALSE;
+  }
+  *kp = arity == 6 ? 3 : 1;
+  return TRUE;
+}
+
+/* batch(ps, c, idx, &m): the particle indices of the list ps (0-based) */
+static size_t *
+get_batch(term_t ps, column *c, size_t *mp)
+{ size_t m;
+  size_t *idx;
+  if ( !PL_skip_list(ps, 0, &m) ) { PL_type_error("list", ps); return NULL; }
+  if ( !(idx = malloc((m ? m : 1)*sizeof(size_t))) ) { PL_resource_error("memory"); return NULL; }
+  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
+    for(size_t j=0; PL_get_list(l, h, l); j++)
+    { if ( !get_index(h, c, &idx[j]) ) { free(idx); return NULL; }
+    }
+  }
+  *mp = m;
+  return idx;
+}
+
+/* col_draw_gauss(+Ps, +MeanC, +Factor, +Out, +Seed) is semidet: each
+   particle of Ps not drawn yet in Out gets a draw of the gaussian whose
+   mean is its value in MeanC and whose covariance has the Cholesky factor
+   Factor.  Fails, changing nothing, if a mean is not a number tuple of the
+   factor's dimension. */
+static foreign_t
+col_draw_gauss(term_t ps, term_t tm, term_t tf, term_t to, term_t ts)
+{ column *mc, *out;
+  double L[6];
+  int k;
+  size_t m, *idx;
+  rng r;
+
+  if ( !get_column(tm, &mc) || !get_column(to, &out) ) return FALSE;
+  if ( !get_factor(tf, L, &k) || !get_seed(ts, &r) ) return FALSE;
+  if ( mc->k != k || mc->n != out->n ) return FALSE;
+  if ( out->k != 0 && out->k != k ) return FALSE;
+  if ( !(idx = get_batch(ps, out, &m)) ) return FALSE;
+  for(size_t j=0; j<m; j++)
+  { if ( out->tag[idx[j]] == T_U && mc->tag[idx[j]] != T_NUM ) { free(idx); return FALSE; }
+  }
+  if ( out->k == 0 && !set_k(out, k) ) { free(idx); return FALSE; }
+  for(size_t j=0; j<m; j++)
+  { size_t i = idx[j];
+    if ( out->tag[i] != T_U ) continue;
+    { const double *mu = &mc->f[i*(size_t)k];
+      double *x = &out->f[i*(size_t)k];
+      if ( k == 3 )
+      { double z1 = rng_normal(&r), z2 = rng_normal(&r), z3 = rng_normal(&r);
+	x[0] = mu[0] + L[0]*z1;
+	x[1] = mu[1] + L[1]*z1 + L[2]*z2;
+	x[2] = mu[2] + L[3]*z1 + L[4]*z2 + L[5]*z3;
+      } else
+	x[0] = mu[0] + L[0]*rng_normal(&r);
+      out->tag[i] = T_NUM;
+    }
+  }
+  free(idx);
+  return TRUE;
+}
+
+static inline void
+add_log(column *lw, size_t i, double lp)
+{ double l0 = lw->f[i];
+  if ( l0 > -1.0e308 && lp > -1.0e308 ) lw->f[i] = l0 + lp;
+  else if ( l0 < -1.0e308 ) ;
+  else lw->f[i] = lp;
+}
+
+/* col_weigh_gauss(+Ps, +MeanC, +Factor, +LogNorm, +Value, +Done, +LW) is
+   semidet: each particle of Ps not weighed yet (Done's '$u') is marked
+   done and its log weight in LW gets the log density of Value (a number
+   tuple) under the gaussian of mean its value in MeanC and Cholesky factor
+   Factor.  Fails, changing nothing, if a mean or Value is not a number
+   tuple of the factor's dimension, or LW does not hold floats. */
+static foreign_t
+col_weigh_gauss(term_t ps, term_t tm, term_t tf, term_t tln, term_t tv,
+		term_t td, term_t tlw)
+{ column *mc, *done, *lw;
+  double L[6], v[MAX_K], ln;
+  int k;
+  size_t m, *idx;
+
+  if ( !get_column(tm, &mc) || !get_column(td, &done) || !get_column(tlw, &lw) )
+    return FALSE;
+  if ( !get_factor(tf, L, &k) || !PL_get_float(tln, &ln) ) return FALSE;
+  if ( float_tuple(tv, v, MAX_K) != k || mc->k != k || lw->k != 1 ) return FALSE;
+  if ( mc->n != lw->n || done->n != lw->n ) return FALSE;
+  if ( !(idx = get_batch(ps, lw, &m)) ) return FALSE;
+  for(size_t j=0; j<m; j++)
+  { size_t i = idx[j];
+    if ( done->tag[i] == T_U && (mc->tag[i] != T_NUM || lw->tag[i] != T_NUM) )
+    { free(idx); return FALSE; }
+  }
+  if ( !ensure_x(done) ) { free(idx); return FALSE; }
+  for(size_t j=0; j<m; j++)
+  { size_t i = idx[j];
+    if ( done->tag[i] != T_U ) continue;
+    PL_register_atom(ATOM_done);
+    done->x[i] = (uintptr_t)ATOM_done;
+    done->tag[i] = T_ATOM;
+    { const double *mu = &mc->f[i*(size_t)k];
+      double lp;
+      if ( k == 3 )
+      { double y1 = (v[0] - mu[0])/L[0];
+	double y2 = (v[1] - mu[1] - L[1]*y1)/L[2];
+	double y3 = (v[2] - mu[2] - L[3]*y1 - L[4]*y2)/L[5];
+	lp = -0.5*(y1*y1 + y2*y2 + y3*y3) + ln;
+      } else
+      { double y = (v[0] - mu[0])/L[0];
+	lp = -0.5*y*y + ln;
+      }
+      add_log(lw, i, lp);
+    }
+  }
+  free(idx);
+  return TRUE;
+}
+
+/* col_version(-V): the version of this library's interface */
+static foreign_t
+col_version(term_t v)
+{ return PL_unify_integer(v, DDC_COLUMNS_VERSION);
+}
+
+install_t
+install_ddc_columns(void)
+{ ATOM_u       = PL_new_atom("$u");
+  ATOM_undef   = PL_new_atom("$undef");
+  ATOM_open    = PL_new_atom("open");
+  ATOM_defined = PL_new_atom("defined");
+  ATOM_mixed   = PL_new_atom("mixed");
+  ATOM_done    = PL_new_atom("done");
+  ATOM_none    = PL_new_atom("$none");
+  FUNCTOR_comma2 = PL_new_functor(PL_new_atom(","), 2);
+  FUNCTOR_same1  = PL_new_functor(PL_new_atom("same"), 1);
+  FUNCTOR_minus2 = PL_new_functor(PL_new_atom("-"), 2);
+
+  PL_register_foreign("col_version",     1, col_version,     0);
+  PL_register_foreign("col_new",         3, col_new,         0);
+  PL_register_foreign("col_arg",         3, col_arg,         0);
+  PL_register_foreign("col_setarg",      3, col_setarg,      0);
+  PL_register_foreign("col_is_u",        2, col_is_u,        0);
+  PL_register_foreign("col_size",        2, col_size,        0);
+  PL_register_foreign("col_is",          1, col_is,          0);
+  PL_register_foreign("col_list",        2, col_list,        0);
+  PL_register_foreign("col_from_list",   2, col_from_list,   0);
+  PL_register_foreign("col_uncomputed",  3, col_uncomputed,  0);
+  PL_register_foreign("col_defined_at",  3, col_defined_at,  0);
+  PL_register_foreign("col_set_each",    3, col_set_each,    0);
+  PL_register_foreign("col_status",      2, col_status,      0);
+  PL_register_foreign("col_all_same",    3, col_all_same,    0);
+  PL_register_foreign("col_num_arity",   2, col_num_arity,   0);
+  PL_register_foreign("col_gather",      3, col_gather,      0);
+  PL_register_foreign("col_draw_gauss",  5, col_draw_gauss,  0);
+  PL_register_foreign("col_weigh_gauss", 7, col_weigh_gauss, 0);
+}
