@@ -39,7 +39,12 @@
             col_num_arity/2,            % +Column, -K
             col_gather/3,               % +Sources, +Pairs, -Column
             col_draw_gauss/5,           % +Ps, +MeanColumn, +Factor, !Out, +Seed
-            col_weigh_gauss/7           % +Ps, +MeanColumn, +Factor, +LogNorm, +V, !Done, !LW
+            col_weigh_gauss/7,          % +Ps, +MeanColumn, +Factor, +LogNorm, +V, !Done, !LW
+            col_vm_test/7,              % +Ps, +Columns, +Code, +Op, +A, +B, -Out
+            col_vm_instance/5,          % +Ps, +Columns, +Code, +Registers, !Column
+            col_copy_each/3,            % +Ps, +From, !Column
+            col_split/3,                % +Ps, +Columns, -Groups
+            col_draw_uniform/4          % +Ps, +ListColumn, !Column, +Seed
           ]).
 
 :- set_prolog_flag(optimise, true).
@@ -219,5 +224,23 @@ col_draw_gauss(_, _, _, _, _) :- fail.
 %
 %   Fast path of gaussian log densities (fails here).
 col_weigh_gauss(_, _, _, _, _, _, _) :- fail.
+
+%!  col_vm_test(+Ps, +Columns, +Code, +Op, +A, +B, -Out) is semidet.
+%!  col_vm_instance(+Ps, +Columns, +Code, +Registers, !Column) is semidet.
+%!  col_copy_each(+Ps, +From, !Column) is semidet.
+%
+%   Fast paths of loops of arithmetic and copies over a batch (fail here;
+%   ddc_batch_columns.pl compiles them).
+col_vm_test(_, _, _, _, _, _, _) :- fail.
+col_vm_instance(_, _, _, _, _) :- fail.
+col_copy_each(_, _, _) :- fail.
+
+%!  col_split(+Ps, +Columns, -Groups) is semidet.
+%!  col_draw_uniform(+Ps, +ListColumn, !Column, +Seed) is semidet.
+%
+%   Fast paths of a split of a batch by its values and of uniform draws
+%   from lists (fail here).
+col_split(_, _, _) :- fail.
+col_draw_uniform(_, _, _, _) :- fail.
 
 :- endif.

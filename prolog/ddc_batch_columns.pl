@@ -217,6 +217,9 @@ test_loop(G, Ps0, Ps) :-
 %   have: loops asserted and retracted per batch made each run there seven
 %   times slower).
 compiled_test(Ps0, Bs, Tmpl, Ps) :-
+    col_backend(foreign),
+    vm_test(Ps0, Bs, Tmpl, Ps), !.
+compiled_test(Ps0, Bs, Tmpl, Ps) :-
     bind_goals(Bs, I, Cs, CVs, Gets, Evals),
     append([Gets, Evals, [Tmpl]], Gs),
     conj_from_list(Gs, Cond0),
@@ -227,12 +230,112 @@ compiled_test(Ps0, Bs, Tmpl, Ps) :-
     Cols =.. [cols|Cs],
     call(Name, Ps0, Cols, k(Ns), Ps).
 
+%   vm_test(+Ps0, +Binds, +Test, -Ps) and vm_instance(+Ps, +Binds, +Tmpl,
+%   !C): compiled_test/4 and compiled_instance/4 in one call of the column
+%   library (col_vm_test/7, col_vm_instance/5), for a comparison of
+%   arithmetic over number tuples and a tuple of floats computed from them;
+%   fail (the caller's Prolog loop runs) for any other goal, or where the
+%   library abandons the loop (a value that is not a number tuple, an
+%   arithmetic error).  An instance's components must be floats whatever
+%   the particle (computed from a column's floats or float constants), as
+%   the Prolog loop would give them.
+vm_test(Ps0, Bs, Tmpl, Ps) :-
+    compound(Tmpl), Tmpl =.. [Op, A, B],
+    memberchk(Op, [<, >, =<, >=, =:=, =\=]),
+    vm_binds(Bs, S1),
+    vm_expr(A, RA, _, S1, S2),
+    vm_expr(B, RB, _, S2, S),
+    vm_state(S, Cols, Code),
+    col_vm_test(Ps0, Cols, Code, Op, RA, RB, Ps).
+
+vm_instance(Ps, [C1-P], Tmpl, C) :-
+    var(P), Tmpl == P, !,
+    col_copy_each(Ps, C1, C).
+vm_instance(Ps, Bs, Tmpl, C) :-
+    vm_binds(Bs, S1),
+    (   Tmpl = (_, _) -> conj_to_list(Tmpl, Es) ; Es = [Tmpl] ),
+    foldl(vm_float_expr, Es, Rs, S1, S),
+    vm_state(S, Cols, Code),
+    col_vm_instance(Ps, Cols, Code, Rs, C).
+
+conj_to_list(T, [A|Es]) :-
+    nonvar(T), T = (A, B), !,
+    conj_to_list(B, Es).
+conj_to_list(T, [T]).
+
+vm_float_expr(E, R, S0, S) :-
+    vm_expr(E, R, true, S0, S).
+
+%   The compiler's state: vm(Columns, Code, Env, Next), Columns and Code
+%   reversed, Env the variables' registers V-R-Float (Float true: a float
+%   in every particle), Next the next free register.
+vm_binds(Bs, S) :-
+    foldl(vm_bind, Bs, vm([], [], [], 0), S).
+
+vm_state(vm(Cols0, Code0, _, _), Cols, Code) :-
+    reverse(Cols0, Cols), reverse(Code0, Code),
+    Code \== [].
+
+vm_bind(C-P, vm(Cs0, Code0, Env0, N0), vm(Cs, Code, Env, N)) :- !,
+    vm_column(C, Cs0, Cs, J),
+    (   var(P)
+    ->  Vs = [P]
+    ;   tuple_of_vars(P, Vs)
+    ),
+    length(Vs, K),
+    foldl(vm_load(J, K), Vs, 0-(Code0-Env0-N0), _-(Code-Env-N)).
+vm_bind('$e'(W, Ex, _), S0, vm(Cs, Code, [W-R-F|Env], N)) :-
+    vm_expr(Ex, R, F, S0, vm(Cs, Code, Env, N)).
+
+vm_load(J, K, V, Comp-(Code0-Env0-N0), Comp1-([ld(N0, J, Comp, K)|Code0]-[V-N0-true|Env0]-N)) :-
+    Comp1 is Comp+1, N is N0+1, N < 64.
+
+vm_column(C, Cs, Cs, J) :-
+    nth0(J0, Cs, C0), C0 == C, !,
+    length(Cs, L), J is L-1-J0.
+vm_column(C, Cs, [C|Cs], J) :-
+    length(Cs, J), J < 32.
+
+%   vm_expr(+Ex, -R, -Float, +S0, -S): Ex computed into register R.
+vm_expr(X, R, F, S, S) :-
+    var(X), !,
+    S = vm(_, _, Env, _),
+    member(V-R0-F0, Env), V == X, !,
+    R = R0, F = F0.
+vm_expr(X, R, F, vm(Cs, Code, Env, R), vm(Cs, [cst(R, X)|Code], Env, N)) :-
+    number(X), !,
+    ( float(X) -> F = true ; F = false ),
+    N is R+1, N < 64.
+vm_expr(X, R, true, vm(Cs, Code, Env, R), vm(Cs, [cst(R, V)|Code], Env, N)) :-
+    atom(X), memberchk(X-V, [pi-3.141592653589793, e-2.718281828459045]), !,
+    N is R+1, N < 64.
+vm_expr(X, R, F, S0, vm(Cs, [op(R, Op, RA, RB)|Code], Env, N)) :-
+    compound(X), X =.. [Op0, A, B],
+    memberchk(Op0-Op, [(+)-(+), (-)-(-), (*)-(*), (/)-(/), (**)-(**), atan2-atan2,
+                       atan-atan2]), !,
+    vm_expr(A, RA, FA, S0, S1),
+    vm_expr(B, RB, FB, S1, vm(Cs, Code, Env, R)),
+    (   memberchk(Op, [atan2]) -> F = true
+    ;   ( FA == true ; FB == true ) -> F = true
+    ;   F = false
+    ),
+    N is R+1, N < 64.
+vm_expr(X, R, F, S0, vm(Cs, [fn(R, Fn, RA)|Code], Env, N)) :-
+    compound(X), X =.. [Fn, A],
+    memberchk(Fn, [-, sqrt, exp, log, sin, cos, tan, atan, tanh, abs]), !,
+    vm_expr(A, RA, FA, S0, vm(Cs, Code, Env, R)),
+    (   memberchk(Fn, [-, abs]) -> F = FA ; F = true ),
+    N is R+1, N < 64.
+
 %!  compiled_instance(+Ps:list(integer), +Binds, +Tmpl, !C) is det.
 %
 %   Each particle of Ps whose value in column C is not drawn yet ('$u')
 %   gets its instance of Tmpl (plan/3), by a compiled loop (see
 %   compiled_test/4; ddc_batch_rv:instance_each/4 is the same without
 %   one).
+compiled_instance(Ps, Bs, Tmpl, C) :-
+    col_backend(foreign),
+    vm_instance(Ps, Bs, Tmpl, C), !.
 compiled_instance(Ps, Bs, Tmpl, C) :-
     bind_goals(Bs, I, Cs, CVs, Gets, Evals),
     append(Gets, Evals, Gs0),
@@ -324,13 +427,23 @@ split(T0, Ps0, T1, Ps) :-
     ->  materialise(T0, Ps0, T),
         plan(T, Tmpl, Bs),
         pairs_keys_values(Bs, Cs, Pats),
-        split_pairs(Ps0, Cs, Pairs),
-        keysort(Pairs, Sorted),
-        group_pairs_by_key(Sorted, Groups),
+        groups_by_values(Ps0, Cs, Groups),
         member(Pats-Ps, Groups),
         T1 = Tmpl
     ;   T1 = T0, Ps = Ps0
     ).
+
+%   groups_by_values(+Ps, +Columns, -Groups): Vs-Ps pairs, the particles
+%   of Ps grouped by their values Vs in Columns, in the standard order of
+%   Vs (each group's particles in the order of Ps).
+groups_by_values(Ps, Cs, Groups) :-
+    col_backend(foreign),
+    col_split(Ps, Cs, Groups0), !,
+    keysort(Groups0, Groups).
+groups_by_values(Ps, Cs, Groups) :-
+    split_pairs(Ps, Cs, Pairs),
+    keysort(Pairs, Sorted),
+    group_pairs_by_key(Sorted, Groups).
 
 split_pairs([], _, []).
 split_pairs([I|Is], Cs, [Vs-I|Ps]) :-
@@ -410,10 +523,8 @@ unifiable_at([I|Is], C, Bs, Tmpl, Ps) :-
 %   For each value V that particles of Ps0 hold in column C, Ps those
 %   particles (in the standard order of the values).
 split_column(C, Ps0, V, Ps) :-
-    findall(V0-I, ( member(I, Ps0), col_arg(I, C, V0) ), Pairs),
-    keysort(Pairs, Sorted),
-    group_pairs_by_key(Sorted, Groups),
-    member(V-Ps, Groups).
+    groups_by_values(Ps0, [C], Groups),
+    member([V]-Ps, Groups).
 
 %!  tuple_of_vars(@P, -Vs:list) is semidet.
 %

@@ -56,8 +56,14 @@ assign(Ps, C, D) :-
         ;   instance_each(Ps, Bs, Tmpl, C)
         )
     ;   plan(D, Tmpl, Bs),
-        dist_prepare(Tmpl, P),
-        draw_each(Ps, Bs, P, C)
+        (   Tmpl = uniform(L), Bs = [LC-Pat], var(Pat), L == Pat,
+            col_backend(foreign),
+            random_between(0, 0x3fffffffffffffff, Seed),
+            col_draw_uniform(Ps, LC, C, Seed)
+        ->  true
+        ;   dist_prepare(Tmpl, P),
+            draw_each(Ps, Bs, P, C)
+        )
     ).
 
 %!  set_each(+Ps:list(integer), !Column, +Value) is det.

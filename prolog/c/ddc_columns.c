@@ -756,6 +756,467 @@ col_weigh_gauss(term_t ps, term_t tm, term_t tf, term_t tln, term_t tv,
   return TRUE;
 }
 
+
+		 /*******************************
+		 *     ARITHMETIC OVER BATCH    *
+		 *******************************/
+
+/* A loop of arithmetic over a batch, compiled by the Prolog side
+   (ddc_batch_col.pl, col_vm_program/4) into instructions over registers
+   of floats, run for each particle:
+
+     ld(R, J, C, K)    R is component C of the particle's K-tuple in column J
+     cst(R, F)         R is the number F
+     op(R, Op, A, B)   R is A Op B (Op: +, -, *, /, **, atan2)
+     fn(R, F, A)       R is F(A) (F: -, sqrt, exp, log, sin, cos, tan, atan,
+                       tanh, abs)
+
+   Any result that is not a finite float (a division by zero, the log of a
+   negative number: an error in Prolog), a cell that is not a tuple of the
+   expected arity, abandons the loop (the call fails, nothing written):
+   the caller runs it in Prolog, which raises the error or gives the
+   particle its answer. */
+
+enum { I_LD, I_CST, I_ADD, I_SUB, I_MUL, I_DIV, I_POW, I_ATAN2,
+       I_NEG, I_SQRT, I_EXP, I_LOG, I_SIN, I_COS, I_TAN, I_ATAN, I_TANH, I_ABS };
+
+typedef struct insn { int op, r, a, b, j, c, k; double f; } insn;
+
+#define MAX_REGS 64
+#define MAX_COLS 32
+
+typedef struct vm
+{ insn    *code;
+  int      ncode;
+  column  *col[MAX_COLS];
+  int      ncol;
+} vm;
+
+static int
+get_int_arg(int n, term_t t, int *ip)
+{ term_t a = PL_new_term_ref();
+  _PL_get_arg(n, t, a);
+  return PL_get_integer(a, ip);
+}
+
+static int
+op_code(atom_t a, int binary, int *op)
+{ const char *s = PL_atom_chars(a);
+  if ( binary )
+  { if ( !strcmp(s, "+") ) *op = I_ADD;
+    else if ( !strcmp(s, "-") ) *op = I_SUB;
+    else if ( !strcmp(s, "*") ) *op = I_MUL;
+    else if ( !strcmp(s, "/") ) *op = I_DIV;
+    else if ( !strcmp(s, "**") ) *op = I_POW;
+    else if ( !strcmp(s, "atan2") ) *op = I_ATAN2;
+    else return FALSE;
+  } else
+  { if ( !strcmp(s, "-") ) *op = I_NEG;
+    else if ( !strcmp(s, "sqrt") ) *op = I_SQRT;
+    else if ( !strcmp(s, "exp") ) *op = I_EXP;
+    else if ( !strcmp(s, "log") ) *op = I_LOG;
+    else if ( !strcmp(s, "sin") ) *op = I_SIN;
+    else if ( !strcmp(s, "cos") ) *op = I_COS;
+    else if ( !strcmp(s, "tan") ) *op = I_TAN;
+    else if ( !strcmp(s, "atan") ) *op = I_ATAN;
+    else if ( !strcmp(s, "tanh") ) *op = I_TANH;
+    else if ( !strcmp(s, "abs") ) *op = I_ABS;
+    else return FALSE;
+  }
+  return TRUE;
+}
+
+static int
+reg_ok(int r) { return r >= 0 && r < MAX_REGS; }
+
+/* vm_load(cols, code, &vm): the program; FALSE (no exception) if it is
+   not one this loop runs */
+static int
+vm_load(term_t cols, term_t code, vm *m)
+{ size_t n;
+  term_t l, h;
+  m->ncol = 0; m->code = NULL;
+  l = PL_copy_term_ref(cols); h = PL_new_term_ref();
+  while( PL_get_list(l, h, l) )
+  { void *data; PL_blob_t *type;
+    if ( m->ncol >= MAX_COLS ) return FALSE;
+    if ( !PL_get_blob(h, &data, NULL, &type) || type != &column_blob ) return FALSE;
+    m->col[m->ncol++] = data;
+  }
+  if ( !PL_skip_list(code, 0, &n) || n == 0 ) return FALSE;
+  if ( !(m->code = malloc(n*sizeof(insn))) ) return FALSE;
+  m->ncode = (int)n;
+  l = PL_copy_term_ref(code);
+  for(int i=0; PL_get_list(l, h, l); i++)
+  { insn *in = &m->code[i];
+    atom_t name, a; size_t arity;
+    term_t t = PL_new_term_ref();
+    memset(in, 0, sizeof(*in));
+    if ( !PL_get_name_arity(h, &name, &arity) ) goto bad;
+    if ( !get_int_arg(1, h, &in->r) || !reg_ok(in->r) ) goto bad;
+    if ( !strcmp(PL_atom_chars(name), "ld") && arity == 4 )
+    { in->op = I_LD;
+      if ( !get_int_arg(2, h, &in->j) || !get_int_arg(3, h, &in->c) ||
+	   !get_int_arg(4, h, &in->k) ) goto bad;
+      if ( in->j < 0 || in->j >= m->ncol || in->k < 1 || in->c < 0 || in->c >= in->k ) goto bad;
+      if ( m->col[in->j]->k != in->k ) goto bad;
+    } else if ( !strcmp(PL_atom_chars(name), "cst") && arity == 2 )
+    { in->op = I_CST;
+      _PL_get_arg(2, h, t);
+      if ( !PL_get_float(t, &in->f) ) goto bad;
+    } else if ( !strcmp(PL_atom_chars(name), "op") && arity == 4 )
+    { _PL_get_arg(2, h, t);
+      if ( !PL_get_atom(t, &a) || !op_code(a, TRUE, &in->op) ) goto bad;
+      if ( !get_int_arg(3, h, &in->a) || !get_int_arg(4, h, &in->b) ||
+	   !reg_ok(in->a) || !reg_ok(in->b) ) goto bad;
+    } else if ( !strcmp(PL_atom_chars(name), "fn") && arity == 3 )
+    { _PL_get_arg(2, h, t);
+      if ( !PL_get_atom(t, &a) || !op_code(a, FALSE, &in->op) ) goto bad;
+      if ( !get_int_arg(3, h, &in->a) || !reg_ok(in->a) ) goto bad;
+    } else
+      goto bad;
+  }
+  return TRUE;
+bad:
+  free(m->code); m->code = NULL;
+  return FALSE;
+}
+
+/* vm_run(m, i, r): the program for particle i; FALSE to abandon */
+static int
+vm_run(const vm *m, size_t i, double *r)
+{ for(int p=0; p<m->ncode; p++)
+  { const insn *in = &m->code[p];
+    double x;
+    switch(in->op)
+    { case I_LD:
+      { const column *c = m->col[in->j];
+	if ( c->tag[i] != T_NUM ) return FALSE;
+	r[in->r] = c->f[i*(size_t)in->k + (size_t)in->c];
+	continue;
+      }
+      case I_CST: r[in->r] = in->f; continue;
+      case I_ADD: x = r[in->a] + r[in->b]; break;
+      case I_SUB: x = r[in->a] - r[in->b]; break;
+      case I_MUL: x = r[in->a] * r[in->b]; break;
+      case I_DIV: if ( r[in->b] == 0.0 ) return FALSE; x = r[in->a] / r[in->b]; break;
+      case I_POW: x = pow(r[in->a], r[in->b]); break;
+      case I_ATAN2: x = atan2(r[in->a], r[in->b]); break;
+      case I_NEG: x = -r[in->a]; break;
+      case I_SQRT: if ( r[in->a] < 0.0 ) return FALSE; x = sqrt(r[in->a]); break;
+      case I_EXP: x = exp(r[in->a]); break;
+      case I_LOG: if ( r[in->a] <= 0.0 ) return FALSE; x = log(r[in->a]); break;
+      case I_SIN: x = sin(r[in->a]); break;
+      case I_COS: x = cos(r[in->a]); break;
+      case I_TAN: x = tan(r[in->a]); break;
+      case I_ATAN: x = atan(r[in->a]); break;
+      case I_TANH: x = tanh(r[in->a]); break;
+      case I_ABS: x = fabs(r[in->a]); break;
+      default: return FALSE;
+    }
+    if ( !isfinite(x) ) return FALSE;
+    r[in->r] = x;
+  }
+  return TRUE;
+}
+
+enum { C_LT, C_GT, C_LE, C_GE, C_EQ, C_NE };
+
+static int
+cmp_code(atom_t a, int *op)
+{ const char *s = PL_atom_chars(a);
+  if ( !strcmp(s, "<") ) *op = C_LT;
+  else if ( !strcmp(s, ">") ) *op = C_GT;
+  else if ( !strcmp(s, "=<") ) *op = C_LE;
+  else if ( !strcmp(s, ">=") ) *op = C_GE;
+  else if ( !strcmp(s, "=:=") ) *op = C_EQ;
+  else if ( !strcmp(s, "=\\=") ) *op = C_NE;
+  else return FALSE;
+  return TRUE;
+}
+
+/* col_vm_test(+Ps, +Cols, +Code, +Op, +A, +B, -Out) is semidet: Out the
+   particles of Ps in which register A Op register B after Code (Op a
+   comparison); fails if the loop is abandoned (above) */
+static foreign_t
+col_vm_test(term_t ps, term_t cols, term_t code, term_t top, term_t ta, term_t tb,
+	    term_t out)
+{ vm m;
+  atom_t opa;
+  int op, a, b;
+  double r[MAX_REGS];
+  size_t np, *idx, nout = 0;
+  char *hold;
+
+  if ( !PL_get_atom(top, &opa) || !cmp_code(opa, &op) ) return FALSE;
+  if ( !PL_get_integer(ta, &a) || !PL_get_integer(tb, &b) || !reg_ok(a) || !reg_ok(b) )
+    return FALSE;
+  if ( !vm_load(cols, code, &m) ) return FALSE;
+  if ( m.ncol == 0 ) { free(m.code); return FALSE; }
+  if ( !(idx = get_batch(ps, m.col[0], &np)) ) { free(m.code); return FALSE; }
+  for(int j=1; j<m.ncol; j++)
+    if ( m.col[j]->n != m.col[0]->n ) { free(idx); free(m.code); return FALSE; }
+  if ( !(hold = malloc(np ? np : 1)) ) { free(idx); free(m.code); return FALSE; }
+  for(size_t j=0; j<np; j++)
+  { int h;
+    if ( !vm_run(&m, idx[j], r) ) { free(hold); free(idx); free(m.code); return FALSE; }
+    switch(op)
+    { case C_LT: h = r[a] <  r[b]; break;
+      case C_GT: h = r[a] >  r[b]; break;
+      case C_LE: h = r[a] <= r[b]; break;
+      case C_GE: h = r[a] >= r[b]; break;
+      case C_EQ: h = r[a] == r[b]; break;
+      default:   h = r[a] != r[b]; break;
+    }
+    hold[j] = (char)h;
+    nout += h;
+  }
+  free(m.code);
+  { term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref();
+    for(size_t j=0; j<np; j++)
+    { if ( hold[j] )
+      { if ( !PL_unify_list(tail, oh, tail) || !PL_unify_int64(oh, (int64_t)idx[j]+1) )
+	{ free(hold); free(idx); return FALSE; }
+      }
+    }
+    free(hold); free(idx);
+    return PL_unify_nil(tail);
+  }
+}
+
+/* col_vm_instance(+Ps, +Cols, +Code, +Regs, !C) is semidet: each particle
+   of Ps not drawn yet in C gets the tuple of the registers Regs after
+   Code; fails, writing nothing, if the loop is abandoned (above) */
+static foreign_t
+col_vm_instance(term_t ps, term_t cols, term_t code, term_t tregs, term_t tc)
+{ vm m;
+  column *c;
+  int regs[MAX_K], k = 0;
+  double r[MAX_REGS], *buf;
+  size_t np, *idx;
+
+  if ( !get_column(tc, &c) ) return FALSE;
+  { term_t l = PL_copy_term_ref(tregs), h = PL_new_term_ref();
+    while( PL_get_list(l, h, l) )
+    { if ( k >= MAX_K || !PL_get_integer(h, &regs[k]) || !reg_ok(regs[k]) ) return FALSE;
+      k++;
+    }
+  }
+  if ( k == 0 || (c->k != 0 && c->k != k) ) return FALSE;
+  if ( !vm_load(cols, code, &m) ) return FALSE;
+  for(int j=0; j<m.ncol; j++)
+    if ( m.col[j]->n != c->n ) { free(m.code); return FALSE; }
+  if ( !(idx = get_batch(ps, c, &np)) ) { free(m.code); return FALSE; }
+  if ( !(buf = malloc((np ? np : 1)*(size_t)k*sizeof(double))) )
+  { free(idx); free(m.code); return FALSE; }
+  for(size_t j=0; j<np; j++)
+  { if ( c->tag[idx[j]] != T_U ) continue;
+    if ( !vm_run(&m, idx[j], r) ) { free(buf); free(idx); free(m.code); return FALSE; }
+    for(int q=0; q<k; q++) buf[j*(size_t)k+(size_t)q] = r[regs[q]];
+  }
+  free(m.code);
+  if ( c->k == 0 && !set_k(c, k) ) { free(buf); free(idx); return FALSE; }
+  for(size_t j=0; j<np; j++)
+  { size_t i = idx[j];
+    if ( c->tag[i] != T_U ) continue;
+    memcpy(&c->f[i*(size_t)k], &buf[j*(size_t)k], sizeof(double)*(size_t)k);
+    c->tag[i] = T_NUM;
+  }
+  free(buf); free(idx);
+  return TRUE;
+}
+
+/* col_copy_each(+Ps, +From, !C): each particle of Ps not drawn yet in C
+   gets its value in From */
+static foreign_t
+col_copy_each(term_t ps, term_t tf, term_t tc)
+{ column *from, *c;
+  size_t np, *idx;
+  if ( !get_column(tf, &from) || !get_column(tc, &c) ) return FALSE;
+  if ( from->n != c->n ) return FALSE;
+  if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
+  for(size_t j=0; j<np; j++)
+  { if ( c->tag[idx[j]] == T_U && !copy_cell(c, idx[j], from, idx[j]) )
+    { free(idx); return FALSE; }
+  }
+  free(idx);
+  return TRUE;
+}
+
+		 /*******************************
+		 *            SPLITS            *
+		 *******************************/
+
+/* The key of particle i in the columns cs: a hash of its cells (atoms and
+   number tuples only; FALSE for any other term, which the caller groups
+   in Prolog). */
+static int
+cell_hash(column **cs, int nc, size_t i, uint64_t *hp)
+{ uint64_t h = 1469598103934665603ULL;
+  for(int j=0; j<nc; j++)
+  { column *c = cs[j];
+    uint64_t x;
+    switch(c->tag[i])
+    { case T_U: x = 1; break;
+      case T_UNDEF: x = 2; break;
+      case T_ATOM: x = (uint64_t)c->x[i]; break;
+      case T_NUM:
+	x = 3;
+	for(int q=0; q<c->k; q++)
+	{ uint64_t b; memcpy(&b, &c->f[i*(size_t)c->k+(size_t)q], sizeof(b));
+	  x = (x ^ b) * 1099511628211ULL;
+	}
+	break;
+      default:
+	return FALSE;
+    }
+    h = (h ^ x) * 1099511628211ULL;
+    h ^= h >> 29;
+  }
+  *hp = h;
+  return TRUE;
+}
+
+static int
+same_key(column **cs, int nc, size_t i, size_t j)
+{ for(int q=0; q<nc; q++)
+    if ( !same_cell(cs[q], i, cs[q], j) ) return FALSE;
+  return TRUE;
+}
+
+/* col_split(+Ps, +Cols, -Groups) is semidet: Groups, a list of Vs-Ps, the
+   particles of Ps grouped by their values Vs in the columns Cols (a group
+   per distinct list of values, in the order of their first particle, its
+   particles in the order of Ps); fails if a value is neither an atom nor
+   a number tuple */
+static foreign_t
+col_split(term_t ps, term_t tcols, term_t out)
+{ column *cs[MAX_COLS];
+  int nc = 0;
+  size_t np, *idx, ng = 0, cap;
+  size_t *slot_rep = NULL, *group_of = NULL, *rep = NULL, *count = NULL, *next = NULL;
+  size_t *head = NULL, *tail = NULL;
+  int rc = FALSE;
+
+  { term_t l = PL_copy_term_ref(tcols), h = PL_new_term_ref();
+    while( PL_get_list(l, h, l) )
+    { void *data; PL_blob_t *type;
+      if ( nc >= MAX_COLS || !PL_get_blob(h, &data, NULL, &type) || type != &column_blob )
+	return FALSE;
+      cs[nc++] = data;
+    }
+  }
+  if ( nc == 0 ) return FALSE;
+  if ( !(idx = get_batch(ps, cs[0], &np)) ) return FALSE;
+  for(int q=1; q<nc; q++) if ( cs[q]->n != cs[0]->n ) { free(idx); return FALSE; }
+  for(cap=16; cap < 2*np; cap *= 2) ;
+  slot_rep = malloc(cap*sizeof(size_t));	/* group number + 1, 0 free */
+  group_of = malloc((np?np:1)*sizeof(size_t));
+  rep = malloc((np?np:1)*sizeof(size_t));
+  next = malloc((np?np:1)*sizeof(size_t));
+  head = malloc((np?np:1)*sizeof(size_t));
+  tail = malloc((np?np:1)*sizeof(size_t));
+  count = malloc((np?np:1)*sizeof(size_t));
+  if ( !slot_rep || !group_of || !rep || !next || !head || !tail || !count ) goto out;
+  memset(slot_rep, 0, cap*sizeof(size_t));
+  for(size_t j=0; j<np; j++)
+  { uint64_t hsh;
+    size_t s;
+    if ( !cell_hash(cs, nc, idx[j], &hsh) ) goto out;
+    for(s = (size_t)hsh & (cap-1); ; s = (s+1) & (cap-1))
+    { if ( slot_rep[s] == 0 )
+      { slot_rep[s] = ++ng;
+	rep[ng-1] = idx[j]; head[ng-1] = j; tail[ng-1] = j; count[ng-1] = 0;
+	break;
+      }
+      if ( same_key(cs, nc, rep[slot_rep[s]-1], idx[j]) )
+      { next[tail[slot_rep[s]-1]] = j; tail[slot_rep[s]-1] = j;
+	break;
+      }
+    }
+    group_of[j] = slot_rep[s]-1;
+    next[j] = (size_t)-1;
+    count[slot_rep[s]-1]++;
+  }
+  { term_t gl = PL_copy_term_ref(out), gh = PL_new_term_ref();
+    term_t vs = PL_new_term_ref(), v = PL_new_term_ref(), pl = PL_new_term_ref();
+    term_t pair = PL_new_term_ref(), ih = PL_new_term_ref();
+    for(size_t g=0; g<ng; g++)
+    { PL_put_nil(vs);
+      for(int q=nc-1; q>=0; q--)
+      { if ( !put_cell(v, cs[q], rep[g]) || !PL_cons_list(vs, v, vs) ) goto out;
+      }
+      PL_put_nil(pl);
+      { /* (the group's particles, last first, consed) */
+	size_t *mine = malloc(count[g]*sizeof(size_t)), m = 0;
+	if ( !mine ) goto out;
+	for(size_t j=head[g]; j != (size_t)-1; j = next[j]) mine[m++] = idx[j];
+	for(size_t q=m; q-- > 0; )
+	{ if ( !PL_put_int64(ih, (int64_t)mine[q]+1) || !PL_cons_list(pl, ih, pl) )
+	  { free(mine); goto out; }
+	}
+	free(mine);
+      }
+      if ( !PL_cons_functor(pair, FUNCTOR_minus2, vs, pl) ||
+	   !PL_unify_list(gl, gh, gl) || !PL_unify(gh, pair) )
+	goto out;
+    }
+    rc = PL_unify_nil(gl);
+  }
+out:
+  free(idx); free(slot_rep); free(group_of); free(rep); free(next); free(head); free(tail);
+  free(count);
+  return rc;
+}
+
+/* col_draw_uniform(+Ps, +ListC, !C, +Seed) is semidet: each particle of Ps
+   not drawn yet in C gets an element of its list in ListC, uniformly (as
+   uniform(L) draws: the element at floor(U * length), U in [0, 1));
+   fails, writing nothing, if a value is not a non-empty list */
+static foreign_t
+col_draw_uniform(term_t ps, term_t tl, term_t tc, term_t ts)
+{ column *lc, *c;
+  size_t np, *idx;
+  rng r;
+  fid_t fid;
+  int rc = FALSE;
+  if ( !get_column(tl, &lc) || !get_column(tc, &c) || !get_seed(ts, &r) ) return FALSE;
+  if ( lc->n != c->n ) return FALSE;
+  if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
+  for(size_t j=0; j<np; j++)
+    if ( c->tag[idx[j]] == T_U && lc->tag[idx[j]] != T_TERM ) { free(idx); return FALSE; }
+  fid = PL_open_foreign_frame();
+  { term_t l = PL_new_term_ref(), h = PL_new_term_ref();
+    size_t len;
+    /* (first every list checked, then the draws: nothing written on failure) */
+    for(size_t j=0; j<np; j++)
+    { if ( c->tag[idx[j]] != T_U ) continue;
+      if ( !PL_recorded((record_t)lc->x[idx[j]], l) ||
+	   PL_skip_list(l, 0, &len) != PL_LIST || len == 0 )
+	goto out;
+      PL_rewind_foreign_frame(fid);
+    }
+    for(size_t j=0; j<np; j++)
+    { size_t i = idx[j], pick;
+      if ( c->tag[i] != T_U ) continue;
+      if ( !PL_recorded((record_t)lc->x[i], l) ) goto out;
+      if ( PL_skip_list(l, 0, &len) != PL_LIST || len == 0 ) goto out;
+      pick = (size_t)floor((rng_uniform(&r) - 0x1.0p-53) * (double)len);
+      if ( pick >= len ) pick = len-1;
+      for(size_t q=0; q<=pick; q++)
+      { if ( !PL_get_list(l, h, l) ) goto out;
+      }
+      if ( !set_cell(c, i, h) ) goto out;
+      PL_rewind_foreign_frame(fid);
+    }
+    rc = TRUE;
+  }
+out:
+  PL_close_foreign_frame(fid);
+  free(idx);
+  return rc;
+}
+
 /* col_version(-V): the version of this library's interface */
 static foreign_t
 col_version(term_t v)
@@ -793,4 +1254,9 @@ install_ddc_columns(void)
   PL_register_foreign("col_gather",      3, col_gather,      0);
   PL_register_foreign("col_draw_gauss",  5, col_draw_gauss,  0);
   PL_register_foreign("col_weigh_gauss", 7, col_weigh_gauss, 0);
+  PL_register_foreign("col_vm_test",     7, col_vm_test,     0);
+  PL_register_foreign("col_vm_instance", 5, col_vm_instance, 0);
+  PL_register_foreign("col_copy_each",   3, col_copy_each,   0);
+  PL_register_foreign("col_split",       3, col_split,       0);
+  PL_register_foreign("col_draw_uniform",4, col_draw_uniform,0);
 }
