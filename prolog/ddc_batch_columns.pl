@@ -263,7 +263,11 @@ conj_to_list(T, [A|Es]) :-
     conj_to_list(B, Es).
 conj_to_list(T, [T]).
 
+%   (A component is a variable or a float: a template is instantiated,
+%   not evaluated; its arithmetic comes as deferred expressions, '$e'
+%   bindings.)
 vm_float_expr(E, R, S0, S) :-
+    ( var(E) ; float(E) ), !,
     vm_expr(E, R, true, S0, S).
 
 %   The compiler's state: vm(Columns, Code, Env, Next), Columns and Code
@@ -308,6 +312,10 @@ vm_expr(X, R, F, vm(Cs, Code, Env, R), vm(Cs, [cst(R, X)|Code], Env, N)) :-
     N is R+1, N < 64.
 vm_expr(X, R, true, vm(Cs, Code, Env, R), vm(Cs, [cst(R, V)|Code], Env, N)) :-
     atom(X), memberchk(X-V, [pi-3.141592653589793, e-2.718281828459045]), !,
+    N is R+1, N < 64.
+vm_expr(X, R, F, S0, vm(Cs, [op(R, *, RA, RA)|Code], Env, N)) :-
+    compound(X), X = A**B, B == 2, !,             % (A*A: the same float as A**2)
+    vm_expr(A, RA, F, S0, vm(Cs, Code, Env, R)),
     N is R+1, N < 64.
 vm_expr(X, R, F, S0, vm(Cs, [op(R, Op, RA, RB)|Code], Env, N)) :-
     compound(X), X =.. [Op0, A, B],
