@@ -4,8 +4,8 @@ The compiled library draws from a random stream of its own, so the two give othe
 from the same seed: they are compared in distribution, on the bench's model of occlusion
 (bench/filter_numpy_reference.py), each in a process of its own (``DDC_COLUMNS=prolog`` keeps the
 library unloaded), over several seeds each: a bootstrap filter's particles are correlated by
-resampling, so the spread of an estimate is measured across runs, not read off one run's weights. The engine's plunit files run with the columns in Prolog too, so that the
-fallback stays tested.
+resampling, so the spread of an estimate is measured across runs, not read off one run's weights.
+The engine's plunit files run with the columns in Prolog too, so that the fallback stays tested.
 """
 
 from __future__ import annotations
@@ -16,7 +16,6 @@ import os
 import statistics
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
@@ -91,7 +90,8 @@ def test_the_column_library_is_built_and_loaded() -> None:
 def test_plunit_with_the_columns_in_prolog(name: str, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("DDC_COLUMNS", "prolog")
     result = run_plunit(ROOT / "tests" / "prolog" / name)
-    assert result.returncode == 0, f"{name} with DDC_COLUMNS=prolog:\n{result.stdout}\n{result.stderr}"
+    assert result.returncode == 0, (
+        f"{name} with DDC_COLUMNS=prolog:\n{result.stdout}\n{result.stderr}")
 
 
 @pytest.fixture(scope="module")
