@@ -265,6 +265,8 @@ older_table(S, Tab) :-
 %   sources(+Indices, +Sizes, -Pairs): for each group (of Sizes), its
 %   particles' ancestors as Group-Index pairs (1-based).
 sources(Is, Sizes, Pairs) :-
+    col_sources(Is, Sizes, Pairs), !.
+sources(Is, Sizes, Pairs) :-
     maplist(source(Sizes), Is, All),
     split_by(Sizes, All, Pairs).
 

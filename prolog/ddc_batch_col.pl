@@ -44,7 +44,9 @@
             col_vm_instance/5,          % +Ps, +Columns, +Code, +Registers, !Column
             col_copy_each/3,            % +Ps, +From, !Column
             col_split/3,                % +Ps, +Columns, -Groups
-            col_draw_uniform/4          % +Ps, +ListColumn, !Column, +Seed
+            col_draw_uniform/4,         % +Ps, +ListColumn, !Column, +Seed
+            col_select_eq/5,            % +Ps, +Column, +Value, +Eq, -Out
+            col_sources/3               % +Indices, +Sizes, -Pairs
           ]).
 
 :- set_prolog_flag(optimise, true).
@@ -242,5 +244,14 @@ col_copy_each(_, _, _) :- fail.
 %   from lists (fail here).
 col_split(_, _, _) :- fail.
 col_draw_uniform(_, _, _, _) :- fail.
+
+%!  col_select_eq(+Ps, +Column, +Value, +Eq, -Out) is semidet.
+%!  col_sources(+Indices, +Sizes, -Pairs) is semidet.
+%
+%   Fast paths of a test V == Value (Eq true) or V \== Value over a batch
+%   and of the ancestors of a resampling, as Group-Index pairs per group
+%   (fail here).
+col_select_eq(_, _, _, _, _) :- fail.
+col_sources(_, _, _) :- fail.
 
 :- endif.

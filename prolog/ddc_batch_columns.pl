@@ -239,6 +239,13 @@ compiled_test(Ps0, Bs, Tmpl, Ps) :-
 %   arithmetic error).  An instance's components must be floats whatever
 %   the particle (computed from a column's floats or float constants), as
 %   the Prolog loop would give them.
+vm_test(Ps0, [C-P], Tmpl, Ps) :-
+    var(P), compound(Tmpl), Tmpl =.. [Op, A, B],
+    memberchk(Op-Eq, [(==)-true, (\==)-false]),
+    (   A == P, ground(B) -> V = B
+    ;   B == P, ground(A) -> V = A
+    ), !,
+    col_select_eq(Ps0, C, V, Eq, Ps).
 vm_test(Ps0, Bs, Tmpl, Ps) :-
     compound(Tmpl), Tmpl =.. [Op, A, B],
     memberchk(Op, [<, >, =<, >=, =:=, =\=]),

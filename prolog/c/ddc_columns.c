@@ -44,7 +44,13 @@ typedef struct column
   uint8_t  *tag;                        /* n tags */
   double   *f;                          /* n*k floats (k > 0) */
   uintptr_t *x;                         /* n atoms or records (allocated lazily) */
+  size_t    cnt[5];                     /* the number of cells of each tag */
 } column;
+
+/* SET_TAG(c, i, t): cell i's tag is t (the counts kept) */
+#define SET_TAG(c, i, t) \
+	do { uint8_t t_ = (t); column *c_ = (c); size_t i_ = (i); \
+	     c_->cnt[c_->tag[i_]]--; c_->tag[i_] = t_; c_->cnt[t_]++; } while(0)
 
 static atom_t ATOM_u, ATOM_undef, ATOM_open, ATOM_defined, ATOM_mixed, ATOM_done, ATOM_none;
 static functor_t FUNCTOR_comma2, FUNCTOR_same1, FUNCTOR_minus2;
@@ -108,6 +114,7 @@ new_column(size_t n)
   c->n = n;
   c->tag = calloc(n ? n : 1, 1);
   if ( !c->tag ) { free(c); return NULL; }
+  c->cnt[T_U] = n;
   return c;
 }
 
@@ -147,7 +154,7 @@ clear_cell(column *c, size_t i)
     PL_unregister_atom((atom_t)c->x[i]);
   else if ( c->tag[i] == T_TERM )
     PL_erase((record_t)c->x[i]);
-  c->tag[i] = T_U;
+  SET_TAG(c, i, T_U);
 }
 
 /* float_tuple(t, fs, max): the number of elements of t as a tuple of
@@ -183,12 +190,12 @@ set_cell(column *c, size_t i, term_t v)
 
   if ( PL_get_atom(v, &a) )
   { clear_cell(c, i);
-    if ( a == ATOM_u ) { c->tag[i] = T_U; return TRUE; }
-    if ( a == ATOM_undef ) { c->tag[i] = T_UNDEF; return TRUE; }
+    if ( a == ATOM_u ) { SET_TAG(c, i, T_U); return TRUE; }
+    if ( a == ATOM_undef ) { SET_TAG(c, i, T_UNDEF); return TRUE; }
     if ( !ensure_x(c) ) return FALSE;
     PL_register_atom(a);
     c->x[i] = (uintptr_t)a;
-    c->tag[i] = T_ATOM;
+    SET_TAG(c, i, T_ATOM);
     return TRUE;
   }
   if ( (m=float_tuple(v, fs, MAX_K)) > 0 )
@@ -196,7 +203,7 @@ set_cell(column *c, size_t i, term_t v)
     if ( c->k == m )
     { clear_cell(c, i);
       memcpy(&c->f[i*(size_t)m], fs, sizeof(double)*(size_t)m);
-      c->tag[i] = T_NUM;
+      SET_TAG(c, i, T_NUM);
       return TRUE;
     }
   }
@@ -205,7 +212,7 @@ set_cell(column *c, size_t i, term_t v)
     if ( !(r = PL_record(v)) ) return FALSE;
     clear_cell(c, i);
     c->x[i] = (uintptr_t)r;
-    c->tag[i] = T_TERM;
+    SET_TAG(c, i, T_TERM);
     return TRUE;
   }
 }
@@ -246,14 +253,14 @@ copy_cell(column *d, size_t j, column *s, size_t i)
   { case T_U:
     case T_UNDEF:
       clear_cell(d, j);
-      d->tag[j] = s->tag[i];
+      SET_TAG(d, j, s->tag[i]);
       return TRUE;
     case T_NUM:
       if ( d->k == 0 && !set_k(d, s->k) ) return FALSE;
       if ( d->k == s->k )
       { clear_cell(d, j);
 	memcpy(&d->f[j*(size_t)d->k], &s->f[i*(size_t)s->k], sizeof(double)*(size_t)d->k);
-	d->tag[j] = T_NUM;
+	SET_TAG(d, j, T_NUM);
 	return TRUE;
       }
       { term_t t = PL_new_term_ref();
@@ -266,13 +273,13 @@ copy_cell(column *d, size_t j, column *s, size_t i)
       clear_cell(d, j);
       PL_register_atom((atom_t)s->x[i]);
       d->x[j] = s->x[i];
-      d->tag[j] = T_ATOM;
+      SET_TAG(d, j, T_ATOM);
       return TRUE;
     case T_TERM:
       if ( !ensure_x(d) ) return FALSE;
       clear_cell(d, j);
       d->x[j] = (uintptr_t)PL_duplicate_record((record_t)s->x[i]);
-      d->tag[j] = T_TERM;
+      SET_TAG(d, j, T_TERM);
       return TRUE;
   }
   return FALSE;
@@ -442,13 +449,22 @@ select_cells(term_t ps, term_t tc, term_t out, cell_test test)
 /* col_uncomputed(+Ps, +C, -Missing) */
 static foreign_t
 col_uncomputed(term_t ps, term_t tc, term_t out)
-{ return select_cells(ps, tc, out, test_u);
+{ column *c = NULL;
+  if ( PL_get_blob(tc, (void**)&c, NULL, NULL) && col_is(tc) )
+  { if ( c->cnt[T_U] == 0 ) return PL_unify_nil(out);
+    if ( c->cnt[T_U] == c->n ) return PL_unify(out, ps);   /* (every particle of Ps) */
+  }
+  return select_cells(ps, tc, out, test_u);
 }
 
 /* col_defined_at(+Ps, +C, -Defined) */
 static foreign_t
 col_defined_at(term_t ps, term_t tc, term_t out)
-{ return select_cells(ps, tc, out, test_defined);
+{ column *c = NULL;
+  if ( PL_get_blob(tc, (void**)&c, NULL, NULL) && col_is(tc) &&
+       c->cnt[T_U] + c->cnt[T_UNDEF] == 0 )
+    return PL_unify(out, ps);
+  return select_cells(ps, tc, out, test_defined);
 }
 
 /* col_set_each(+Ps, +C, +V): each particle of Ps not drawn yet gets V */
@@ -479,6 +495,7 @@ col_status(term_t tc, term_t ts)
 { column *c = NULL;
   if ( !get_column(tc, &c) ) return FALSE;
   if ( c->n == 0 ) return FALSE;
+  if ( c->cnt[T_U] > 0 ) return PL_unify_atom(ts, ATOM_open);
   { int same = TRUE, undef = FALSE;
     for(size_t i=0; i<c->n; i++)
     { if ( c->tag[i] == T_U ) return PL_unify_atom(ts, ATOM_open);
@@ -514,9 +531,7 @@ static foreign_t
 col_num_arity(term_t tc, term_t tk)
 { column *c = NULL;
   if ( !get_column(tc, &c) ) return FALSE;
-  if ( c->k == 0 ) return FALSE;
-  for(size_t i=0; i<c->n; i++)
-    if ( c->tag[i] != T_NUM ) return FALSE;
+  if ( c->k == 0 || c->cnt[T_NUM] != c->n ) return FALSE;
   return PL_unify_integer(tk, c->k);
 }
 
@@ -691,7 +706,7 @@ col_draw_gauss(term_t ps, term_t tm, term_t tf, term_t to, term_t ts)
 	x[2] = mu[2] + L[3]*z1 + L[4]*z2 + L[5]*z3;
       } else
 	x[0] = mu[0] + L[0]*rng_normal(&r);
-      out->tag[i] = T_NUM;
+      SET_TAG(out, i, T_NUM);
     }
   }
   free(idx);
@@ -737,7 +752,7 @@ col_weigh_gauss(term_t ps, term_t tm, term_t tf, term_t tln, term_t tv,
     if ( done->tag[i] != T_U ) continue;
     PL_register_atom(ATOM_done);
     done->x[i] = (uintptr_t)ATOM_done;
-    done->tag[i] = T_ATOM;
+    SET_TAG(done, i, T_ATOM);
     { const double *mu = &mc->f[i*(size_t)k];
       double lp;
       if ( k == 3 )
@@ -1020,7 +1035,7 @@ col_vm_instance(term_t ps, term_t cols, term_t code, term_t tregs, term_t tc)
   { size_t i = idx[j];
     if ( c->tag[i] != T_U ) continue;
     memcpy(&c->f[i*(size_t)k], &buf[j*(size_t)k], sizeof(double)*(size_t)k);
-    c->tag[i] = T_NUM;
+    SET_TAG(c, i, T_NUM);
   }
   free(buf); free(idx);
   return TRUE;
@@ -1217,6 +1232,75 @@ out:
   return rc;
 }
 
+/* col_select_eq(+Ps, +C, +V, +Eq, -Out): Out the particles of Ps whose
+   value in C is == V (Eq true) or \== V (Eq false) */
+static foreign_t
+col_select_eq(term_t ps, term_t tc, term_t v, term_t teq, term_t out)
+{ column *c, *tmp;
+  int eq;
+  int rc = FALSE;
+  if ( !get_column(tc, &c) || !PL_get_bool_ex(teq, &eq) ) return FALSE;
+  if ( !(tmp = new_column(1)) ) return PL_resource_error("memory");
+  if ( !set_cell(tmp, 0, v) ) { free_cells(tmp); return FALSE; }
+  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
+    term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref();
+    size_t i;
+    while( PL_get_list(l, h, l) )
+    { if ( !get_index(h, c, &i) ) goto out;
+      if ( same_cell(c, i, tmp, 0) == eq )
+      { if ( !PL_unify_list(tail, oh, tail) || !PL_unify(oh, h) ) goto out;
+      }
+    }
+    rc = PL_unify_nil(tail);
+  }
+out:
+  free_cells(tmp);
+  return rc;
+}
+
+/* col_sources(+Indices, +Sizes, -Pairs): for each group (of the sizes
+   Sizes, in order), the Group-Index pairs (1-based) of its particles'
+   ancestors, the 0-based indices into all groups' particles Indices */
+static foreign_t
+col_sources(term_t tis, term_t tsizes, term_t out)
+{ size_t ng, total = 0, *size, *start;
+  if ( !PL_skip_list(tsizes, 0, &ng) || ng == 0 ) return PL_type_error("list", tsizes);
+  if ( !(size = malloc(ng*sizeof(size_t))) || !(start = malloc(ng*sizeof(size_t))) )
+    return PL_resource_error("memory");
+  { term_t l = PL_copy_term_ref(tsizes), h = PL_new_term_ref();
+    for(size_t g=0; PL_get_list(l, h, l); g++)
+    { int64_t n;
+      if ( !PL_get_int64_ex(h, &n) || n < 0 ) { free(size); free(start); return FALSE; }
+      size[g] = (size_t)n; start[g] = total; total += (size_t)n;
+    }
+  }
+  { term_t l = PL_copy_term_ref(tis), h = PL_new_term_ref();
+    term_t gl = PL_copy_term_ref(out), gh = PL_new_term_ref();
+    term_t pl = PL_new_term_ref(), pair = PL_new_term_ref();
+    term_t a = PL_new_term_ref(), b = PL_new_term_ref();
+    int rc = TRUE;
+    for(size_t g=0; g<ng && rc; g++)
+    { term_t tail = PL_new_term_ref();
+      if ( !PL_unify_list(gl, gh, gl) ) { rc = FALSE; break; }
+      if ( !PL_put_term(tail, gh) ) { rc = FALSE; break; }
+      for(size_t j=0; j<size[g]; j++)
+      { int64_t x;
+	size_t q = 0;
+	if ( !PL_get_list(l, h, l) || !PL_get_int64_ex(h, &x) || x < 0 || (size_t)x >= total )
+	{ rc = FALSE; break; }
+	while( q+1 < ng && (size_t)x >= start[q+1] ) q++;
+	if ( !PL_put_int64(a, (int64_t)q+1) || !PL_put_int64(b, x - (int64_t)start[q] + 1) ||
+	     !PL_cons_functor(pair, FUNCTOR_minus2, a, b) ||
+	     !PL_unify_list(tail, pl, tail) || !PL_unify(pl, pair) )
+	{ rc = FALSE; break; }
+      }
+      if ( rc && !PL_unify_nil(tail) ) rc = FALSE;
+    }
+    free(size); free(start);
+    return rc && PL_unify_nil(gl);
+  }
+}
+
 /* col_version(-V): the version of this library's interface */
 static foreign_t
 col_version(term_t v)
@@ -1259,4 +1343,6 @@ install_ddc_columns(void)
   PL_register_foreign("col_copy_each",   3, col_copy_each,   0);
   PL_register_foreign("col_split",       3, col_split,       0);
   PL_register_foreign("col_draw_uniform",4, col_draw_uniform,0);
+  PL_register_foreign("col_select_eq",   5, col_select_eq,   0);
+  PL_register_foreign("col_sources",     3, col_sources,     0);
 }
