@@ -46,7 +46,11 @@
             col_split/3,                % +Ps, +Columns, -Groups
             col_draw_uniform/4,         % +Ps, +ListColumn, !Column, +Seed
             col_select_eq/5,            % +Ps, +Column, +Value, +Eq, -Out
-            col_sources/3               % +Indices, +Sizes, -Pairs
+            col_sources/3,              % +Indices, +Sizes, -Pairs
+            ps_subtract/3,              % +Ps0, +Ps1, -Ps
+            ps_intersection/3,          % +Ps0, +Ps1, -Ps
+            ps_union/3,                 % +Ps0, +Ps1, -Ps
+            ps_union/2                  % +Pss, -Ps
           ]).
 
 :- set_prolog_flag(optimise, true).
@@ -67,6 +71,21 @@ column), and the caller then runs its loop in Prolog.
 %   The interface version the Prolog side expects of the library
 %   (DDC_COLUMNS_VERSION in prolog/c/ddc_columns.c).
 columns_version(1).
+
+%!  ps_subtract(+Ps0, +Ps1, -Ps) is det.
+%!  ps_intersection(+Ps0, +Ps1, -Ps) is det.
+%!  ps_union(+Ps0, +Ps1, -Ps) is det.
+%!  ps_union(+Pss, -Ps) is det.
+%
+%   ord_subtract/3, ord_intersection/3 and ord_union/3,2 on batches (sorted
+%   lists of particle indices), in C where the library is loaded.
+ps_subtract(A, B, C) :- ( '$ps_subtract'(A, B, C0) -> C = C0 ; ord_subtract(A, B, C) ).
+ps_intersection(A, B, C) :-
+    ( '$ps_intersection'(A, B, C0) -> C = C0 ; ord_intersection(A, B, C) ).
+ps_union(A, B, C) :- ( '$ps_union'(A, B, C0) -> C = C0 ; ord_union(A, B, C) ).
+ps_union(Ls, C) :- ( '$ps_union'(Ls, C0) -> C = C0 ; ord_union(Ls, C) ).
+
+:- use_module(library(ordsets)).
 
 %   load_columns: the compiled library is loaded, of the expected version
 %   (silently not, if it is not built or DDC_COLUMNS=prolog; a library
@@ -253,5 +272,10 @@ col_draw_uniform(_, _, _, _) :- fail.
 %   (fail here).
 col_select_eq(_, _, _, _, _) :- fail.
 col_sources(_, _, _) :- fail.
+
+'$ps_subtract'(_, _, _) :- fail.
+'$ps_intersection'(_, _, _) :- fail.
+'$ps_union'(_, _, _) :- fail.
+'$ps_union'(_, _) :- fail.
 
 :- endif.

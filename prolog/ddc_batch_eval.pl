@@ -139,7 +139,7 @@ eval_body((A ; B), E, Ps0, Ps) :- !,
     (   eval_body(A, E, Ps0, Ps) ; eval_body(B, E, Ps0, Ps) ).
 eval_body(\+ G, E, Ps0, Ps) :- !,
     branch_union(G, E, Ps0, Done),
-    ord_subtract(Ps0, Done, Ps),
+    ps_subtract(Ps0, Done, Ps),
     Ps \== [].
 eval_body(findall_forward(T, G, L), E, Ps0, Ps) :- !,
     collect(T, G, L, E, Ps0, Ps).
@@ -255,7 +255,7 @@ static_body_call(G, E) :- call_static(G, E).
 %   Union: the particles of Ps0 in which G has a solution.
 branch_union(G, E, Ps0, Union) :-
     findall(Ps, eval_body(G, E, Ps0, Ps), Ls),
-    ord_union(Ls, Union).
+    ps_union(Ls, Union).
 
 %   if_then_else(+C, +T, +F, +E, +Ps0, -Ps): each particle takes T with
 %   C's first solution of its own, or F if C has none.
@@ -266,18 +266,18 @@ if_then_else(C, T, F, E, Ps0, Ps) :-
         eval_body(C, E, Ps0, Ps1),
         cell_value(Counter, K0), K is K0+1, nb_set_cell_value(Counter, K),
         nth1(K, Firsts, Ps2),
-        ord_intersection(Ps1, Ps2, Ps3),
+        ps_intersection(Ps1, Ps2, Ps3),
         Ps3 \== [],
         eval_body(T, E, Ps3, Ps)
-    ;   ord_subtract(Ps0, Taken, Rest),
+    ;   ps_subtract(Ps0, Taken, Rest),
         Rest \== [],
         eval_body(F, E, Rest, Ps)
     ).
 
 firsts([], Taken, [], Taken).
 firsts([L|Ls], Taken0, [F|Fs], Taken) :-
-    ord_subtract(L, Taken0, F),
-    ord_union(Taken0, F, Taken1),
+    ps_subtract(L, Taken0, F),
+    ps_union(Taken0, F, Taken1),
     firsts(Ls, Taken1, Fs, Taken).
 
 %!  collect(+T, +G, ?L, +Env, +Ps0:list(integer), -Ps:list(integer)) is nondet.
@@ -448,7 +448,7 @@ run_clause(E, X, T, K, B, At, Rest, C, Action) :-
     env_checked(E, Check),
     catch(forall(eval_body(B, E, Rest, Ps), call(Action, Ps)), Err, clause_error(Err, M:L)),
     (   R == true, Check \== []
-    ->  ord_intersection(Rest, Check, Watched),
+    ->  ps_intersection(Rest, Check, Watched),
         exclude(uncomputed_at(C), Watched, Given),
         check_rivals(Given, E, X, T, K, Id, L)
     ;   true
@@ -540,7 +540,7 @@ sweep(M, K, E, T, All) :-
     group_pairs_by_key(Pairs, Groups),
     forall(member(X-Pss, Groups),
            (   memberchk(all, Pss) -> value(E, X, T, All, _)
-           ;   ord_union(Pss, Ps), value(E, X, T, Ps, _)
+           ;   ps_union(Pss, Ps), value(E, X, T, Ps, _)
            )).
 
 %   (Ps is all when the prefix is static: every particle.  A head whose

@@ -87,15 +87,23 @@ instance_each([I|Is], Bs, Tmpl, C) :-
 draw_each(Ps, [C1-Pat], P, C) :-
     dist_mean_slots(P, Slots), Slots == Pat, !,
     draw_at(Ps, C1, P, C).
+draw_each(Ps0, Bs, P, C) :-
+    col_backend(foreign),
+    col_uncomputed(Ps0, C, Ps),
+    mean_column(Ps, Bs, P, C, Means), !,
+    draw_at(Ps, Means, P, C).
 draw_each(Ps, [C1-Pat], P, C) :- !,
     draw_each1(Ps, C1, Pat, P, C).
-draw_each([], _, _, _).
-draw_each([I|Is], Bs, P, C) :-
+draw_each(Ps, Bs, P, C) :-
+    draw_loop(Ps, Bs, P, C).
+
+draw_loop([], _, _, _).
+draw_loop([I|Is], Bs, P, C) :-
     (   col_is_u(I, C)
     ->  \+ \+ ( bind(Bs, I), dist_sample_prepared(P, S), col_setarg(I, C, S) )
     ;   true
     ),
-    draw_each(Is, Bs, P, C).
+    draw_loop(Is, Bs, P, C).
 
 %   draw_at(+Ps, +C1, +P, !C): a draw of P at each particle's mean in C1
 %   (in one call of the column library where it can).
@@ -125,6 +133,19 @@ draw_each1([I|Is], C1, Pat, P, C) :-
     ),
     draw_each1(Is, C1, Pat, P, C).
 
+%   mean_column(+Ps, +Binds, +P, +Like, -Means): the prepared gaussian P's
+%   mean in each particle of Ps as a column (of Like's size): the same
+%   mean everywhere (Binds []) or computed from the binds (in one call of
+%   the column library where it can), for draw_at/4 and weigh_at/6.
+mean_column(Ps, Bs, P, Like, Means) :-
+    dist_mean_slots(P, Slots),
+    col_size(Like, N),
+    (   Bs == []
+    ->  ground(Slots), col_new(N, Slots, Means)
+    ;   col_new(N, '$u', Means),
+        compiled_instance(Ps, Bs, Slots, Means)
+    ).
+
 %!  weigh_branch(+Dist, +Value, !Done, !LogWeights, +Ps:list(integer)) is det.
 %
 %   Each particle of Ps not weighed yet (Done's '$u') is marked done and
@@ -143,16 +164,24 @@ weigh_branch(D, V, Done, LW, Ps) :-
 weigh_each(Ps, [C1-Pat], P, V, Done, LW) :-
     dist_mean_slots(P, Slots), Slots == Pat, !,
     weigh_at(Ps, C1, P, V, Done, LW).
+weigh_each(Ps0, Bs, P, V, Done, LW) :-
+    col_backend(foreign),
+    col_uncomputed(Ps0, Done, Ps),
+    mean_column(Ps, Bs, P, LW, Means), !,
+    weigh_at(Ps, Means, P, V, Done, LW).
 weigh_each(Ps, [C1-Pat], P, V, Done, LW) :- !,
     weigh_each1(Ps, C1, Pat, P, V, Done, LW).
-weigh_each([], _, _, _, _, _).
-weigh_each([I|Is], Bs, P, V, Done, LW) :-
+weigh_each(Ps, Bs, P, V, Done, LW) :-
+    weigh_loop(Ps, Bs, P, V, Done, LW).
+
+weigh_loop([], _, _, _, _, _).
+weigh_loop([I|Is], Bs, P, V, Done, LW) :-
     (   col_is_u(I, Done)
     ->  col_setarg(I, Done, done),
         \+ \+ ( bind(Bs, I), dist_log_density_prepared(P, V, LP), add_log(I, LW, LP) )
     ;   true
     ),
-    weigh_each(Is, Bs, P, V, Done, LW).
+    weigh_loop(Is, Bs, P, V, Done, LW).
 
 %   weigh_at(+Ps, +C1, +P, +V, !Done, !LW): the log density of V under P
 %   at each particle's mean in C1 (in one call of the column library where

@@ -1062,9 +1062,8 @@ col_copy_each(term_t ps, term_t tf, term_t tc)
 		 *            SPLITS            *
 		 *******************************/
 
-/* The key of particle i in the columns cs: a hash of its cells (atoms and
-   number tuples only; FALSE for any other term, which the caller groups
-   in Prolog). */
+/* The key of particle i in the columns cs: a hash of its cells (FALSE for
+   a term with variables, which the caller groups in Prolog). */
 static int
 cell_hash(column **cs, int nc, size_t i, uint64_t *hp)
 { uint64_t h = 1469598103934665603ULL;
@@ -1082,6 +1081,22 @@ cell_hash(column **cs, int nc, size_t i, uint64_t *hp)
 	  x = (x ^ b) * 1099511628211ULL;
 	}
 	break;
+      case T_TERM:
+      { /* (equal terms, equal external records: a hash of its bytes) */
+	fid_t fid = PL_open_foreign_frame();
+	term_t t = PL_new_term_ref();
+	char *rec; size_t len;
+	x = 4;
+	if ( !PL_recorded((record_t)c->x[i], t) || !PL_is_ground(t) ||
+	     !(rec = PL_record_external(t, &len)) )
+	{ PL_discard_foreign_frame(fid);
+	  return FALSE;
+	}
+	for(size_t q=0; q<len; q++) x = (x ^ (uint8_t)rec[q]) * 1099511628211ULL;
+	PL_erase_external(rec);
+	PL_discard_foreign_frame(fid);
+	break;
+      }
       default:
 	return FALSE;
     }
@@ -1102,8 +1117,7 @@ same_key(column **cs, int nc, size_t i, size_t j)
 /* col_split(+Ps, +Cols, -Groups) is semidet: Groups, a list of Vs-Ps, the
    particles of Ps grouped by their values Vs in the columns Cols (a group
    per distinct list of values, in the order of their first particle, its
-   particles in the order of Ps); fails if a value is neither an atom nor
-   a number tuple */
+   particles in the order of Ps); fails if a value is not ground */
 static foreign_t
 col_split(term_t ps, term_t tcols, term_t out)
 { column *cs[MAX_COLS];
@@ -1301,6 +1315,113 @@ col_sources(term_t tis, term_t tsizes, term_t out)
   }
 }
 
+		 /*******************************
+		 *     SETS OF PARTICLES        *
+		 *******************************/
+
+/* Batches are sorted lists of particle indices (positive integers); these
+   are ord_subtract/3, ord_union/3, ord_union/2 and ord_intersection/3 on
+   them, through a bitmap (each fails, for the caller's ordsets, on a list
+   of anything else). */
+
+typedef struct ints { int64_t *v; size_t n; int64_t max; } ints;
+
+static int
+get_ints(term_t l0, ints *is)
+{ size_t n;
+  term_t l = PL_copy_term_ref(l0), h = PL_new_term_ref();
+  if ( PL_skip_list(l, 0, &n) != PL_LIST ) return FALSE;
+  is->n = n; is->max = 0;
+  if ( !(is->v = malloc((n ? n : 1)*sizeof(int64_t))) ) return FALSE;
+  for(size_t j=0; PL_get_list(l, h, l); j++)
+  { if ( !PL_get_int64(h, &is->v[j]) || is->v[j] < 1 || is->v[j] > 100000000 )
+    { free(is->v); return FALSE; }
+    if ( is->v[j] > is->max ) is->max = is->v[j];
+  }
+  return TRUE;
+}
+
+static int
+unify_ints_where(term_t out, const ints *a, const uint8_t *mark, int want)
+{ term_t tail = PL_copy_term_ref(out), h = PL_new_term_ref();
+  for(size_t j=0; j<a->n; j++)
+  { if ( (mark[a->v[j]] != 0) == want )
+    { if ( !PL_unify_list(tail, h, tail) || !PL_unify_int64(h, a->v[j]) ) return FALSE;
+    }
+  }
+  return PL_unify_nil(tail);
+}
+
+/* ps_filter(a, b, out, want): the elements of a that are (want) or are
+   not in b */
+static foreign_t
+ps_filter(term_t ta, term_t tb, term_t out, int want)
+{ ints a, b;
+  uint8_t *mark;
+  int rc;
+  if ( !get_ints(ta, &a) ) return FALSE;
+  if ( !get_ints(tb, &b) ) { free(a.v); return FALSE; }
+  { int64_t max = a.max > b.max ? a.max : b.max;
+    if ( !(mark = calloc((size_t)max+1, 1)) ) { free(a.v); free(b.v); return FALSE; }
+  }
+  for(size_t j=0; j<b.n; j++) mark[b.v[j]] = 1;
+  rc = unify_ints_where(out, &a, mark, want);
+  free(mark); free(a.v); free(b.v);
+  return rc;
+}
+
+static foreign_t
+ps_subtract(term_t a, term_t b, term_t out)
+{ return ps_filter(a, b, out, FALSE);
+}
+
+static foreign_t
+ps_intersection(term_t a, term_t b, term_t out)
+{ return ps_filter(a, b, out, TRUE);
+}
+
+/* ps_union(+Lists, -Union) */
+static foreign_t
+ps_union_list(term_t ls, term_t out)
+{ term_t l = PL_copy_term_ref(ls), h = PL_new_term_ref();
+  size_t cap = 1024, max = 0;
+  uint8_t *mark = calloc(cap, 1);
+  if ( !mark ) return FALSE;
+  while( PL_get_list(l, h, l) )
+  { ints a;
+    if ( !get_ints(h, &a) ) { free(mark); return FALSE; }
+    if ( (size_t)a.max+1 > cap )
+    { size_t ncap = cap;
+      uint8_t *m2;
+      while( ncap < (size_t)a.max+1 ) ncap *= 2;
+      if ( !(m2 = realloc(mark, ncap)) ) { free(a.v); free(mark); return FALSE; }
+      memset(m2+cap, 0, ncap-cap);
+      mark = m2; cap = ncap;
+    }
+    for(size_t j=0; j<a.n; j++) mark[a.v[j]] = 1;
+    if ( (size_t)a.max > max ) max = (size_t)a.max;
+    free(a.v);
+  }
+  { term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref();
+    for(size_t i=1; i<=max; i++)
+    { if ( mark[i] )
+      { if ( !PL_unify_list(tail, oh, tail) || !PL_unify_int64(oh, (int64_t)i) )
+	{ free(mark); return FALSE; }
+      }
+    }
+    free(mark);
+    return PL_unify_nil(tail);
+  }
+}
+
+/* ps_union(+A, +B, -Union) */
+static foreign_t
+ps_union(term_t a, term_t b, term_t out)
+{ term_t ls = PL_new_term_ref(), nil = PL_new_term_ref();
+  PL_put_nil(nil);
+  return PL_cons_list(ls, b, nil) && PL_cons_list(ls, a, ls) && ps_union_list(ls, out);
+}
+
 /* col_version(-V): the version of this library's interface */
 static foreign_t
 col_version(term_t v)
@@ -1345,4 +1466,8 @@ install_ddc_columns(void)
   PL_register_foreign("col_draw_uniform",4, col_draw_uniform,0);
   PL_register_foreign("col_select_eq",   5, col_select_eq,   0);
   PL_register_foreign("col_sources",     3, col_sources,     0);
+  PL_register_foreign("$ps_subtract",     3, ps_subtract,     0);
+  PL_register_foreign("$ps_intersection", 3, ps_intersection, 0);
+  PL_register_foreign("$ps_union",        3, ps_union,        0);
+  PL_register_foreign("$ps_union",        2, ps_union_list,   0);
 }
