@@ -47,6 +47,7 @@
             col_draw_uniform/4,         % +Ps, +ListColumn, !Column, +Seed
             col_select_eq/5,            % +Ps, +Column, +Value, +Eq, -Out
             col_sources/3,              % +Indices, +Sizes, -Pairs
+            col_vm_finite/7,            % +Ps, +Columns, +Code, +Registers, +Values, !C, +Seed
             ps_subtract/3,              % +Ps0, +Ps1, -Ps
             ps_intersection/3,          % +Ps0, +Ps1, -Ps
             ps_union/3,                 % +Ps0, +Ps1, -Ps
@@ -272,6 +273,12 @@ col_draw_uniform(_, _, _, _) :- fail.
 %   (fail here).
 col_select_eq(_, _, _, _, _) :- fail.
 col_sources(_, _, _) :- fail.
+
+%!  col_vm_finite(+Ps, +Columns, +Code, +Registers, +Values, !Column, +Seed) is semidet.
+%
+%   Fast path of draws of finite distributions whose probabilities are
+%   computed over the batch (fails here).
+col_vm_finite(_, _, _, _, _, _, _) :- fail.
 
 '$ps_subtract'(_, _, _) :- fail.
 '$ps_intersection'(_, _, _) :- fail.

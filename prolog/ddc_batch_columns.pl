@@ -18,6 +18,7 @@
             test_goal/1,                % +Goal
             test_loop/3,                % +Goal, +Ps0, -Ps
             compiled_instance/4,        % +Ps, +Binds, +Template, !Column
+            vm_finite/4,                % +Ps, +Binds, +Entries, !Column
             split/4,                    % +Term, +Ps0, -Term1, -Ps
             split_column/4,             % +Column, +Ps0, -V, -Ps
             unify_value/4,              % ?P, +V, +Ps0, -Ps
@@ -254,6 +255,35 @@ vm_test(Ps0, Bs, Tmpl, Ps) :-
     vm_expr(B, RB, _, S2, S),
     vm_state(S, Cols, Code),
     col_vm_test(Ps0, Cols, Code, Op, RA, RB, Ps).
+
+%!  vm_finite(+Ps, +Binds, +Entries, !C) is semidet.
+%
+%   Each particle of Ps not drawn yet in C gets a draw of finite(Entries)
+%   (a plan/3 template: its probabilities variables the binds compute or
+%   numbers, its values ground), in one call of the column library; fails
+%   where it cannot (the caller draws in Prolog).
+vm_finite(Ps, Bs, Es, C) :-
+    is_list(Es), Es \== [],
+    pairs_of_entries(Es, Ws, Vs),
+    ground(Vs),
+    vm_binds(Bs, S1),
+    foldl(vm_prob, Ws, Rs, S1, S2),
+    S2 = vm(_, Code0, _, _),
+    (   Code0 == [] -> S = vm([], [cst(0, 0.0)], [], 1) ; S = S2 ),  % (a program is not empty)
+    vm_state(S, Cols, Code),
+    col_from_list(Vs, Values),
+    col_size(C, N), N > 0,
+    random_between(0, 0x3fffffffffffffff, Seed),
+    col_vm_finite(Ps, Cols, Code, Rs, Values, C, Seed).
+
+pairs_of_entries([], [], []).
+pairs_of_entries([E|Es], [W|Ws], [V|Vs]) :-
+    nonvar(E), E = W:V,
+    pairs_of_entries(Es, Ws, Vs).
+
+vm_prob(W, R, S0, S) :-
+    ( var(W) ; number(W) ), !,
+    vm_expr(W, R, _, S0, S).
 
 vm_instance(Ps, [C1-P], Tmpl, C) :-
     var(P), Tmpl == P, !,

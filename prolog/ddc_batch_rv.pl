@@ -16,7 +16,7 @@
 :- use_module(ddc_dist).
 :- use_module(ddc_batch_col).
 :- use_module(ddc_batch_columns,
-              [plan/3, bind/2, has_column/1, compiled_instance/4]).
+              [plan/3, bind/2, has_column/1, compiled_instance/4, vm_finite/4]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -60,6 +60,9 @@ assign(Ps, C, D) :-
             col_backend(foreign),
             random_between(0, 0x3fffffffffffffff, Seed),
             col_draw_uniform(Ps, LC, C, Seed)
+        ->  true
+        ;   Tmpl = finite(Es), col_backend(foreign),
+            vm_finite(Ps, Bs, Es, C)
         ->  true
         ;   dist_prepare(Tmpl, P),
             draw_each(Ps, Bs, P, C)

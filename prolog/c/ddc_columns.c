@@ -45,12 +45,16 @@ typedef struct column
   double   *f;                          /* n*k floats (k > 0) */
   uintptr_t *x;                         /* n atoms or records (allocated lazily) */
   size_t    cnt[5];                     /* the number of cells of each tag */
+  uint32_t *cls;                        /* class of each cell: equal values, equal
+					   classes (valid while cls_valid) */
+  int       cls_valid;
 } column;
 
 /* SET_TAG(c, i, t): cell i's tag is t (the counts kept) */
 #define SET_TAG(c, i, t) \
 	do { uint8_t t_ = (t); column *c_ = (c); size_t i_ = (i); \
-	     c_->cnt[c_->tag[i_]]--; c_->tag[i_] = t_; c_->cnt[t_]++; } while(0)
+	     c_->cnt[c_->tag[i_]]--; c_->tag[i_] = t_; c_->cnt[t_]++; \
+	     c_->cls_valid = 0; } while(0)
 
 static atom_t ATOM_u, ATOM_undef, ATOM_open, ATOM_defined, ATOM_mixed, ATOM_done, ATOM_none;
 static functor_t FUNCTOR_comma2, FUNCTOR_same1, FUNCTOR_minus2;
@@ -69,7 +73,7 @@ free_cells(column *c)
 	PL_erase((record_t)c->x[i]);
     }
   }
-  free(c->tag); free(c->f); free(c->x);
+  free(c->tag); free(c->f); free(c->x); free(c->cls);
   free(c);
 }
 
@@ -1107,10 +1111,54 @@ cell_hash(column **cs, int nc, size_t i, uint64_t *hp)
   return TRUE;
 }
 
+
+/* classes(c): each cell's class (c->cls), computed once after the last
+   write: equal values, equal classes; FALSE if a value is not ground */
 static int
-same_key(column **cs, int nc, size_t i, size_t j)
+classes(column *c)
+{ size_t cap, ncls = 0;
+  size_t *slot;
+  if ( c->cls_valid ) return TRUE;
+  if ( !c->cls && !(c->cls = malloc((c->n ? c->n : 1)*sizeof(uint32_t))) ) return FALSE;
+  for(cap=16; cap < 2*c->n; cap *= 2) ;
+  if ( !(slot = calloc(cap, sizeof(size_t))) ) return FALSE;   /* representative + 1 */
+  for(size_t i=0; i<c->n; i++)
+  { uint64_t h;
+    size_t s;
+    column *one = c;
+    if ( !cell_hash(&one, 1, i, &h) ) { free(slot); return FALSE; }
+    for(s = (size_t)h & (cap-1); ; s = (s+1) & (cap-1))
+    { if ( slot[s] == 0 )
+      { slot[s] = i+1;
+	c->cls[i] = (uint32_t)ncls++;
+	break;
+      }
+      if ( same_cell(c, slot[s]-1, c, i) )
+      { c->cls[i] = c->cls[slot[s]-1];
+	break;
+      }
+    }
+  }
+  free(slot);
+  c->cls_valid = 1;
+  return TRUE;
+}
+
+static int
+class_hash(column **cs, int nc, size_t i, uint64_t *hp)
+{ uint64_t h = 1469598103934665603ULL;
+  for(int j=0; j<nc; j++)
+  { h = (h ^ cs[j]->cls[i]) * 1099511628211ULL;
+    h ^= h >> 29;
+  }
+  *hp = h;
+  return TRUE;
+}
+
+static int
+same_class(column **cs, int nc, size_t i, size_t j)
 { for(int q=0; q<nc; q++)
-    if ( !same_cell(cs[q], i, cs[q], j) ) return FALSE;
+    if ( cs[q]->cls[i] != cs[q]->cls[j] ) return FALSE;
   return TRUE;
 }
 
@@ -1136,6 +1184,7 @@ col_split(term_t ps, term_t tcols, term_t out)
     }
   }
   if ( nc == 0 ) return FALSE;
+  for(int q=0; q<nc; q++) if ( !classes(cs[q]) ) return FALSE;
   if ( !(idx = get_batch(ps, cs[0], &np)) ) return FALSE;
   for(int q=1; q<nc; q++) if ( cs[q]->n != cs[0]->n ) { free(idx); return FALSE; }
   for(cap=16; cap < 2*np; cap *= 2) ;
@@ -1151,14 +1200,14 @@ col_split(term_t ps, term_t tcols, term_t out)
   for(size_t j=0; j<np; j++)
   { uint64_t hsh;
     size_t s;
-    if ( !cell_hash(cs, nc, idx[j], &hsh) ) goto out;
+    if ( !class_hash(cs, nc, idx[j], &hsh) ) goto out;
     for(s = (size_t)hsh & (cap-1); ; s = (s+1) & (cap-1))
     { if ( slot_rep[s] == 0 )
       { slot_rep[s] = ++ng;
 	rep[ng-1] = idx[j]; head[ng-1] = j; tail[ng-1] = j; count[ng-1] = 0;
 	break;
       }
-      if ( same_key(cs, nc, rep[slot_rep[s]-1], idx[j]) )
+      if ( same_class(cs, nc, rep[slot_rep[s]-1], idx[j]) )
       { next[tail[slot_rep[s]-1]] = j; tail[slot_rep[s]-1] = j;
 	break;
       }
@@ -1422,6 +1471,70 @@ ps_union(term_t a, term_t b, term_t out)
   return PL_cons_list(ls, b, nil) && PL_cons_list(ls, a, ls) && ps_union_list(ls, out);
 }
 
+/* col_vm_finite(+Ps, +Cols, +Code, +ProbRegs, +Values, !C, +Seed) is
+   semidet: each particle of Ps not drawn yet in C gets a draw of
+   finite([P1:V1, ..., Pk:Vk]), Pi the registers ProbRegs after Code, Vi
+   the cells of the column Values (as ddc_dist.pl draws it: U uniform in
+   [0, 1), the first Vi whose cumulative probability exceeds U, else the
+   last of positive probability); fails, writing nothing, if the loop is
+   abandoned or a particle's probabilities are not a distribution (the
+   caller's Prolog loop raises the error) */
+static foreign_t
+col_vm_finite(term_t ps, term_t cols, term_t code, term_t tregs, term_t tvals, term_t tc,
+	      term_t ts)
+{ vm m;
+  column *c, *vals;
+  int regs[MAX_REGS], k = 0;
+  double r[MAX_REGS];
+  size_t np, *idx, *pick;
+  rng g;
+
+  if ( !get_column(tc, &c) || !get_column(tvals, &vals) || !get_seed(ts, &g) ) return FALSE;
+  { term_t l = PL_copy_term_ref(tregs), h = PL_new_term_ref();
+    while( PL_get_list(l, h, l) )
+    { if ( k >= MAX_REGS || !PL_get_integer(h, &regs[k]) || !reg_ok(regs[k]) ) return FALSE;
+      k++;
+    }
+  }
+  if ( k == 0 || (size_t)k != vals->n ) return FALSE;
+  if ( !vm_load(cols, code, &m) ) return FALSE;
+  for(int j=0; j<m.ncol; j++)
+    if ( m.col[j]->n != c->n ) { free(m.code); return FALSE; }
+  if ( !(idx = get_batch(ps, c, &np)) ) { free(m.code); return FALSE; }
+  if ( !(pick = malloc((np ? np : 1)*sizeof(size_t))) ) { free(idx); free(m.code); return FALSE; }
+  for(size_t j=0; j<np; j++)
+  { double sum = 0.0, u;
+    int q, last = -1;
+    if ( c->tag[idx[j]] != T_U ) continue;
+    if ( !vm_run(&m, idx[j], r) ) goto abandon;
+    for(q=0; q<k; q++)
+    { double p = r[regs[q]];
+      if ( !(p >= 0.0) ) goto abandon;
+      if ( p > 0.0 ) last = q;
+      sum += p;
+    }
+    if ( fabs(sum - 1.0) > 1.0e-9 || last < 0 ) goto abandon;
+    u = rng_uniform(&g) - 0x1.0p-53;		/* [0, 1) */
+    for(q=0; q<k; q++)
+    { double p = r[regs[q]];
+      if ( u < p ) break;
+      if ( q == k-1 ) { q = last; break; }
+      u -= p;
+    }
+    pick[j] = (size_t)q;
+  }
+  free(m.code);
+  for(size_t j=0; j<np; j++)
+  { if ( c->tag[idx[j]] != T_U ) continue;
+    if ( !copy_cell(c, idx[j], vals, pick[j]) ) { free(pick); free(idx); return FALSE; }
+  }
+  free(pick); free(idx);
+  return TRUE;
+abandon:
+  free(m.code); free(pick); free(idx);
+  return FALSE;
+}
+
 /* col_version(-V): the version of this library's interface */
 static foreign_t
 col_version(term_t v)
@@ -1466,6 +1579,7 @@ install_ddc_columns(void)
   PL_register_foreign("col_draw_uniform",4, col_draw_uniform,0);
   PL_register_foreign("col_select_eq",   5, col_select_eq,   0);
   PL_register_foreign("col_sources",     3, col_sources,     0);
+  PL_register_foreign("col_vm_finite",   7, col_vm_finite,   0);
   PL_register_foreign("$ps_subtract",     3, ps_subtract,     0);
   PL_register_foreign("$ps_intersection", 3, ps_intersection, 0);
   PL_register_foreign("$ps_union",        3, ps_union,        0);
