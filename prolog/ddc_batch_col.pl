@@ -48,6 +48,8 @@
             col_select_eq/5,            % +Ps, +Column, +Value, +Eq, -Out
             col_sources/3,              % +Indices, +Sizes, -Pairs
             col_vm_finite/7,            % +Ps, +Columns, +Code, +Registers, +Values, !C, +Seed
+            col_append_each/3,          % +Ps, !ListColumn, +Value
+            col_select_unify/4,         % +Ps, +Column, +Pattern, -Out
             ps_subtract/3,              % +Ps0, +Ps1, -Ps
             ps_intersection/3,          % +Ps0, +Ps1, -Ps
             ps_union/3,                 % +Ps0, +Ps1, -Ps
@@ -279,6 +281,15 @@ col_sources(_, _, _) :- fail.
 %   Fast path of draws of finite distributions whose probabilities are
 %   computed over the batch (fails here).
 col_vm_finite(_, _, _, _, _, _, _) :- fail.
+
+%!  col_append_each(+Ps, !ListColumn, +Value) is semidet.
+%!  col_select_unify(+Ps, +Column, +Pattern, -Out) is semidet.
+%
+%   Fast paths of a value appended to each particle's list and of the
+%   particles whose value unifies with Pattern or is a number =:= to it
+%   (fail here).
+col_append_each(_, _, _) :- fail.
+col_select_unify(_, _, _, _) :- fail.
 
 '$ps_subtract'(_, _, _) :- fail.
 '$ps_intersection'(_, _, _) :- fail.

@@ -531,7 +531,8 @@ unify_column(P, C, Arity, Ps0, Ps) :-
         term_variables(Pat, PVs),
         maplist(element_ref(C, Pat), Vs, PVs)
     ;   ground(P), \+ has_column(P)
-    ->  with_value(Ps0, C, P, Ps), Ps \== []
+    ->  (   col_select_unify(Ps0, C, P, Ps1) -> Ps = Ps1 ; with_value(Ps0, C, P, Ps) ),
+        Ps \== []
     ;   plan(P, Tmpl, Bs),
         unifiable_at(Ps0, C, Bs, Tmpl, Ps1),
         Ps1 \== [],

@@ -289,7 +289,12 @@ collect(T, G, L, E, Ps0, Ps) :-
     col_new(N, '$u', LC),
     col_set_each(Ps0, LC, []),
     forall(eval_body(G, E, Ps0, Ps1),
-           ( plan(T, Tmpl, Bs), append_each(Ps1, Bs, Tmpl, LC) )),
+           (   plan(T, Tmpl, Bs),
+               (   Bs == [], col_append_each(Ps1, LC, Tmpl)
+               ->  true
+               ;   append_each(Ps1, Bs, Tmpl, LC)
+               )
+           )),
     (   Ps0 = [I0|_], col_all_same(Ps0, LC, I0)
     ->  col_arg(I0, LC, L0),
         unify_value(L, L0, Ps0, Ps)
@@ -509,11 +514,9 @@ derived(G, T, E, Ps0, Ps) :-
 derived(G, T, E, Ps0, Ps) :-
     env_module(E, M),
     (   T =:= 0 -> K = zero, Now = 0 ; K = next, Now is T-1 ),
-    (   M:'$b_der'(H, K, B0, L), Now1 = Now
-    ;   M:'$b_der'(H, now, B0, L), Now1 = T
+    (   M:'$b_der'(G, K, B, L), Now1 = Now         % (a called clause is a fresh copy, and
+    ;   M:'$b_der'(G, now, B, L), Now1 = T         %  G its first argument: indexed)
     ),
-    copy_term(H-B0, G1-B),
-    G1 = G,
     env_at_time(E, Now1, E1),
     catch(eval_body(B, E1, Ps0, Ps), Err, clause_error(Err, M:L)),
     (   has_free_var(G)                 % not range-restricted: as ddc_compile.pl's, an error

@@ -1535,6 +1535,95 @@ abandon:
   return FALSE;
 }
 
+/* col_append_each(+Ps, !LC, +V) is semidet: each particle of Ps gets V
+   appended to its list in LC; fails, writing nothing, if a value is not a
+   list */
+static foreign_t
+col_append_each(term_t ps, term_t tc, term_t v)
+{ column *c;
+  size_t np, *idx;
+  int rc = FALSE;
+  fid_t fid;
+  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
+  fid = PL_open_foreign_frame();
+  { term_t l = PL_new_term_ref();
+    size_t len;
+    for(size_t j=0; j<np; j++)
+    { if ( !put_cell(l, c, idx[j]) || PL_skip_list(l, 0, &len) != PL_LIST ) goto out;
+      PL_rewind_foreign_frame(fid);
+    }
+    for(size_t j=0; j<np; j++)
+    { term_t elems, h, nl;
+      if ( !put_cell(l, c, idx[j]) || PL_skip_list(l, 0, &len) != PL_LIST ) goto out;
+      if ( !(elems = PL_new_term_refs((int)len+1)) ) goto out;
+      h = PL_new_term_ref(); nl = PL_new_term_ref();
+      for(size_t q=0; q<len; q++)
+      { if ( !PL_get_list(l, elems+q, l) ) goto out;
+      }
+      PL_put_nil(nl);
+      if ( !PL_cons_list(nl, v, nl) ) goto out;
+      for(size_t q=len; q-- > 0; )
+      { if ( !PL_cons_list(nl, elems+q, nl) ) goto out;
+      }
+      (void)h;
+      if ( !set_cell(c, idx[j], nl) ) goto out;
+      PL_rewind_foreign_frame(fid);
+    }
+    rc = TRUE;
+  }
+out:
+  PL_close_foreign_frame(fid);
+  free(idx);
+  return rc;
+}
+
+/* col_select_unify(+Ps, +C, +P, -Out): Out the particles of Ps whose value
+   in C unifies with P, or is a number =:= P (as
+   ddc_batch_columns:with_value/4 tests them) */
+static foreign_t
+col_select_unify(term_t ps, term_t tc, term_t p, term_t out)
+{ column *c, *tmp;
+  int rc = FALSE, pnum;
+  double pv = 0.0;
+  fid_t fid;
+  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !(tmp = new_column(1)) ) return PL_resource_error("memory");
+  if ( !set_cell(tmp, 0, p) ) { free_cells(tmp); return FALSE; }
+  pnum = PL_is_number(p) && PL_get_float(p, &pv);
+  fid = PL_open_foreign_frame();
+  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
+    term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref(), v = PL_new_term_ref();
+    size_t i;
+    while( PL_get_list(l, h, l) )
+    { int ok;
+      if ( !get_index(h, c, &i) ) goto out;
+      if ( c->tag[i] == T_TERM )
+      { fid_t f2 = PL_open_foreign_frame();
+	double x;
+	ok = put_cell(v, c, i) && PL_unify(v, p);
+	PL_discard_foreign_frame(f2);	/* (the bindings undone) */
+	if ( !ok && pnum )
+	{ f2 = PL_open_foreign_frame();
+	  ok = put_cell(v, c, i) && PL_is_number(v) && PL_get_float(v, &x) && x == pv;
+	  PL_discard_foreign_frame(f2);
+	}
+      } else if ( same_cell(c, i, tmp, 0) )
+	ok = TRUE;
+      else
+	ok = pnum && c->tag[i] == T_NUM && c->k == 1 && c->f[i] == pv;
+      if ( ok )
+      { if ( !PL_unify_list(tail, oh, tail) || !PL_unify(oh, h) ) goto out;
+      }
+    }
+    rc = PL_unify_nil(tail);
+  }
+out:
+  PL_close_foreign_frame(fid);
+  free_cells(tmp);
+  return rc;
+}
+
 /* col_version(-V): the version of this library's interface */
 static foreign_t
 col_version(term_t v)
@@ -1580,6 +1669,8 @@ install_ddc_columns(void)
   PL_register_foreign("col_select_eq",   5, col_select_eq,   0);
   PL_register_foreign("col_sources",     3, col_sources,     0);
   PL_register_foreign("col_vm_finite",   7, col_vm_finite,   0);
+  PL_register_foreign("col_append_each", 3, col_append_each, 0);
+  PL_register_foreign("col_select_unify",4, col_select_unify,0);
   PL_register_foreign("$ps_subtract",     3, ps_subtract,     0);
   PL_register_foreign("$ps_intersection", 3, ps_intersection, 0);
   PL_register_foreign("$ps_union",        3, ps_union,        0);
