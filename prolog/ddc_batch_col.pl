@@ -82,11 +82,29 @@ columns_version(1).
 %
 %   ord_subtract/3, ord_intersection/3 and ord_union/3,2 on batches (sorted
 %   lists of particle indices), in C where the library is loaded.
-ps_subtract(A, B, C) :- ( '$ps_subtract'(A, B, C0) -> C = C0 ; ord_subtract(A, B, C) ).
+ps_subtract(A, B, C) :-
+    (   B == [] -> C = A
+    ;   A == B -> C = []
+    ;   '$ps_subtract'(A, B, C0) -> C = C0
+    ;   ord_subtract(A, B, C)
+    ).
 ps_intersection(A, B, C) :-
-    ( '$ps_intersection'(A, B, C0) -> C = C0 ; ord_intersection(A, B, C) ).
-ps_union(A, B, C) :- ( '$ps_union'(A, B, C0) -> C = C0 ; ord_union(A, B, C) ).
-ps_union(Ls, C) :- ( '$ps_union'(Ls, C0) -> C = C0 ; ord_union(Ls, C) ).
+    (   A == B -> C = A
+    ;   '$ps_intersection'(A, B, C0) -> C = C0
+    ;   ord_intersection(A, B, C)
+    ).
+ps_union(A, B, C) :-
+    (   B == [] -> C = A
+    ;   A == [] -> C = B
+    ;   '$ps_union'(A, B, C0) -> C = C0
+    ;   ord_union(A, B, C)
+    ).
+ps_union(Ls, C) :-
+    (   Ls == [] -> C = []
+    ;   Ls = [C0] -> C = C0
+    ;   '$ps_union'(Ls, C0) -> C = C0
+    ;   ord_union(Ls, C)
+    ).
 
 :- use_module(library(ordsets)).
 

@@ -290,7 +290,7 @@ collect(T, G, L, E, Ps0, Ps) :-
     col_set_each(Ps0, LC, []),
     forall(eval_body(G, E, Ps0, Ps1),
            (   plan(T, Tmpl, Bs),
-               (   Bs == [], col_append_each(Ps1, LC, Tmpl)
+               (   append_grouped(Ps1, Bs, Tmpl, LC)
                ->  true
                ;   append_each(Ps1, Bs, Tmpl, LC)
                )
@@ -300,6 +300,22 @@ collect(T, G, L, E, Ps0, Ps) :-
         unify_value(L, L0, Ps0, Ps)
     ;   unify_column(L, LC, Ps0, Ps)
     ).
+
+%   append_grouped(+Ps, +Binds, +Tmpl, !LC): append_each/4 in the column
+%   library, a call per group of particles with the same values in the
+%   columns the template reads (fails where the library cannot: a deferred
+%   expression, a value that is not ground).
+append_grouped(Ps, [], Tmpl, LC) :- !,
+    col_append_each(Ps, LC, Tmpl).
+append_grouped(Ps, Bs, Tmpl, LC) :-
+    col_backend(foreign),
+    \+ memberchk('$e'(_, _, _), Bs),
+    pairs_keys_values(Bs, Cs, Pats),
+    col_split(Ps, Cs, Groups),
+    forall(member(Vs-GPs, Groups),
+           (   copy_term(Pats-Tmpl, Vs-T1),
+               col_append_each(GPs, LC, T1)
+           )).
 
 append_each([], _, _, _).
 append_each([I|Is], Bs, Tmpl, LC) :-
