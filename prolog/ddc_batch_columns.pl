@@ -290,7 +290,7 @@ vm_instance(Ps, [C1-P], Tmpl, C) :-
     col_copy_each(Ps, C1, C).
 vm_instance(Ps, Bs, Tmpl, C) :-
     vm_binds(Bs, S1),
-    (   Tmpl = (_, _) -> conj_to_list(Tmpl, Es) ; Es = [Tmpl] ),
+    (   nonvar(Tmpl), Tmpl = (_, _) -> conj_to_list(Tmpl, Es) ; Es = [Tmpl] ),
     foldl(vm_float_expr, Es, Rs, S1, S),
     vm_state(S, Cols, Code),
     col_vm_instance(Ps, Cols, Code, Rs, C).

@@ -901,7 +901,14 @@ bad:
   return FALSE;
 }
 
-/* vm_run(m, i, r): the program for particle i; FALSE to abandon */
+/* vm_run(m, i, r): the program for particle i: VM_OK, VM_SKIP (a cell
+   that the pattern does not unify with: '$u', '$undef' or an atom, as the
+   Prolog loop skips the particle) or VM_ABANDON (any other term, an
+   arithmetic error: the caller runs the loop in Prolog) */
+#define VM_OK       1
+#define VM_ABANDON  0
+#define VM_SKIP    -1
+
 static int
 vm_run(const vm *m, size_t i, double *r)
 { for(int p=0; p<m->ncode; p++)
@@ -910,7 +917,8 @@ vm_run(const vm *m, size_t i, double *r)
     switch(in->op)
     { case I_LD:
       { const column *c = m->col[in->j];
-	if ( c->tag[i] != T_NUM ) return FALSE;
+	if ( c->tag[i] != T_NUM )
+	  return c->tag[i] == T_TERM ? VM_ABANDON : VM_SKIP;
 	r[in->r] = c->f[i*(size_t)in->k + (size_t)in->c];
 	continue;
       }
@@ -918,25 +926,25 @@ vm_run(const vm *m, size_t i, double *r)
       case I_ADD: x = r[in->a] + r[in->b]; break;
       case I_SUB: x = r[in->a] - r[in->b]; break;
       case I_MUL: x = r[in->a] * r[in->b]; break;
-      case I_DIV: if ( r[in->b] == 0.0 ) return FALSE; x = r[in->a] / r[in->b]; break;
+      case I_DIV: if ( r[in->b] == 0.0 ) return VM_ABANDON; x = r[in->a] / r[in->b]; break;
       case I_POW: x = pow(r[in->a], r[in->b]); break;
       case I_ATAN2: x = atan2(r[in->a], r[in->b]); break;
       case I_NEG: x = -r[in->a]; break;
-      case I_SQRT: if ( r[in->a] < 0.0 ) return FALSE; x = sqrt(r[in->a]); break;
+      case I_SQRT: if ( r[in->a] < 0.0 ) return VM_ABANDON; x = sqrt(r[in->a]); break;
       case I_EXP: x = exp(r[in->a]); break;
-      case I_LOG: if ( r[in->a] <= 0.0 ) return FALSE; x = log(r[in->a]); break;
+      case I_LOG: if ( r[in->a] <= 0.0 ) return VM_ABANDON; x = log(r[in->a]); break;
       case I_SIN: x = sin(r[in->a]); break;
       case I_COS: x = cos(r[in->a]); break;
       case I_TAN: x = tan(r[in->a]); break;
       case I_ATAN: x = atan(r[in->a]); break;
       case I_TANH: x = tanh(r[in->a]); break;
       case I_ABS: x = fabs(r[in->a]); break;
-      default: return FALSE;
+      default: return VM_ABANDON;
     }
-    if ( !isfinite(x) ) return FALSE;
+    if ( !isfinite(x) ) return VM_ABANDON;
     r[in->r] = x;
   }
-  return TRUE;
+  return VM_OK;
 }
 
 enum { C_LT, C_GT, C_LE, C_GE, C_EQ, C_NE };
@@ -977,8 +985,9 @@ col_vm_test(term_t ps, term_t cols, term_t code, term_t top, term_t ta, term_t t
     if ( m.col[j]->n != m.col[0]->n ) { free(idx); free(m.code); return FALSE; }
   if ( !(hold = malloc(np ? np : 1)) ) { free(idx); free(m.code); return FALSE; }
   for(size_t j=0; j<np; j++)
-  { int h;
-    if ( !vm_run(&m, idx[j], r) ) { free(hold); free(idx); free(m.code); return FALSE; }
+  { int h, rc = vm_run(&m, idx[j], r);
+    if ( rc == VM_ABANDON ) { free(hold); free(idx); free(m.code); return FALSE; }
+    if ( rc == VM_SKIP ) { hold[j] = 0; continue; }
     switch(op)
     { case C_LT: h = r[a] <  r[b]; break;
       case C_GT: h = r[a] >  r[b]; break;
@@ -1013,6 +1022,7 @@ col_vm_instance(term_t ps, term_t cols, term_t code, term_t tregs, term_t tc)
   int regs[MAX_K], k = 0;
   double r[MAX_REGS], *buf;
   size_t np, *idx;
+  char *skip;
 
   if ( !get_column(tc, &c) ) return FALSE;
   { term_t l = PL_copy_term_ref(tregs), h = PL_new_term_ref();
@@ -1028,20 +1038,24 @@ col_vm_instance(term_t ps, term_t cols, term_t code, term_t tregs, term_t tc)
   if ( !(idx = get_batch(ps, c, &np)) ) { free(m.code); return FALSE; }
   if ( !(buf = malloc((np ? np : 1)*(size_t)k*sizeof(double))) )
   { free(idx); free(m.code); return FALSE; }
+  if ( !(skip = calloc(np ? np : 1, 1)) ) { free(buf); free(idx); free(m.code); return FALSE; }
   for(size_t j=0; j<np; j++)
-  { if ( c->tag[idx[j]] != T_U ) continue;
-    if ( !vm_run(&m, idx[j], r) ) { free(buf); free(idx); free(m.code); return FALSE; }
+  { int rc;
+    if ( c->tag[idx[j]] != T_U ) continue;
+    if ( (rc=vm_run(&m, idx[j], r)) == VM_ABANDON )
+    { free(skip); free(buf); free(idx); free(m.code); return FALSE; }
+    if ( rc == VM_SKIP ) { skip[j] = 1; continue; }
     for(int q=0; q<k; q++) buf[j*(size_t)k+(size_t)q] = r[regs[q]];
   }
   free(m.code);
-  if ( c->k == 0 && !set_k(c, k) ) { free(buf); free(idx); return FALSE; }
+  if ( c->k == 0 && !set_k(c, k) ) { free(skip); free(buf); free(idx); return FALSE; }
   for(size_t j=0; j<np; j++)
   { size_t i = idx[j];
-    if ( c->tag[i] != T_U ) continue;
+    if ( c->tag[i] != T_U || skip[j] ) continue;
     memcpy(&c->f[i*(size_t)k], &buf[j*(size_t)k], sizeof(double)*(size_t)k);
     SET_TAG(c, i, T_NUM);
   }
-  free(buf); free(idx);
+  free(skip); free(buf); free(idx);
   return TRUE;
 }
 
@@ -1505,8 +1519,12 @@ col_vm_finite(term_t ps, term_t cols, term_t code, term_t tregs, term_t tvals, t
   for(size_t j=0; j<np; j++)
   { double sum = 0.0, u;
     int q, last = -1;
+    pick[j] = (size_t)-1;
     if ( c->tag[idx[j]] != T_U ) continue;
-    if ( !vm_run(&m, idx[j], r) ) goto abandon;
+    { int rc = vm_run(&m, idx[j], r);
+      if ( rc == VM_ABANDON ) goto abandon;
+      if ( rc == VM_SKIP ) continue;
+    }
     for(q=0; q<k; q++)
     { double p = r[regs[q]];
       if ( !(p >= 0.0) ) goto abandon;
@@ -1525,7 +1543,7 @@ col_vm_finite(term_t ps, term_t cols, term_t code, term_t tregs, term_t tvals, t
   }
   free(m.code);
   for(size_t j=0; j<np; j++)
-  { if ( c->tag[idx[j]] != T_U ) continue;
+  { if ( c->tag[idx[j]] != T_U || pick[j] == (size_t)-1 ) continue;
     if ( !copy_cell(c, idx[j], vals, pick[j]) ) { free(pick); free(idx); return FALSE; }
   }
   free(pick); free(idx);
