@@ -1277,9 +1277,9 @@ col_draw_uniform(term_t ps, term_t tl, term_t tc, term_t ts)
   if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
   for(size_t j=0; j<np; j++)
     if ( c->tag[idx[j]] == T_U && lc->tag[idx[j]] != T_TERM ) { free(idx); return FALSE; }
-  fid = PL_open_foreign_frame();
-  { term_t l = PL_new_term_ref(), h = PL_new_term_ref();
+  { term_t l = PL_new_term_ref(), h = PL_new_term_ref();   /* (before the frame) */
     size_t len;
+    fid = PL_open_foreign_frame();
     /* (first every list checked, then the draws: nothing written on failure) */
     for(size_t j=0; j<np; j++)
     { if ( c->tag[idx[j]] != T_U ) continue;
@@ -1564,18 +1564,18 @@ col_append_each(term_t ps, term_t tc, term_t v)
   fid_t fid;
   if ( !get_column(tc, &c) ) return FALSE;
   if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
-  fid = PL_open_foreign_frame();
-  { term_t l = PL_new_term_ref();
+  { term_t l = PL_new_term_ref();	/* (before the frame: a rewind keeps it) */
     size_t len;
+    fid = PL_open_foreign_frame();
     for(size_t j=0; j<np; j++)
     { if ( !put_cell(l, c, idx[j]) || PL_skip_list(l, 0, &len) != PL_LIST ) goto out;
       PL_rewind_foreign_frame(fid);
     }
     for(size_t j=0; j<np; j++)
-    { term_t elems, h, nl;
+    { term_t elems, nl;
       if ( !put_cell(l, c, idx[j]) || PL_skip_list(l, 0, &len) != PL_LIST ) goto out;
       if ( !(elems = PL_new_term_refs((int)len+1)) ) goto out;
-      h = PL_new_term_ref(); nl = PL_new_term_ref();
+      nl = PL_new_term_ref();
       for(size_t q=0; q<len; q++)
       { if ( !PL_get_list(l, elems+q, l) ) goto out;
       }
@@ -1584,7 +1584,6 @@ col_append_each(term_t ps, term_t tc, term_t v)
       for(size_t q=len; q-- > 0; )
       { if ( !PL_cons_list(nl, elems+q, nl) ) goto out;
       }
-      (void)h;
       if ( !set_cell(c, idx[j], nl) ) goto out;
       PL_rewind_foreign_frame(fid);
     }
