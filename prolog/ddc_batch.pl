@@ -153,7 +153,7 @@ materialise_derived(M, E, T, All) :-
                collect(G, G:(t+1), L, E1, All, _),
                (   L = '$c'(LC, _, _)
                ->  col_new(Size, '$u', C),
-                   sets_each(All, LC, C)
+                   (   col_sets_each(All, LC, C) -> true ; sets_each(All, LC, C) )
                ;   list_to_set(L, Set), col_new(Size, Set, C)
                ),
                make_entry([column(C), status(open), arity(none)], Entry0),

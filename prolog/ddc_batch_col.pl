@@ -50,6 +50,8 @@
             col_vm_finite/7,            % +Ps, +Columns, +Code, +Registers, +Values, !C, +Seed
             col_append_each/3,          % +Ps, !ListColumn, +Value
             col_select_unify/4,         % +Ps, +Column, +Pattern, -Out
+            col_with_arity/4,           % +Ps, +Column, +K, -Out
+            col_sets_each/3,            % +Ps, +ListColumn, !Column
             ps_subtract/3,              % +Ps0, +Ps1, -Ps
             ps_intersection/3,          % +Ps0, +Ps1, -Ps
             ps_union/3,                 % +Ps0, +Ps1, -Ps
@@ -308,6 +310,14 @@ col_vm_finite(_, _, _, _, _, _, _) :- fail.
 %   (fail here).
 col_append_each(_, _, _) :- fail.
 col_select_unify(_, _, _, _) :- fail.
+
+%!  col_with_arity(+Ps, +Column, +K, -Out) is semidet.
+%!  col_sets_each(+Ps, +ListColumn, !Column) is semidet.
+%
+%   Fast paths of the particles whose value is a tuple of K elements or
+%   more and of each particle's list without repeats (fail here).
+col_with_arity(_, _, _, _) :- fail.
+col_sets_each(_, _, _) :- fail.
 
 '$ps_subtract'(_, _, _) :- fail.
 '$ps_intersection'(_, _, _) :- fail.

@@ -543,6 +543,9 @@ unify_column(P, C, Arity, Ps0, Ps) :-
 element_ref(C, Pat, V, PV) :- V = '$c'(C, Pat, PV).
 
 with_arity(Ps0, C, K, Ps) :-
+    col_with_arity(Ps0, C, K, Ps1), !,
+    Ps = Ps1.
+with_arity(Ps0, C, K, Ps) :-
     tuple_shape(K, Shape),
     with_shape(Ps0, C, Shape, Ps).
 

@@ -1641,6 +1641,85 @@ out:
   return rc;
 }
 
+/* col_with_arity(+Ps, +C, +K, -Out): Out the particles of Ps whose value in
+   C is a tuple of K or more elements (subsumed by (_, ..., _) of K) */
+static foreign_t
+col_with_arity(term_t ps, term_t tc, term_t tk, term_t out)
+{ column *c;
+  int k;
+  if ( !get_column(tc, &c) || !PL_get_integer_ex(tk, &k) ) return FALSE;
+  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
+    term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref(), v = PL_new_term_ref();
+    size_t i;
+    while( PL_get_list(l, h, l) )
+    { int ok;
+      if ( !get_index(h, c, &i) ) return FALSE;
+      switch(c->tag[i])
+      { case T_NUM: ok = c->k >= k; break;
+	case T_TERM:
+	{ fid_t f = PL_open_foreign_frame();
+	  int m = 1;
+	  ok = put_cell(v, c, i);
+	  while( ok && m < k && PL_is_functor(v, FUNCTOR_comma2) )
+	  { _PL_get_arg(2, v, v); m++; }
+	  ok = ok && m == k;
+	  PL_discard_foreign_frame(f);
+	  break;
+	}
+	default: ok = FALSE;
+      }
+      if ( ok && (!PL_unify_list(tail, oh, tail) || !PL_unify(oh, h)) ) return FALSE;
+    }
+    return PL_unify_nil(tail);
+  }
+}
+
+/* col_sets_each(+Ps, +LC, !C): each particle of Ps gets in C its list in LC
+   without repeats (the first of each, as list_to_set/2) */
+static foreign_t
+col_sets_each(term_t ps, term_t tl, term_t tc)
+{ column *lc, *c;
+  size_t np, *idx;
+  int rc = FALSE;
+  if ( !get_column(tl, &lc) || !get_column(tc, &c) ) return FALSE;
+  if ( lc->n != c->n ) return FALSE;
+  if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
+  { term_t l = PL_new_term_ref(), nl = PL_new_term_ref();
+    fid_t fid = PL_open_foreign_frame();
+    for(size_t j=0; j<np; j++)
+    { size_t i = idx[j], len, m = 0;
+      term_t el;
+      int dup = FALSE;
+      if ( !put_cell(l, lc, i) || PL_skip_list(l, 0, &len) != PL_LIST ) goto out;
+      if ( len < 2 ) { if ( !copy_cell(c, i, lc, i) ) goto out; PL_rewind_foreign_frame(fid); continue; }
+      if ( !(el = PL_new_term_refs((int)len)) ) goto out;
+      for(size_t q=0; q<len; q++)
+      { term_t x = PL_new_term_ref();
+	int seen = FALSE;
+	if ( !PL_get_list(l, x, l) ) goto out;
+	for(size_t r=0; r<m && !seen; r++)
+	  if ( PL_compare(el+r, x) == 0 ) seen = TRUE;
+	if ( seen ) dup = TRUE;
+	else if ( !PL_put_term(el+m++, x) ) goto out;
+      }
+      if ( !dup )
+      { if ( !copy_cell(c, i, lc, i) ) goto out;
+      } else
+      { PL_put_nil(nl);
+	for(size_t q=m; q-- > 0; )
+	  if ( !PL_cons_list(nl, el+q, nl) ) goto out;
+	if ( !set_cell(c, i, nl) ) goto out;
+      }
+      PL_rewind_foreign_frame(fid);
+    }
+    rc = TRUE;
+  out:
+    PL_close_foreign_frame(fid);
+  }
+  free(idx);
+  return rc;
+}
+
 /* col_version(-V): the version of this library's interface */
 static foreign_t
 col_version(term_t v)
@@ -1688,6 +1767,8 @@ install_ddc_columns(void)
   PL_register_foreign("col_vm_finite",   7, col_vm_finite,   0);
   PL_register_foreign("col_append_each", 3, col_append_each, 0);
   PL_register_foreign("col_select_unify",4, col_select_unify,0);
+  PL_register_foreign("col_with_arity",  4, col_with_arity,  0);
+  PL_register_foreign("col_sets_each",   3, col_sets_each,   0);
   PL_register_foreign("$ps_subtract",     3, ps_subtract,     0);
   PL_register_foreign("$ps_intersection", 3, ps_intersection, 0);
   PL_register_foreign("$ps_union",        3, ps_union,        0);
