@@ -37,6 +37,13 @@
 #define T_NUM    2                      /* a tuple of k floats */
 #define T_ATOM   3                      /* an atom (registered) */
 #define T_TERM   4                      /* any other term (a record) */
+#define T_LIST   5                      /* a non-empty list of atoms (an alist) */
+#define N_TAGS   6
+
+/* A list of atoms, as a cell holds it: appending is cheap (findall's
+   lists of instances), and a split or a uniform draw reads it without
+   making a term. */
+typedef struct alist { size_t n, cap; atom_t a[]; } alist;
 
 typedef struct column
 { size_t    n;                          /* particles */
@@ -44,7 +51,7 @@ typedef struct column
   uint8_t  *tag;                        /* n tags */
   double   *f;                          /* n*k floats (k > 0) */
   uintptr_t *x;                         /* n atoms or records (allocated lazily) */
-  size_t    cnt[5];                     /* the number of cells of each tag */
+  size_t    cnt[N_TAGS];                /* the number of cells of each tag */
   uint32_t *cls;                        /* class of each cell: equal values, equal
 					   classes (valid while cls_valid) */
   int       cls_valid;
@@ -64,6 +71,34 @@ static functor_t FUNCTOR_comma2, FUNCTOR_same1, FUNCTOR_minus2;
 		 *******************************/
 
 static void
+free_alist(alist *l)
+{ for(size_t q=0; q<l->n; q++) PL_unregister_atom(l->a[q]);
+  free(l);
+}
+
+static alist *
+new_alist(size_t cap)
+{ alist *l = malloc(sizeof(alist) + (cap ? cap : 1)*sizeof(atom_t));
+  if ( l ) { l->n = 0; l->cap = cap ? cap : 1; }
+  return l;
+}
+
+/* alist_push(&l, a): a appended (registered) */
+static int
+alist_push(alist **lp, atom_t a)
+{ alist *l = *lp;
+  if ( l->n == l->cap )
+  { alist *l2 = realloc(l, sizeof(alist) + 2*l->cap*sizeof(atom_t));
+    if ( !l2 ) return FALSE;
+    l2->cap *= 2;
+    *lp = l = l2;
+  }
+  PL_register_atom(a);
+  l->a[l->n++] = a;
+  return TRUE;
+}
+
+static void
 free_cells(column *c)
 { if ( c->x )
   { for(size_t i=0; i<c->n; i++)
@@ -71,6 +106,8 @@ free_cells(column *c)
 	PL_unregister_atom((atom_t)c->x[i]);
       else if ( c->tag[i] == T_TERM )
 	PL_erase((record_t)c->x[i]);
+      else if ( c->tag[i] == T_LIST )
+	free_alist((alist*)c->x[i]);
     }
   }
   free(c->tag); free(c->f); free(c->x); free(c->cls);
@@ -158,6 +195,8 @@ clear_cell(column *c, size_t i)
     PL_unregister_atom((atom_t)c->x[i]);
   else if ( c->tag[i] == T_TERM )
     PL_erase((record_t)c->x[i]);
+  else if ( c->tag[i] == T_LIST )
+    free_alist((alist*)c->x[i]);
   SET_TAG(c, i, T_U);
 }
 
@@ -211,6 +250,28 @@ set_cell(column *c, size_t i, term_t v)
       return TRUE;
     }
   }
+  { size_t len;
+    if ( PL_is_pair(v) && PL_skip_list(v, 0, &len) == PL_LIST )
+    { term_t l = PL_copy_term_ref(v), h = PL_new_term_ref();
+      alist *al;
+      int all = TRUE;
+      while( all && PL_get_list(l, h, l) ) all = PL_is_atom(h);
+      if ( all )
+      { if ( !ensure_x(c) || !(al = new_alist(len)) ) return FALSE;
+	l = PL_copy_term_ref(v);
+	while( PL_get_list(l, h, l) )
+	{ atom_t a2;
+	  if ( !PL_get_atom(h, &a2) ) { free_alist(al); return FALSE; }
+	  PL_register_atom(a2);
+	  al->a[al->n++] = a2;
+	}
+	clear_cell(c, i);
+	c->x[i] = (uintptr_t)al;
+	SET_TAG(c, i, T_LIST);
+	return TRUE;
+      }
+    }
+  }
   { record_t r;
     if ( !ensure_x(c) ) return FALSE;
     if ( !(r = PL_record(v)) ) return FALSE;
@@ -246,6 +307,15 @@ put_cell(term_t t, column *c, size_t i)
     case T_NUM:   return put_floats(t, &c->f[i*(size_t)c->k], c->k);
     case T_ATOM:  return PL_put_atom(t, (atom_t)c->x[i]);
     case T_TERM:  return PL_recorded((record_t)c->x[i], t);
+    case T_LIST:
+    { alist *l = (alist*)c->x[i];
+      term_t h = PL_new_term_ref();
+      PL_put_nil(t);
+      for(size_t q=l->n; q-- > 0; )
+      { if ( !PL_put_atom(h, l->a[q]) || !PL_cons_list(t, h, t) ) return FALSE;
+      }
+      return TRUE;
+    }
   }
   return FALSE;
 }
@@ -285,6 +355,16 @@ copy_cell(column *d, size_t j, column *s, size_t i)
       d->x[j] = (uintptr_t)PL_duplicate_record((record_t)s->x[i]);
       SET_TAG(d, j, T_TERM);
       return TRUE;
+    case T_LIST:
+    { alist *from = (alist*)s->x[i], *l;
+      if ( !ensure_x(d) || !(l = new_alist(from->n)) ) return FALSE;
+      for(size_t q=0; q<from->n; q++) { PL_register_atom(from->a[q]); l->a[q] = from->a[q]; }
+      l->n = from->n;
+      clear_cell(d, j);
+      d->x[j] = (uintptr_t)l;
+      SET_TAG(d, j, T_LIST);
+      return TRUE;
+    }
   }
   return FALSE;
 }
@@ -307,6 +387,10 @@ same_cell(column *a, size_t i, column *b, size_t j)
 		    sizeof(double)*(size_t)a->k) == 0;
     case T_ATOM:
       return a->x[i] == b->x[j];
+    case T_LIST:
+    { alist *la = (alist*)a->x[i], *lb = (alist*)b->x[j];
+      return la->n == lb->n && memcmp(la->a, lb->a, la->n*sizeof(atom_t)) == 0;
+    }
     case T_TERM:
       goto general;
   }
@@ -917,8 +1001,10 @@ vm_run(const vm *m, size_t i, double *r)
     switch(in->op)
     { case I_LD:
       { const column *c = m->col[in->j];
-	if ( c->tag[i] != T_NUM )
-	  return c->tag[i] == T_TERM ? VM_ABANDON : VM_SKIP;
+	if ( c->tag[i] != T_NUM )	/* (a tuple pattern unifies with no atom or list:
+					    the particle is skipped; a variable with
+					    anything: an error in Prolog) */
+	  return in->k > 1 && c->tag[i] != T_TERM ? VM_SKIP : VM_ABANDON;
 	r[in->r] = c->f[i*(size_t)in->k + (size_t)in->c];
 	continue;
       }
@@ -1092,6 +1178,12 @@ cell_hash(column **cs, int nc, size_t i, uint64_t *hp)
     { case T_U: x = 1; break;
       case T_UNDEF: x = 2; break;
       case T_ATOM: x = (uint64_t)c->x[i]; break;
+      case T_LIST:
+      { alist *l = (alist*)c->x[i];
+	x = 5;
+	for(size_t q=0; q<l->n; q++) x = (x ^ (uint64_t)l->a[q]) * 1099511628211ULL;
+	break;
+      }
       case T_NUM:
 	x = 3;
 	for(int q=0; q<c->k; q++)
@@ -1276,13 +1368,14 @@ col_draw_uniform(term_t ps, term_t tl, term_t tc, term_t ts)
   if ( lc->n != c->n ) return FALSE;
   if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
   for(size_t j=0; j<np; j++)
-    if ( c->tag[idx[j]] == T_U && lc->tag[idx[j]] != T_TERM ) { free(idx); return FALSE; }
+    if ( c->tag[idx[j]] == T_U && lc->tag[idx[j]] != T_TERM && lc->tag[idx[j]] != T_LIST )
+    { free(idx); return FALSE; }
   { term_t l = PL_new_term_ref(), h = PL_new_term_ref();   /* (before the frame) */
     size_t len;
     fid = PL_open_foreign_frame();
     /* (first every list checked, then the draws: nothing written on failure) */
     for(size_t j=0; j<np; j++)
-    { if ( c->tag[idx[j]] != T_U ) continue;
+    { if ( c->tag[idx[j]] != T_U || lc->tag[idx[j]] == T_LIST ) continue;
       if ( !PL_recorded((record_t)lc->x[idx[j]], l) ||
 	   PL_skip_list(l, 0, &len) != PL_LIST || len == 0 )
 	goto out;
@@ -1291,6 +1384,17 @@ col_draw_uniform(term_t ps, term_t tl, term_t tc, term_t ts)
     for(size_t j=0; j<np; j++)
     { size_t i = idx[j], pick;
       if ( c->tag[i] != T_U ) continue;
+      if ( lc->tag[i] == T_LIST )
+      { alist *al = (alist*)lc->x[i];
+	pick = (size_t)floor((rng_uniform(&r) - 0x1.0p-53) * (double)al->n);
+	if ( pick >= al->n ) pick = al->n-1;
+	if ( !ensure_x(c) ) goto out;
+	clear_cell(c, i);
+	PL_register_atom(al->a[pick]);
+	c->x[i] = (uintptr_t)al->a[pick];
+	SET_TAG(c, i, T_ATOM);
+	continue;
+      }
       if ( !PL_recorded((record_t)lc->x[i], l) ) goto out;
       if ( PL_skip_list(l, 0, &len) != PL_LIST || len == 0 ) goto out;
       pick = (size_t)floor((rng_uniform(&r) - 0x1.0p-53) * (double)len);
@@ -1564,6 +1668,34 @@ col_append_each(term_t ps, term_t tc, term_t v)
   fid_t fid;
   if ( !get_column(tc, &c) ) return FALSE;
   if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
+  { atom_t a;
+    if ( PL_get_atom(v, &a) )		/* (an atom: lists of atoms, in place) */
+    { int fast = TRUE;
+      for(size_t j=0; j<np && fast; j++)
+      { uint8_t t = c->tag[idx[j]];
+	fast = t == T_LIST || (t == T_ATOM && (atom_t)c->x[idx[j]] == ATOM_nil);
+      }
+      if ( fast )
+      { for(size_t j=0; j<np; j++)
+	{ size_t i = idx[j];
+	  if ( c->tag[i] == T_ATOM )
+	  { alist *l = new_alist(4);
+	    if ( !l ) { free(idx); return FALSE; }
+	    clear_cell(c, i);
+	    c->x[i] = (uintptr_t)l;
+	    SET_TAG(c, i, T_LIST);
+	  }
+	  { alist *l = (alist*)c->x[i];
+	    if ( !alist_push(&l, a) ) { free(idx); return FALSE; }
+	    c->x[i] = (uintptr_t)l;
+	    c->cls_valid = 0;
+	  }
+	}
+	free(idx);
+	return TRUE;
+      }
+    }
+  }
   { term_t l = PL_new_term_ref();	/* (before the frame: a rewind keeps it) */
     size_t len;
     fid = PL_open_foreign_frame();

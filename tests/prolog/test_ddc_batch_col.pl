@@ -14,6 +14,8 @@
 :- use_module('../../prolog/ddc_batch_col').
 :- use_module('../../prolog/ddc_batch_columns').
 :- use_module('../../prolog/ddc_ops').
+:- use_module('../../prolog/ddc_batch_rv').
+:- use_module(library(aggregate)).
 
 :- begin_tests(ddc_batch_col).
 
@@ -113,5 +115,53 @@ test(a_template_is_instantiated_not_evaluated) :-
     col_new(20, '$u', Out),
     compiled_instance(Is, Bs, Tmpl, Out),
     col_arg(4, Out, V), V == (2.0, 1, 2.0+1.0).
+
+test(lists_appended_to_and_without_repeats) :-
+    col_from_list([[], [a], [], [b, c]], C),
+    (   col_append_each([1, 2, 4], C, x) -> true ; collect_append([1, 2, 4], C, x) ),
+    (   col_append_each([2], C, f(y)) -> true ; collect_append([2], C, f(y)) ),
+    col_list(C, L), L == [[x], [a, x, f(y)], [], [b, c, x]],
+    col_from_list([[a, b, a], [c], [d, d]], D),
+    col_new(3, '$u', S),
+    (   col_sets_each([1, 2, 3], D, S) -> true
+    ;   forall(between(1, 3, I), ( col_arg(I, D, X), list_to_set(X, Y), col_setarg(I, S, Y) ))
+    ),
+    col_list(S, LS), LS == [[a, b], [c], [d]].
+
+collect_append(Ps, C, V) :-
+    forall(member(I, Ps), ( col_arg(I, C, L0), append(L0, [V], L1), col_setarg(I, C, L1) )).
+
+test(particles_whose_value_unifies) :-
+    col_from_list([true, false, 1, 1.0, f(_), '$undef', [a]], C),
+    Ps = [1, 2, 3, 4, 5, 6, 7],
+    findall(P-Out, ( member(P, [true, 1, f(z), [a]]),
+                     unify_column(P, C, Ps, Out) ), Pairs),
+    Pairs == [true-[1], 1-[3, 4], f(z)-[5], [a]-[7]].
+
+test(uniform_draws_from_lists_of_atoms) :-
+    numlist(1, 400, Is),
+    findall([a, b, c, d], member(_, Is), Ls),
+    col_from_list(Ls, LC),
+    unify_column(L, LC, Is, _),
+    col_new(400, '$u', Out),
+    set_random(seed(3)),
+    assign(Is, Out, uniform(L)),
+    col_list(Out, Vs),
+    forall(member(V, [a, b, c, d]),
+           ( aggregate_all(count, member(V, Vs), K), K > 60, K < 140 )).
+
+test(finite_draws_with_probabilities_over_the_batch) :-
+    numlist(1, 1000, Is),
+    findall(P, ( member(I, Is), P is (I mod 2) * 0.8 + 0.1 ), Ps),
+    col_from_list(Ps, PC),
+    unify_column(P1, PC, Is, _),
+    arith_value(P2, 1 - P1, Is, _),
+    col_new(1000, '$u', Out),
+    set_random(seed(5)),
+    assign(Is, Out, finite([P1:yes, P2:no])),
+    col_list(Out, Vs),
+    aggregate_all(count, ( nth1(I, Vs, yes), I mod 2 =:= 1 ), Odd),
+    aggregate_all(count, ( nth1(I, Vs, yes), I mod 2 =:= 0 ), Even),
+    abs(Odd - 450) < 60, abs(Even - 50) < 30.
 
 :- end_tests(ddc_batch_col).
