@@ -176,9 +176,11 @@ batch_step(groups([G1|Gs]), Obs, Facts, step(groups([S1|Ss]), LWs)) :- !,
     maplist(step_job(Obs, Facts), Gs, Jobs),
     pool_run(group_step(G1, Obs, Facts, true, step(S1, LWs1)), Jobs, Results),
     maplist(group_done(Facts), Gs, Results, Ss, LWss),
-    append([LWs1|LWss], LWs).
+    append([LWs1|LWss], LWs),
+    col_collect_garbage.
 batch_step(State0, Obs, Facts, Result) :-
-    group_step(State0, Obs, Facts, true, Result).
+    group_step(State0, Obs, Facts, true, Result),
+    col_collect_garbage.
 
 %   check_list(+Check, +N, -Checked): the particles a group checks for
 %   overlapping clauses (none unless Check is true).

@@ -24,6 +24,7 @@
 
 :- module(ddc_batch_col,
           [ col_backend/1,              % -Backend
+            col_collect_garbage/0,
             col_new/3,                  % +N, +Value, -Column
             col_arg/3,                  % +I, +Column, ?Value
             col_setarg/3,               % +I, !Column, +Value
@@ -110,6 +111,22 @@ ps_union(Ls, C) :-
 
 :- use_module(library(ordsets)).
 
+%!  col_collect_garbage is det.
+%
+%   Frees the columns no longer referenced once more than
+%   col_gc_bytes/1 of them were made since the last time (the library's
+%   columns are blobs, freed by the atom garbage collector, which counts
+%   atoms, not bytes): called after each step.  Nothing to do for terms.
+col_collect_garbage :-
+    (   col_backend(foreign), col_gc_bytes(Limit), col_gc_due(Limit)
+    ->  garbage_collect_atoms
+    ;   true
+    ).
+
+%   col_gc_bytes(-Bytes): how many bytes of new columns call for a
+%   collection (a few steps of 10,000 particles).
+col_gc_bytes(64_000_000).
+
 %   load_columns: the compiled library is loaded, of the expected version
 %   (silently not, if it is not built or DDC_COLUMNS=prolog; a library
 %   that does not load or is of another version is reported).
@@ -148,6 +165,8 @@ col_backend(foreign).
 :- else.
 
 col_backend(prolog).
+
+col_gc_due(_) :- fail.
 
 %!  col_new(+N, +Value, -Column) is det.
 %

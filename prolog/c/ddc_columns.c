@@ -63,6 +63,17 @@ typedef struct column
 	     c_->cnt[c_->tag[i_]]--; c_->tag[i_] = t_; c_->cnt[t_]++; \
 	     c_->cls_valid = 0; } while(0)
 
+/* The bytes of column memory allocated since the last col_gc_due/1 that
+   succeeded: columns are freed by the atom garbage collector, which
+   counts atoms, not bytes; the engine asks for a collection when this
+   grows (a column of 10,000 particles holds hundreds of kilobytes). */
+static size_t col_bytes = 0;
+
+static void
+count_bytes(size_t n)
+{ __atomic_add_fetch(&col_bytes, n, __ATOMIC_RELAXED);
+}
+
 static atom_t ATOM_u, ATOM_undef, ATOM_open, ATOM_defined, ATOM_mixed, ATOM_done, ATOM_none;
 static functor_t FUNCTOR_comma2, FUNCTOR_same1, FUNCTOR_minus2;
 
@@ -155,6 +166,7 @@ new_column(size_t n)
   c->n = n;
   c->tag = calloc(n ? n : 1, 1);
   if ( !c->tag ) { free(c); return NULL; }
+  count_bytes(sizeof(*c) + n);
   c->cnt[T_U] = n;
   return c;
 }
@@ -173,6 +185,7 @@ ensure_x(column *c)
 { if ( !c->x )
   { c->x = calloc(c->n ? c->n : 1, sizeof(uintptr_t));
     if ( !c->x ) return PL_resource_error("memory");
+    count_bytes(c->n*sizeof(uintptr_t));
   }
   return TRUE;
 }
@@ -181,6 +194,7 @@ static int
 set_k(column *c, int k)
 { c->f = calloc((c->n ? c->n : 1)*(size_t)k, sizeof(double));
   if ( !c->f ) return PL_resource_error("memory");
+  count_bytes(c->n*(size_t)k*sizeof(double));
   c->k = k;
   return TRUE;
 }
@@ -1225,7 +1239,10 @@ classes(column *c)
 { size_t cap, ncls = 0;
   size_t *slot;
   if ( c->cls_valid ) return TRUE;
-  if ( !c->cls && !(c->cls = malloc((c->n ? c->n : 1)*sizeof(uint32_t))) ) return FALSE;
+  if ( !c->cls )
+  { if ( !(c->cls = malloc((c->n ? c->n : 1)*sizeof(uint32_t))) ) return FALSE;
+    count_bytes(c->n*sizeof(uint32_t));
+  }
   for(cap=16; cap < 2*c->n; cap *= 2) ;
   if ( !(slot = calloc(cap, sizeof(size_t))) ) return FALSE;   /* representative + 1 */
   for(size_t i=0; i<c->n; i++)
@@ -1852,6 +1869,19 @@ col_sets_each(term_t ps, term_t tl, term_t tc)
   return rc;
 }
 
+/* col_gc_due(+Limit) is semidet: more than Limit bytes of columns were
+   allocated since it last succeeded (then the count starts again) */
+static foreign_t
+col_gc_due(term_t tl)
+{ int64_t limit;
+  size_t n;
+  if ( !PL_get_int64_ex(tl, &limit) ) return FALSE;
+  n = __atomic_load_n(&col_bytes, __ATOMIC_RELAXED);
+  if ( (int64_t)n <= limit ) return FALSE;
+  __atomic_store_n(&col_bytes, 0, __ATOMIC_RELAXED);
+  return TRUE;
+}
+
 /* col_version(-V): the version of this library's interface */
 static foreign_t
 col_version(term_t v)
@@ -1872,6 +1902,7 @@ install_ddc_columns(void)
   FUNCTOR_minus2 = PL_new_functor(PL_new_atom("-"), 2);
 
   PL_register_foreign("col_version",     1, col_version,     0);
+  PL_register_foreign("col_gc_due",      1, col_gc_due,      0);
   PL_register_foreign("col_new",         3, col_new,         0);
   PL_register_foreign("col_arg",         3, col_arg,         0);
   PL_register_foreign("col_setarg",      3, col_setarg,      0);
