@@ -112,9 +112,11 @@ column_ref(C, V, '$c'(C, V, V)).
 
 %!  has_column(+T) is semidet.
 %
-%   T holds a column reference or a deferred expression.
+%   T holds a column reference or a deferred expression.  (A ground term
+%   holds none: a reference's value is a variable, bound particle by
+%   particle.)
 has_column(T) :-
-    compound(T),
+    compound(T), \+ ground(T),
     (   T = '$c'(_, _, _) -> true ; T = '$x'(_) -> true ; arg(_, T, A), has_column(A) ), !.
 
 %!  materialise(+T, +Ps:list(integer), -T1) is det.
