@@ -8,7 +8,8 @@ objects, boxes drifting and small objects hidden under them) for ``--frames`` fr
 scenario repeated as often as needed (its positions carried on), and prints the process's
 resident memory (VmRSS) every ``--every`` frames, the atoms SWI-Prolog holds (the batched
 engine's columns are blobs, freed by the atom garbage collector) and, at the end, the growth
-from the first quarter's last sample to the end, in MB per 1,000 frames. A flat run grows by
+from the end of the first quarter on (the least-squares slope of the samples), in MB per 1,000
+frames. A flat run grows by
 about nothing once the first frames have sized the stacks and tables; a leak grows with the
 frames. Not a test: a long run, for a person to read (the final line says flat or growing,
 against ``--tolerance`` MB per 1,000 frames).
@@ -29,6 +30,15 @@ sys.path.insert(0, str(HERE.parent / "python"))
 import filter_numpy_reference as model  # noqa: E402
 from bridge import DEFAULT_THREADS, Filter  # noqa: E402
 from bridge import prolog as bridge_prolog  # noqa: E402
+
+
+def slope(points: list[tuple[int, float]]) -> float:
+    """The least-squares slope of (frame, MB) points, MB per frame."""
+    n = len(points)
+    mx = sum(k for k, _ in points) / n
+    my = sum(m for _, m in points) / n
+    sxx = sum((k - mx) ** 2 for k, _ in points)
+    return sum((k - mx) * (m - my) for k, m in points) / sxx if sxx else 0.0
 
 
 def rss_mb() -> float:
@@ -82,12 +92,13 @@ def main(argv: list[str] | None = None) -> int:
                     started = time.perf_counter()
                 if k == args.frames:
                     break
-    base = next(((k, m) for k, m in samples if k >= args.frames // 4), samples[0])
-    end = samples[-1]
-    growth = (end[1] - base[1]) / max(end[0] - base[0], 1) * 1000
+    late = [(k, m) for k, m in samples if k >= args.frames // 4] or samples
+    growth = 1000 * slope(late) if len(late) > 1 else 0.0
     verdict = "flat" if growth <= args.tolerance else "growing"
-    print(f"RSS {base[1]:.1f} MB at frame {base[0]} -> {end[1]:.1f} MB at frame {end[0]}: "
-          f"{growth:+.2f} MB per 1,000 frames ({verdict}, tolerance {args.tolerance} MB)")
+    print(f"RSS {late[0][1]:.1f} MB at frame {late[0][0]} -> {late[-1][1]:.1f} MB at frame "
+          f"{late[-1][0]} (max {max(m for _, m in samples):.1f}): least-squares growth "
+          f"{growth:+.2f} MB per 1,000 frames from frame {late[0][0]} on ({verdict}, "
+          f"tolerance {args.tolerance} MB)")
     return 0
 
 
