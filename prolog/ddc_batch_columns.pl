@@ -112,11 +112,12 @@ column_ref(C, V, '$c'(C, V, V)).
 
 %!  has_column(+T) is semidet.
 %
-%   T holds a column reference or a deferred expression.  (A ground term
-%   holds none: a reference's value is a variable, bound particle by
-%   particle.)
+%   T holds a column reference or a deferred expression.  (A reference
+%   may be ground: a split binds its pattern to the value of the branch's
+%   particles, and the reference still reads the column, so no ground(T)
+%   short cut.)
 has_column(T) :-
-    compound(T), \+ ground(T),
+    compound(T),
     (   T = '$c'(_, _, _) -> true ; T = '$x'(_) -> true ; arg(_, T, A), has_column(A) ), !.
 
 %!  materialise(+T, +Ps:list(integer), -T1) is det.

@@ -164,4 +164,14 @@ test(finite_draws_with_probabilities_over_the_batch) :-
     aggregate_all(count, ( nth1(I, Vs, yes), I mod 2 =:= 0 ), Even),
     abs(Odd - 450) < 60, abs(Even - 50) < 30.
 
+%   A split binds a reference's pattern to its branch's value: the reference
+%   is ground, and still reads its column (a goal after the split filters by
+%   it).
+test(a_reference_made_ground_by_a_split_still_reads_its_column) :-
+    col_from_list([a, b, a], C),
+    R = '$c'(C, V, V),
+    once(split(R, [1, 2, 3], T, Ps)),
+    T == a, Ps == [1, 3], ground(R),
+    has_column(R).
+
 :- end_tests(ddc_batch_col).
