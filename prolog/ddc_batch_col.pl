@@ -25,6 +25,7 @@
 :- module(ddc_batch_col,
           [ col_backend/1,              % -Backend
             col_collect_garbage/0,
+            col_has_ref/1,              % @Term
             col_new/3,                  % +N, +Value, -Column
             col_arg/3,                  % +I, +Column, ?Value
             col_setarg/3,               % +I, !Column, +Value
@@ -167,6 +168,15 @@ col_backend(foreign).
 col_backend(prolog).
 
 col_gc_due(_) :- fail.
+
+%!  col_has_ref(@Term) is semidet.
+%
+%   Term holds a column reference '$c'(C, P, V) or a deferred expression
+%   '$x'(E) (ddc_batch_columns.pl's has_column/1; in C where the library
+%   is loaded).
+col_has_ref(T) :-
+    compound(T),
+    (   T = '$c'(_, _, _) -> true ; T = '$x'(_) -> true ; arg(_, T, A), col_has_ref(A) ), !.
 
 %!  col_new(+N, +Value, -Column) is det.
 %

@@ -117,8 +117,7 @@ column_ref(C, V, '$c'(C, V, V)).
 %   particles, and the reference still reads the column, so no ground(T)
 %   short cut.)
 has_column(T) :-
-    compound(T),
-    (   T = '$c'(_, _, _) -> true ; T = '$x'(_) -> true ; arg(_, T, A), has_column(A) ), !.
+    col_has_ref(T).
 
 %!  materialise(+T, +Ps:list(integer), -T1) is det.
 %

@@ -1882,6 +1882,37 @@ col_gc_due(term_t tl)
   return TRUE;
 }
 
+/* col_has_ref(@T) is semidet: T holds a column reference '$c'(C, P, V) or a
+   deferred expression '$x'(E) (ddc_batch_columns:has_column/1, walked in
+   C: it is asked of every goal and distribution of a batch) */
+static functor_t FUNCTOR_cref3, FUNCTOR_xref1;
+
+static int
+has_ref(term_t t, int depth)
+{ if ( !PL_is_compound(t) ) return FALSE;
+  if ( PL_is_functor(t, FUNCTOR_cref3) || PL_is_functor(t, FUNCTOR_xref1) ) return TRUE;
+  if ( depth > 10000 ) return -1;
+  { size_t arity;
+    atom_t name;
+    term_t a = PL_new_term_ref();
+    int rc = FALSE;
+    if ( !PL_get_name_arity(t, &name, &arity) ) return FALSE;
+    for(size_t i=1; i<=arity && !rc; i++)
+    { _PL_get_arg(i, t, a);
+      rc = has_ref(a, depth+1);
+    }
+    PL_reset_term_refs(a);
+    return rc;
+  }
+}
+
+static foreign_t
+col_has_ref(term_t t)
+{ int rc = has_ref(t, 0);
+  if ( rc < 0 ) return PL_resource_error("c_stack");
+  return rc;
+}
+
 /* col_version(-V): the version of this library's interface */
 static foreign_t
 col_version(term_t v)
@@ -1900,9 +1931,12 @@ install_ddc_columns(void)
   FUNCTOR_comma2 = PL_new_functor(PL_new_atom(","), 2);
   FUNCTOR_same1  = PL_new_functor(PL_new_atom("same"), 1);
   FUNCTOR_minus2 = PL_new_functor(PL_new_atom("-"), 2);
+  FUNCTOR_cref3  = PL_new_functor(PL_new_atom("$c"), 3);
+  FUNCTOR_xref1  = PL_new_functor(PL_new_atom("$x"), 1);
 
   PL_register_foreign("col_version",     1, col_version,     0);
   PL_register_foreign("col_gc_due",      1, col_gc_due,      0);
+  PL_register_foreign("col_has_ref",     1, col_has_ref,     0);
   PL_register_foreign("col_new",         3, col_new,         0);
   PL_register_foreign("col_arg",         3, col_arg,         0);
   PL_register_foreign("col_setarg",      3, col_setarg,      0);
