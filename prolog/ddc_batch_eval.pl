@@ -254,6 +254,12 @@ static_body_call(G, E) :- call_static(G, E).
 %
 %   Union: the particles of Ps0 in which G has a solution.
 branch_union(G, E, Ps0, Union) :-
+    col_backend(foreign), !,
+    env_size(E, N),                     % (each branch's particles marked in a column, not
+    col_new(N, '$u', Marks),            %  copied into a findall list)
+    forall(eval_body(G, E, Ps0, Ps), col_set_each(Ps, Marks, in)),
+    col_defined_at(Ps0, Marks, Union).
+branch_union(G, E, Ps0, Union) :-
     findall(Ps, eval_body(G, E, Ps0, Ps), Ls),
     ps_union(Ls, Union).
 
