@@ -37,13 +37,15 @@
 #define T_NUM    2                      /* a tuple of k floats */
 #define T_ATOM   3                      /* an atom (registered) */
 #define T_TERM   4                      /* any other term (a record) */
-#define T_LIST   5                      /* a non-empty list of atoms (an alist) */
+#define T_LIST   5                      /* a non-empty list of ground terms (an alist) */
 #define N_TAGS   6
 
-/* A list of atoms, as a cell holds it: appending is cheap (findall's
-   lists of instances), and a split or a uniform draw reads it without
-   making a term. */
-typedef struct alist { size_t n, cap; atom_t a[]; } alist;
+/* A list of ground terms, as a cell holds it: appending is cheap
+   (findall's lists of instances), and a split or a uniform draw reads it
+   without making the list.  An item is an atom (registered) or a record
+   (rec set). */
+typedef struct item { uintptr_t v; int rec; } item;
+typedef struct alist { size_t n, cap; item a[]; } alist;
 
 typedef struct column
 { size_t    n;                          /* particles */
@@ -83,29 +85,67 @@ static functor_t FUNCTOR_comma2, FUNCTOR_same1, FUNCTOR_minus2;
 
 static void
 free_alist(alist *l)
-{ for(size_t q=0; q<l->n; q++) PL_unregister_atom(l->a[q]);
+{ for(size_t q=0; q<l->n; q++)
+  { if ( l->a[q].rec ) PL_erase((record_t)l->a[q].v);
+    else PL_unregister_atom((atom_t)l->a[q].v);
+  }
   free(l);
+}
+
+/* put_item(t, it): t is the item's term */
+static int
+put_item(term_t t, const item *it)
+{ return it->rec ? PL_recorded((record_t)it->v, t) : PL_put_atom(t, (atom_t)it->v);
+}
+
+/* make_item(t, &it): t (ground) as an item */
+static int
+make_item(term_t t, item *it)
+{ atom_t a;
+  if ( PL_get_atom(t, &a) )
+  { PL_register_atom(a);
+    it->v = (uintptr_t)a; it->rec = FALSE;
+    return TRUE;
+  }
+  { record_t r = PL_record(t);
+    if ( !r ) return FALSE;
+    it->v = (uintptr_t)r; it->rec = TRUE;
+    return TRUE;
+  }
+}
+
+static void
+free_item(item *it)
+{ if ( it->rec ) PL_erase((record_t)it->v);
+  else PL_unregister_atom((atom_t)it->v);
+}
+
+/* copy_item(&to, from): a copy of the item (registered or duplicated) */
+static void
+copy_item(item *to, const item *from)
+{ if ( from->rec ) to->v = (uintptr_t)PL_duplicate_record((record_t)from->v);
+  else { PL_register_atom((atom_t)from->v); to->v = from->v; }
+  to->rec = from->rec;
 }
 
 static alist *
 new_alist(size_t cap)
-{ alist *l = malloc(sizeof(alist) + (cap ? cap : 1)*sizeof(atom_t));
+{ alist *l = malloc(sizeof(alist) + (cap ? cap : 1)*sizeof(item));
   if ( l ) { l->n = 0; l->cap = cap ? cap : 1; }
   return l;
 }
 
-/* alist_push(&l, a): a appended (registered) */
+/* alist_push(&l, it): a copy of the item appended */
 static int
-alist_push(alist **lp, atom_t a)
+alist_push(alist **lp, const item *it)
 { alist *l = *lp;
   if ( l->n == l->cap )
-  { alist *l2 = realloc(l, sizeof(alist) + 2*l->cap*sizeof(atom_t));
+  { alist *l2 = realloc(l, sizeof(alist) + 2*l->cap*sizeof(item));
     if ( !l2 ) return FALSE;
     l2->cap *= 2;
     *lp = l = l2;
   }
-  PL_register_atom(a);
-  l->a[l->n++] = a;
+  copy_item(&l->a[l->n++], it);
   return TRUE;
 }
 
@@ -268,16 +308,11 @@ set_cell(column *c, size_t i, term_t v)
     if ( PL_is_pair(v) && PL_skip_list(v, 0, &len) == PL_LIST )
     { term_t l = PL_copy_term_ref(v), h = PL_new_term_ref();
       alist *al;
-      int all = TRUE;
-      while( all && PL_get_list(l, h, l) ) all = PL_is_atom(h);
-      if ( all )
+      if ( PL_is_ground(v) )		/* (items recorded apart: no variables to share) */
       { if ( !ensure_x(c) || !(al = new_alist(len)) ) return FALSE;
-	l = PL_copy_term_ref(v);
 	while( PL_get_list(l, h, l) )
-	{ atom_t a2;
-	  if ( !PL_get_atom(h, &a2) ) { free_alist(al); return FALSE; }
-	  PL_register_atom(a2);
-	  al->a[al->n++] = a2;
+	{ if ( !make_item(h, &al->a[al->n]) ) { free_alist(al); return FALSE; }
+	  al->n++;
 	}
 	clear_cell(c, i);
 	c->x[i] = (uintptr_t)al;
@@ -326,7 +361,7 @@ put_cell(term_t t, column *c, size_t i)
       term_t h = PL_new_term_ref();
       PL_put_nil(t);
       for(size_t q=l->n; q-- > 0; )
-      { if ( !PL_put_atom(h, l->a[q]) || !PL_cons_list(t, h, t) ) return FALSE;
+      { if ( !put_item(h, &l->a[q]) || !PL_cons_list(t, h, t) ) return FALSE;
       }
       return TRUE;
     }
@@ -372,7 +407,7 @@ copy_cell(column *d, size_t j, column *s, size_t i)
     case T_LIST:
     { alist *from = (alist*)s->x[i], *l;
       if ( !ensure_x(d) || !(l = new_alist(from->n)) ) return FALSE;
-      for(size_t q=0; q<from->n; q++) { PL_register_atom(from->a[q]); l->a[q] = from->a[q]; }
+      for(size_t q=0; q<from->n; q++) copy_item(&l->a[q], &from->a[q]);
       l->n = from->n;
       clear_cell(d, j);
       d->x[j] = (uintptr_t)l;
@@ -403,7 +438,12 @@ same_cell(column *a, size_t i, column *b, size_t j)
       return a->x[i] == b->x[j];
     case T_LIST:
     { alist *la = (alist*)a->x[i], *lb = (alist*)b->x[j];
-      return la->n == lb->n && memcmp(la->a, lb->a, la->n*sizeof(atom_t)) == 0;
+      if ( la->n != lb->n ) return FALSE;
+      for(size_t q=0; q<la->n; q++)
+      { if ( la->a[q].rec || lb->a[q].rec ) goto general;
+	if ( la->a[q].v != lb->a[q].v ) return FALSE;
+      }
+      return TRUE;
     }
     case T_TERM:
       goto general;
@@ -1195,7 +1235,23 @@ cell_hash(column **cs, int nc, size_t i, uint64_t *hp)
       case T_LIST:
       { alist *l = (alist*)c->x[i];
 	x = 5;
-	for(size_t q=0; q<l->n; q++) x = (x ^ (uint64_t)l->a[q]) * 1099511628211ULL;
+	for(size_t q=0; q<l->n; q++)
+	{ uint64_t y = (uint64_t)l->a[q].v;
+	  if ( l->a[q].rec )		/* (equal terms, equal external records) */
+	  { fid_t fid = PL_open_foreign_frame();
+	    term_t t = PL_new_term_ref();
+	    char *rec; size_t len;
+	    if ( !PL_recorded((record_t)l->a[q].v, t) || !(rec = PL_record_external(t, &len)) )
+	    { PL_discard_foreign_frame(fid);
+	      return FALSE;
+	    }
+	    y = 7;
+	    for(size_t b=0; b<len; b++) y = (y ^ (uint8_t)rec[b]) * 1099511628211ULL;
+	    PL_erase_external(rec);
+	    PL_discard_foreign_frame(fid);
+	  }
+	  x = (x ^ y) * 1099511628211ULL;
+	}
 	break;
       }
       case T_NUM:
@@ -1405,11 +1461,8 @@ col_draw_uniform(term_t ps, term_t tl, term_t tc, term_t ts)
       { alist *al = (alist*)lc->x[i];
 	pick = (size_t)floor((rng_uniform(&r) - 0x1.0p-53) * (double)al->n);
 	if ( pick >= al->n ) pick = al->n-1;
-	if ( !ensure_x(c) ) goto out;
-	clear_cell(c, i);
-	PL_register_atom(al->a[pick]);
-	c->x[i] = (uintptr_t)al->a[pick];
-	SET_TAG(c, i, T_ATOM);
+	if ( !put_item(l, &al->a[pick]) || !set_cell(c, i, l) ) goto out;
+	PL_rewind_foreign_frame(fid);
 	continue;
       }
       if ( !PL_recorded((record_t)lc->x[i], l) ) goto out;
@@ -1685,29 +1738,31 @@ col_append_each(term_t ps, term_t tc, term_t v)
   fid_t fid;
   if ( !get_column(tc, &c) ) return FALSE;
   if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
-  { atom_t a;
-    if ( PL_get_atom(v, &a) )		/* (an atom: lists of atoms, in place) */
+  { if ( PL_is_ground(v) )		/* (a ground term: lists of items, in place) */
     { int fast = TRUE;
+      item it;
       for(size_t j=0; j<np && fast; j++)
       { uint8_t t = c->tag[idx[j]];
 	fast = t == T_LIST || (t == T_ATOM && (atom_t)c->x[idx[j]] == ATOM_nil);
       }
       if ( fast )
-      { for(size_t j=0; j<np; j++)
+      { if ( !make_item(v, &it) ) { free(idx); return FALSE; }
+	for(size_t j=0; j<np; j++)
 	{ size_t i = idx[j];
 	  if ( c->tag[i] == T_ATOM )
 	  { alist *l = new_alist(4);
-	    if ( !l ) { free(idx); return FALSE; }
+	    if ( !l ) { free_item(&it); free(idx); return FALSE; }
 	    clear_cell(c, i);
 	    c->x[i] = (uintptr_t)l;
 	    SET_TAG(c, i, T_LIST);
 	  }
 	  { alist *l = (alist*)c->x[i];
-	    if ( !alist_push(&l, a) ) { free(idx); return FALSE; }
+	    if ( !alist_push(&l, &it) ) { free_item(&it); free(idx); return FALSE; }
 	    c->x[i] = (uintptr_t)l;
 	    c->cls_valid = 0;
 	  }
 	}
+	free_item(&it);
 	free(idx);
 	return TRUE;
       }
