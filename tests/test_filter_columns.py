@@ -86,7 +86,8 @@ def test_the_column_library_is_built_and_loaded() -> None:
     assert col_backend() == "foreign"
 
 
-@pytest.mark.parametrize("name", ["test_ddc_batch.pl", "test_ddc_batch_col.pl"])
+@pytest.mark.parametrize("name", ["test_ddc_batch.pl", "test_ddc_batch_col.pl",
+                                  "test_ddc_rename.pl"])
 def test_plunit_with_the_columns_in_prolog(name: str, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("DDC_COLUMNS", "prolog")
     result = run_plunit(ROOT / "tests" / "prolog" / name)
