@@ -7,10 +7,9 @@
 
       foreign  the compiled library prolog/c/ddc_columns.c (built by
                scripts/setup.sh next to its source): a column is a blob of
-               C arrays (number tuples as floats, atoms, other terms
-               recorded), and the loops the engine runs most (the
-               particles not drawn yet, a column's status, gaussian draws
-               and densities, resampling) run in C;
+               C arrays (number tuples as floats, atoms, lists of ground
+               items, other terms recorded), and the loops the engine runs
+               most run in C (docs/batched-filter.md, "Columns in C");
       prolog   a term c(V1, ..., VN) read with arg/3 and written with
                nb_setarg/3, every loop in Prolog: the engine as it was
                before the library, used when the library is not built (an
@@ -60,6 +59,8 @@
             ps_union/2                  % +Pss, -Ps
           ]).
 
+:- use_module(library(ordsets)).
+
 :- set_prolog_flag(optimise, true).
 
 /** <module> Columns of the batched filter
@@ -69,10 +70,11 @@ A particle index is an integer 1..N.  A column's value for a particle is
 value.  A column is updated in place, as nb_setarg/3 updates a term: the
 change is not undone on backtracking.
 
-col_backend/1 says which representation is in use.  The predicates
-col_num_arity/2, col_draw_gauss/5 and col_weigh_gauss/7 are fast paths:
+col_backend/1 says which representation is in use.  The predicates of
+the export list from col_num_arity/2 to col_sets_each/3 are fast paths:
 they fail where the library is not loaded (or does not handle the
-column), and the caller then runs its loop in Prolog.
+values), and the caller then runs its loop in Prolog; a fast path that
+fails has written nothing.
 */
 
 %   The interface version the Prolog side expects of the library
@@ -109,8 +111,6 @@ ps_union(Ls, C) :-
     ;   '$ps_union'(Ls, C0) -> C = C0
     ;   ord_union(Ls, C)
     ).
-
-:- use_module(library(ordsets)).
 
 %!  col_collect_garbage is det.
 %
