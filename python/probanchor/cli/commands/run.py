@@ -101,6 +101,10 @@ def register(sub: Any) -> None:
     parser.add_argument("--resume", type=Path, default=None, metavar="WORLD.db",
                         help="continue the run kept in this store after a restart (the same "
                              "source and options; the source may be left out)")
+    parser.add_argument("--serve", type=int, default=None, metavar="PORT",
+                        help="answer Prolog queries on the live world model while the run goes "
+                             "on, on http://127.0.0.1:PORT (0: any free port, printed): "
+                             "anchoring shell --connect PORT, or GET /query?q=QUERY")
     parser.add_argument("--rerun-spawn", action="store_true",
                         help="open the Rerun viewer and stream the run to it")
     add_run_options(parser)
@@ -118,7 +122,7 @@ def main(args: argparse.Namespace) -> int:
         resample_threshold=args.resample_threshold, reidentify=not args.no_reid, out=args.out,
         threads=args.threads, engine=args.engine, overlap=not args.sequential,
         picture_every=args.every, progress=not args.quiet, rerun=args.rerun,
-        rerun_spawn=args.rerun_spawn, store=args.store, resume=args.resume,
+        rerun_spawn=args.rerun_spawn, store=args.store, resume=args.resume, serve=args.serve,
     ))
     print(format_summary(output.summary))
     if output.out is not None:
