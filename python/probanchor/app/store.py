@@ -180,7 +180,8 @@ def _bag_topics_text(topics: Any) -> str:
                        "camera_info": topics.camera_info, "world_frame": topics.world_frame,
                        "camera_pose": None if pose is None
                        else np.asarray(pose, dtype=float).tolist(),
-                       "max_skew": float(topics.max_skew)}, sort_keys=True)
+                       "max_skew": float(topics.max_skew),
+                       "max_lead": float(topics.max_lead)}, sort_keys=True)
 
 
 def run_meta(source: str, options: Any) -> dict[str, str]:

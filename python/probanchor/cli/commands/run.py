@@ -55,6 +55,9 @@ def add_bag_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--max-skew", type=float, default=0.02,
                        help="seconds between the stamps of a colour and its depth image "
                             "(default 0.02)")
+    group.add_argument("--max-lead", type=float, default=60.0,
+                       help="seconds a colour image's stamp may be ahead of the time the bag "
+                            "recorded it; a frame stamped further ahead is skipped (default 60)")
 
 
 def _pose(text: str) -> Any:
@@ -72,7 +75,8 @@ def bag_topics(args: argparse.Namespace) -> Any:
 
     return BagTopics(colour=args.colour_topic, depth=args.depth_topic,
                      camera_info=args.info_topic, world_frame=args.world_frame,
-                     camera_pose=args.camera_pose, max_skew=args.max_skew)
+                     camera_pose=args.camera_pose, max_skew=args.max_skew,
+                     max_lead=args.max_lead)
 
 
 def register(sub: Any) -> None:
