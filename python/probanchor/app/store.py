@@ -253,7 +253,7 @@ class StoreLock:
         holder = {"pid": os.getpid(), "host": socket.gethostname(),
                   "command": shlex.join([Path(sys.argv[0]).name, *sys.argv[1:]])
                   if sys.argv and sys.argv[0] else sys.executable,
-                  "since": datetime.datetime.now().astimezone().isoformat(timespec="seconds")}
+                  "since": datetime.datetime.now().astimezone().strftime("%Y-%m-%d %H:%M:%S %z")}
         os.ftruncate(fd, 0)
         os.pwrite(fd, (json.dumps(holder) + "\n").encode(), 0)
         self._fd = fd
