@@ -50,7 +50,7 @@ import os
 import threading
 import time as _time
 import warnings
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import wraps
 from pathlib import Path
@@ -171,6 +171,11 @@ def _locked(method: Callable[Concatenate[Filter, _P], _R]) -> Callable[Concatena
             return method(self, *args, **kwargs)
 
     return call
+
+
+def _a(name: str) -> str:
+    """``a list``, ``an int``."""
+    return f"{'an' if name[:1] in 'aeiou' else 'a'} {name}"
 
 
 def _as_term_text(value: Any) -> str:
@@ -370,10 +375,22 @@ class Filter:
         )
 
     def _texts(self, kind: str, items: Iterable[Any]) -> list[str]:
+        """The Prolog texts of a step's observations or actions: one term (Prolog text, a
+        ``Compound`` or ``Text``) or a list of them; anything else is a FilterError naming the
+        item (a number or a list is no fact, a dict's keys are not meant as facts)."""
         if isinstance(items, str | Compound | Text):
             items = [items]
+        if isinstance(items, Mapping | set | frozenset | bytes | bytearray) or not isinstance(
+                items, Iterable):
+            raise FilterError(f"{kind}s: {items!r} is {_a(type(items).__name__)}; give a list of "
+                              "terms (Prolog text such as 'observed(ball_1)', or bridge.terms "
+                              "values such as terms.observation(...))")
         texts = []
         for i, item in enumerate(items, start=1):
+            if not isinstance(item, str | Compound | Text):
+                raise FilterError(f"{kind} {i} ({item!r}): {_a(type(item).__name__)} is not a "
+                                  "term; give Prolog text or a bridge.terms value (fact, "
+                                  "observation, action)")
             try:
                 texts.append(_as_term_text(item))
             except (TypeError, ValueError) as exc:
