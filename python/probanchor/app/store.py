@@ -302,7 +302,7 @@ class WorldStore:
 
     # ------------------------------------------------------------------ opening
     @classmethod
-    def create(cls, path: Path, meta: dict[str, str]) -> WorldStore:
+    def create(cls, path: Path | str, meta: dict[str, str]) -> WorldStore:
         """A new store for a run; an existing store that holds frames is never overwritten.
 
         Parameters
@@ -317,6 +317,7 @@ class WorldStore:
         The store, ready for :meth:`write_frame`, holding its lock; a :class:`StoreError`
         when another run holds the lock, the file holds a run or cannot be written.
         """
+        path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
         lock = StoreLock(path)
         lock.acquire()
@@ -341,7 +342,7 @@ class WorldStore:
         return store
 
     @classmethod
-    def open(cls, path: Path, write: bool = False) -> WorldStore:
+    def open(cls, path: Path | str, write: bool = False) -> WorldStore:
         """An existing store, checked to be one (for reading, or resuming with ``write``).
 
         Parameters
@@ -358,6 +359,7 @@ class WorldStore:
         database that is not an anchoring store, a damaged or read-only one (``write``), or
         one another run holds (``write``).
         """
+        path = Path(path)
         if not path.is_file():
             raise StoreError(f"{path}: no such store")
         lock = None
