@@ -38,7 +38,8 @@ numbers stay numbers, atoms and strings are strings, comma terms (X,Y,Z) and lis
 arrays, other terms their quoted text, an unbound variable `"_"`; frame and time are the
 world model's (world_frame/2), when it says.  A query that raises,
 does not parse, takes longer than its time limit or (with sandbox(true)) could do more than
-read the world model gives {"error": Message}.
+read the world model and compute gives {"error": Message}.  A query runs in snapshot/1:
+whatever it asserts or retracts is undone after it.
 */
 
 %   The world model's facts are read-only data: safe for a sandboxed query.
@@ -88,7 +89,9 @@ answers(Text, Max, Limit, Sandbox, Answers, Truncated) :-
     (   Sandbox == true -> safe_goal(user:Goal) ; true ),
     exclude(hidden_name, Bindings, Named),
     Max1 is Max + 1,
-    call_with_time_limit(Limit, findall(Named, limit(Max1, user:Goal), Solutions0)),
+    % in a snapshot: what the query asserts or retracts is gone after it (sandboxed queries
+    % may change dynamic predicates), so every query sees the world model as it was loaded
+    call_with_time_limit(Limit, snapshot(findall(Named, limit(Max1, user:Goal), Solutions0))),
     (   length(Solutions0, N), N > Max
     ->  length(Solutions, Max), append(Solutions, _, Solutions0), Truncated = true
     ;   Solutions = Solutions0, Truncated = false
