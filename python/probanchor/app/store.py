@@ -323,6 +323,10 @@ class WorldStore:
         lock.acquire()
         try:
             store = cls._connect(path, lock, write=True)
+        except BaseException:
+            lock.release()
+            raise
+        try:
             with store._named("starting a run"):
                 if store._has_schema() and store._count("frames"):
                     raise StoreError(f"{path}: already holds a run of "
@@ -334,10 +338,7 @@ class WorldStore:
                     store.db.executemany("INSERT INTO meta VALUES (?, ?)",
                                          sorted(meta.items()))
         except BaseException:
-            if "store" in locals():
-                store.close()
-            else:
-                lock.release()
+            store.close()
             raise
         return store
 
@@ -389,14 +390,19 @@ class WorldStore:
                  write: bool = False) -> WorldStore:
         try:
             db = sqlite3.connect(path, timeout=30)
+        except sqlite3.Error as exc:
+            raise StoreError(f"{path}: cannot be opened: {exc}") from None
+        try:
             if write:
                 db.execute("PRAGMA journal_mode=WAL")   # readers while a run writes
                 db.execute("PRAGMA synchronous=NORMAL")
             else:
                 db.execute("SELECT count(*) FROM sqlite_master").fetchone()
         except sqlite3.DatabaseError as exc:
-            if "db" in locals():
-                db.close()
+            db.close()
+            if write and "readonly" in str(exc):
+                raise StoreError(f"{path}: cannot be written ({exc}); nothing was replayed"
+                                 ) from None
             raise StoreError(f"{path}: not a readable SQLite store: {exc}") from None
         return cls(path, db, lock)
 
@@ -582,7 +588,9 @@ class WorldStore:
                              f"{stored.get('theory')} as it was then (sha1 "
                              f"{stored['theory_sha1'][:12]}), this run's theory "
                              f"{meta.get('theory')} differs; resume with that theory")
-        wrong = [f"{k} {stored.get(k)!r} (this run: {meta.get(k)!r})" for k in RUN_KEYS
+        wrong = [f"{k} {stored[k]!r} (this run: {meta.get(k)!r})" if k in stored else
+                 f"no {k} recorded (a store of an earlier version; this run: {meta.get(k)!r})"
+                 for k in RUN_KEYS
                  if k != "theory_sha1" and stored.get(k, "") != meta.get(k, "")]
         if wrong:
             raise StoreError(f"{self.path}: not this run's store: it has " + "; ".join(wrong))
