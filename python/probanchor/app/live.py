@@ -160,6 +160,7 @@ class LiveWorld:
         self._snapshot: Snapshot | None = None
         self._wanted = False
         self._ended = False
+        self._failure: str | None = None  # why the last snapshot asked for was not made
         self._answers = PrologAnswers()
         self._server = ThreadingHTTPServer((host, port), _handler(self))
         self._server.daemon_threads = True
@@ -182,9 +183,17 @@ class LiveWorld:
             self._latest = (frame, time)
             if not self._wanted:
                 return
-        snapshot = Snapshot(frame, time, "\n".join(facts()) + "\n")
+        try:
+            snapshot = Snapshot(frame, time, "\n".join(facts()) + "\n")
+        except Exception as exc:  # the run goes on; the waiting queries are told
+            with self._cond:
+                self._failure = f"frame {frame}: the world model could not be read: {exc}"
+                self._wanted = False
+                self._cond.notify_all()
+            return
         with self._cond:
             self._snapshot = snapshot
+            self._failure = None
             self._wanted = False
             self._cond.notify_all()
 
@@ -230,7 +239,10 @@ class LiveWorld:
         deadline = _time.monotonic() + wait
         with self._cond:
             needed = -1 if self._latest is None else self._latest[0]
+            self._failure = None
             while self._snapshot is None or self._snapshot.frame < needed:
+                if self._failure is not None:
+                    raise LiveError(self._failure)
                 if self._ended:
                     if self._snapshot is None:
                         raise LiveError("the run ended before its first frame")

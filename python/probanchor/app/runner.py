@@ -187,32 +187,40 @@ def _run(options: RunOptions, loop: AnchoringLoop, store: WorldStore | None = No
     stopped: BaseException | None = None
     source_error: list[BaseException] = []
     try:
-        run_frames(_until_error(frames, source_error), loop, on_frame, overlap=options.overlap,
-                   records=records)
-        if source_error:  # the source's error, after every frame before it was done
-            stopped = source_error[0]
-    except Exception as exc:  # written below with the frames done, then raised again
-        stopped = exc
-    finally:
-        bar.close()
-        if viewer is not None:
-            viewer.close()
-    for message in skipped:
-        logger.warning("skipped: %s", message)
-    try:
+        try:
+            run_frames(_until_error(frames, source_error), loop, on_frame,
+                       overlap=options.overlap, records=records)
+            if source_error:  # the source's error, after every frame before it was done
+                stopped = source_error[0]
+        except Exception as exc:  # written below with the frames done, then raised again
+            stopped = exc
+        finally:
+            bar.close()
+            if viewer is not None:
+                viewer.close()
+        for message in skipped:
+            logger.warning("skipped: %s", message)
         output = _finish(options, loop, name, records, skipped, stopped, pictures)
     finally:
-        if live is not None:  # queries under way get the last frame's world model
-            last = records[-1] if records else None
-            try:
-                live.finish(None if last is None else lambda: world_facts(
-                    loop, {s for s, h in last.hypotheses.items() if h.perceived},
-                    frame=(last.frame, last.time)))
-            finally:
-                live.close()
+        if live is not None:
+            _end_serving(live, loop, records)
     if stopped is not None:
         raise stopped
     return output
+
+
+def _end_serving(live: Any, loop: AnchoringLoop, records: list[TrackingRecord]) -> None:
+    """Queries under way get the last frame's world model; then the server stops."""
+    last = records[-1] if records else None
+    try:
+        live.finish(None if last is None else lambda: world_facts(
+            loop, {s for s, h in last.hypotheses.items() if h.perceived},
+            frame=(last.frame, last.time)))
+    except Exception as exc:  # (the particles could not be read: world.pl says why)
+        logger.warning("the query server's last world model: %s", exc)
+        live.finish(None)
+    finally:
+        live.close()
 
 
 def _until_error(frames: Iterator[Any], error: list[BaseException]) -> Iterator[Any]:
