@@ -269,3 +269,26 @@ def test_a_ground_truth_that_is_not_json_names_file_topic_and_frame(tmp_path: Pa
                        progress=False, out=out))
     records = (out / "records.jsonl").read_text().splitlines()
     assert len(records) == 4 and json.loads(records[3])["frame"] == 3  # frame 3 kept
+
+
+def test_a_bag_run_resumes_from_its_store_alone_with_its_topics_and_bytes(
+        tmp_path: Path, frames: list) -> None:
+    from probanchor.app.store import StoreError
+
+    base = 1_700_000_000 * 10**9
+    path = _stamped_bag(tmp_path / "kept.mcap", frames[:4],
+                        [base + i * 100_000_000 for i in range(4)])
+    db = tmp_path / "world.db"
+    topics = BagTopics(camera_pose=np.eye(4), max_lead=5.0)
+    first = run(RunOptions(bag=path, bag_topics=topics, reasoning=False, progress=False,
+                           store=db))
+    again = run(RunOptions(resume=db, progress=False))  # the stored topics and pose adopted
+    assert len(again.records) == len(first.records) == 4
+    with pytest.raises(StoreError, match=r"not this run's store: it has bag_topics .*"
+                                         r"\"max_lead\": 5\.0"):
+        run(RunOptions(resume=db, bag=path, bag_topics=BagTopics(camera_pose=np.eye(4)),
+                       progress=False))
+    with open(path, "ab") as data:  # the recording changed since
+        data.write(b"\0")
+    with pytest.raises(StoreError, match=r"a store from another bag: .*kept.*\.mcap changed"):
+        run(RunOptions(resume=db, progress=False))
