@@ -26,13 +26,13 @@
 
 :- use_module(library(apply)).
 :- use_module(library(error)).
-:- use_module(library(lists), [nth1/3]).
 :- use_module(ddc, [ filter_new/5, filter_step/4, filter_undo/1, filter_resample/2,
                      filter_time/2, filter_engine/2, filter_free/1, filter_holds/3,
                      filter_values/4, filter_rows/6 ]).
 :- use_module(ddc_nesting, [check_text_nesting/2]).
-:- use_module(ddc_observation_types, [observation_type_error/4]).
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
+:- use_module(library(lists), [nth1/3]).
+:- use_module(ddc_observation_types, [observation_type_error/4]).
 
 /** <module> The Prolog side of the Python bridge
 
