@@ -133,7 +133,7 @@ new_group(M, N, Seed, Check, State) :-
     make_tables([older_time(-1), older(Tab0), latest_time(0), latest(Tab)], Tables),
     make_env([module(M), size(N), now(-1), tables(Tables), facts([]),
               observations([]), checked(Checked)], E),
-    numlist(1, N, All),
+    ps_all(N, All),
     with_random_stream(seed(Seed),
                        ( sweep(M, zero, E, 0, All),
                          materialise_derived(M, E, 0, All) ),
@@ -162,10 +162,14 @@ materialise_derived(M, E, T, All) :-
                settle(Entry)
            )).
 
-sets_each([], _, _).
-sets_each([I|Is], LC, C) :-
+sets_each(Ps, LC, C) :-
+    ps_list(Ps, Is),
+    sets_each_(Is, LC, C).
+
+sets_each_([], _, _).
+sets_each_([I|Is], LC, C) :-
     col_arg(I, LC, L), list_to_set(L, Set), col_setarg(I, C, Set),
-    sets_each(Is, LC, C).
+    sets_each_(Is, LC, C).
 
 %!  batch_step(+State0, +Observations, +Facts, -Result) is det.
 %
@@ -202,7 +206,7 @@ group_step(State0, Obs, Facts, Check, step(State, LWs)) :-
     make_tables([older_time(T), older(Tab), latest_time(T1), latest(Tab1)], Tables),
     make_env([module(M), size(N), now(T), tables(Tables), facts(Facts),
               observations(HVs), checked(Checked)], E),
-    numlist(1, N, All),
+    ps_all(N, All),
     new_column(N, 0.0, LW),
     with_random_stream(state(R0),
                        ( forall(member(H-V, HVs), weigh_observation(E, H, V, All, LW)),
@@ -225,7 +229,7 @@ weigh_observation(E, H, V, Ps, LW) :-
     env_at_time(E, T1, ES),
     forall(rv_clause(M, H, now, D, B, At),
            weigh_clause(ES, H, T1, now, B, D, At, V, Ps, Done, LW)),
-    (   col_uncomputed(Ps, Done, [_|_])
+    (   col_uncomputed(Ps, Done, Missing), Missing \== []
     ->  throw(error(ddc(no_observation_clause(H ~= V), query), _))
     ;   true
     ).
@@ -357,7 +361,8 @@ batch_holds(S, Goal, Flags) :-
     query_env(S, E, All),
     with_state(S, branch_union(Goal, E, All, Ps)),
     batch_state_size(S, N),
-    flags(1, N, Ps, Flags).
+    ps_list(Ps, L),
+    flags(1, N, L, Flags).
 
 %   (Each group's query on a copy of the goal: its bindings are its own.)
 group_holds(Goal, G, Flags) :-
@@ -398,7 +403,8 @@ batch_values(S, Template, Goal, Values) :-
     new_column(N, none, VC),
     new_column(N, '$u', Done),
     with_state(S, forall(eval_body(Goal, E, All, Ps),
-                         ( plan(Template, Tmpl, Bs), value_each(Ps, Bs, Tmpl, Done, VC) ))),
+                         ( plan(Template, Tmpl, Bs), ps_list(Ps, L),
+                           value_each(L, Bs, Tmpl, Done, VC) ))),
     col_list(VC, Values).
 
 wrapped_value(Wrap, V, W) :-

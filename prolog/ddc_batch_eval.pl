@@ -218,8 +218,16 @@ call_static(G, E) :-
 %   answer is no).
 model_goal(G) :-
     functor(G, N, A),
+    model_export(N, A).
+
+%   model_export(?Name, ?Arity): ddc_models' exports, as facts made when
+%   this file is compiled (module_property/2 makes the list anew at each
+%   call).
+term_expansion(model_exports, Facts) :-
     module_property(ddc_models, exports(Es)),
-    memberchk(N/A, Es).
+    findall(model_export(N, A), member(N/A, Es), Facts).
+
+model_exports.
 
 %   visible(+M, +G): G's predicate is defined in M or reachable from it
 %   (imported, a builtin, autoloadable).  Asked once per predicate and
@@ -301,7 +309,7 @@ collect(T, G, L, E, Ps0, Ps) :-
                ;   append_each(Ps1, Bs, Tmpl, LC)
                )
            )),
-    (   Ps0 = [I0|_], col_all_same(Ps0, LC, I0)
+    (   ps_first(Ps0, I0), col_all_same(Ps0, LC, I0)
     ->  col_arg(I0, LC, L0),
         unify_value(L, L0, Ps0, Ps)
     ;   unify_column(L, LC, Ps0, Ps)
@@ -323,10 +331,14 @@ append_grouped(Ps, Bs, Tmpl, LC) :-
                col_append_each(GPs, LC, T1)
            )).
 
-append_each([], _, _, _).
-append_each([I|Is], Bs, Tmpl, LC) :-
+append_each(Ps, Bs, Tmpl, LC) :-
+    ps_list(Ps, Is),
+    append_each_(Is, Bs, Tmpl, LC).
+
+append_each_([], _, _, _).
+append_each_([I|Is], Bs, Tmpl, LC) :-
     \+ \+ ( bind(Bs, I), col_arg(I, LC, L0), append(L0, [Tmpl], L1), col_setarg(I, LC, L1) ),
-    append_each(Is, Bs, Tmpl, LC).
+    append_each_(Is, Bs, Tmpl, LC).
 
 
 %   one branch per key, the keys held at T and the ground heads that
@@ -476,12 +488,11 @@ run_clause(E, X, T, K, B, At, Rest, C, Action) :-
     catch(forall(eval_body(B, E, Rest, Ps), call(Action, Ps)), Err, clause_error(Err, M:L)),
     (   R == true, Check \== []
     ->  ps_intersection(Rest, Check, Watched),
-        exclude(uncomputed_at(C), Watched, Given),
+        uncomputed(Watched, C, Missing),
+        ps_subtract(Watched, Missing, Given),
         check_rivals(Given, E, X, T, K, Id, L)
     ;   true
     ).
-
-uncomputed_at(C, I) :- col_is_u(I, C).
 
 %   clause_error(+Error, +Where): an error raised in the body of the clause
 %   at Where is the program's error there, as the per-particle engine

@@ -400,6 +400,8 @@ filter_resample(F, Is) :-
     E:engine_resample(S, Is).
 
 must_be_indices(Is, N) :-
+    indices_below(Is, N, 0, K), K =:= N, !.      % (the usual case, in one pass)
+must_be_indices(Is, N) :-
     must_be(list(nonneg), Is),
     (   length(Is, N) -> true
     ;   throw(error(ddc(bad_indices(length_differs_from_particles(N)), query), _))
@@ -407,6 +409,13 @@ must_be_indices(Is, N) :-
     (   forall(member(I, Is), I < N) -> true
     ;   throw(error(ddc(bad_indices(index_out_of_range(N)), query), _))
     ).
+
+indices_below(Is, _, _, _) :- var(Is), !, fail.
+indices_below([], _, K, K).
+indices_below([I|Is], N, K0, K) :-
+    integer(I), I >= 0, I < N,
+    K1 is K0+1,
+    indices_below(Is, N, K1, K).
 
 %!  filter_rename(+Filter, +Renaming:list(pair), +Particles) is det.
 %
