@@ -516,7 +516,9 @@ clause_error(E, Where) :-
 check_rivals([], _, _, _, _, _, _) :- !.
 check_rivals(Ps, E, X, T, K, Id, L) :-
     env_module(E, M),
-    (   M:'$b_rv'(X, K, _, B, At2), origin_id(At2, Id2), Id2 > Id, origin_line(At2, L2),
+    (   M:'$b_rv'(X, K, _, B, At2), origin_id(At2, Id2), Id2 > Id,
+        \+ M:'$b_exclusive'(Id, Id2),
+        origin_line(At2, L2),
         \+ \+ eval_body(B, E, Ps, _)
     ->  throw(error(ddc(overlapping_clauses(X:T, M:L2), M:L), _))
     ;   true
