@@ -61,6 +61,8 @@
             batch_resample/3,           % +State0, +Indices, -State
             batch_holds/3,              % +State, +Goal, -Flags
             batch_values/4,             % +State, +Template, +Goal, -Values
+            batch_rows/5,               % +State, +Template, +Goal, -Width, -Floats
+            batch_packed_rows/5,        % +State, +Template, +Goal, -Width, -Rows
             batch_time/2,               % +State, -T
             batch_size/2,               % +State, -N
             batch_keep/2,               % +State, -Kept
@@ -406,6 +408,53 @@ batch_values(S, Template, Goal, Values) :-
                          ( plan(Template, Tmpl, Bs), ps_list(Ps, L),
                            value_each(L, Bs, Tmpl, Done, VC) ))),
     col_list(VC, Values).
+
+%!  batch_rows(+State, +Template, +Goal, -Width, -Floats) is semidet.
+%
+%   batch_values/4 of a variable's values (Goal X:t ~= V, Template V) as
+%   rows of Width floats, particle by particle (NaN rows where undefined),
+%   read straight from the columns (the column library's col_rows/4);
+%   fails for any other goal, where a value is not a number tuple of
+%   floats, or where no particle has a value (the caller then makes the
+%   rows from batch_values/4's values).
+batch_rows(S, Template, Goal, W, Floats) :-
+    row_columns(S, Template, Goal, W, Cs),
+    foldl(column_rows(W), Cs, Floats, []).
+
+column_rows(W, C, Fs0, Fs) :- col_rows(C, W, Fs0, Fs).
+
+%!  batch_packed_rows(+State, +Template, +Goal, -Width, -Rows) is semidet.
+%
+%   batch_rows/5 with the floats in a blob of doubles
+%   (ddc_batch_col:col_pack_rows/3).
+batch_packed_rows(S, Template, Goal, W, Rows) :-
+    row_columns(S, Template, Goal, W, Cs),
+    col_pack_rows(Cs, W, Rows).
+
+%   row_columns(+S, +Template, +Goal, -W, -Columns): the columns of each
+%   group's values of the variable of Goal (every one computed), and the
+%   tuple arity W of their values (fails where a value is no tuple of W
+%   floats, or no particle has one).
+row_columns(S, Template, Goal, W, Cs) :-
+    state_groups(S, Gs),
+    maplist(group_column(Template-Goal), Gs, Cs),
+    foldl(column_width, Cs, _, W),
+    integer(W).
+
+column_width(C, W0, W) :-
+    col_row_width(C, K),
+    (   K =:= 0 -> W = W0 ; var(W0) -> W = K ; W0 == K, W = W0 ).
+
+group_column(TG, G, C) :-
+    copy_term(TG, Template-Goal0),
+    nonvar(Goal0),
+    (   Goal0 = (R0 ~= V0), timed_read(R0, X0, TE0) -> Goal = (X0:TE0 ~= V0) ; Goal = Goal0 ),
+    Goal = (X:TE ~= V), var(V), ground(X), Template == V,
+    query_env(G, E, All),
+    read_time(TE, E, T),
+    env_time_table(E, T, _),
+    with_state(G, value(E, X, T, All, Entry)),
+    entry_column(Entry, C).
 
 wrapped_value(Wrap, V, W) :-
     (   ( V == '$undef' ; V == '$u' ) -> W = none

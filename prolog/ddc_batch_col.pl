@@ -36,6 +36,11 @@
             col_defined_at/3,           % +Ps, +Column, -Defined
             col_set_each/3,             % +Ps, !Column, +Value
             col_status/2,               % +Column, -Status
+            col_rows/4,                 % +Column, ?Width, -Floats, ?Tail
+            col_pack_rows/3,            % +Columns, +Width, -Rows
+            col_floats_into/4,          % +Rows, +Address, +Capacity, -N
+            col_floats_list/2,          % +Rows, -Floats
+            col_row_width/2,            % +Column, -Width
             col_all_same/3,             % +Ps, +Column, +I0
             col_num_arity/2,            % +Column, -K
             col_gather/3,               % +Sources, +Pairs, -Column
@@ -284,6 +289,32 @@ column_status(I, C, V1, S0, S) :-
         I1 is I-1,
         column_status(I1, C, V1, S1, S)
     ).
+
+%!  col_rows(+Column, ?Width, -Floats, ?Tail) is semidet.
+%
+%   Fast path of a column read as rows of Width floats (filter_rows/6),
+%   NaN rows where a particle has no value (fails here).
+col_rows(_, _, _, _) :- fail.
+
+%!  col_pack_rows(+Columns:list, +Width, -Rows) is semidet.
+%!  col_floats_into(+Rows, +Address, +Capacity, -N) is semidet.
+%
+%   The rows of col_rows/4 of each column in turn, as a blob of doubles
+%   (an atom: not copied out of the filter's engine, as a list of floats
+%   is), and its N doubles copied into the memory at Address that holds
+%   Capacity doubles (a numpy array's: the Python bridge reads many rows
+%   without converting each float).  col_floats_list/2: the doubles as a
+%   list.  They fail here (no library).
+col_pack_rows(_, _, _) :- fail.
+col_floats_into(_, _, _, _) :- fail.
+col_floats_list(_, _) :- fail.
+
+%!  col_row_width(+Column, -Width) is semidet.
+%
+%   Every value of Column is a tuple of Width floats ('$u' and '$undef'
+%   aside; Width 0 if there is none): fast path of a read as rows (fails
+%   here).
+col_row_width(_, _) :- fail.
 
 %!  col_all_same(+Ps, +Column, +I0) is semidet.
 %

@@ -817,6 +817,144 @@ col_set_each(term_t ps, term_t tc, term_t v)
   return TRUE;
 }
 
+/* col_rows(+C, ?W, -Floats, ?Tail): each particle's value in C as a row of
+   W floats, particle by particle (a row of NaNs where it has none), then
+   Tail; fails unless every value is a tuple of W floats ('$u', '$undef'
+   aside) and one at least is (W unbound: the column's arity) */
+static foreign_t
+col_rows(term_t tc, term_t tw, term_t out, term_t tail)
+{ column *c;
+  int w;
+  if ( !get_column(tc, &c) ) return FALSE;
+  if ( c->cnt[T_NUM] == 0 || c->cnt[T_NUM] + c->cnt[T_U] + c->cnt[T_UNDEF] != c->n )
+    return FALSE;
+  if ( PL_is_variable(tw) )
+  { if ( !PL_unify_integer(tw, c->k) ) return FALSE;
+    w = c->k;
+  } else if ( !PL_get_integer(tw, &w) || w != c->k )
+    return FALSE;
+  { term_t l = PL_copy_term_ref(tail), h = PL_new_term_ref();
+    for(size_t i=c->n; i-- > 0; )
+    { for(int q=w; q-- > 0; )
+      { double x = c->tag[i] == T_NUM ? c->f[i*(size_t)w+(size_t)q] : NAN;
+	if ( !PL_put_float(h, x) || !PL_cons_list(l, h, l) ) return FALSE;
+      }
+    }
+    return PL_unify(out, l);
+  }
+}
+
+/* col_row_width(+C, -W): every value in C is a tuple of W floats, '$u' and
+   '$undef' aside (W 0 if there is none); fails if another value is there */
+static foreign_t
+col_row_width(term_t tc, term_t tw)
+{ column *c;
+  if ( !get_column(tc, &c) ) return FALSE;
+  if ( c->cnt[T_NUM] + c->cnt[T_U] + c->cnt[T_UNDEF] != c->n ) return FALSE;
+  return PL_unify_integer(tw, c->cnt[T_NUM] > 0 ? c->k : 0);
+}
+
+/* Rows of floats held in C (a blob), made in the filter's engine and read
+   by another thread: an atom is not copied out of an engine, a list of
+   30,000 floats is; the Python bridge then has them copied into a numpy
+   array's memory (col_floats_into/4) instead of converting each float. */
+
+typedef struct frows { size_t n; double v[]; } frows;
+
+static int
+release_frows(atom_t a)
+{ free(PL_blob_data(a, NULL, NULL));
+  return TRUE;
+}
+
+static int
+write_frows(IOSTREAM *s, atom_t a, int flags)
+{ frows *r = PL_blob_data(a, NULL, NULL);
+  (void)flags;
+  Sfprintf(s, "<ddc_floats>(%zu)", r ? r->n : (size_t)0);
+  return TRUE;
+}
+
+static PL_blob_t frows_blob =
+{ .magic   = PL_BLOB_MAGIC,
+  .flags   = PL_BLOB_NOCOPY|PL_BLOB_UNIQUE,
+  .name    = "ddc_floats",
+  .release = release_frows,
+  .write   = write_frows
+};
+
+/* col_pack_rows(+Columns, +W, -Rows): the rows of col_rows/4 of each column
+   in turn (of W floats each, NaNs where a particle has no value), as a
+   blob of doubles; fails where col_rows/4 would (a value that is not a
+   tuple of W floats) */
+static foreign_t
+col_pack_rows(term_t tcols, term_t tw, term_t out)
+{ size_t n = 0, j = 0;
+  int w;
+  frows *r;
+  term_t l = PL_copy_term_ref(tcols), h = PL_new_term_ref();
+  if ( !PL_get_integer(tw, &w) || w < 1 ) return FALSE;
+  while( PL_get_list(l, h, l) )
+  { column *c;
+    if ( !get_column(h, &c) ) return FALSE;
+    if ( c->cnt[T_NUM] + c->cnt[T_U] + c->cnt[T_UNDEF] != c->n ) return FALSE;
+    if ( c->cnt[T_NUM] > 0 && c->k != w ) return FALSE;
+    n += c->n*(size_t)w;
+  }
+  if ( !(r = malloc(sizeof(frows) + (n ? n : 1)*sizeof(double))) )
+    return PL_resource_error("memory");
+  r->n = n;
+  l = PL_copy_term_ref(tcols);
+  while( PL_get_list(l, h, l) )
+  { column *c;
+    if ( !get_column(h, &c) ) { free(r); return FALSE; }
+    for(size_t i=0; i<c->n; i++)
+    { if ( c->tag[i] == T_NUM )
+	memcpy(&r->v[j], &c->f[i*(size_t)w], sizeof(double)*(size_t)w);
+      else
+	for(int q=0; q<w; q++) r->v[j+(size_t)q] = NAN;
+      j += (size_t)w;
+    }
+  }
+  count_bytes(sizeof(frows) + n*sizeof(double));
+  if ( !PL_unify_blob(out, r, sizeof(*r), &frows_blob) ) { free(r); return FALSE; }
+  return TRUE;
+}
+
+/* col_floats_into(+Rows, +Address, +Capacity, -N): the N doubles of Rows
+   (col_pack_rows/3's) copied to the memory at Address, which holds
+   Capacity doubles (a numpy array's, from the Python bridge); fails,
+   copying nothing, if N > Capacity */
+static foreign_t
+col_floats_into(term_t tr, term_t ta, term_t tcap, term_t tn)
+{ void *data; PL_blob_t *type;
+  int64_t addr, cap;
+  frows *r;
+  if ( !PL_get_blob(tr, &data, NULL, &type) || type != &frows_blob )
+    return PL_type_error("ddc_floats", tr);
+  r = data;
+  if ( !PL_get_int64_ex(ta, &addr) || !PL_get_int64_ex(tcap, &cap) ) return FALSE;
+  if ( addr == 0 || cap < 0 || r->n > (size_t)cap ) return FALSE;
+  memcpy((void*)(intptr_t)addr, r->v, r->n*sizeof(double));
+  return PL_unify_int64(tn, (int64_t)r->n);
+}
+
+/* col_floats_list(+Rows, -Floats): the doubles of Rows as a list */
+static foreign_t
+col_floats_list(term_t tr, term_t out)
+{ void *data; PL_blob_t *type;
+  frows *r;
+  if ( !PL_get_blob(tr, &data, NULL, &type) || type != &frows_blob )
+    return PL_type_error("ddc_floats", tr);
+  r = data;
+  { term_t l = PL_new_term_ref(), h = PL_new_term_ref();
+    PL_put_nil(l);
+    for(size_t j=r->n; j-- > 0; )
+      if ( !PL_put_float(h, r->v[j]) || !PL_cons_list(l, h, l) ) return FALSE;
+    return PL_unify(out, l);
+  }
+}
+
 /* col_status(+C, -S): open (a cell not drawn), same(V) (every cell V),
    defined (values, not all the same), mixed (some '$undef') */
 static foreign_t
@@ -2636,6 +2774,11 @@ install_ddc_columns(void)
   PL_register_foreign("col_defined_at",  3, col_defined_at,  0);
   PL_register_foreign("col_set_each",    3, col_set_each,    0);
   PL_register_foreign("col_status",      2, col_status,      0);
+  PL_register_foreign("col_rows",        4, col_rows,        0);
+  PL_register_foreign("col_pack_rows",   3, col_pack_rows,   0);
+  PL_register_foreign("col_floats_into", 4, col_floats_into, 0);
+  PL_register_foreign("col_floats_list", 2, col_floats_list, 0);
+  PL_register_foreign("col_row_width",   2, col_row_width,   0);
   PL_register_foreign("col_all_same",    3, col_all_same,    0);
   PL_register_foreign("col_num_arity",   2, col_num_arity,   0);
   PL_register_foreign("col_gather",      3, col_gather,      0);

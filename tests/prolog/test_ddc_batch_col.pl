@@ -164,6 +164,25 @@ test(finite_draws_with_probabilities_over_the_batch) :-
     aggregate_all(count, ( nth1(I, Vs, yes), I mod 2 =:= 0 ), Even),
     abs(Odd - 450) < 60, abs(Even - 50) < 30.
 
+%   Rows of floats straight from columns (the library only; the Prolog
+%   columns fail, and the caller makes the rows from the values).
+test(columns_read_as_rows_of_floats) :-
+    (   col_backend(foreign)
+    ->  col_from_list([(1.0, 2.0), '$undef', (3.0, 4.0)], C1),
+        col_from_list(['$u', (5.0, 6.0)], C2),
+        col_row_width(C1, 2), col_row_width(C2, 2),
+        col_rows(C1, W, Fs, []), W == 2,
+        Fs = [A, B, X, Y, E, F], A-B-E-F == 1.0-2.0-3.0-4.0, X =\= X, Y =\= Y,
+        col_pack_rows([C1, C2], 2, Rows),
+        col_floats_list(Rows, L), length(L, 10),
+        append(Fs, [U, V, 5.0, 6.0], L0), L0 = L, U =\= U, V =\= V,
+        \+ col_floats_into(Rows, 1, 9, _),         % (too little room: nothing copied)
+        col_from_list([a, (1.0, 2.0)], C3), \+ col_row_width(C3, _),
+        \+ col_rows(C3, _, _, []), \+ col_pack_rows([C3], 2, _),
+        col_from_list(['$undef'], C4), col_row_width(C4, 0), \+ col_rows(C4, _, _, [])
+    ;   col_from_list([(1.0, 2.0)], C), \+ col_rows(C, _, _, [])
+    ).
+
 %   A split binds a reference's pattern to its branch's value: the reference
 %   is ground, and still reads its column (a goal after the split filters by
 %   it).
