@@ -57,7 +57,18 @@ typedef struct column
   uint32_t *cls;                        /* class of each cell: equal values, equal
 					   classes (valid while cls_valid) */
   int       cls_valid;
+  int       uni;                        /* every cell holds cell 0's value, the only
+					   one stored (the arrays have one cell) */
 } column;
+
+/* A uniform column (uni) holds one value for all its cells: made by
+   col_new/3, kept by the writes that give every cell the same value
+   (col_set_each/3, col_append_each/3 and col_sets_each/3 over every
+   particle) and read as it is (CI(c, i): the stored cell of particle i);
+   any other write expands it first (expand/1).  A column of 10,000
+   particles that every particle agrees on (a perceived object's position,
+   a flag, a list of instances) costs one cell, not 10,000. */
+#define CI(c, i) ((c)->uni ? (size_t)0 : (size_t)(i))
 
 /* SET_TAG(c, i, t): cell i's tag is t (the counts kept) */
 #define SET_TAG(c, i, t) \
@@ -152,7 +163,8 @@ alist_push(alist **lp, const item *it)
 static void
 free_cells(column *c)
 { if ( c->x )
-  { for(size_t i=0; i<c->n; i++)
+  { size_t n = c->uni ? (c->n ? 1 : 0) : c->n;
+    for(size_t i=0; i<n; i++)
     { if ( c->tag[i] == T_ATOM )
 	PL_unregister_atom((atom_t)c->x[i]);
       else if ( c->tag[i] == T_TERM )
@@ -188,8 +200,10 @@ static PL_blob_t column_blob =
   .write   = write_column
 };
 
+/* get_column_raw(t, &c): t is a column (uniform or not: its cells read
+   through CI/2) */
 static int
-get_column(term_t t, column **cp)
+get_column_raw(term_t t, column **cp)
 { void *data; PL_blob_t *type;
   *cp = NULL;
   if ( PL_get_blob(t, &data, NULL, &type) && type == &column_blob )
@@ -197,6 +211,15 @@ get_column(term_t t, column **cp)
     return TRUE;
   }
   return PL_type_error("ddc_column", t);
+}
+
+static int expand(column *c);
+
+/* get_column(t, &c): t is a column, expanded if it was uniform (for the
+   code that reads and writes its cells by index) */
+static int
+get_column(term_t t, column **cp)
+{ return get_column_raw(t, cp) && expand(*cp);
 }
 
 static column *
@@ -208,6 +231,20 @@ new_column(size_t n)
   if ( !c->tag ) { free(c); return NULL; }
   count_bytes(sizeof(*c) + n);
   c->cnt[T_U] = n;
+  return c;
+}
+
+/* new_uniform(n): a uniform column of n particles, each '$u' */
+static column *
+new_uniform(size_t n)
+{ column *c;
+  if ( n == 0 ) return new_column(0);
+  if ( !(c = calloc(1, sizeof(*c))) ) return NULL;
+  c->n = n;
+  if ( !(c->tag = calloc(1, 1)) ) { free(c); return NULL; }
+  c->uni = 1;
+  c->cnt[T_U] = n;
+  count_bytes(sizeof(*c));
   return c;
 }
 
@@ -223,18 +260,20 @@ unify_column(term_t t, column *c)
 static int
 ensure_x(column *c)
 { if ( !c->x )
-  { c->x = calloc(c->n ? c->n : 1, sizeof(uintptr_t));
+  { size_t n = c->uni ? 1 : c->n;
+    c->x = calloc(n ? n : 1, sizeof(uintptr_t));
     if ( !c->x ) return PL_resource_error("memory");
-    count_bytes(c->n*sizeof(uintptr_t));
+    count_bytes(n*sizeof(uintptr_t));
   }
   return TRUE;
 }
 
 static int
 set_k(column *c, int k)
-{ c->f = calloc((c->n ? c->n : 1)*(size_t)k, sizeof(double));
+{ size_t n = c->uni ? 1 : c->n;
+  c->f = calloc((n ? n : 1)*(size_t)k, sizeof(double));
   if ( !c->f ) return PL_resource_error("memory");
-  count_bytes(c->n*(size_t)k*sizeof(double));
+  count_bytes(n*(size_t)k*sizeof(double));
   c->k = k;
   return TRUE;
 }
@@ -278,9 +317,10 @@ float_tuple(term_t t, double *fs, int max)
 
 #define MAX_K 16
 
-/* set_cell(c, i, v): cell i gets the value v (the previous one freed) */
+/* set_cell_raw(c, i, v): cell i (of the cells stored) gets the value v
+   (the previous one freed) */
 static int
-set_cell(column *c, size_t i, term_t v)
+set_cell_raw(column *c, size_t i, term_t v)
 { atom_t a;
   double fs[MAX_K];
   int m;
@@ -331,6 +371,76 @@ set_cell(column *c, size_t i, term_t v)
   }
 }
 
+/* set_cell(c, i, v): particle i's cell gets the value v (a uniform column
+   expanded first) */
+static int
+set_cell(column *c, size_t i, term_t v)
+{ if ( c->uni && !expand(c) ) return FALSE;
+  return set_cell_raw(c, i, v);
+}
+
+/* set_uniform(c, v): every cell of the uniform column c gets v */
+static int
+set_uniform(column *c, term_t v)
+{ int rc = set_cell_raw(c, 0, v);
+  memset(c->cnt, 0, sizeof(c->cnt));
+  c->cnt[c->tag[0]] = c->n;
+  c->cls_valid = 0;
+  return rc;
+}
+
+/* expand(c): a uniform column c becomes a column of n cells, each a copy of
+   its value */
+static int
+expand(column *c)
+{ size_t n = c->n;
+  uint8_t t;
+  uint8_t *tag;
+  double *f = NULL;
+  uintptr_t *x = NULL;
+  if ( !c->uni ) return TRUE;
+  t = c->tag[0];
+  if ( !(tag = malloc(n ? n : 1)) ) return PL_resource_error("memory");
+  memset(tag, t, n);
+  if ( c->k )
+  { if ( !(f = malloc(n*(size_t)c->k*sizeof(double))) ) { free(tag); return PL_resource_error("memory"); }
+    if ( t == T_NUM )
+      for(size_t i=0; i<n; i++) memcpy(&f[i*(size_t)c->k], c->f, sizeof(double)*(size_t)c->k);
+    else
+      memset(f, 0, n*(size_t)c->k*sizeof(double));
+  }
+  if ( c->x )
+  { if ( !(x = calloc(n, sizeof(uintptr_t))) )
+    { free(f); free(tag); return PL_resource_error("memory"); }
+    x[0] = c->x[0];
+    for(size_t i=1; i<n; i++)
+    { switch(t)
+      { case T_ATOM:
+	  PL_register_atom((atom_t)c->x[0]);
+	  x[i] = c->x[0];
+	  break;
+	case T_TERM:
+	  x[i] = (uintptr_t)PL_duplicate_record((record_t)c->x[0]);
+	  break;
+	case T_LIST:
+	{ alist *from = (alist*)c->x[0], *l = new_alist(from->n);
+	  if ( !l ) return PL_resource_error("memory");	/* (leaks what was copied) */
+	  for(size_t q=0; q<from->n; q++) copy_item(&l->a[q], &from->a[q]);
+	  l->n = from->n;
+	  x[i] = (uintptr_t)l;
+	  break;
+	}
+      }
+    }
+  }
+  free(c->tag); free(c->f); free(c->x);
+  c->tag = tag; c->f = f; c->x = x;
+  c->uni = 0;
+  c->cls_valid = 0;
+  count_bytes(n*(1 + (size_t)c->k*sizeof(double) + (x ? sizeof(uintptr_t) : 0)));
+  return TRUE;
+}
+
 /* put_floats(t, fs, k): t is the k-tuple of the floats fs */
 static int
 put_floats(term_t t, const double *fs, int k)
@@ -350,7 +460,8 @@ put_floats(term_t t, const double *fs, int k)
 /* put_cell(t, c, i): t is particle i's value in c */
 static int
 put_cell(term_t t, column *c, size_t i)
-{ switch(c->tag[i])
+{ i = CI(c, i);
+  switch(c->tag[i])
   { case T_U:     return PL_put_atom(t, ATOM_u);
     case T_UNDEF: return PL_put_atom(t, ATOM_undef);
     case T_NUM:   return put_floats(t, &c->f[i*(size_t)c->k], c->k);
@@ -372,7 +483,9 @@ put_cell(term_t t, column *c, size_t i)
 /* copy_cell(d, j, s, i): d's cell j is s's cell i */
 static int
 copy_cell(column *d, size_t j, column *s, size_t i)
-{ switch(s->tag[i])
+{ i = CI(s, i);
+  if ( d->uni && !expand(d) ) return FALSE;
+  switch(s->tag[i])
   { case T_U:
     case T_UNDEF:
       clear_cell(d, j);
@@ -421,7 +534,8 @@ copy_cell(column *d, size_t j, column *s, size_t i)
 /* same_cell(a, i, b, j): the two values are == */
 static int
 same_cell(column *a, size_t i, column *b, size_t j)
-{ if ( a->tag[i] != b->tag[j] )
+{ i = CI(a, i); j = CI(b, j);
+  if ( a->tag[i] != b->tag[j] )
   { if ( a->tag[i] == T_TERM || b->tag[j] == T_TERM )
       goto general;
     return FALSE;
@@ -661,11 +775,13 @@ col_new(term_t tn, term_t v, term_t tc)
   column *c;
   if ( !PL_get_int64_ex(tn, &n) ) return FALSE;
   if ( n < 0 ) return PL_domain_error("not_less_than_zero", tn);
-  if ( !(c = new_column((size_t)n)) ) return PL_resource_error("memory");
+  if ( !(c = new_uniform((size_t)n)) ) return PL_resource_error("memory");
   { atom_t a;
     if ( PL_get_atom(v, &a) && a == ATOM_u )
-      ;					/* (calloc: all T_U) */
-    else
+      ;					/* (all T_U) */
+    else if ( c->uni )
+    { if ( !set_uniform(c, v) ) { free_cells(c); return FALSE; }
+    } else
     { for(size_t i=0; i<c->n; i++)
       { if ( !set_cell(c, i, v) ) { free_cells(c); return FALSE; }
       }
@@ -679,7 +795,7 @@ col_new(term_t tn, term_t v, term_t tc)
 static foreign_t
 col_arg(term_t ti, term_t tc, term_t v)
 { column *c = NULL; size_t i;
-  if ( !get_column(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
+  if ( !get_column_raw(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
   { term_t t = PL_new_term_ref();
     return put_cell(t, c, i) && PL_unify(t, v);
   }
@@ -697,15 +813,15 @@ col_setarg(term_t ti, term_t tc, term_t v)
 static foreign_t
 col_is_u(term_t ti, term_t tc)
 { column *c = NULL; size_t i;
-  if ( !get_column(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
-  return c->tag[i] == T_U;
+  if ( !get_column_raw(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
+  return c->tag[CI(c, i)] == T_U;
 }
 
 /* col_size(+C, -N) */
 static foreign_t
 col_size(term_t tc, term_t tn)
 { column *c = NULL;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   return PL_unify_int64(tn, (int64_t)c->n);
 }
 
@@ -720,7 +836,7 @@ col_is(term_t tc)
 static foreign_t
 col_list(term_t tc, term_t vs)
 { column *c = NULL;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   { term_t l = PL_new_term_ref(), h = PL_new_term_ref();
     PL_put_nil(l);
     for(size_t i=c->n; i-- > 0; )
@@ -750,8 +866,8 @@ col_from_list(term_t vs, term_t tc)
    collected in a batch. */
 typedef int (*cell_test)(column *c, size_t i);
 
-static int test_u(column *c, size_t i) { return c->tag[i] == T_U; }
-static int test_defined(column *c, size_t i) { return c->tag[i] >= T_NUM; }
+static int test_u(column *c, size_t i) { return c->tag[CI(c, i)] == T_U; }
+static int test_defined(column *c, size_t i) { return c->tag[CI(c, i)] >= T_NUM; }
 
 static foreign_t
 select_cells(term_t ps, term_t tc, term_t out, cell_test test)
@@ -760,7 +876,7 @@ select_cells(term_t ps, term_t tc, term_t out, cell_test test)
   char *keep;
   size_t m = 0;
   int rc;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( !get_view(ps, c->n, &p) )
     return PL_exception(0) ? FALSE : PL_domain_error("particle_batch", ps);
   if ( !(keep = malloc(p.n ? p.n : 1)) ) { free_view(&p); return PL_resource_error("memory"); }
@@ -800,9 +916,14 @@ col_set_each(term_t ps, term_t tc, term_t v)
 { column *c = NULL;
   pview p;
   size_t first = (size_t)-1;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( c->cnt[T_U] == 0 ) return TRUE;
   if ( !get_view(ps, c->n, &p) ) return FALSE;
+  if ( c->uni && p.n == c->n )		/* (every particle: the column stays uniform) */
+  { free_view(&p);
+    return set_uniform(c, v);
+  }
+  if ( !expand(c) ) { free_view(&p); return FALSE; }
   for(size_t j=0; j<p.n; j++)
   { size_t i = p.v[j];
     if ( c->tag[i] == T_U )
@@ -825,7 +946,7 @@ static foreign_t
 col_rows(term_t tc, term_t tw, term_t out, term_t tail)
 { column *c;
   int w;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( c->cnt[T_NUM] == 0 || c->cnt[T_NUM] + c->cnt[T_U] + c->cnt[T_UNDEF] != c->n )
     return FALSE;
   if ( PL_is_variable(tw) )
@@ -836,7 +957,8 @@ col_rows(term_t tc, term_t tw, term_t out, term_t tail)
   { term_t l = PL_copy_term_ref(tail), h = PL_new_term_ref();
     for(size_t i=c->n; i-- > 0; )
     { for(int q=w; q-- > 0; )
-      { double x = c->tag[i] == T_NUM ? c->f[i*(size_t)w+(size_t)q] : NAN;
+      { size_t ii = CI(c, i);
+	double x = c->tag[ii] == T_NUM ? c->f[ii*(size_t)w+(size_t)q] : NAN;
 	if ( !PL_put_float(h, x) || !PL_cons_list(l, h, l) ) return FALSE;
       }
     }
@@ -849,7 +971,7 @@ col_rows(term_t tc, term_t tw, term_t out, term_t tail)
 static foreign_t
 col_row_width(term_t tc, term_t tw)
 { column *c;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( c->cnt[T_NUM] + c->cnt[T_U] + c->cnt[T_UNDEF] != c->n ) return FALSE;
   return PL_unify_integer(tw, c->cnt[T_NUM] > 0 ? c->k : 0);
 }
@@ -896,7 +1018,7 @@ col_pack_rows(term_t tcols, term_t tw, term_t out)
   if ( !PL_get_integer(tw, &w) || w < 1 ) return FALSE;
   while( PL_get_list(l, h, l) )
   { column *c;
-    if ( !get_column(h, &c) ) return FALSE;
+    if ( !get_column_raw(h, &c) ) return FALSE;
     if ( c->cnt[T_NUM] + c->cnt[T_U] + c->cnt[T_UNDEF] != c->n ) return FALSE;
     if ( c->cnt[T_NUM] > 0 && c->k != w ) return FALSE;
     n += c->n*(size_t)w;
@@ -907,10 +1029,11 @@ col_pack_rows(term_t tcols, term_t tw, term_t out)
   l = PL_copy_term_ref(tcols);
   while( PL_get_list(l, h, l) )
   { column *c;
-    if ( !get_column(h, &c) ) { free(r); return FALSE; }
+    if ( !get_column_raw(h, &c) ) { free(r); return FALSE; }
     for(size_t i=0; i<c->n; i++)
-    { if ( c->tag[i] == T_NUM )
-	memcpy(&r->v[j], &c->f[i*(size_t)w], sizeof(double)*(size_t)w);
+    { size_t ii = CI(c, i);
+      if ( c->tag[ii] == T_NUM )
+	memcpy(&r->v[j], &c->f[ii*(size_t)w], sizeof(double)*(size_t)w);
       else
 	for(int q=0; q<w; q++) r->v[j+(size_t)q] = NAN;
       j += (size_t)w;
@@ -960,9 +1083,13 @@ col_floats_list(term_t tr, term_t out)
 static foreign_t
 col_status(term_t tc, term_t ts)
 { column *c = NULL;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( c->n == 0 ) return FALSE;
   if ( c->cnt[T_U] > 0 ) return PL_unify_atom(ts, ATOM_open);
+  if ( c->uni )
+  { term_t v = PL_new_term_ref();
+    return put_cell(v, c, 0) && PL_unify_term(ts, PL_FUNCTOR, FUNCTOR_same1, PL_TERM, v);
+  }
   { int same = TRUE, undef = FALSE;
     for(size_t i=0; i<c->n; i++)
     { if ( c->tag[i] == T_U ) return PL_unify_atom(ts, ATOM_open);
@@ -984,8 +1111,9 @@ col_all_same(term_t ps, term_t tc, term_t ti)
 { column *c = NULL; size_t i0;
   pview p;
   int rc = TRUE;
-  if ( !get_column(tc, &c) || !get_index(ti, c, &i0) ) return FALSE;
+  if ( !get_column_raw(tc, &c) || !get_index(ti, c, &i0) ) return FALSE;
   if ( !get_view(ps, c->n, &p) ) return FALSE;
+  if ( c->uni ) { free_view(&p); return TRUE; }
   for(size_t j=0; j<p.n && rc; j++)
     rc = same_cell(c, p.v[j], c, i0);
   free_view(&p);
@@ -997,7 +1125,7 @@ col_all_same(term_t ps, term_t tc, term_t ti)
 static foreign_t
 col_num_arity(term_t tc, term_t tk)
 { column *c = NULL;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( c->k == 0 || c->cnt[T_NUM] != c->n ) return FALSE;
   return PL_unify_integer(tk, c->k);
 }
@@ -1095,7 +1223,7 @@ col_gather(term_t srcs, term_t pairs, term_t tc)
     { atom_t a;
       if ( PL_get_atom(h, &a) && a == ATOM_none )
 	src[g] = NULL;			/* '$none' */
-      else if ( !get_column(h, &src[g]) ) goto error;
+      else if ( !get_column_raw(h, &src[g]) ) goto error;
     }
   }
   if ( !(c = new_column(p->n)) ) { PL_resource_error("memory"); goto error; }
@@ -1220,20 +1348,21 @@ col_draw_gauss(term_t ps, term_t tm, term_t tf, term_t to, term_t ts)
   pview pv;
   rng r;
 
-  if ( !get_column(tm, &mc) || !get_column(to, &out) ) return FALSE;
+  if ( !get_column_raw(tm, &mc) || !get_column(to, &out) ) return FALSE;
   if ( !get_factor(tf, L, &k) || !get_seed(ts, &r) ) return FALSE;
   if ( mc->k != k || mc->n != out->n ) return FALSE;
   if ( out->k != 0 && out->k != k ) return FALSE;
   if ( !get_batch(ps, out, &pv) ) return FALSE;
   idx = pv.v; m = pv.n;
   for(size_t j=0; j<m; j++)
-  { if ( out->tag[idx[j]] == T_U && mc->tag[idx[j]] != T_NUM ) { free_view(&pv); return FALSE; }
+  { if ( out->tag[idx[j]] == T_U && mc->tag[CI(mc, idx[j])] != T_NUM )
+    { free_view(&pv); return FALSE; }
   }
   if ( out->k == 0 && !set_k(out, k) ) { free_view(&pv); return FALSE; }
   for(size_t j=0; j<m; j++)
   { size_t i = idx[j];
     if ( out->tag[i] != T_U ) continue;
-    { const double *mu = &mc->f[i*(size_t)k];
+    { const double *mu = &mc->f[CI(mc, i)*(size_t)k];
       double *x = &out->f[i*(size_t)k];
       if ( k == 3 )
       { double z1 = rng_normal(&r), z2 = rng_normal(&r), z3 = rng_normal(&r);
@@ -1247,6 +1376,21 @@ col_draw_gauss(term_t ps, term_t tm, term_t tf, term_t to, term_t ts)
   }
   free_view(&pv);
   return TRUE;
+}
+
+/* gauss_log_density(v, mu, L, k, ln): the log density at v of the gaussian
+   of mean mu, Cholesky factor L (k = 3 or 1) and log normaliser ln */
+static double
+gauss_log_density(const double *v, const double *mu, const double *L, int k, double ln)
+{ if ( k == 3 )
+  { double y1 = (v[0] - mu[0])/L[0];
+    double y2 = (v[1] - mu[1] - L[1]*y1)/L[2];
+    double y3 = (v[2] - mu[2] - L[3]*y1 - L[4]*y2)/L[5];
+    return -0.5*(y1*y1 + y2*y2 + y3*y3) + ln;
+  } else
+  { double y = (v[0] - mu[0])/L[0];
+    return -0.5*y*y + ln;
+  }
 }
 
 static inline void
@@ -1273,7 +1417,7 @@ col_weigh_gauss(term_t ps, term_t tm, term_t tf, term_t tln, term_t tv,
   const uint32_t *idx;
   pview pv;
 
-  if ( !get_column(tm, &mc) || !get_column(td, &done) || !get_column(tlw, &lw) )
+  if ( !get_column_raw(tm, &mc) || !get_column_raw(td, &done) || !get_column_raw(tlw, &lw) )
     return FALSE;
   if ( !get_factor(tf, L, &k) || !PL_get_float(tln, &ln) ) return FALSE;
   if ( float_tuple(tv, v, MAX_K) != k || mc->k != k || lw->k != 1 ) return FALSE;
@@ -1282,29 +1426,25 @@ col_weigh_gauss(term_t ps, term_t tm, term_t tf, term_t tln, term_t tv,
   idx = pv.v; m = pv.n;
   for(size_t j=0; j<m; j++)
   { size_t i = idx[j];
-    if ( done->tag[i] == T_U && (mc->tag[i] != T_NUM || lw->tag[i] != T_NUM) )
+    if ( done->tag[CI(done, i)] == T_U &&
+	 (mc->tag[CI(mc, i)] != T_NUM || lw->tag[CI(lw, i)] != T_NUM) )
     { free_view(&pv); return FALSE; }
   }
-  if ( !ensure_x(done) ) { free_view(&pv); return FALSE; }
+  if ( mc->uni && done->uni && lw->uni && m == lw->n && done->tag[0] == T_U )
+  { /* (every particle, one mean, one log weight so far: one log weight after) */
+    term_t t = PL_new_term_ref();
+    free_view(&pv);
+    return PL_put_atom(t, ATOM_done) && set_uniform(done, t) &&
+	   (add_log(lw, 0, gauss_log_density(v, mc->f, L, k, ln)), TRUE);
+  }
+  if ( !expand(done) || !expand(lw) || !ensure_x(done) ) { free_view(&pv); return FALSE; }
   for(size_t j=0; j<m; j++)
   { size_t i = idx[j];
     if ( done->tag[i] != T_U ) continue;
     PL_register_atom(ATOM_done);
     done->x[i] = (uintptr_t)ATOM_done;
     SET_TAG(done, i, T_ATOM);
-    { const double *mu = &mc->f[i*(size_t)k];
-      double lp;
-      if ( k == 3 )
-      { double y1 = (v[0] - mu[0])/L[0];
-	double y2 = (v[1] - mu[1] - L[1]*y1)/L[2];
-	double y3 = (v[2] - mu[2] - L[3]*y1 - L[4]*y2)/L[5];
-	lp = -0.5*(y1*y1 + y2*y2 + y3*y3) + ln;
-      } else
-      { double y = (v[0] - mu[0])/L[0];
-	lp = -0.5*y*y + ln;
-      }
-      add_log(lw, i, lp);
-    }
+    add_log(lw, i, gauss_log_density(v, &mc->f[CI(mc, i)*(size_t)k], L, k, ln));
   }
   free_view(&pv);
   return TRUE;
@@ -1452,11 +1592,12 @@ vm_run(const vm *m, size_t i, double *r)
     switch(in->op)
     { case I_LD:
       { const column *c = m->col[in->j];
-	if ( c->tag[i] != T_NUM )	/* (a tuple pattern unifies with no atom or list:
+	size_t ii = CI(c, i);
+	if ( c->tag[ii] != T_NUM )	/* (a tuple pattern unifies with no atom or list:
 					    the particle is skipped; a variable with
 					    anything: an error in Prolog) */
-	  return in->k > 1 && c->tag[i] != T_TERM ? VM_SKIP : VM_ABANDON;
-	r[in->r] = c->f[i*(size_t)in->k + (size_t)in->c];
+	  return in->k > 1 && c->tag[ii] != T_TERM ? VM_SKIP : VM_ABANDON;
+	r[in->r] = c->f[ii*(size_t)in->k + (size_t)in->c];
 	continue;
       }
       case I_CST: r[in->r] = in->f; continue;
@@ -1499,6 +1640,15 @@ cmp_code(atom_t a, int *op)
   return TRUE;
 }
 
+/* vm_uniform(m): every column m reads is uniform: the loop gives every
+   particle the same answer */
+static int
+vm_uniform(const vm *m)
+{ for(int j=0; j<m->ncol; j++)
+    if ( !m->col[j]->uni ) return FALSE;
+  return TRUE;
+}
+
 /* run_test(m, op, a, b, ps, out): Out the particles of Ps in which
    register a op register b after m's code (op a comparison); FALSE if the
    loop is abandoned (above) */
@@ -1509,6 +1659,7 @@ run_test(const vm *m, int op, int a, int b, term_t ps, term_t out)
   const uint32_t *idx;
   pview pv;
   char *hold;
+  int uni;
 
   if ( m->ncol == 0 ) return FALSE;
   for(int j=1; j<m->ncol; j++)
@@ -1516,8 +1667,11 @@ run_test(const vm *m, int op, int a, int b, term_t ps, term_t out)
   if ( !get_batch(ps, m->col[0], &pv) ) return FALSE;
   idx = pv.v; np = pv.n;
   if ( !(hold = malloc(np ? np : 1)) ) { free_view(&pv); return FALSE; }
+  uni = vm_uniform(m);
   for(size_t j=0; j<np; j++)
-  { int h, rc = vm_run(m, idx[j], r);
+  { int h, rc;
+    if ( j > 0 && uni ) { hold[j] = hold[0]; nout += (size_t)hold[0]; continue; }
+    rc = vm_run(m, idx[j], r);
     if ( rc == VM_ABANDON ) { free(hold); free_view(&pv); return FALSE; }
     if ( rc == VM_SKIP ) { hold[j] = 0; continue; }
     switch(op)
@@ -1572,6 +1726,19 @@ run_instance(const vm *m, const int *regs, int k, term_t ps, column *c)
     if ( m->col[j]->n != c->n ) return FALSE;
   if ( !get_batch(ps, c, &pv) ) return FALSE;
   idx = pv.v; np = pv.n;
+  if ( c->uni && c->tag[0] == T_U && np == c->n && vm_uniform(m) )
+  { int rc = vm_run(m, 0, r);			/* (one value for every particle) */
+    free_view(&pv);
+    if ( rc == VM_ABANDON ) return FALSE;
+    if ( rc == VM_SKIP ) return TRUE;
+    if ( c->k == 0 && !set_k(c, k) ) return FALSE;
+    for(int q=0; q<k; q++) c->f[q] = r[regs[q]];
+    c->tag[0] = T_NUM;
+    c->cnt[T_U] = 0; c->cnt[T_NUM] = c->n;
+    c->cls_valid = 0;
+    return TRUE;
+  }
+  if ( !expand(c) ) { free_view(&pv); return FALSE; }
   if ( !(buf = malloc((np ? np : 1)*(size_t)k*sizeof(double))) ) { free_view(&pv); return FALSE; }
   if ( !(skip = calloc(np ? np : 1, 1)) ) { free(buf); free_view(&pv); return FALSE; }
   for(size_t j=0; j<np; j++)
@@ -1624,10 +1791,16 @@ col_copy_each(term_t ps, term_t tf, term_t tc)
   size_t np;
   const uint32_t *idx;
   pview pv;
-  if ( !get_column(tf, &from) || !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tf, &from) || !get_column_raw(tc, &c) ) return FALSE;
   if ( from->n != c->n ) return FALSE;
   if ( !get_batch(ps, c, &pv) ) return FALSE;
   idx = pv.v; np = pv.n;
+  if ( c->uni && c->tag[0] == T_U && from->uni && np == c->n )
+  { term_t t = PL_new_term_ref();		/* (one value for every particle) */
+    free_view(&pv);
+    return put_cell(t, from, 0) && set_uniform(c, t);
+  }
+  if ( !expand(c) ) { free_view(&pv); return FALSE; }
   for(size_t j=0; j<np; j++)
   { if ( c->tag[idx[j]] == T_U && !copy_cell(c, idx[j], from, idx[j]) )
     { free_view(&pv); return FALSE; }
@@ -1898,7 +2071,7 @@ col_test(term_t ps, term_t goal, term_t out)
 static foreign_t
 col_instance(term_t ps, term_t tmpl, term_t tc)
 { column *c, *from;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( plain_ref(tmpl, &from) )
   { term_t tf = PL_new_term_ref();
     _PL_get_arg(1, tmpl, tf);
@@ -1934,10 +2107,11 @@ col_instance(term_t ps, term_t tmpl, term_t tc)
 /* The key of particle i in the columns cs: a hash of its cells (FALSE for
    a term with variables, which the caller groups in Prolog). */
 static int
-cell_hash(column **cs, int nc, size_t i, uint64_t *hp)
+cell_hash(column **cs, int nc, size_t i0, uint64_t *hp)
 { uint64_t h = 1469598103934665603ULL;
   for(int j=0; j<nc; j++)
   { column *c = cs[j];
+    size_t i = CI(c, i0);
     uint64_t x;
     switch(c->tag[i])
     { case T_U: x = 1; break;
@@ -2006,6 +2180,13 @@ classes(column *c)
 { size_t cap, ncls = 0;
   size_t *slot;
   if ( c->cls_valid ) return TRUE;
+  if ( c->uni )				/* (one class, of the one value) */
+  { uint64_t h;
+    column *one = c;
+    if ( c->n > 0 && !cell_hash(&one, 1, 0, &h) ) return FALSE;
+    c->cls_valid = 1;
+    return TRUE;
+  }
   if ( !c->cls )
   { if ( !(c->cls = malloc((c->n ? c->n : 1)*sizeof(uint32_t))) ) return FALSE;
     count_bytes(c->n*sizeof(uint32_t));
@@ -2034,11 +2215,13 @@ classes(column *c)
   return TRUE;
 }
 
+#define CLS(c, i) ((c)->uni ? (uint32_t)0 : (c)->cls[i])
+
 static int
 class_hash(column **cs, int nc, size_t i, uint64_t *hp)
 { uint64_t h = 1469598103934665603ULL;
   for(int j=0; j<nc; j++)
-  { h = (h ^ cs[j]->cls[i]) * 1099511628211ULL;
+  { h = (h ^ CLS(cs[j], i)) * 1099511628211ULL;
     h ^= h >> 29;
   }
   *hp = h;
@@ -2048,7 +2231,7 @@ class_hash(column **cs, int nc, size_t i, uint64_t *hp)
 static int
 same_class(column **cs, int nc, size_t i, size_t j)
 { for(int q=0; q<nc; q++)
-    if ( cs[q]->cls[i] != cs[q]->cls[j] ) return FALSE;
+    if ( CLS(cs[q], i) != CLS(cs[q], j) ) return FALSE;
   return TRUE;
 }
 
@@ -2153,20 +2336,20 @@ col_draw_uniform(term_t ps, term_t tl, term_t tc, term_t ts)
   rng r;
   fid_t fid;
   int rc = FALSE;
-  if ( !get_column(tl, &lc) || !get_column(tc, &c) || !get_seed(ts, &r) ) return FALSE;
+  if ( !get_column_raw(tl, &lc) || !get_column(tc, &c) || !get_seed(ts, &r) ) return FALSE;
   if ( lc->n != c->n ) return FALSE;
   if ( !get_batch(ps, c, &pv) ) return FALSE;
   idx = pv.v; np = pv.n;
   for(size_t j=0; j<np; j++)
-    if ( c->tag[idx[j]] == T_U && lc->tag[idx[j]] != T_TERM && lc->tag[idx[j]] != T_LIST )
+    if ( c->tag[idx[j]] == T_U && lc->tag[CI(lc, idx[j])] != T_TERM && lc->tag[CI(lc, idx[j])] != T_LIST )
     { free_view(&pv); return FALSE; }
   { term_t l = PL_new_term_ref(), h = PL_new_term_ref();   /* (before the frame) */
     size_t len;
     fid = PL_open_foreign_frame();
     /* (first every list checked, then the draws: nothing written on failure) */
     for(size_t j=0; j<np; j++)
-    { if ( c->tag[idx[j]] != T_U || lc->tag[idx[j]] == T_LIST ) continue;
-      if ( !PL_recorded((record_t)lc->x[idx[j]], l) ||
+    { if ( c->tag[idx[j]] != T_U || lc->tag[CI(lc, idx[j])] == T_LIST ) continue;
+      if ( !PL_recorded((record_t)lc->x[CI(lc, idx[j])], l) ||
 	   PL_skip_list(l, 0, &len) != PL_LIST || len == 0 )
 	goto out;
       PL_rewind_foreign_frame(fid);
@@ -2174,15 +2357,15 @@ col_draw_uniform(term_t ps, term_t tl, term_t tc, term_t ts)
     for(size_t j=0; j<np; j++)
     { size_t i = idx[j], pick;
       if ( c->tag[i] != T_U ) continue;
-      if ( lc->tag[i] == T_LIST )
-      { alist *al = (alist*)lc->x[i];
+      if ( lc->tag[CI(lc, i)] == T_LIST )
+      { alist *al = (alist*)lc->x[CI(lc, i)];
 	pick = (size_t)floor((rng_uniform(&r) - 0x1.0p-53) * (double)al->n);
 	if ( pick >= al->n ) pick = al->n-1;
 	if ( !put_item(l, &al->a[pick]) || !set_cell(c, i, l) ) goto out;
 	PL_rewind_foreign_frame(fid);
 	continue;
       }
-      if ( !PL_recorded((record_t)lc->x[i], l) ) goto out;
+      if ( !PL_recorded((record_t)lc->x[CI(lc, i)], l) ) goto out;
       if ( PL_skip_list(l, 0, &len) != PL_LIST || len == 0 ) goto out;
       pick = (size_t)floor((rng_uniform(&r) - 0x1.0p-53) * (double)len);
       if ( pick >= len ) pick = len-1;
@@ -2210,7 +2393,7 @@ col_select_eq(term_t ps, term_t tc, term_t v, term_t teq, term_t out)
   pview p;
   char *keep;
   size_t m = 0;
-  if ( !get_column(tc, &c) || !PL_get_bool_ex(teq, &eq) ) return FALSE;
+  if ( !get_column_raw(tc, &c) || !PL_get_bool_ex(teq, &eq) ) return FALSE;
   if ( !get_batch(ps, c, &p) ) return FALSE;
   if ( !(tmp = new_column(1)) ) { free_view(&p); return PL_resource_error("memory"); }
   if ( !(keep = malloc(p.n ? p.n : 1)) )
@@ -2494,16 +2677,22 @@ col_append_each(term_t ps, term_t tc, term_t v)
   pview pv;
   int rc = FALSE;
   fid_t fid;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( !get_batch(ps, c, &pv) ) return FALSE;
   idx = pv.v; np = pv.n;
   { if ( PL_is_ground(v) )		/* (a ground term: lists of items, in place) */
-    { int fast = TRUE;
+    { int fast = TRUE, whole = c->uni && np == c->n;
       item it;
       for(size_t j=0; j<np && fast; j++)
-      { uint8_t t = c->tag[idx[j]];
-	fast = t == T_LIST || (t == T_ATOM && (atom_t)c->x[idx[j]] == ATOM_nil);
+      { size_t i = CI(c, idx[j]);
+	uint8_t t = c->tag[i];
+	fast = t == T_LIST || (t == T_ATOM && (atom_t)c->x[i] == ATOM_nil);
       }
+      if ( fast && whole )		/* (every particle's list: the one list) */
+      { static const uint32_t zero = 0;
+	idx = &zero; np = 1;
+      } else if ( fast && !expand(c) )
+      { free_view(&pv); return FALSE; }
       if ( fast )
       { if ( !make_item(v, &it) ) { free_view(&pv); return FALSE; }
 	for(size_t j=0; j<np; j++)
@@ -2520,6 +2709,10 @@ col_append_each(term_t ps, term_t tc, term_t v)
 	    c->x[i] = (uintptr_t)l;
 	    c->cls_valid = 0;
 	  }
+	}
+	if ( whole )
+	{ memset(c->cnt, 0, sizeof(c->cnt));
+	  c->cnt[T_LIST] = c->n;
 	}
 	free_item(&it);
 	free_view(&pv);
@@ -2569,7 +2762,7 @@ col_select_unify(term_t ps, term_t tc, term_t p, term_t out)
   pview b;
   char *keep;
   size_t m = 0;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( !get_batch(ps, c, &b) ) return FALSE;
   if ( !(tmp = new_column(1)) ) { free_view(&b); return PL_resource_error("memory"); }
   if ( !(keep = malloc(b.n ? b.n : 1)) )
@@ -2580,7 +2773,7 @@ col_select_unify(term_t ps, term_t tc, term_t p, term_t out)
     for(size_t j=0; j<b.n; j++)
     { size_t i = b.v[j];
       int ok;
-      if ( c->tag[i] == T_TERM )
+      if ( c->tag[CI(c, i)] == T_TERM )
       { fid_t f2 = PL_open_foreign_frame();
 	double x;
 	ok = put_cell(v, c, i) && PL_unify(v, p);
@@ -2593,7 +2786,7 @@ col_select_unify(term_t ps, term_t tc, term_t p, term_t out)
       } else if ( same_cell(c, i, tmp, 0) )
 	ok = TRUE;
       else
-	ok = pnum && c->tag[i] == T_NUM && c->k == 1 && c->f[i] == pv;
+	ok = pnum && c->tag[CI(c, i)] == T_NUM && c->k == 1 && c->f[CI(c, i)] == pv;
       keep[j] = (char)ok;
       m += (size_t)ok;
     }
@@ -2613,7 +2806,7 @@ col_with_arity(term_t ps, term_t tc, term_t tk, term_t out)
   pview b;
   char *keep;
   size_t m = 0;
-  if ( !get_column(tc, &c) || !PL_get_integer_ex(tk, &k) ) return FALSE;
+  if ( !get_column_raw(tc, &c) || !PL_get_integer_ex(tk, &k) ) return FALSE;
   if ( !get_batch(ps, c, &b) ) return FALSE;
   if ( c->k >= k && c->cnt[T_NUM] == c->n )
   { free_view(&b);
@@ -2624,7 +2817,7 @@ col_with_arity(term_t ps, term_t tc, term_t tk, term_t out)
     for(size_t j=0; j<b.n; j++)
     { size_t i = b.v[j];
       int ok;
-      switch(c->tag[i])
+      switch(c->tag[CI(c, i)])
       { case T_NUM: ok = c->k >= k; break;
 	case T_TERM:
 	{ fid_t f = PL_open_foreign_frame();
@@ -2655,11 +2848,15 @@ col_sets_each(term_t ps, term_t tl, term_t tc)
   size_t np;
   const uint32_t *idx;
   pview pv;
-  int rc = FALSE;
-  if ( !get_column(tl, &lc) || !get_column(tc, &c) ) return FALSE;
+  int rc = FALSE, whole;
+  static const uint32_t zero = 0;
+  if ( !get_column_raw(tl, &lc) || !get_column_raw(tc, &c) ) return FALSE;
   if ( lc->n != c->n ) return FALSE;
   if ( !get_batch(ps, c, &pv) ) return FALSE;
   idx = pv.v; np = pv.n;
+  whole = c->uni && c->tag[0] == T_U && lc->uni && np == c->n;
+  if ( whole ) { idx = &zero; np = 1; }	/* (one list for every particle: one set) */
+  else if ( !expand(c) ) { free_view(&pv); return FALSE; }
   { term_t l = PL_new_term_ref(), nl = PL_new_term_ref();
     fid_t fid = PL_open_foreign_frame();
     for(size_t j=0; j<np; j++)
@@ -2667,7 +2864,11 @@ col_sets_each(term_t ps, term_t tl, term_t tc)
       term_t el;
       int dup = FALSE;
       if ( !put_cell(l, lc, i) || PL_skip_list(l, 0, &len) != PL_LIST ) goto out;
-      if ( len < 2 ) { if ( !copy_cell(c, i, lc, i) ) goto out; PL_rewind_foreign_frame(fid); continue; }
+      if ( len < 2 )
+      { if ( whole ? !set_uniform(c, l) : !copy_cell(c, i, lc, i) ) goto out;
+	PL_rewind_foreign_frame(fid);
+	continue;
+      }
       if ( !(el = PL_new_term_refs((int)len)) ) goto out;
       for(size_t q=0; q<len; q++)
       { term_t x = PL_new_term_ref();
@@ -2679,12 +2880,13 @@ col_sets_each(term_t ps, term_t tl, term_t tc)
 	else if ( !PL_put_term(el+m++, x) ) goto out;
       }
       if ( !dup )
-      { if ( !copy_cell(c, i, lc, i) ) goto out;
+      { if ( whole ? !(put_cell(nl, lc, 0) && set_uniform(c, nl)) : !copy_cell(c, i, lc, i) )
+	  goto out;
       } else
       { PL_put_nil(nl);
 	for(size_t q=m; q-- > 0; )
 	  if ( !PL_cons_list(nl, el+q, nl) ) goto out;
-	if ( !set_cell(c, i, nl) ) goto out;
+	if ( whole ? !set_uniform(c, nl) : !set_cell(c, i, nl) ) goto out;
       }
       PL_rewind_foreign_frame(fid);
     }

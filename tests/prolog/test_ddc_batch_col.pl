@@ -164,6 +164,32 @@ test(finite_draws_with_probabilities_over_the_batch) :-
     aggregate_all(count, ( nth1(I, Vs, yes), I mod 2 =:= 0 ), Even),
     abs(Odd - 450) < 60, abs(Even - 50) < 30.
 
+%   A column whose particles all hold one value (the library keeps one cell
+%   for it) reads and writes as any other: a write to some particles gives
+%   them their own values.
+test(a_column_of_one_value_reads_and_writes_as_any_other) :-
+    col_new(5, '$u', C),
+    col_set_each([1, 2, 3, 4, 5], C, (1.0, 2.0)),
+    col_status(C, S0), S0 == same((1.0, 2.0)),
+    col_arg(3, C, V3), V3 == (1.0, 2.0),
+    col_all_same([1, 4], C, 2),
+    findall(V-Ps, split_column(C, [1, 2, 5], V, Ps), G0), G0 == [(1.0, 2.0)-[1, 2, 5]],
+    col_gather([C, C], [2-5, 1-1], G), col_list(G, GL), GL == [(1.0, 2.0), (1.0, 2.0)],
+    col_setarg(2, C, x),
+    col_list(C, L), L == [(1.0, 2.0), x, (1.0, 2.0), (1.0, 2.0), (1.0, 2.0)],
+    col_status(C, S1), S1 == defined,
+    col_new(4, [], LC),
+    (   col_append_each([1, 2, 3, 4], LC, a) -> true ; collect_append([1, 2, 3, 4], LC, a) ),
+    col_status(LC, S2), S2 == same([a]),
+    (   col_append_each([2], LC, b) -> true ; collect_append([2], LC, b) ),
+    col_list(LC, LL), LL == [[a], [a, b], [a], [a]],
+    col_new(3, [x, y, x], D), col_new(3, '$u', Set),
+    (   col_sets_each([1, 2, 3], D, Set) -> true
+    ;   forall(between(1, 3, I), ( col_arg(I, D, X), list_to_set(X, Y), col_setarg(I, Set, Y) ))
+    ),
+    col_list(Set, SL), SL == [[x, y], [x, y], [x, y]],
+    col_new(3, '$u', U), col_set_each([2], U, z), col_list(U, UL), UL == ['$u', z, '$u'].
+
 %   Rows of floats straight from columns (the library only; the Prolog
 %   columns fail, and the caller makes the rows from the values).
 test(columns_read_as_rows_of_floats) :-
