@@ -164,6 +164,34 @@ test(finite_draws_with_probabilities_over_the_batch) :-
     aggregate_all(count, ( nth1(I, Vs, yes), I mod 2 =:= 0 ), Even),
     abs(Odd - 450) < 60, abs(Even - 50) < 30.
 
+%   The library's gaussian draws (its standard normals: a ziggurat) have the
+%   normal's moments and tails, within five standard errors of 100,000
+%   draws.
+test(gaussian_draws_have_the_normals_moments_and_tails) :-
+    (   col_backend(foreign)
+    ->  N = 100000,
+        col_new(N, (1.0, -2.0, 0.0), M), col_new(N, '$u', Out), ps_all(N, All),
+        col_draw_gauss(All, M, chol(2.0, 0.0, 1.0, 0.0, 0.0, 1.0), Out, 42),
+        col_list(Out, Vs),
+        findall(Z, ( member((X, _, _), Vs), Z is (X - 1.0)/2.0 ), Zs),
+        findall(Z, ( member((_, Y, _), Vs), Z is Y + 2.0 ), Ws),
+        forall(member(S, [Zs, Ws]),
+               (   moments(S, N, Mean, Var, Kurt),
+                   abs(Mean) < 5*sqrt(1/N), abs(Var - 1) < 5*sqrt(2/N),
+                   abs(Kurt - 3) < 5*sqrt(96/N),
+                   forall(member(T-P, [1-0.31731, 2-0.04550, 3-0.0026998, 3.5-0.00046527]),
+                          (   aggregate_all(count, ( member(Z, S), abs(Z) > T ), K),
+                              abs(K/N - P) < 5*sqrt(P*(1-P)/N)
+                          ))
+               ))
+    ;   true
+    ).
+
+moments(S, N, Mean, Var, Kurt) :-
+    sum_list(S, S1), Mean is S1/N,
+    foldl([Z, A0, A]>>(A is A0 + (Z-Mean)**2), S, 0.0, S2), Var is S2/N,
+    foldl([Z, A0, A]>>(A is A0 + (Z-Mean)**4), S, 0.0, S4), Kurt is S4/N/(Var*Var).
+
 %   A column whose particles all hold one value (the library keeps one cell
 %   for it) reads and writes as any other: a write to some particles gives
 %   them their own values.
