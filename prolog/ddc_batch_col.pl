@@ -36,15 +36,24 @@
             col_defined_at/3,           % +Ps, +Column, -Defined
             col_set_each/3,             % +Ps, !Column, +Value
             col_status/2,               % +Column, -Status
+            col_all_same/3,             % +Ps, +Column, +I0
+            col_gather/3,               % +Sources, +Pairs, -Column
+            col_plan_size/2,            % +Pairs, -N
+            ps_all/2,                   % +N, -Ps
+            ps_list/2,                  % +Ps, -List
+            ps_size/2,                  % +Ps, -K
+            ps_first/2,                 % +Ps, -I
+            ps_subtract/3,              % +Ps0, +Ps1, -Ps
+            ps_intersection/3,          % +Ps0, +Ps1, -Ps
+            ps_union/3,                 % +Ps0, +Ps1, -Ps
+            ps_union/2,                 % +Pss, -Ps
+            % fast paths (see below)
+            col_num_arity/2,            % +Column, -K
             col_rows/4,                 % +Column, ?Width, -Floats, ?Tail
+            col_row_width/2,            % +Column, -Width
             col_pack_rows/3,            % +Columns, +Width, -Rows
             col_floats_into/4,          % +Rows, +Address, +Capacity, -N
             col_floats_list/2,          % +Rows, -Floats
-            col_row_width/2,            % +Column, -Width
-            col_all_same/3,             % +Ps, +Column, +I0
-            col_num_arity/2,            % +Column, -K
-            col_gather/3,               % +Sources, +Pairs, -Column
-            col_plan_size/2,            % +Pairs, -N
             col_draw_gauss/5,           % +Ps, +MeanColumn, +Factor, !Out, +Seed
             col_weigh_gauss/7,          % +Ps, +MeanColumn, +Factor, +LogNorm, +V, !Done, !LW
             col_vm_test/7,              % +Ps, +Columns, +Code, +Op, +A, +B, -Out
@@ -60,20 +69,11 @@
             col_append_each/3,          % +Ps, !ListColumn, +Value
             col_select_unify/4,         % +Ps, +Column, +Pattern, -Out
             col_with_arity/4,           % +Ps, +Column, +K, -Out
-            col_sets_each/3,            % +Ps, +ListColumn, !Column
-            ps_all/2,                   % +N, -Ps
-            ps_list/2,                  % +Ps, -List
-            ps_size/2,                  % +Ps, -K
-            ps_first/2,                 % +Ps, -I
-            ps_subtract/3,              % +Ps0, +Ps1, -Ps
-            ps_intersection/3,          % +Ps0, +Ps1, -Ps
-            ps_union/3,                 % +Ps0, +Ps1, -Ps
-            ps_union/2                  % +Pss, -Ps
+            col_sets_each/3             % +Ps, +ListColumn, !Column
           ]).
 
 :- use_module(library(ordsets)).
 :- use_module(library(lists), [numlist/3]).
-
 
 :- set_prolog_flag(optimise, true).
 
@@ -85,15 +85,20 @@ value.  A column is updated in place, as nb_setarg/3 updates a term: the
 change is not undone on backtracking.
 
 col_backend/1 says which representation is in use.  The predicates of
-the export list from col_num_arity/2 to col_sets_each/3 are fast paths:
-they fail where the library is not loaded (or does not handle the
-values), and the caller then runs its loop in Prolog; a fast path that
-fails has written nothing.
+the export list from col_num_arity/2 on are fast paths: they fail where
+the library is not loaded (or does not handle the values), and the caller
+then runs its loop in Prolog; a fast path that fails has written nothing.
+
+A batch (ps_all/2) is a set of particle indices: with the library a blob,
+a C array passed from call to call as it is; else, and wherever a caller
+gives one, a sorted list of integers.  A call given lists gives lists.
+With the library, a column whose particles all hold one value stores one
+cell (docs/batched-filter.md, "Columns in C").
 */
 
 %   The interface version the Prolog side expects of the library
 %   (DDC_COLUMNS_VERSION in prolog/c/ddc_columns.c).
-columns_version(1).
+columns_version(2).
 
 %!  ps_all(+N, -Ps) is det.
 %!  ps_list(+Ps, -List:list(integer)) is det.

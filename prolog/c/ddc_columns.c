@@ -18,9 +18,16 @@
     on backtracking) and freed when the atom garbage collector finds it
     unreferenced.
 
+    A batch of particles is a blob too (a C array of indices), or a Prolog
+    list (BATCHES below); a column that every particle agrees on stores one
+    cell (a uniform column, CI/2); the loops over a batch compile the goal's
+    arithmetic to a small register machine (LOOPS); the rows of a variable
+    are read into a caller's memory (col_floats_into/4).
+
     The random draws come from a xoshiro256+ generator seeded, at each
     call, with a seed that the caller draws from the filter's own Prolog
     random stream: the particles still depend on the filter's seed alone.
+    Its normals are a ziggurat's.
 */
 
 #include <SWI-Stream.h>
@@ -30,7 +37,7 @@
 #include <stdint.h>
 #include <math.h>
 
-#define DDC_COLUMNS_VERSION 1
+#define DDC_COLUMNS_VERSION 2
 
 #define T_U      0                      /* '$u': not drawn yet */
 #define T_UNDEF  1                      /* '$undef': no clause applies */

@@ -616,11 +616,12 @@ class Filter:
         # numbers or k-tuples of numbers come flattened from Prolog (no per-particle Python
         # work); other values as values() gives them
         # (the floats copied into `buffer` by the column library where it is loaded: no
-        # conversion of each float by janus; else a list)
+        # conversion of each float by janus; else a list.  The buffer's address and size are
+        # _-named: janus gives back no such binding.)
         buffer = np.empty(self.particles * _MAX_ROW_WIDTH, dtype=float)
-        result = self._query("bridge_rows_into(K, P, A, C, W, F, V, Err)",
+        result = self._query("bridge_rows_into(K, P, _A, _C, W, F, V, Err)",
                              *self._template_goal(term, goal),
-                             extra={"A": buffer.ctypes.data, "C": buffer.size})
+                             extra={"_A": buffer.ctypes.data, "_C": buffer.size})
         width = int(result["W"])
         if width == 0:
             return _as_array(result["V"]), self.weights
