@@ -199,12 +199,14 @@ compile_batch_program(M, Items) :-
 %   clause's body holds makes the second's hold, for the same head, shown
 %   from their top-level goals (a later clause's body fails, at the latest,
 %   at a goal that contradicts one of the first's: h ~= a against
-%   h ~= b, or h ~= V, V \== a; G against \+ G'; h ~= _ against \+ h ~= _);
+%   h ~= b, or h ~= V, V \== a; G against \+ G'; h ~= _ against \+ h ~= _;
+%   findall(T, G, []) against findall(T, G, L), L \== []);
 %   and evaluating the second body's goals up to that one in those
 %   particles draws nothing and raises nothing (each reads a variable the
-%   first body read, of a key made of head variables, or an observation of
-%   the step, or is a test, a call of facts, or, in a transition clause
-%   (Kind next), a derived atom at t, whose instances are materialised):
+%   first body read, of a key made of head variables, or the first body's
+%   findall, or an observation of the step, or is a test, a call of facts,
+%   or, in a transition clause (Kind next), a derived atom at t, whose
+%   instances are materialised):
 %   the overlap check of the second clause in those particles would find
 %   nothing and change nothing, so it is not made.
 exclusive(M, K, X1-B1, X2-B2) :-
@@ -265,12 +267,34 @@ contradicts(G, _, MK, GA, _, HVs) :-                       % G against \+ G'
     member(N1, GA), nonvar(N1), N1 = (\+ G1), callable(G1), quiet_call(G1, MK),
     local_vars(G1, N1, GA, HVs),
     subsumes_term(G1, G), !.
+contradicts(G, _, _, GA, _, HVs) :-                       % findall(.., []) against
+    findall_goal(G, T, Q, L), L == [],                    %   findall(.., L), L \== []
+    member(F, GA), findall_goal(F, T1, Q1, L1), var(L1),
+    same_collection(T-Q, T1-Q1, HVs),
+    member(N, GA), nonvar(N), N = (L2 \== E), L2 == L1, E == [], !.
+contradicts(G, [N|_], _, GA, GB, HVs) :-                  % findall(.., L), L \== [] against
+    findall_goal(G, T, Q, L), var(L),                     %   findall(.., [])
+    nonvar(N), N = (L2 \== E), L2 == L, E == [],
+    only_in(L, [G, N], GB),
+    member(F, GA), findall_goal(F, T1, Q1, L1), L1 == [],
+    same_collection(T-Q, T1-Q1, HVs), !.
 contradicts(\+ G, _, _, GA, _, HVs) :-                   % \+ h ~= _ against h ~= _
     nonvar(G), read_goal(G, K, _), key_of_head(K, HVs),
     member(G1, GA), read_goal(G1, K1, _), K1 == K, !.
 contradicts(G, _, _, GA, _, HVs) :-                       % h ~= _ against \+ h ~= _
     read_goal(G, K, _), key_of_head(K, HVs),
     member(N1, GA), nonvar(N1), N1 = (\+ G1), nonvar(G1), read_goal(G1, K1, _), K1 == K, !.
+
+findall_goal(G, T, Q, L) :-
+    nonvar(G), ( G = findall(T, Q, L) -> true ; G = findall_forward(T, Q, L) ).
+
+%   same_collection(+TQ1, +TQ2, +HVs): the template and goal of two
+%   findalls are the same but for their own variables (the head's the
+%   same), so they collect the same list in every particle.
+same_collection(TQ1, TQ2, HVs) :-
+    \+ \+ ( foldl(head_constant, HVs, 0, _), TQ1 =@= TQ2 ).
+
+head_constant(V, K0, K) :- V = '$head'(K0), K is K0+1.
 
 %   quiet_goal(+G, +M, +GA, +HVs): G, evaluated where GA holds, draws and
 %   raises nothing: a read of a key (of head variables) that GA reads too
@@ -283,6 +307,10 @@ quiet_goal(G, _, _, _) :-
     nonvar(G), ( G = (_ == _) ; G = (_ \== _) ), !.
 quiet_goal(G, _, _, _) :-                       % an observation of the step
     nonvar(G), G = (X ~= _), callable(X), X \= _:_, \+ timed_read(X, _, _), !.
+quiet_goal(G, _, GA, HVs) :-                    % the same findall as the first body's
+    findall_goal(G, T, Q, L), var(L), !,
+    member(F, GA), findall_goal(F, T1, Q1, L1), var(L1),
+    same_collection(T-Q, T1-Q1, HVs), !.
 quiet_goal(G, MK, _, _) :-
     callable(G), quiet_call(G, MK).
 
