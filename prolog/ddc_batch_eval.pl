@@ -11,6 +11,7 @@
           [ eval_body/4,                % +Body, +Env, +Ps0, -Ps
             branch_union/4,             % +Goal, +Env, +Ps0, -Union
             collect/6,                  % +Template, +Goal, ?List, +Env, +Ps0, -Ps
+            forget_collected/0,
             env_time_table/3,           % +Env, +T, -Table
             env_at_time/3,              % +Env0, +Now, -Env
             read_time/3,                % +TimeExpr, +Env, -T
@@ -299,21 +300,50 @@ firsts([L|Ls], Taken0, [F|Fs], Taken) :-
 %   findall(T, G, L) in each particle of Ps0: L a value the batch agrees
 %   on, or a column of lists.
 collect(T, G, L, E, Ps0, Ps) :-
-    env_size(E, N),
-    col_new(N, '$u', LC),
-    col_set_each(Ps0, LC, []),
-    forall(eval_body(G, E, Ps0, Ps1),
-           (   plan(T, Tmpl, Bs),
-               (   append_grouped(Ps1, Bs, Tmpl, LC)
-               ->  true
-               ;   append_each(Ps1, Bs, Tmpl, LC)
-               )
-           )),
+    env_now(E, Now),
+    (   collected(Now-T-G, Ps0, LC0)
+    ->  LC = LC0
+    ;   env_size(E, N),
+        col_new(N, '$u', LC),
+        col_set_each(Ps0, LC, []),
+        forall(eval_body(G, E, Ps0, Ps1),
+               (   plan(T, Tmpl, Bs),
+                   (   append_grouped(Ps1, Bs, Tmpl, LC)
+                   ->  true
+                   ;   append_each(Ps1, Bs, Tmpl, LC)
+                   )
+               )),
+        remember_collected(Now-T-G, Ps0, LC)
+    ),
     (   ps_first(Ps0, I0), col_all_same(Ps0, LC, I0)
     ->  col_arg(I0, LC, L0),
         unify_value(L, L0, Ps0, Ps)
     ;   unify_column(L, LC, Ps0, Ps)
     ).
+
+%!  forget_collected is det.
+%
+%   Forgets the lists of findalls made so far (collected/3): called at the
+%   start of each step and query, whose tables or particles they were.
+forget_collected :-
+    nb_setval('$ddc_collected', []).
+
+%   collected(+Key, +Ps, -LC): a findall of the same template and goal
+%   (variants, the same columns) at the same time was made, in this step
+%   or query, over particles that include Ps: LC holds their lists.  Each
+%   particle's list is the same if made again (its values are drawn once),
+%   so it is not: on the bench's model and the theory of occlusion the
+%   clauses of hidden_under/1 run the same occluder search one after the
+%   other.
+collected(Key, Ps, LC) :-
+    nb_current('$ddc_collected', Memo),
+    member(K-Pm-LC0, Memo), K =@= Key,
+    ps_subtract(Ps, Pm, []), !,
+    LC = LC0.
+
+remember_collected(Key, Ps, LC) :-
+    (   nb_current('$ddc_collected', Memo) -> true ; Memo = [] ),
+    nb_setval('$ddc_collected', [Key-Ps-LC|Memo]).
 
 %   append_grouped(+Ps, +Binds, +Tmpl, !LC): append_each/4 in the column
 %   library, a call per group of particles with the same values in the

@@ -85,6 +85,7 @@ query_env(S, E, All) :-
 %   Goal (a query) draws what it needs from State's random stream, which
 %   goes on from there (in place: State is the filter's own term).
 with_state(S, Goal) :-
+    forget_collected,
     batch_state_random(S, R0),
     with_random_stream(state(R0), Goal, R1),
     nb_set_batch_state_random(S, R1).
