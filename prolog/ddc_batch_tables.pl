@@ -21,12 +21,14 @@
             entry_tuple_arity/2,        % !Entry, -Arity
             tuple_shape/2,              % +K, -Shape
             real_table/2,               % +Table0, -Table
-            resample_tables/3           % +Sources, +Pairs, -Table
+            resample_tables/3,          % +Sources, +Pairs, -Table
+            rename_table/5              % +Table0, +Moves, +Ps, +N, -Table
           ]).
 
 :- use_module(library(apply)).
 :- use_module(library(lists)).
 :- use_module(ddc_records).
+:- use_module(ddc_rename, [rename_term/3, rename_arguments/3]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -280,4 +282,86 @@ common_arity([E|Es], Arity) :-
     (   forall(( member(E1, Es), E1 \== none ), ( entry_arity(E1, A1), A1 == A ))
     ->  Arity = A
     ;   Arity = unknown
+    ).
+
+                 /*******************************
+                 *           RENAMING           *
+                 *******************************/
+
+%!  rename_table(+Table0, +Moves:list(pair), +Ps:list(integer), +N, -Table) is det.
+%
+%   Table (none if Table0 is none): Table0 of N particles with the
+%   constants renamed by Moves (ddc_rename.pl; filter_rename/3) in the
+%   particles Ps (sorted): under each key K, a particle of Ps holds its
+%   value of the key that K renames, itself renamed ('$u' where it had
+%   none: not drawn), the others their own value of K.  An entry the
+%   rename leaves as it is (its key names no moved constant, nor do the
+%   values of Ps) is Table0's own; any other is a new column, so a column
+%   of one value (same/1, possibly another table's, see resampled_entry/4)
+%   is never written.  Table0 is not changed.
+rename_table(none, _, _, _, none) :- !.
+rename_table(Tab0, Moves, Ps, N, Tab) :-
+    table_new(Tab),
+    findall(K, table_match(Tab0, K, _), Ks0),
+    maplist(renamed_key(Moves), Ks0, Ks1),
+    append(Ks0, Ks1, Ks2),
+    sort(Ks2, Ks),
+    maplist(inverse_move, Moves, Inverse),
+    forall(member(K, Ks), rename_entry(Tab0, Moves, Inverse, Ps, N, K, Tab)).
+
+inverse_move(Old-New, New-Old).
+
+%   renamed_key(+Moves, +K, -K1): a table's key renamed: a random
+%   variable's arguments; '$inst'(N/A) (a predicate's instances) stays.
+renamed_key(Moves, K, K1) :-
+    (   K = '$inst'(_) -> K1 = K ; rename_arguments(Moves, K, K1) ).
+
+%   renamed_value(+Moves, +K, +V, -V1): a value under key K renamed: each
+%   instance's arguments in a '$inst' list, else the value throughout.
+renamed_value(Moves, K, V, V1) :-
+    (   K = '$inst'(_), is_list(V)
+    ->  maplist(rename_arguments(Moves), V, V1)
+    ;   rename_term(Moves, V, V1)
+    ).
+
+%   rename_entry(+Tab0, +Moves, +Inverse, +Ps, +N, +K, !Tab): K's entry of
+%   the renamed table (rename_table/5).
+rename_entry(Tab0, Moves, Inverse, Ps, N, K, Tab) :-
+    renamed_key(Inverse, K, K0),
+    (   table_get(Tab0, K, E) -> true ; E = none ),
+    (   table_get(Tab0, K0, E0) -> true ; E0 = none ),
+    (   K0 == K, E \== none,
+        entry_column(E, C),
+        forall(member(I, Ps), ( arg(I, C, V), renamed_value(Moves, K, V, V1), V1 == V ))
+    ->  table_link(Tab, K, E)
+    ;   entry_column_or_none(E, C),
+        entry_column_or_none(E0, C0),
+        functor(C1, c, N),
+        renamed_column(1, N, Ps, Moves, K, C, C0, C1),
+        (   K = '$inst'(_) -> A = none ; A = unknown ),
+        linked_entry(C1, open, A, E1),
+        duplicate_term(E1, E2),
+        settle(E2),
+        table_link(Tab, K, E2)
+    ).
+
+entry_column_or_none(E, C) :-
+    (   E == none -> C = none ; entry_column(E, C) ).
+
+%   renamed_column(+I, +N, +Ps, +Moves, +K, +C, +C0, !C1): arguments I..N
+%   of C1: a particle of Ps (sorted, those from I on) its value in C0
+%   renamed, any other its value in C ('$u' for a column none).
+renamed_column(I, N, Ps, Moves, K, C, C0, C1) :-
+    (   I > N
+    ->  true
+    ;   (   Ps = [I|Ps1]
+        ->  (   C0 == none -> V = '$u'
+            ;   arg(I, C0, V0), renamed_value(Moves, K, V0, V)
+            )
+        ;   Ps1 = Ps,
+            (   C == none -> V = '$u' ; arg(I, C, V) )
+        ),
+        arg(I, C1, V),
+        I1 is I+1,
+        renamed_column(I1, N, Ps1, Moves, K, C, C0, C1)
     ).

@@ -16,6 +16,7 @@
             bridge_step/5,              % +Key, +ObsTexts, +ActTexts, -LogWeights, -Err
             bridge_undo/1,              % +Key
             bridge_resample/2,          % +Key, +Indices
+            bridge_rename/5,            % +Key, +Olds, +News, +Indices, -Err
             bridge_time/2,              % +Key, -T
             bridge_free/1,              % +Key
             bridge_holds/4,             % +Key, +GoalText, -Flags, -Err
@@ -26,9 +27,10 @@
 
 :- use_module(library(apply)).
 :- use_module(library(error)).
+:- use_module(library(pairs)).
 :- use_module(ddc, [ filter_new/5, filter_step/4, filter_undo/1, filter_resample/2,
-                     filter_time/2, filter_engine/2, filter_free/1, filter_holds/3,
-                     filter_values/4, filter_rows/6 ]).
+                     filter_rename/3, filter_time/2, filter_engine/2, filter_free/1,
+                     filter_holds/3, filter_values/4, filter_rows/6 ]).
 :- use_module(ddc_nesting, [check_text_nesting/2]).
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
 
@@ -92,6 +94,19 @@ bridge_undo(Key) :- filter_of(Key, F), filter_undo(F).
 %
 %   filter_resample/2: particle i becomes a copy of particle Indices[i] (0-based).
 bridge_resample(Key, Indices) :- filter_of(Key, F), filter_resample(F, Indices).
+
+%!  bridge_rename(+Key, +Olds:list(text), +News:list(text), +Indices:list(integer), -Err)
+%!      is det.
+%
+%   filter_rename/3 with the renaming Old-New of the atoms of the texts Olds and News (taken
+%   as names, not parsed) in the particles Indices (1-based).
+bridge_rename(Key, Olds, News, Indices, Err) :-
+    guarded(( filter_of(Key, F),
+              must_be(list(text), Olds), must_be(list(text), News),
+              maplist(atom_string, OldAtoms, Olds),
+              maplist(atom_string, NewAtoms, News),
+              pairs_keys_values(Renaming, OldAtoms, NewAtoms),
+              filter_rename(F, Renaming, Indices) ), Err).
 
 %!  bridge_time(+Key, -T:integer) is det.
 bridge_time(Key, T) :- filter_of(Key, F), filter_time(F, T).

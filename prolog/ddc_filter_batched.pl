@@ -10,9 +10,12 @@
           [ batched_init/6              % !State, +Module, +Items, +N, +Seed, +Threads
           ]).
 
+:- use_module(library(apply)).
 :- use_module(ddc_records).
 :- use_module(ddc_body, [info_derived_timed/2, info_rvs_untimed/2, info_rvs_timed/2]).
 :- use_module(ddc_batch).
+:- use_module(ddc_batch_state).
+:- use_module(ddc_batch_tables).
 
 :- use_module(ddc_ops).
 
@@ -58,6 +61,44 @@ engine_resample(State, Is) :-
     batched_current(State, S0),
     batch_resample(S0, Is, S),
     commit(State, S0, S).
+
+%   engine_rename(!State, +Moves, +Is): the constants renamed by Moves in
+%   the particles Is (1-based, sorted; filter_rename/3): a new current
+%   state (the previous one, for undo, is kept) whose groups holding a
+%   particle of Is have both tables renamed (ddc_batch_tables.pl,
+%   rename_table/5; a pending older table is resampled first), the other
+%   groups as they were.
+engine_rename(State, Moves, Is) :-
+    batched_current(State, S0),
+    (   S0 = groups(Gs0)
+    ->  foldl(renamed_group(Moves, Is), Gs0, Gs, 0, _),
+        S = groups(Gs)
+    ;   renamed_group(Moves, Is, S0, S, 0, _)
+    ),
+    batch_keep(S, Kept),
+    nb_link_batched_current(State, Kept).
+
+%   renamed_group(+Moves, +Is, +G0, -G, +Offset0, -Offset): group G0, whose
+%   particles follow the first Offset0 of the filter, renamed in those of
+%   Is.
+renamed_group(Moves, Is, G0, G, Off0, Off) :-
+    batch_size(G0, N),
+    Off is Off0+N,
+    findall(L, ( member(I, Is), I > Off0, I =< Off, L is I-Off0 ), Ls),
+    (   Ls == []
+    ->  G = G0
+    ;   batch_state_module(G0, M), batch_state_time(G0, T),
+        batch_state_facts(G0, Facts), batch_state_random(G0, R),
+        batch_state_tables(G0, Tables0),
+        tables_older_time(Tables0, T0), tables_older(Tables0, Older0),
+        tables_latest_time(Tables0, T1), tables_latest(Tables0, Latest0),
+        (   Older0 == none -> Older1 = none ; real_table(Older0, Older1) ),
+        rename_table(Older1, Moves, Ls, N, Older),
+        rename_table(Latest0, Moves, Ls, N, Latest),
+        make_tables([older_time(T0), older(Older), latest_time(T1), latest(Latest)], Tables),
+        make_batch_state([module(M), size(N), time(T), tables(Tables), facts(Facts),
+                          random(R)], G)
+    ).
 
 engine_holds(State, Goal, Flags) :-
     batched_current(State, S),

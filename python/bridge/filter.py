@@ -35,6 +35,11 @@ applies to, any other Prolog error in a step) raises :class:`FilterError` naming
 item and the cause; if the engine had already advanced, the step is undone, so the filter stays
 usable with everything it held.
 
+Renaming and reweighting: ``rename`` renames constants inside chosen particles (their worlds go
+on as if the names had always been so: data association per particle), ``reweight`` multiplies
+the weights by factors the caller computed (an importance correction), and ``particle_data``
+holds arrays of N rows that follow the particles through every resampling.
+
 Threads: a filter may be made, stepped, queried and closed in any thread (its particles live in
 a Prolog engine of their own that the calling thread runs for each call); calls on one filter
 are taken one at a time. Its program is compiled into a module of its own: loading the file
@@ -50,7 +55,7 @@ import os
 import threading
 import time as _time
 import warnings
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import wraps
 from pathlib import Path
@@ -61,6 +66,7 @@ import numpy as np
 
 from bridge import prolog
 from bridge.engines import ENGINES, Engine
+from bridge.particle_data import ParticleData
 from bridge.resampling import RESAMPLERS, Resampling, effective_sample_size, resample_indices
 from bridge.terms import Compound, Text, item_text, to_term
 from bridge.threads import DEFAULT_THREADS
@@ -246,6 +252,9 @@ class Filter:
         self.step_seconds: list[float] = []  #: wall time of every step
         self.step_prolog_seconds: list[float] = []  #: of which in the Prolog step call
         self.last_step: StepResult | None = None
+        #: name -> array with first dimension N, resampled with the particles (see
+        #: :class:`bridge.particle_data.ParticleData`)
+        self.particle_data = ParticleData(self.particles)
         self._key: str | None = None
         #: one call on the filter at a time (a step is several Prolog calls)
         self._lock = threading.RLock()
@@ -362,12 +371,111 @@ class Filter:
         if resampled:
             indices = resample_indices(self.weights, self.resampling, self._rng)
             _call("bridge_resample(K, I)", {"K": key, "I": indices.tolist()})
+            self.particle_data.resample(indices)
             self._log_weights = np.full(self.particles, -math.log(self.particles))
             self.resample_count += 1
         return self._finish(
             StepResult(self.time, frame, ess, resampled, increment, False, 0.0, prolog_seconds),
             started,
         )
+
+    # -- renaming and reweighting -------------------------------------------------------------
+    @_locked
+    def rename(
+        self,
+        mapping: Mapping[str, str],
+        particles: np.ndarray | Sequence[int] | None = None,
+    ) -> None:
+        """In the given particles, the constants ``old`` of ``mapping`` are named ``mapping[old]``.
+
+        ``mapping`` maps names (atoms) to names and must be a permutation of its keys
+        (``{"mug_1": "mug_2", "mug_2": "mug_1"}``; a name mapped to itself is allowed).
+        ``particles``: 0-based indices (repeats ignored), a boolean mask of N, or None for every
+        particle. In each of them every value it holds (of t, of t-1 for the next step's ``:t``
+        reads, and untimed) has each old name replaced by its new one, in the variable's
+        arguments (``pos(mug_1)``) and in the value (``mug_1``); the next step goes on as if the
+        names had always been so in those particles. The program and the step's facts are not
+        renamed; the other particles and the weights are unchanged (see ``filter_rename/3`` in
+        ``prolog/ddc_filter.pl``, and "Renaming constants in particles" in docs/filter.md).
+        A bad mapping or index raises :class:`FilterError` naming it; the filter is unchanged.
+        """
+        key = self._handle()
+        if not isinstance(mapping, Mapping):
+            raise FilterError(f"rename: the mapping must map old names to new names, "
+                              f"got {mapping!r}")
+        olds, news = list(mapping.keys()), list(mapping.values())
+        for name in olds + news:
+            if not isinstance(name, str):
+                raise FilterError(f"rename: names are strings, got {name!r}")
+        if len(set(news)) != len(news) or set(news) != set(olds):
+            raise FilterError(f"rename: the new names {sorted(news)} are not a permutation of "
+                              f"the old names {sorted(olds)}")
+        indices = self._particle_indices("rename", particles)
+        if not olds or indices.size == 0:
+            return
+        result = _call("bridge_rename(K, O, N, I, Err)",
+                       {"K": key, "O": olds, "N": news, "I": (indices + 1).tolist()})
+        if result["Err"]:
+            raise FilterError(f"rename: {result['Err']}")
+
+    def _particle_indices(
+        self, what: str, particles: np.ndarray | Sequence[int] | None
+    ) -> np.ndarray:
+        """0-based particle indices (int64) of ``particles``: indices, a boolean mask of N, or
+        None for all; a FilterError names a bad one."""
+        if particles is None:
+            return np.arange(self.particles, dtype=np.int64)
+        array = np.asarray(particles)
+        if array.dtype == bool:
+            if array.shape != (self.particles,):
+                raise FilterError(f"{what}: a particle mask must have shape "
+                                  f"({self.particles},), got {array.shape}")
+            return np.flatnonzero(array).astype(np.int64)
+        if array.size == 0:
+            return np.empty(0, dtype=np.int64)
+        if array.ndim != 1 or array.dtype.kind not in "iu":
+            raise FilterError(f"{what}: particles must be a 1-D sequence of integer indices, "
+                              f"got {particles!r}")
+        outside = array[(array < 0) | (array >= self.particles)]
+        if outside.size:
+            raise FilterError(f"{what}: particle index {int(outside[0])} is outside "
+                              f"0..{self.particles - 1}")
+        return array.astype(np.int64)
+
+    @_locked
+    def reweight(self, log_factors: np.ndarray) -> None:
+        """Multiply each particle's weight by ``exp(log_factors[i])`` and renormalise.
+
+        For an importance correction a caller computes itself (prior / proposal of a choice it
+        made per particle, e.g. the hypothesis behind a :meth:`rename`). ``log_factors``: shape
+        (N,), each finite or -inf, not all -inf. The log of the weighted mean factor is added to
+        :attr:`log_likelihood` (0 in expectation for a prior / proposal ratio). The ESS
+        (:attr:`ess`) sees the new weights at once; whether to resample is decided only in
+        :meth:`step`, after the step's own weighting, so a reweighted filter is resampled (if
+        its ESS is then below the threshold) at the next step. A bad array, or factors that
+        leave no particle with weight, raise :class:`FilterError` and change nothing.
+        """
+        self._handle()
+        try:
+            factors = np.asarray(log_factors, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise FilterError(f"reweight: log factors must be numbers: {exc}") from None
+        if factors.shape != (self.particles,):
+            raise FilterError(f"reweight: log factors must have shape ({self.particles},), "
+                              f"got {factors.shape}")
+        bad = np.flatnonzero(np.isnan(factors) | np.isposinf(factors))
+        if bad.size:
+            raise FilterError(f"reweight: log factor {int(bad[0])} is {factors[bad[0]]}; "
+                              "each must be finite or -inf")
+        if np.isneginf(factors).all():
+            raise FilterError("reweight: every log factor is -inf")
+        combined = self._log_weights + factors
+        increment = _logsumexp(combined)
+        if not math.isfinite(increment):
+            raise FilterError("reweight: the factors give weight 0 to every particle that "
+                              "has weight")
+        self._log_weights = combined - increment
+        self.log_likelihood += increment
 
     def _texts(self, kind: str, items: Iterable[Any]) -> list[str]:
         if isinstance(items, str | Compound | Text):
