@@ -29,7 +29,6 @@ coast_keep(0.9).            % fraction of its velocity a hidden object under not
 follow_keep(0.95).          % fraction of its offset from the occluder's centre kept per frame
 occluder_reach(0.15).       % an occluder is within 15 cm of the object in the table plane ...
 occluder_rise(0.02).        % ... and its centre is no more than 2 cm lower than the object's
-behind_prior(0.2).          % an object that vanishes beside an occluder is behind something else
 cover_height(0.12).         % a container whose centre rises more than this above the object's
                             % centre no longer covers it (it was lifted)
 
@@ -106,19 +105,17 @@ lowered_over(O, A):t+1 :=
     ;   true
     ).
 
-% Each particle picks among the choices (the paper's sample_occluder, plus `behind`): uniformly
-% among the candidates; `behind`, when A vanished just now, with behind_prior (an object that
-% vanishes as an occluder comes over it is more probably under it than hidden by something the
-% theory does not know of; the other candidates share the rest).  (In these bodies and in pos/1's, the goals every particle agrees on, such as
+% Each particle picks uniformly among the choices (the paper's sample_occluder, plus
+% `behind`).  (In these bodies and in pos/1's, the goals every particle agrees on, such as
 % seen(A):t, come before those a particle holds on its own, such as occluded_by(A, _):t:
 % the same answers, fewer proofs per particle.)
 pick_occluder(A):t+1 ~ uniform(Os) :=
     hidden(A):t+1, lost_anywhere(A):t, \+ occluded_by(A, _):t,
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
-pick_occluder(A):t+1 ~ finite(Ds) :=
+pick_occluder(A):t+1 ~ uniform(Os) :=
     hidden(A):t+1, seen(A):t, \+ occluded_by(A, _):t,
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \== [],
-    behind_or_under(Os1, Ds).
+    Os = [behind | Os1].
 pick_occluder(A):t+1 ~ uniform(Os) :=
     hidden(A):t+1, \+ seen(A):t, \+ lost_anywhere(A):t, \+ occluded_by(A, _):t,
     findall_forward(O, lowered_over(O, A):t+1, Os0), sort(Os0, Os), Os \== [].
@@ -224,8 +221,3 @@ prior_var(A, P):t+1 := object(A), \+ seen(A):t, lost_anywhere(A):t, lost_var(P).
 predictive_var(A, V):t+1 := prior_var(A, P):t+1, obs_var(R), V is P + R.
 
 diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V]).
-
-% The choices of pick_occluder/1 with their probabilities: `behind`, or one of the candidates Os.
-behind_or_under(Os, [W:behind | Ws]) :-
-    behind_prior(W), length(Os, K), WO is (1 - W) / K,
-    findall(WO:O, member(O, Os), Ws).
