@@ -58,9 +58,6 @@ class AssociationModel:
 
     Parameters
     ----------
-    belief_radius : float
-        ``r``: the standard deviation (metres, per axis) of a belief's predictive density
-        around each particle (the theory of occlusion's reappearance spread, 5 cm).
     cover_radius : float
         How near (metres, in the table plane) a perceived object must be to a particle for it
         to explain a hidden object there that no occluder covers (it may stand in front of
@@ -77,7 +74,6 @@ class AssociationModel:
         likelihood ratio (``anchoring train-matching`` fits them; 1 and 0 otherwise).
     """
 
-    belief_radius: float = BELIEF_RADIUS
     cover_radius: float = 0.15
     table_volume: float = 0.24
     new_odds: float = 1.0
@@ -86,7 +82,7 @@ class AssociationModel:
     appearance_offset: float = 0.0
 
     def __post_init__(self) -> None:
-        for name in ("belief_radius", "cover_radius", "table_volume"):
+        for name in ("cover_radius", "table_volume"):
             if not getattr(self, name) > 0:
                 raise ValueError(f"{name} must be positive, not {getattr(self, name)!r}")
         for name in ("new_odds", "clutter_odds"):
@@ -96,11 +92,10 @@ class AssociationModel:
             raise ValueError("the appearance calibration must be finite")
 
     @classmethod
-    def for_matcher(cls, matcher: Matcher, belief_radius: float = BELIEF_RADIUS
-                    ) -> AssociationModel:
+    def for_matcher(cls, matcher: Matcher) -> AssociationModel:
         """The defaults, with the appearance calibration the matching model's file records
         (``info["appearance_calibration"]``: ``{"scale": .., "offset": ..}``) if it has one."""
-        model = cls(belief_radius=belief_radius)
+        model = cls()
         info = getattr(matcher, "info", None) or {}
         calibration = info.get("appearance_calibration") if isinstance(info, dict) else None
         if isinstance(calibration, dict):
@@ -121,11 +116,10 @@ class AssociationModel:
             raise ValueError(f"association: unknown field {sorted(unknown)[0]!r}")
         return cls(**{k: float(v) for k, v in record.items()})
 
-    @property
-    def density_ratio(self) -> float:
-        """``(2 pi r^2)^(-3/2) * V``: a belief's predictive density at a particle, against the
-        uniform density of a new object."""
-        return (2.0 * math.pi * self.belief_radius ** 2) ** -1.5 * self.table_volume
+    def density_ratio(self, radius: float = BELIEF_RADIUS) -> float:
+        """``(2 pi r^2)^(-3/2) * V``: a belief's predictive density at a particle (blurred by
+        ``radius``, r), against the uniform density of a new object."""
+        return (2.0 * math.pi * radius ** 2) ** -1.5 * self.table_volume
 
     @property
     def rival_odds(self) -> float:
@@ -168,13 +162,13 @@ def unexplained_mass(anchor: Any, percepts: Sequence[Any], model: AssociationMod
     return float(weights[free].sum() / total) if total > 0 else 0.0
 
 
-def belief_ratio(mass: np.ndarray, unexplained: np.ndarray, model: AssociationModel
-                 ) -> np.ndarray:
+def belief_ratio(mass: np.ndarray, unexplained: np.ndarray, model: AssociationModel,
+                 radius: float = BELIEF_RADIUS) -> np.ndarray:
     """``B``, (A, P): from each anchor's belief mass near each percept (the predictive density
-    divided by its peak, :func:`anchoring.similarity.position_evidence`) and each anchor's
-    unexplained mass ``e_a`` (A,)."""
+    blurred by ``radius`` divided by its peak, :func:`anchoring.similarity.position_evidence`)
+    and each anchor's unexplained mass ``e_a`` (A,)."""
     e = np.clip(np.asarray(unexplained, dtype=float), 0.0, 1.0)[:, None]
-    return (1.0 - e) * np.asarray(mass, dtype=float) * model.density_ratio + e
+    return (1.0 - e) * np.asarray(mass, dtype=float) * model.density_ratio(radius) + e
 
 
 def reacquire_probability(log_appearance: np.ndarray, belief: np.ndarray,

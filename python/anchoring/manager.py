@@ -206,7 +206,7 @@ class AnchorManager:
         self.position_match: Literal["mass", "max"] = position_match
         self.belief_radius = float(belief_radius)
         self.association = (association if association is not None
-                            else AssociationModel.for_matcher(self.matcher, belief_radius))
+                            else AssociationModel.for_matcher(self.matcher))
         self.ambiguity_ratio = float(ambiguity_ratio)
         self.blind_time: float | None = None  # the last frame with no valid percept
         self._withholding: dict[str, float] = {}  # anchor symbol -> since when it withholds
@@ -312,7 +312,8 @@ class AnchorManager:
                 [1.0 if lost else unexplained_mass(a, frame, self.association)
                  for a, lost in zip(anchors, lost_blind, strict=True)])
             refuse |= believed[:, None] & (reacquire_probability(
-                log_appearance, belief_ratio(mass, unexplained, self.association),
+                log_appearance, belief_ratio(mass, unexplained, self.association,
+                                             self.belief_radius),
                 self.association) < 0.5)
             accept = (scores > 0) & ~refuse
             if accept.any():
