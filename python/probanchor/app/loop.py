@@ -49,6 +49,9 @@ class LoopConfig:
     # anchor left over (AnchorManager.reid_seconds); False switches that off, so that only
     # the matcher (and, with reasoning, the particles of hidden anchors) re-acquires.
     reidentify: bool = True
+    # Identities of look-alikes kept as hypotheses in the particles and revised by later
+    # evidence (anchoring.identity); False decides them once, by the most probable assignment.
+    identity: bool = True
 
 
 @dataclass
@@ -157,7 +160,8 @@ class AnchoringLoop:
                          for a in result.ambiguous]
             # seen again after being hidden: what may decide an earlier ambiguity
             evidence = sorted(s for s in result.reacquired if s in self._tracked)
-            revisions = self.reasoner.reason(states, ambiguous, frame.frame, evidence)
+            revisions = self.reasoner.reason(
+                states, ambiguous if self.config.identity else [], frame.frame, evidence)
             for revision in revisions:
                 self.revise(result, revision)
             self.reasoned_anchors = len(states)
