@@ -33,6 +33,8 @@
                      filter_holds/3, filter_values/4, filter_rows/6 ]).
 :- use_module(ddc_nesting, [check_text_nesting/2]).
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
+:- use_module(library(lists), [nth1/3]).
+:- use_module(ddc_observation_types, [observation_type_error/4]).
 
 /** <module> The Prolog side of the Python bridge
 
@@ -72,12 +74,14 @@ bridge_new(Program, N, Seed, Share, Threads, Engine, F, Used, Err) :-
 %
 %   One filter_step/4 with the observations and actions parsed from their texts; LogWeights
 %   are the step's log weights as floats ([] when Err is not "").  A text that does not parse
-%   or is not ground is an error naming its kind (observation, action), its 1-based place
-%   and its text.
+%   or is not ground, or an observation whose value is of a type the program does not weigh
+%   (ddc_observation_types.pl), is an error naming its kind (observation, action), its
+%   1-based place and its text.
 bridge_step(Key, ObsTexts, ActTexts, LW, Err) :-
     guarded(( filter_of(Key, F),
               parse_terms(observation, ObsTexts, Obs),
               parse_terms(action, ActTexts, Acts),
+              check_observation_types(F, ObsTexts, Obs),
               filter_step(F, Obs, Acts, LW0),
               maplist(to_float, LW0, LW)
             ), Err),
@@ -218,6 +222,16 @@ parse_term(Kind, Text, Term, I, I1) :-
           ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(Kind, I, Text, Msg)) )),
     (   ground(Term) -> true
     ;   throw(bridge(Kind, I, Text, "not ground (observations and actions must be)"))
+    ).
+
+%   check_observation_types(+F, +Texts, +Obs): bridge(observation, I, Text, Message) for
+%   the first observation whose value is of a type no clause of F's program weighs
+%   (ddc_observation_types.pl).
+check_observation_types(F, Texts, Obs) :-
+    (   observation_type_error(F, Obs, I, Message)
+    ->  nth1(I, Texts, Text),
+        throw(bridge(observation, I, Text, Message))
+    ;   true
     ).
 
 %   clean(+Message, -FirstLine)

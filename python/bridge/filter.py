@@ -179,6 +179,11 @@ def _locked(method: Callable[Concatenate[Filter, _P], _R]) -> Callable[Concatena
     return call
 
 
+def _a(name: str) -> str:
+    """``a list``, ``an int``."""
+    return f"{'an' if name[:1] in 'aeiou' else 'a'} {name}"
+
+
 def _as_term_text(value: Any) -> str:
     return item_text(value) if isinstance(value, str) else to_term(value)
 
@@ -478,10 +483,22 @@ class Filter:
         self.log_likelihood += increment
 
     def _texts(self, kind: str, items: Iterable[Any]) -> list[str]:
+        """The Prolog texts of a step's observations or actions: one term (Prolog text, a
+        ``Compound`` or ``Text``) or a list of them; anything else is a FilterError naming the
+        item (a number or a list is no fact, a dict's keys are not meant as facts)."""
         if isinstance(items, str | Compound | Text):
             items = [items]
+        if isinstance(items, Mapping | set | frozenset | bytes | bytearray) or not isinstance(
+                items, Iterable):
+            raise FilterError(f"{kind}s: {items!r} is {_a(type(items).__name__)}; give a list of "
+                              "terms (Prolog text such as 'observed(ball_1)', or bridge.terms "
+                              "values such as terms.observation(...))")
         texts = []
         for i, item in enumerate(items, start=1):
+            if not isinstance(item, str | Compound | Text):
+                raise FilterError(f"{kind} {i} ({item!r}): {_a(type(item).__name__)} is not a "
+                                  "term; give Prolog text or a bridge.terms value (fact, "
+                                  "observation, action)")
             try:
                 texts.append(_as_term_text(item))
             except (TypeError, ValueError) as exc:

@@ -290,6 +290,9 @@ def run_frames(frames: Iterable[PendingFrame], loop: AnchoringLoop,
                 lead_ms = 0.0
             else:                                   # total: the sum of the parts
                 following = upcoming() if upcoming is not None else None
+                # recorded, not left None: the last frame's stage with overlap is its own work
+                step.timings.total = ((time.perf_counter() - started) * 1000 + lead_ms
+                                      if overlap else step.timings.total_ms())
             outcome = loop.finish(step)
             records.append(outcome.record)
             if on_frame is not None:

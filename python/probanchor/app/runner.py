@@ -4,6 +4,8 @@ pictures, GIF and world file in an output directory."""
 from __future__ import annotations
 
 import logging
+import sys
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -21,7 +23,7 @@ from probanchor.app.store import (
     store_source,
     stored_source,
 )
-from probanchor.app.world_file import write_world
+from probanchor.app.world_file import world_facts, write_world
 from probanchor.evaluation import (
     TrackingRecord,
     evaluate,
@@ -53,6 +55,7 @@ class RunOptions(LoopConfig):
     rerun_spawn: bool = False  # ... and/or to a Rerun viewer started for it
     store: Path | None = None  # keep the world model in this SQLite store, frame by frame
     resume: Path | None = None  # continue the run kept in this store
+    serve: int | None = None  # answer queries on the live world model on this port (0: any)
 
 
 @dataclass
@@ -64,16 +67,38 @@ class RunOutput:
     pictures: list[Path] = field(default_factory=list)
 
 
+#: The most particles a run's filter takes: every step hands each particle's values of every
+#: anchor between Prolog and Python as lists, and at some millions of particles these outgrow
+#: SWI-Prolog's stack (1 GB per thread) after the step has run (docs/limits.md).
+MAX_PARTICLES = 1_000_000
+
+
+def check_particles(particles: Any) -> None:
+    """A ValueError for a number of particles a run cannot take (before it is tried)."""
+    if isinstance(particles, bool) or not isinstance(particles, int) or particles < 1:
+        raise ValueError(f"--particles {particles!r}: not a positive whole number")
+    if particles > MAX_PARTICLES:
+        raise ValueError(f"--particles {particles:,}: more than the {MAX_PARTICLES:,} a run's "
+                         "filter takes (the particles' values, handed between Prolog and "
+                         "Python each frame, would outgrow SWI-Prolog's stack)")
+
+
 def run(options: RunOptions) -> RunOutput:
     if options.store is not None and options.resume is not None:
         raise ValueError("give --store (a new run) or --resume (continue one), not both")
-    store = WorldStore.open(options.resume) if options.resume is not None else None
+    if options.reasoning:
+        check_particles(options.particles)
+    # a resumed run takes the store's lock before it reads anything of it
+    store = WorldStore.open(options.resume, write=True) if options.resume is not None \
+        else None
     try:
         if store is not None and options.scenario is options.percepts is options.bag is None:
             kind, path = stored_source(store.meta())  # the stored run's own source
             setattr(options, kind, path)
         if store is not None:
             adopt_stored_options(options, store.meta())
+            if options.reasoning:
+                check_particles(options.particles)
         given = [s for s in (options.scenario, options.percepts, options.bag) if s is not None]
         if len(given) != 1:
             raise ValueError("give one of a scenario, a percept stream (--percepts) or a bag "
@@ -134,12 +159,24 @@ def _run(options: RunOptions, loop: AnchoringLoop, store: WorldStore | None = No
         from probanchor.app.rerun_frames import RerunFrames  # rerun-sdk only when asked for
 
         viewer = RerunFrames(options.rerun, options.rerun_spawn, name)
+    live = None
+    if options.serve is not None:
+        from probanchor.app.live import LiveWorld
+
+        live = LiveWorld(options.serve)
+        print(f"serving the world model at {live.url}/query?q=QUERY (anchoring shell "
+              f"--connect {live.port})", file=sys.stderr, flush=True)
     bar = tqdm(total=None if total is None else max(0, total - start), unit="frame",
                desc=name, disable=not options.progress)
 
     def on_frame(outcome: FrameOutcome, loop: AnchoringLoop) -> None:
         if store is not None:
             store.write_frame(outcome, loop)
+        if live is not None:
+            record = outcome.record
+            perceived = {s for s, h in record.hypotheses.items() if h.perceived}
+            live.frame_done(record.frame, record.time, lambda: world_facts(
+                loop, perceived, frame=(record.frame, record.time)))
         if pictures is not None:
             pictures(outcome, loop)
         if viewer is not None:
@@ -148,20 +185,55 @@ def _run(options: RunOptions, loop: AnchoringLoop, store: WorldStore | None = No
 
     records: list[TrackingRecord] = list(stored.records)
     stopped: BaseException | None = None
+    source_error: list[BaseException] = []
     try:
-        run_frames(frames, loop, on_frame, overlap=options.overlap, records=records)
-    except Exception as exc:  # written below with the frames done, then raised again
-        stopped = exc
+        try:
+            run_frames(_until_error(frames, source_error), loop, on_frame,
+                       overlap=options.overlap, records=records)
+            if source_error:  # the source's error, after every frame before it was done
+                stopped = source_error[0]
+        except Exception as exc:  # written below with the frames done, then raised again
+            stopped = exc
+        finally:
+            bar.close()
+            if viewer is not None:
+                viewer.close()
+        for message in skipped:
+            logger.warning("skipped: %s", message)
+        output = _finish(options, loop, name, records, skipped, stopped, pictures)
     finally:
-        bar.close()
-        if viewer is not None:
-            viewer.close()
-    for message in skipped:
-        logger.warning("skipped: %s", message)
-    output = _finish(options, loop, name, records, skipped, stopped, pictures)
+        if live is not None:
+            _end_serving(live, loop, records)
     if stopped is not None:
         raise stopped
     return output
+
+
+def _end_serving(live: Any, loop: AnchoringLoop, records: list[TrackingRecord]) -> None:
+    """Queries under way get the last frame's world model; then the server stops."""
+    last = records[-1] if records else None
+    try:
+        live.finish(None if last is None else lambda: world_facts(
+            loop, {s for s, h in last.hypotheses.items() if h.perceived},
+            frame=(last.frame, last.time)))
+    except Exception as exc:  # (the particles could not be read: world.pl says why)
+        logger.warning("the query server's last world model: %s", exc)
+        live.finish(None)
+    finally:
+        live.close()
+
+
+def _until_error(frames: Iterator[Any], error: list[BaseException]) -> Iterator[Any]:
+    """The source's frames until it raises; its error goes into ``error`` and the frames end.
+
+    The loop asks for the next frame before it processes the current one (to perceive it
+    meanwhile): a source that raised there would lose the frame before its error (a bag's
+    image that changes size at frame 8 would end the run after frame 6).
+    """
+    try:
+        yield from frames
+    except Exception as exc:
+        error.append(exc)
 
 
 def _finish(options: RunOptions, loop: AnchoringLoop, name: str,
@@ -188,7 +260,11 @@ def _finish(options: RunOptions, loop: AnchoringLoop, name: str,
     write_records(options.out / "records.jsonl", records)
     perceived = {s for s, h in records[-1].hypotheses.items() if h.perceived} \
         if records else set()
-    write_world(options.out / "world.pl", loop, perceived)
+    missing = write_world(options.out / "world.pl", loop, perceived,
+                          (records[-1].frame, records[-1].time) if records else None)
+    if missing is not None:
+        logger.warning("%s: written without the particles: %s", options.out / "world.pl",
+                       missing)
     if pictures is not None and stopped is None:
         output.pictures = pictures.paths
         output.gif = pictures.finish(options.out / "run.gif")

@@ -55,6 +55,9 @@ def add_bag_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--max-skew", type=float, default=0.02,
                        help="seconds between the stamps of a colour and its depth image "
                             "(default 0.02)")
+    group.add_argument("--max-lead", type=float, default=60.0,
+                       help="seconds a colour image's stamp may be ahead of the time the bag "
+                            "recorded it; a frame stamped further ahead is skipped (default 60)")
 
 
 def _pose(text: str) -> Any:
@@ -72,7 +75,8 @@ def bag_topics(args: argparse.Namespace) -> Any:
 
     return BagTopics(colour=args.colour_topic, depth=args.depth_topic,
                      camera_info=args.info_topic, world_frame=args.world_frame,
-                     camera_pose=args.camera_pose, max_skew=args.max_skew)
+                     camera_pose=args.camera_pose, max_skew=args.max_skew,
+                     max_lead=args.max_lead)
 
 
 def register(sub: Any) -> None:
@@ -105,6 +109,10 @@ def register(sub: Any) -> None:
     parser.add_argument("--resume", type=Path, default=None, metavar="WORLD.db",
                         help="continue the run kept in this store after a restart (the same "
                              "source and options; the source may be left out)")
+    parser.add_argument("--serve", type=int, default=None, metavar="PORT",
+                        help="answer Prolog queries on the live world model while the run goes "
+                             "on, on http://127.0.0.1:PORT (0: any free port, printed): "
+                             "anchoring shell --connect PORT, or GET /query?q=QUERY")
     parser.add_argument("--rerun-spawn", action="store_true",
                         help="open the Rerun viewer and stream the run to it")
     add_run_options(parser)
@@ -123,7 +131,7 @@ def main(args: argparse.Namespace) -> int:
         identity=not args.no_identity, out=args.out,
         threads=args.threads, engine=args.engine, overlap=not args.sequential,
         picture_every=args.every, progress=not args.quiet, rerun=args.rerun,
-        rerun_spawn=args.rerun_spawn, store=args.store, resume=args.resume,
+        rerun_spawn=args.rerun_spawn, store=args.store, resume=args.resume, serve=args.serve,
     ))
     print(format_summary(output.summary))
     if output.out is not None:
