@@ -100,8 +100,10 @@ occluder_candidate(A, O):t+1 :=
 % - A has been hidden under nothing (behind something, or left on the table when its container
 %   was lifted away, or no occluder was near when it vanished): only an occluder that is
 %   lowered over it, i.e. covers it now and did not in the previous frame (a box that was
-%   still too high when the mug under it vanished; a container put back over an object).  A
-%   container sliding on the table does not slide over what stands there.
+%   still too high when the mug under it vanished; a container put back over an object), or
+%   one coming down onto it (below; a cup held over a ball hides it from the camera before it
+%   is put down on it).  A container sliding on the table does not slide over what stands
+%   there.
 lowered_over(O, A):t+1 :=
     occluder_candidate(A, O):t+1, pos(A):t ~= (_, _, Z), cover_height(H),
     (   pos(O):t ~= (_, _, ZO)
@@ -137,6 +139,11 @@ pick_occluder(A):t+1 ~ uniform(Os) :=
 pick_occluder(A):t+1 ~ uniform(Os) :=
     hidden(A):t+1, \+ seen(A):t, \+ lost_anywhere(A):t, \+ occluded_by(A, _):t,
     findall_forward(O, lowered_over(O, A):t+1, Os0), sort(Os0, Os), Os \== [].
+pick_occluder(A):t+1 ~ finite(Ds) :=
+    hidden(A):t+1, \+ seen(A):t, \+ lost_anywhere(A):t, \+ occluded_by(A, _):t,
+    \+ lowered_over(_, A):t+1,
+    findall_forward(O, coming_down_on(O, A):t+1, Os0), sort(Os0, Os), Os \== [],
+    behind_or_under(Os, Ds).
 
 occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
 % The occlusion lasts while the object is hidden and its occluder is perceived and still

@@ -174,3 +174,33 @@ def test_answers_of_large_groups_are_limited() -> None:
 def test_bad_parameters_are_refused(bad: dict) -> None:
     with pytest.raises(ValueError):
         IdentityHypotheses(shell(10), **bad)
+
+
+def test_a_cycle_of_three_is_revised_by_what_two_containers_hide() -> None:
+    """Three look-alike cups in a row, each hiding its own ball, permuted unseen (a 3-cycle:
+    the cup now on the left is cup-2's object, the middle one cup-3's, the right one cup-1's).
+    Two lifts decide it: the answers are renamed accordingly, a 3-cycle and not a swap."""
+    xs = {"cup-1": np.array([-0.25, 0.1, 0.05]), "cup-2": np.array([0.0, 0.1, 0.05]),
+          "cup-3": np.array([0.25, 0.1, 0.05])}
+    n = 3000
+    world = World(n, seed=5)
+    world.pos = {c: np.tile(x, (n, 1)) for c, x in xs.items()}
+    world.pos.update({f"ball-{k}": np.tile(xs[f"cup-{k}"], (n, 1)) for k in (1, 2, 3)})
+    world.under = {f"ball-{k}": np.array([f"cup-{k}"] * n, dtype=object) for k in (1, 2, 3)}
+    hyp = IdentityHypotheses(world, seed=6)
+    cups = ("cup-1", "cup-2", "cup-3")
+    hyp.associate([AmbiguousPercept(20, k, c, cups, dict.fromkeys(cups, 3.0), xs[c])
+                   for k, c in enumerate(cups)])
+    for c, x in xs.items():
+        world.see(c, x, 10.0)
+    world.follow()
+    world.see("ball-3", xs["cup-2"], 0.05)  # the middle cup hid ball-3
+    world.see("ball-1", xs["cup-3"], 0.05)  # the right one ball-1
+    revisions = hyp.revise(40)
+    assert [r.mapping for r in revisions] == [{"cup-1": "cup-2", "cup-2": "cup-3",
+                                               "cup-3": "cup-1"}]
+    # the worlds follow: the cup named cup-3 now is on the middle, with ball-3 under it
+    assert np.allclose(world.pos["cup-3"][:, 0], 0.0)
+    assert set(world.under["ball-3"]) == {"cup-3"}
+    for c in cups:
+        assert hyp.probabilities(c)[c] > 0.99
