@@ -74,6 +74,7 @@
 :- use_module(ddc_records).
 :- use_module(ddc_batch_program).
 :- use_module(ddc_batch_tables).
+:- use_module(ddc_batch_col).
 :- use_module(ddc_batch_columns, [plan/3, bind/2]).
 :- use_module(ddc_batch_rv, [weigh_branch/5]).
 :- use_module(ddc_batch_eval).
@@ -150,10 +151,10 @@ materialise_derived(M, E, T, All) :-
                env_time_table(E, T, Tab),
                env_size(E, Size),
                collect(G, G:(t+1), L, E1, All, _),
-               functor(C, c, Size),
                (   L = '$c'(LC, _, _)
-               ->  sets_each(All, LC, C)
-               ;   list_to_set(L, Set), fill_column(Size, C, Set)
+               ->  col_new(Size, '$u', C),
+                   (   col_sets_each(All, LC, C) -> true ; sets_each(All, LC, C) )
+               ;   list_to_set(L, Set), col_new(Size, Set, C)
                ),
                make_entry([column(C), status(open), arity(none)], Entry0),
                table_put(Tab, '$inst'(N/A), Entry0),
@@ -163,7 +164,7 @@ materialise_derived(M, E, T, All) :-
 
 sets_each([], _, _).
 sets_each([I|Is], LC, C) :-
-    arg(I, LC, L), list_to_set(L, Set), arg(I, C, Set),
+    col_arg(I, LC, L), list_to_set(L, Set), col_setarg(I, C, Set),
     sets_each(Is, LC, C).
 
 %!  batch_step(+State0, +Observations, +Facts, -Result) is det.
@@ -175,9 +176,11 @@ batch_step(groups([G1|Gs]), Obs, Facts, step(groups([S1|Ss]), LWs)) :- !,
     maplist(step_job(Obs, Facts), Gs, Jobs),
     pool_run(group_step(G1, Obs, Facts, true, step(S1, LWs1)), Jobs, Results),
     maplist(group_done(Facts), Gs, Results, Ss, LWss),
-    append([LWs1|LWss], LWs).
+    append([LWs1|LWss], LWs),
+    col_collect_garbage.
 batch_step(State0, Obs, Facts, Result) :-
-    group_step(State0, Obs, Facts, true, Result).
+    group_step(State0, Obs, Facts, true, Result),
+    col_collect_garbage.
 
 %   check_list(+Check, +N, -Checked): the particles a group checks for
 %   overlapping clauses (none unless Check is true).
@@ -206,7 +209,7 @@ group_step(State0, Obs, Facts, Check, step(State, LWs)) :-
                          sweep(M, next, E, T1, All),
                          materialise_derived(M, E, T1, All) ),
                        R),
-    LW =.. [_|LWs],
+    col_list(LW, LWs),
     duplicate_term(Facts, Facts1),
     make_batch_state([module(M), size(N), time(T1), tables(Tables), facts(Facts1),
                       random(R)], State).
@@ -222,7 +225,7 @@ weigh_observation(E, H, V, Ps, LW) :-
     env_at_time(E, T1, ES),
     forall(rv_clause(M, H, now, D, B, At),
            weigh_clause(ES, H, T1, now, B, D, At, V, Ps, Done, LW)),
-    (   member(I, Ps), arg(I, Done, U), U == '$u'
+    (   col_uncomputed(Ps, Done, [_|_])
     ->  throw(error(ddc(no_observation_clause(H ~= V), query), _))
     ;   true
     ).
@@ -263,6 +266,8 @@ older_table(S, Tab) :-
 
 %   sources(+Indices, +Sizes, -Pairs): for each group (of Sizes), its
 %   particles' ancestors as Group-Index pairs (1-based).
+sources(Is, Sizes, Pairs) :-
+    col_sources(Is, Sizes, Pairs), !.
 sources(Is, Sizes, Pairs) :-
     maplist(source(Sizes), Is, All),
     split_by(Sizes, All, Pairs).
@@ -382,7 +387,7 @@ batch_values(S, Template, Goal, Values) :-          % a variable's values: read 
     (   env_time_table(E, T, _)
     ->  with_state(S, value(E, X, T, All, Entry)),
         entry_column(Entry, C),
-        C =.. [_|Vs],
+        col_list(C, Vs),
         maplist(wrapped_value(Wrap), Vs, Values)
     ;   batch_state_size(S, N),
         length(Values, N), maplist(=(none), Values)
@@ -394,7 +399,7 @@ batch_values(S, Template, Goal, Values) :-
     new_column(N, '$u', Done),
     with_state(S, forall(eval_body(Goal, E, All, Ps),
                          ( plan(Template, Tmpl, Bs), value_each(Ps, Bs, Tmpl, Done, VC) ))),
-    VC =.. [_|Values].
+    col_list(VC, Values).
 
 wrapped_value(Wrap, V, W) :-
     (   ( V == '$undef' ; V == '$u' ) -> W = none
@@ -408,9 +413,9 @@ group_values(TG, G, Values) :-
 
 value_each([], _, _, _, _).
 value_each([I|Is], Bs, Tmpl, Done, VC) :-
-    (   arg(I, Done, U), U == '$u'
-    ->  nb_setarg(I, Done, done),
-        \+ \+ ( bind(Bs, I), nb_setarg(I, VC, Tmpl) )
+    (   col_is_u(I, Done)
+    ->  col_setarg(I, Done, done),
+        \+ \+ ( bind(Bs, I), col_setarg(I, VC, Tmpl) )
     ;   true
     ),
     value_each(Is, Bs, Tmpl, Done, VC).

@@ -14,8 +14,9 @@
           ]).
 
 :- use_module(ddc_dist).
+:- use_module(ddc_batch_col).
 :- use_module(ddc_batch_columns,
-              [plan/3, bind/2, has_column/1, compiled_instance/4]).
+              [plan/3, bind/2, has_column/1, compiled_instance/4, vm_finite/4]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -28,8 +29,11 @@ each particle.  The distribution is prepared once per batch
 shares); a gaussian whose mean is a column's tuple draws and weighs from
 the column's value itself (dist_sample_at/3, dist_log_density_at/4).
 
-Columns are read and written by particle index (arg/3, nb_setarg/3):
-they are arrays, not records.
+Columns (ddc_batch_col.pl) are read and written by particle index
+(col_arg/3, col_setarg/3): they are arrays, not records.  A gaussian
+drawn or weighed at a column's values runs in one call of the compiled
+column library where it is loaded (col_draw_gauss/5, col_weigh_gauss/7),
+its random numbers from a generator seeded from the group's stream.
 */
 
 %!  assign(+Ps:list(integer), !Column, +Dist) is det.
@@ -52,22 +56,29 @@ assign(Ps, C, D) :-
         ;   instance_each(Ps, Bs, Tmpl, C)
         )
     ;   plan(D, Tmpl, Bs),
-        dist_prepare(Tmpl, P),
-        draw_each(Ps, Bs, P, C)
+        (   Tmpl = uniform(L), Bs = [LC-Pat], var(Pat), L == Pat,
+            col_backend(foreign),
+            random_between(0, 0x3fffffffffffffff, Seed),
+            col_draw_uniform(Ps, LC, C, Seed)
+        ->  true
+        ;   Tmpl = finite(Es), col_backend(foreign),
+            vm_finite(Ps, Bs, Es, C)
+        ->  true
+        ;   dist_prepare(Tmpl, P),
+            draw_each(Ps, Bs, P, C)
+        )
     ).
 
 %!  set_each(+Ps:list(integer), !Column, +Value) is det.
 %
 %   Each particle of Ps whose value in Column is not drawn yet gets Value.
-set_each([], _, _).
-set_each([I|Is], C, V) :-
-    (   arg(I, C, U), U == '$u' -> nb_setarg(I, C, V) ; true ),
-    set_each(Is, C, V).
+set_each(Ps, C, V) :-
+    col_set_each(Ps, C, V).
 
 instance_each([], _, _, _).
 instance_each([I|Is], Bs, Tmpl, C) :-
-    (   arg(I, C, U), U == '$u'
-    ->  \+ \+ ( bind(Bs, I), nb_setarg(I, C, Tmpl) )
+    (   col_is_u(I, C)
+    ->  \+ \+ ( bind(Bs, I), col_setarg(I, C, Tmpl) )
     ;   true
     ),
     instance_each(Is, Bs, Tmpl, C).
@@ -79,33 +90,64 @@ instance_each([I|Is], Bs, Tmpl, C) :-
 draw_each(Ps, [C1-Pat], P, C) :-
     dist_mean_slots(P, Slots), Slots == Pat, !,
     draw_at(Ps, C1, P, C).
+draw_each(Ps0, Bs, P, C) :-
+    col_backend(foreign),
+    col_uncomputed(Ps0, C, Ps),
+    mean_column(Ps, Bs, P, C, Means), !,
+    draw_at(Ps, Means, P, C).
 draw_each(Ps, [C1-Pat], P, C) :- !,
     draw_each1(Ps, C1, Pat, P, C).
-draw_each([], _, _, _).
-draw_each([I|Is], Bs, P, C) :-
-    (   arg(I, C, U), U == '$u'
-    ->  \+ \+ ( bind(Bs, I), dist_sample_prepared(P, S), nb_setarg(I, C, S) )
-    ;   true
-    ),
-    draw_each(Is, Bs, P, C).
+draw_each(Ps, Bs, P, C) :-
+    draw_loop(Ps, Bs, P, C).
 
-draw_at([], _, _, _).
-draw_at([I|Is], C1, P, C) :-
-    (   arg(I, C, U), U == '$u'
-    ->  arg(I, C1, Mean),
-        dist_sample_at(P, Mean, S),
-        nb_setarg(I, C, S)
+draw_loop([], _, _, _).
+draw_loop([I|Is], Bs, P, C) :-
+    (   col_is_u(I, C)
+    ->  \+ \+ ( bind(Bs, I), dist_sample_prepared(P, S), col_setarg(I, C, S) )
     ;   true
     ),
-    draw_at(Is, C1, P, C).
+    draw_loop(Is, Bs, P, C).
+
+%   draw_at(+Ps, +C1, +P, !C): a draw of P at each particle's mean in C1
+%   (in one call of the column library where it can).
+draw_at(Ps, C1, P, C) :-
+    col_backend(foreign),
+    dist_prepared_factor(P, Factor, _),
+    random_between(0, 0x3fffffffffffffff, Seed),
+    col_draw_gauss(Ps, C1, Factor, C, Seed), !.
+draw_at(Ps, C1, P, C) :-
+    draw_at_each(Ps, C1, P, C).
+
+draw_at_each([], _, _, _).
+draw_at_each([I|Is], C1, P, C) :-
+    (   col_is_u(I, C)
+    ->  col_arg(I, C1, Mean),
+        dist_sample_at(P, Mean, S),
+        col_setarg(I, C, S)
+    ;   true
+    ),
+    draw_at_each(Is, C1, P, C).
 
 draw_each1([], _, _, _, _).
 draw_each1([I|Is], C1, Pat, P, C) :-
-    (   arg(I, C, U), U == '$u'
-    ->  \+ \+ ( arg(I, C1, Pat), dist_sample_prepared(P, S), nb_setarg(I, C, S) )
+    (   col_is_u(I, C)
+    ->  \+ \+ ( col_arg(I, C1, Pat), dist_sample_prepared(P, S), col_setarg(I, C, S) )
     ;   true
     ),
     draw_each1(Is, C1, Pat, P, C).
+
+%   mean_column(+Ps, +Binds, +P, +Like, -Means): the prepared gaussian P's
+%   mean in each particle of Ps as a column (of Like's size): the same
+%   mean everywhere (Binds []) or computed from the binds (in one call of
+%   the column library where it can), for draw_at/4 and weigh_at/6.
+mean_column(Ps, Bs, P, Like, Means) :-
+    dist_mean_slots(P, Slots),
+    col_size(Like, N),
+    (   Bs == []
+    ->  ground(Slots), col_new(N, Slots, Means)
+    ;   col_new(N, '$u', Means),
+        compiled_instance(Ps, Bs, Slots, Means)
+    ).
 
 %!  weigh_branch(+Dist, +Value, !Done, !LogWeights, +Ps:list(integer)) is det.
 %
@@ -125,33 +167,51 @@ weigh_branch(D, V, Done, LW, Ps) :-
 weigh_each(Ps, [C1-Pat], P, V, Done, LW) :-
     dist_mean_slots(P, Slots), Slots == Pat, !,
     weigh_at(Ps, C1, P, V, Done, LW).
+weigh_each(Ps0, Bs, P, V, Done, LW) :-
+    col_backend(foreign),
+    col_uncomputed(Ps0, Done, Ps),
+    mean_column(Ps, Bs, P, LW, Means), !,
+    weigh_at(Ps, Means, P, V, Done, LW).
 weigh_each(Ps, [C1-Pat], P, V, Done, LW) :- !,
     weigh_each1(Ps, C1, Pat, P, V, Done, LW).
-weigh_each([], _, _, _, _, _).
-weigh_each([I|Is], Bs, P, V, Done, LW) :-
-    (   arg(I, Done, U), U == '$u'
-    ->  nb_setarg(I, Done, done),
+weigh_each(Ps, Bs, P, V, Done, LW) :-
+    weigh_loop(Ps, Bs, P, V, Done, LW).
+
+weigh_loop([], _, _, _, _, _).
+weigh_loop([I|Is], Bs, P, V, Done, LW) :-
+    (   col_is_u(I, Done)
+    ->  col_setarg(I, Done, done),
         \+ \+ ( bind(Bs, I), dist_log_density_prepared(P, V, LP), add_log(I, LW, LP) )
     ;   true
     ),
-    weigh_each(Is, Bs, P, V, Done, LW).
+    weigh_loop(Is, Bs, P, V, Done, LW).
 
-weigh_at([], _, _, _, _, _).
-weigh_at([I|Is], C1, P, V, Done, LW) :-
-    (   arg(I, Done, U), U == '$u'
-    ->  nb_setarg(I, Done, done),
-        arg(I, C1, Mean),
+%   weigh_at(+Ps, +C1, +P, +V, !Done, !LW): the log density of V under P
+%   at each particle's mean in C1 (in one call of the column library where
+%   it can).
+weigh_at(Ps, C1, P, V, Done, LW) :-
+    col_backend(foreign),
+    dist_prepared_factor(P, Factor, LogNorm),
+    col_weigh_gauss(Ps, C1, Factor, LogNorm, V, Done, LW), !.
+weigh_at(Ps, C1, P, V, Done, LW) :-
+    weigh_at_each(Ps, C1, P, V, Done, LW).
+
+weigh_at_each([], _, _, _, _, _).
+weigh_at_each([I|Is], C1, P, V, Done, LW) :-
+    (   col_is_u(I, Done)
+    ->  col_setarg(I, Done, done),
+        col_arg(I, C1, Mean),
         dist_log_density_at(P, Mean, V, LP),
         add_log(I, LW, LP)
     ;   true
     ),
-    weigh_at(Is, C1, P, V, Done, LW).
+    weigh_at_each(Is, C1, P, V, Done, LW).
 
 weigh_each1([], _, _, _, _, _, _).
 weigh_each1([I|Is], C1, Pat, P, V, Done, LW) :-
-    (   arg(I, Done, U), U == '$u'
-    ->  nb_setarg(I, Done, done),
-        \+ \+ ( arg(I, C1, Pat), dist_log_density_prepared(P, V, LP), add_log(I, LW, LP) )
+    (   col_is_u(I, Done)
+    ->  col_setarg(I, Done, done),
+        \+ \+ ( col_arg(I, C1, Pat), dist_log_density_prepared(P, V, LP), add_log(I, LW, LP) )
     ;   true
     ),
     weigh_each1(Is, C1, Pat, P, V, Done, LW).
@@ -159,11 +219,11 @@ weigh_each1([I|Is], C1, Pat, P, V, Done, LW) :-
 %   add_log(+I, !LW, +LP): particle I's log weight plus LP (minus infinity
 %   stays so, a finite log weight plus minus infinity becomes it).
 add_log(I, LW, LP) :-
-    arg(I, LW, L0),
+    col_arg(I, LW, L0),
     (   L0 > -1.0e308, LP > -1.0e308
-    ->  L is L0 + LP, nb_setarg(I, LW, L)
+    ->  L is L0 + LP, col_setarg(I, LW, L)
     ;   minus_infinity(L0) -> true
-    ;   nb_setarg(I, LW, LP)
+    ;   col_setarg(I, LW, LP)
     ).
 
 minus_infinity(X) :- float(X), X < -1.0e308.

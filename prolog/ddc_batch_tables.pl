@@ -13,10 +13,9 @@
             table_get/3,                % +Table, +Key, -Entry
             table_put/3,                % +Table, +Key, +Entry
             table_match/3,              % +Table, ?Key, -Entry
-            new_column/3,               % +N, +Value, -Column
-            fill_column/3,              % +N, !Column, +Value
-            uncomputed/3,               % +Ps, +Column, -Missing
-            defined_at/3,               % +Ps, +Column, -Defined
+            new_column/3,               % +N, +Value, -Column (ddc_batch_col.pl's col_new/3)
+            uncomputed/3,               % +Ps, +Column, -Missing (col_uncomputed/3)
+            defined_at/3,               % +Ps, +Column, -Defined (col_defined_at/3)
             settle/1,                   % !Entry
             entry_tuple_arity/2,        % !Entry, -Arity
             tuple_shape/2,              % +K, -Shape
@@ -28,15 +27,17 @@
 :- use_module(library(apply)).
 :- use_module(library(lists)).
 :- use_module(ddc_records).
+:- use_module(ddc_batch_col).
+:- reexport(ddc_batch_col, [col_new/3 as new_column, col_uncomputed/3 as uncomputed,
+                            col_defined_at/3 as defined_at]).
 :- use_module(ddc_rename, [rename_term/3, rename_arguments/3]).
 
 :- set_prolog_flag(optimise, true).
 
 /** <module> Tables of columns for the batched filter
 
-A column is a term c(V1, ..., VN) with an argument per particle: '$u'
-where the particle's value is not drawn yet, '$undef' where no clause
-applies.
+A column (ddc_batch_col.pl) holds a value per particle: '$u' where the
+particle's value is not drawn yet, '$undef' where no clause applies.
 
 A table holds the columns of one time: Key -> entry(Column, Status,
 Arity), Status one of open (some particle may lack its value: '$u'),
@@ -98,41 +99,6 @@ table_match(T, K, E) :-
     arg(_, T, L), nonvar(L), member(K-E, L).
 
                  /*******************************
-                 *            COLUMNS           *
-                 *******************************/
-
-%!  new_column(+N, +Value, -Column) is det.
-%
-%   A column of N particles, each holding Value.
-new_column(N, V, C) :-
-    functor(C, c, N),
-    fill_column(N, C, V).
-
-%!  fill_column(+N, !Column, +Value) is det.
-%
-%   Binds the arguments N..1 of Column (fresh variables) to Value.
-fill_column(0, _, _) :- !.
-fill_column(I, C, V) :- arg(I, C, V), I1 is I-1, fill_column(I1, C, V).
-
-%!  uncomputed(+Ps, +Column, -Missing) is det.
-%
-%   Missing: the particles of Ps whose value in Column is not drawn yet.
-uncomputed([], _, []).
-uncomputed([I|Is], C, Ps) :-
-    arg(I, C, V),
-    (   V == '$u' -> Ps = [I|Ps1] ; Ps = Ps1 ),
-    uncomputed(Is, C, Ps1).
-
-%!  defined_at(+Ps, +Column, -Defined) is det.
-%
-%   Defined: the particles of Ps that have a value in Column.
-defined_at([], _, []).
-defined_at([I|Is], C, Ps) :-
-    arg(I, C, V),
-    (   ( V == '$u' ; V == '$undef' ) -> Ps = Ps1 ; Ps = [I|Ps1] ),
-    defined_at(Is, C, Ps1).
-
-                 /*******************************
                  *            ENTRIES           *
                  *******************************/
 
@@ -142,28 +108,9 @@ defined_at([I|Is], C, Ps) :-
 %   while one lacks it).
 settle(Entry) :-
     entry_column(Entry, C),
-    functor(C, _, N),
-    arg(1, C, V1),
-    column_status(N, C, V1, same, S0),
-    (   S0 == open -> true
-    ;   S0 == same -> nb_set_entry_status(Entry, same(V1))
-    ;   nb_set_entry_status(Entry, S0)
-    ).
-
-%   column_status(+I, +C, +V1, +S0, -S): the status of C's arguments I..1
-%   (open as soon as one lacks its value).
-column_status(0, _, _, S, S) :- !.
-column_status(I, C, V1, S0, S) :-
-    arg(I, C, V),
-    (   V == '$u' -> S = open
-    ;   (   S0 == same, V == V1 -> S1 = same
-        ;   S0 == mixed -> S1 = mixed
-        ;   V == '$undef' -> S1 = mixed
-        ;   V1 == '$undef' -> S1 = mixed
-        ;   S1 = defined
-        ),
-        I1 is I-1,
-        column_status(I1, C, V1, S1, S)
+    col_status(C, S),
+    (   S == open -> true
+    ;   nb_set_entry_status(Entry, S)
     ).
 
 %!  entry_tuple_arity(!Entry, -Arity) is det.
@@ -175,16 +122,19 @@ entry_tuple_arity(Entry, Arity) :-
     (   A0 \== unknown
     ->  Arity = A0
     ;   entry_column(Entry, C),
-        arg(1, C, V1),
-        value_arity(V1, 1, K),
-        (   K > 1, functor(C, _, N), with_arity_all(N, C, K) -> A = K ; A = none ),
+        (   col_num_arity(C, K0)
+        ->  ( K0 > 1 -> A = K0 ; A = none )
+        ;   col_arg(1, C, V1),
+            value_arity(V1, 1, K),
+            (   K > 1, col_size(C, N), with_arity_all(N, C, K) -> A = K ; A = none )
+        ),
         nb_set_entry_arity(Entry, A),
         Arity = A
     ).
 
 with_arity_all(N, C, K) :-
     tuple_shape(K, Shape),
-    forall(between(1, N, I), ( arg(I, C, V), subsumes_term(Shape, V) )).
+    forall(between(1, N, I), ( col_arg(I, C, V), subsumes_term(Shape, V) )).
 
 value_arity(V, K0, K) :-
     (   nonvar(V), V = (_, B) -> K1 is K0+1, value_arity(B, K1, K) ; K = K0 ).
@@ -233,15 +183,13 @@ resampled_entry(Es, Pairs, N, E) :-
     (   Es = [E1|_], E1 \== none, entry_status(E1, Same), Same = same(V),
         entry_arity(E1, A),
         forall(member(E2, Es), same_entry(E2, V))
-    ->  (   member(E2, Es), E2 \== none, entry_column(E2, C0), functor(C0, _, N)
+    ->  (   member(E2, Es), E2 \== none, entry_column(E2, C0), col_size(C0, N)
         ->  C1 = C0
-        ;   functor(C, c, N), fill_column(N, C, V), duplicate_term(C, C1)
+        ;   col_new(N, V, C), duplicate_term(C, C1)
         ),
         linked_entry(C1, Same, A, E)
     ;   maplist(source_column, Es, Cs),
-        Src =.. [s|Cs],
-        pair_values(Pairs, Src, Vs),
-        C =.. [c|Vs],
+        col_gather(Cs, Pairs, C),
         (   forall(member(E1, Es), defined_entry(E1))
         ->  common_arity(Es, A),
             linked_entry(C, defined, A, E)
@@ -269,13 +217,6 @@ defined_entry(E) :- E \== none, entry_status(E, defined).
 
 source_column(none, '$none') :- !.
 source_column(E, C) :- entry_column(E, C).
-
-%   (Src: the groups' columns, an argument per group.)
-pair_values([], _, []).
-pair_values([G-L|Ps], Src, [V|Vs]) :-
-    arg(G, Src, C),
-    (   C == '$none' -> V = '$u' ; arg(L, C, V) ),
-    pair_values(Ps, Src, Vs).
 
 common_arity([E|Es], Arity) :-
     entry_arity(E, A),
@@ -332,11 +273,11 @@ rename_entry(Tab0, Moves, Inverse, Ps, N, K, Tab) :-
     (   table_get(Tab0, K0, E0) -> true ; E0 = none ),
     (   K0 == K, E \== none,
         entry_column(E, C),
-        forall(member(I, Ps), ( arg(I, C, V), renamed_value(Moves, K, V, V1), V1 == V ))
+        forall(member(I, Ps), ( col_arg(I, C, V), renamed_value(Moves, K, V, V1), V1 == V ))
     ->  table_link(Tab, K, E)
     ;   entry_column_or_none(E, C),
         entry_column_or_none(E0, C0),
-        functor(C1, c, N),
+        col_new(N, '$u', C1),
         renamed_column(1, N, Ps, Moves, K, C, C0, C1),
         (   K = '$inst'(_) -> A = none ; A = unknown ),
         linked_entry(C1, open, A, E1),
@@ -356,12 +297,12 @@ renamed_column(I, N, Ps, Moves, K, C, C0, C1) :-
     ->  true
     ;   (   Ps = [I|Ps1]
         ->  (   C0 == none -> V = '$u'
-            ;   arg(I, C0, V0), renamed_value(Moves, K, V0, V)
+            ;   col_arg(I, C0, V0), renamed_value(Moves, K, V0, V)
             )
         ;   Ps1 = Ps,
-            (   C == none -> V = '$u' ; arg(I, C, V) )
+            (   C == none -> V = '$u' ; col_arg(I, C, V) )
         ),
-        arg(I, C1, V),
+        col_setarg(I, C1, V),
         I1 is I+1,
         renamed_column(I1, N, Ps1, Moves, K, C, C0, C1)
     ).

@@ -327,7 +327,8 @@ filter_size(F, N) :-
 %   ddc_world.pl), O values held by the particles themselves (summed over
 %   particles), K steps in which the particles agreed on everything new
 %   (computed once).  A batched filter: [particles(N), time(T),
-%   engine(batched)].
+%   engine(batched), columns(B)], B foreign (the compiled column
+%   library) or prolog (ddc_batch_col.pl).
 filter_statistics(F, S) :-
     outside_filter(F), !,
     filter_call(F, filter_statistics(F, S)).

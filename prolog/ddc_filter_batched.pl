@@ -14,6 +14,7 @@
 :- use_module(ddc_records).
 :- use_module(ddc_body, [info_derived_timed/2, info_rvs_untimed/2, info_rvs_timed/2]).
 :- use_module(ddc_batch).
+:- use_module(ddc_batch_col, [col_backend/1]).
 :- use_module(ddc_batch_state).
 :- use_module(ddc_batch_tables).
 
@@ -123,10 +124,11 @@ engine_size(State, N) :-
     batched_current(State, S),
     batch_size(S, N).
 
-engine_statistics(State, [particles(N), time(T), engine(batched)]) :-
+engine_statistics(State, [particles(N), time(T), engine(batched), columns(B)]) :-
     batched_current(State, S),
     batch_size(S, N),
-    batch_time(S, T).
+    batch_time(S, T),
+    col_backend(B).
 
 engine_free(_).
 

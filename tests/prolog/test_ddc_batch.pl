@@ -12,6 +12,7 @@
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module('../../prolog/ddc_batch_tables').
+:- use_module('../../prolog/ddc_batch_col').
 
 program(Lines, File) :-
     tmp_file_stream(text, File, S),
@@ -299,17 +300,19 @@ test(pit_world_non_ground_reads_agree_with_the_per_particle_engine) :-
 %   fields are linked, not bound.
 test(a_resampled_table_survives_backtracking) :-
     table_new(Tab),
-    make_entry([column(c(1, 2, 3)), status(defined), arity(unknown)], E0),
+    col_from_list([1, 2, 3], C0),
+    make_entry([column(C0), status(defined), arity(unknown)], E0),
     table_put(Tab, x, E0),
-    make_entry([column(c(a, a, a)), status(same(a)), arity(none)], S0),
+    col_from_list([a, a, a], CS0),
+    make_entry([column(CS0), status(same(a)), arity(none)], S0),
     table_put(Tab, y, S0),
     functor(Holder, holder, 1),
     forall(true, ( resample_tables([Tab], [1-3, 1-2, 1-1], New),
                    nb_linkarg(1, Holder, New) )),
     arg(1, Holder, Kept),
-    table_get(Kept, x, E), entry_column(E, C), C == c(3, 2, 1),
+    table_get(Kept, x, E), entry_column(E, C), col_list(C, Vs), Vs == [3, 2, 1],
     entry_status(E, defined),
-    table_get(Kept, y, S), entry_column(S, CS), CS == c(a, a, a),
+    table_get(Kept, y, S), entry_column(S, CS), col_list(CS, VsS), VsS == [a, a, a],
     entry_status(S, Same), Same == same(a), entry_arity(S, A), A == none.
 
 :- end_tests(ddc_batch).
