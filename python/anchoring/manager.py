@@ -39,10 +39,11 @@ Per frame (:meth:`AnchorManager.process`):
    not perceived this frame is *withheld* (no symbol, reported in ``result.withheld``; for at
    most ``withhold_seconds`` in a row per anchor; :mod:`anchoring.views`).
 
-Symbols are ``<category>-<k>``: the k-th anchor acquired with that best category. A symbol never
-changes during the anchor's life, even when its category estimate changes later (the anchor's
-``category`` / ``best_category`` give the current estimate); so the reasoner's atoms stay
-stable. When a glitch is dropped and it holds the newest number of its category, the number is
+Symbols are ``<category>-<k>``: the k-th anchor acquired with that best category. A symbol
+does not change when the anchor's category estimate changes later (the anchor's ``category`` /
+``best_category`` give the current estimate), so the reasoner's atoms stay stable; only a
+revision (:meth:`AnchorManager.relabel`, later evidence showing two look-alikes had each
+other's symbols, :mod:`anchoring.identity`) makes anchors exchange their symbols. When a glitch is dropped and it holds the newest number of its category, the number is
 given back, so a one-frame false detection leaves no gap.
 """
 
