@@ -43,8 +43,9 @@ Symbols are ``<category>-<k>``: the k-th anchor acquired with that best category
 does not change when the anchor's category estimate changes later (the anchor's ``category`` /
 ``best_category`` give the current estimate), so the reasoner's atoms stay stable; only a
 revision (:meth:`AnchorManager.relabel`, later evidence showing two look-alikes had each
-other's symbols, :mod:`anchoring.identity`) makes anchors exchange their symbols. When a glitch is dropped and it holds the newest number of its category, the number is
-given back, so a one-frame false detection leaves no gap.
+other's symbols, :mod:`anchoring.identity`) makes anchors exchange their symbols. When a
+glitch is dropped and it holds the newest number of its category, the number is given back,
+so a one-frame false detection leaves no gap.
 """
 
 from __future__ import annotations
