@@ -50,10 +50,26 @@ learn_program_scores(M, File, Targets0, _Options, Scores) :-
     load_program(M, Items, Heads),
     (   Targets0 == []
     ->  findall(N, ( member(N/A, Heads), M:'$ddcl_pred'(N, A, rv(_)),
-                     target_examples(M, N, A, Ks), Ks \== [] ), Targets)
+                     target_examples(M, N, A, Ks), Ks \== [] ), Targets),
+        (   Targets == [] -> no_facts_error(M, File, Heads) ; true )
     ;   Targets = Targets0
     ),
     maplist(target_scores(M, File), Targets, Scores).
+
+%   no_facts_error(+M, +Program, +Targets): none of the targets (N/A) has
+%   a grounding in the test data; the error says how the test data were
+%   read (their own declarations, the program's record, --bias files, or
+%   none) and, without declarations, which file to pass.
+no_facts_error(M, Program, Targets) :-
+    (   M:'$ddcl_file'(Test, _) -> true ; Test = Program ),
+    (   M:'$ddcl_bias_source'(Source) -> true ; Source = declared ),
+    maplist(target_key_text(M), Targets, Names),
+    atomic_list_concat(Names, ', ', Text),
+    findall(N/A1, ( member(N/A, Targets), A1 is A+1, M:'$ddcl_pred'(N, A1, atom) ), Long),
+    throw(error(ddc_learn(test_without_facts(Text, Program, Source, Long), Test:0), _)).
+
+target_key_text(M, N/A, Text) :-
+    length(As, A), K =.. [N|As], dc_term(M, K, DK), term_text(DK, [], Text).
 
 load_program(M, Items0, Heads) :-
     maplist(internal_item(M), Items0, Items),
@@ -98,7 +114,8 @@ program_rv(M, K, D, B, W) :-
 target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_likelihood: LL,
                            mean_log_likelihood: MLL, uncovered: U, accuracy: Acc, rmse: RMSE}) :-
     (   M:'$ddcl_pred'(N, A, rv(Spec)) -> true
-    ;   throw(error(ddc_learn(target_without_facts(N/any), File:0), _))
+    ;   M:'$prog_clause'(N/A0, _, _) -> no_facts_error(M, File, [N/A0])
+    ;   no_facts_error(M, File, [N/0])
     ),
     length(Vs, A), K0 =.. [N|Vs], dc_term(M, K0, T0), term_text(T0, [], Text),
     target_examples(M, N, A, Keys),

@@ -18,6 +18,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal
 
+from threadpoolctl import threadpool_limits
+
 from bridge.learning import LearningData
 from bridge.program import DDCError
 from probanchor.ddclearn.files import write_atomically
@@ -52,6 +54,9 @@ class LearnResult:
     options: SearchOptions
     seed: int | None
     command: str | None = None
+    #: The program's record of its data: the DC text of ``learned_from(Dialect, Files,
+    #: Targets, Declarations)`` (``bridge.learning.LearningData.record``).
+    record: str | None = None
     _program: str | None = field(default=None, repr=False)
 
     @property
@@ -151,6 +156,9 @@ def learn(
     """
     options = options or SearchOptions()
     data = LearningData(files, seed=seed, samples=samples)
+    # the fits are small: BLAS threads only wait for each other (up to 5 times slower on a
+    # shared two-core machine)
+    limits = threadpool_limits(limits=1, user_api="blas")
     try:
         declared = data.targets()
         chosen = _select(declared, targets)
@@ -180,11 +188,13 @@ def learn(
                     bar.update(1)
         leaves = [(r.node, r.model_term, r.regressors) for t in results for r in t.leaves]
         background = data.background(leaves)
+        record = data.record([str(f) for f in files], [t.predicate for t in results])
     finally:
+        limits.restore_original_limits()
         data.free()
     return LearnResult(files=[str(Path(f)) for f in files], targets=results,
                        background=background, warnings=warnings, options=options, seed=seed,
-                       command=command)
+                       command=command, record=record)
 
 
 def _select(declared: list[dict], wanted: Sequence[str] | None) -> list[dict]:
@@ -237,6 +247,14 @@ def _program_text(r: LearnResult, tree: bool = False) -> str:
                  f"{o.min_gain:g}, lookahead {str(o.lookahead).lower()}; leaves: smoothing "
                  f"{o.leaf.smoothing:g}, l2 {o.leaf.l2:g}; seed {r.seed}.")
     lines.append("")
+    if r.record:
+        lines += [
+            "% What the program was learned from: the data's dialect, files and targets, and the",
+            "% declarations that say how their facts are read (`ddc evaluate` reads test files",
+            "% without declarations by them).",
+            r.record,
+            "",
+        ]
     if r.background:
         lines.append("% Background knowledge from the data that the learned clauses call.")
         lines.extend(r.background)
@@ -259,6 +277,7 @@ def evaluate(
     program: str | Path,
     files: Sequence[str | Path],
     targets: Sequence[str] | None = None,
+    bias: Sequence[str | Path] | None = None,
 ) -> dict[str, dict[str, Any]]:
     """Held-out scores of a DC program's clauses on test data.
 
@@ -275,6 +294,12 @@ def evaluate(
         Test data, in the same format as training data (bias lines are read too).
     targets : sequence of str, optional
         Which targets (default: every random variable the program defines that has facts).
+    bias : sequence of path, optional
+        When no test file has a declaration (facts only, as DreaML's held-out files): the
+        files whose declarations say how the facts are read (the training file; its facts are
+        not read). Without it such facts are read in the dialect and with the declarations of
+        the data the program was learned from (its ``learned_from/4`` record), or, for a
+        program without one, in the project's own dialect.
 
     Returns
     -------
@@ -282,7 +307,7 @@ def evaluate(
         Keyed by target: ``n``, ``weight``, ``log_likelihood``, ``mean_log_likelihood``,
         ``uncovered`` and ``accuracy`` (discrete) or ``rmse`` (continuous).
     """
-    data = LearningData(files, targets=False)
+    data = LearningData(files, targets=False, bias=bias, program=program)
     try:
         preds: list[str] = []
         if targets:
