@@ -18,11 +18,12 @@ target the clauses, groundings, seconds and training log-likelihood (``--json``:
 keyed by target). ``ddc evaluate`` scores a DC program on held-out facts: per target the number of
 test groundings, the mean log-likelihood per grounding (natural log) and the accuracy (discrete)
 or RMSE (continuous); test files of facts only (DreaML's held-out files) are read in the dialect
-and with the declarations of the data the program was learned from, or of ``--bias`` files. ``ddc split`` writes a training and a test file whose test facts form
-worlds of their own (docs/learning.md, "Held-out data"). ``ddc cross-validate`` splits the data
-into K folds of separate worlds and, one fold per job (local processes or Ray, docs/cluster.md),
-learns on the other folds and scores the held-out one: per fold and over all folds, the columns of
-``ddc evaluate``.
+and with the declarations of the data the program was learned from, or of ``--bias`` files.
+``ddc split`` writes a training and a test file whose test facts form worlds of their own
+(docs/learning.md, "Held-out data"). ``ddc cross-validate`` splits the data into K folds of
+separate worlds and, one fold per job (local processes or Ray, docs/cluster.md), learns on the
+other folds and scores the held-out one: per fold and over all folds, the columns of ``ddc
+evaluate``.
 """
 
 from __future__ import annotations
