@@ -57,7 +57,8 @@ learn_clause(M, Node, Model, Regs, Clause) :-
 %
 %   learn_clause/5 for Python: the model as Prolog text; Texts has clause
 %   (the clause in DC syntax), distribution (its head's) and model (the
-%   statistical model's goals, "" without regressors).
+%   statistical model's goals, "" without regressors; a root model's
+%   features and scores left out).
 learn_leaf_text(M, Node, ModelText, Regs, _{clause: CT, distribution: DT, model: MT}) :-
     term_string(Model, ModelText),
     leaf_clause(M, Node, Model, Regs, Clause, Dist, Goals),
@@ -70,10 +71,11 @@ learn_leaf_text(M, Node, ModelText, Regs, _{clause: CT, distribution: DT, model:
 
 %   leaf_clause(+M, +Node, +Model, +Regs, -Clause, -Dist, -Goals): the
 %   leaf's clause(Term, Bindings) (learn_clause/5), its head's distribution
-%   and its model's goals.
+%   and its model's goals (not those of a root model's features and
+%   scores, which the clause computes before them).
 leaf_clause(M, Node, Model, Regs, clause((Head ~ Dist := Body), Bs), Dist, Goals) :-
-    clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs),
-    append(Lits, Goals, Ls),
+    clause_parts(M, Node, Model, Regs, Head, Dist, Lits, SGoals-Goals, Bs),
+    append([Lits, SGoals, Goals], Ls),
     conj_from_list(Ls, Body).
 
 strip_parens(S0, S) :-
@@ -291,7 +293,10 @@ print_cond((G -> true)) :- !, print_literal(G).
 print_cond((A, B)) :- !, print_conj((A, B)).
 print_cond(G) :- print_literal(G).
 
-clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs) :-
+%   clause_parts(+M, +Node, +Model, +Regs, -Head, -Dist, -Lits, -ScoreGoals-ModelGoals, -Bs):
+%   a leaf clause's head, distribution, path literals, the goals of its
+%   root model's features and scores (score_goals/9), its model's goals.
+clause_parts(M, Node, Model, Regs, Head, Dist, Lits, SGoals-MGoals, Bs) :-
     M:'$ddcl_node'(Node, Info, _),
     node_info_target(Info, target(N, A, Spec)),
     node_info_path(Info, Path),
@@ -307,8 +312,7 @@ clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs) :-
     regressor_vars(Regs, Xs1, Xs),
     (   model_goals(Model, Spec, Xs, Dist, MGoals, Bs2, Bs) -> true
     ;   throw(error(ddc_learn(bad_model(Model, Spec), Node), _))
-    ),
-    append(SGoals, MGoals, Goals).
+    ).
 
 %   tree_head(+M, +Info, -Head, -HeadVars, -Names): the DC head of the
 %   tree of a node (Info, a node_info record), with a fresh variable for

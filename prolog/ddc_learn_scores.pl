@@ -9,6 +9,7 @@
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(assoc)).
+:- use_module(library(option)).
 :- use_module(ddc_dist).
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_text, [term_text/3]).
@@ -42,10 +43,12 @@ proof needs (ddc_learn_worlds.pl).
 %   give weighted partial worlds (expected scores).  Scores: one dict per
 %   target with target, n (groundings), weight, log_likelihood (sum),
 %   mean_log_likelihood, uncovered (groundings no clause applied to),
-%   accuracy (discrete targets) or rmse (continuous).
+%   accuracy (discrete targets) or rmse (continuous).  Options:
+%   examples(true) adds examples, each example's [Weight, LogLikelihood]
+%   in the order of the target's groundings.
 %
 %   @error ddc_learn(value_not_in_program(Key, Value, Values), File:Line)
-learn_program_scores(M, File, Targets0, _Options, Scores) :-
+learn_program_scores(M, File, Targets0, Options, Scores) :-
     data_read_terms(File, own, Items),
     load_program(M, Items, Heads),
     (   Targets0 == []
@@ -54,7 +57,11 @@ learn_program_scores(M, File, Targets0, _Options, Scores) :-
         (   Targets == [] -> no_facts_error(M, File, Heads) ; true )
     ;   Targets = Targets0
     ),
-    maplist(target_scores(M, File), Targets, Scores).
+    maplist(target_scores(M, File), Targets, Scores0),
+    (   option(examples(true), Options)
+    ->  Scores = Scores0
+    ;   maplist([D0, D]>>del_dict(examples, D0, _, D), Scores0, Scores)
+    ).
 
 %   no_facts_error(+M, +Program, +Targets): none of the targets (N/A) has
 %   a grounding in the test data; the error says how the test data were
@@ -112,7 +119,8 @@ program_rv(M, K, D, B, W) :-
     assertz(M:'$prog_clause'(N/A, Ks-D-W, G)).
 
 target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_likelihood: LL,
-                           mean_log_likelihood: MLL, uncovered: U, accuracy: Acc, rmse: RMSE}) :-
+                           mean_log_likelihood: MLL, uncovered: U, accuracy: Acc, rmse: RMSE,
+                           examples: PerExample}) :-
     (   M:'$ddcl_pred'(N, A, rv(Spec)) -> true
     ;   M:'$prog_clause'(N/A0, _, _) -> no_facts_error(M, File, [N/A0])
     ;   no_facts_error(M, File, [N/0])
@@ -126,7 +134,8 @@ target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_l
              ->  ddc_learn_facts:eval_dist_at(D0, CW, D), R = d(D)
              ;   R = uncovered
              ) ),
-    foldl(score_example(M, N, Ks, Goal, Y-R, Spec), Keys, score_sums(0, 0, 0, 0, 0), S),
+    foldl(score_example(M, N, Ks, Goal, Y-R, Spec), Keys, score_sums(0, 0, 0, 0, 0)-PerExample,
+          S-[]),
     S = score_sums(SW, SLL, SC, SE, U),
     (   SW > 0, U =:= 0 -> MLL is SLL / SW ; SW > 0 -> MLL = -inf ; MLL = nan ),
     LL = SLL,
@@ -135,12 +144,19 @@ target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_l
     ;   Acc = nan, ( SW > 0 -> RMSE is sqrt(SE / SW) ; RMSE = nan )
     ).
 
-score_example(M, N, Ks, Goal, Out, Spec, Key, S0, S) :-
+%   score_example(..., +Key, +Sums0-[[Weight, LogLik]|Es], -Sums-Es): an
+%   example's scores added to the sums, and its own weight and
+%   log-likelihood (over its partial worlds) listed.
+score_example(M, N, Ks, Goal, Out, Spec, Key, S0-[[W1, L1]|Es], S-Es) :-
     copy_term(Ks-Goal-Out, Key-G-O),
     empty_assoc(E0),
     K =.. [N|Key], example_weight(M, K, W),
     world_alternatives(M, G, O, E0, W, Alts),
-    foldl(score_alternative(M, N, Key, Spec), Alts, S0, S).
+    foldl(score_alternative(M, N, Key, Spec), Alts, S0, S),
+    S0 = score_sums(Wa, La, _, _, _),
+    S = score_sums(Wb, Lb, _, _, _),
+    W1 is Wb - Wa,
+    (   La =:= Lb -> L1 = 0.0 ; L1 is Lb - La ).
 
 %   score_sums(Weight, LogLikelihood, Correct, SquaredError, Uncovered):
 %   the sums over a target's groundings and partial worlds.

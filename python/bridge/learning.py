@@ -271,14 +271,19 @@ class LearningData:
                         "Ls": [[int(n), m, [int(r) for r in rs], c] for n, m, rs, c in leaves]})
         return str(result["T"][0]) if result["T"] else None
 
-    def program_scores(self, program: str | Path,
-                       predicates: Sequence[str] = ()) -> list[dict[str, Any]]:
-        """Held-out scores of a DC program's clauses on this data (``learn_program_scores/5``)."""
+    def program_scores(self, program: str | Path, predicates: Sequence[str] = (),
+                       examples: bool = False) -> list[dict[str, Any]]:
+        """Held-out scores of a DC program's clauses on this data (``learn_program_scores/5``).
+
+        With ``examples`` each target's dict has ``examples``: per grounding (in the order of
+        the target's groundings) its weight and log-likelihood.
+        """
         path = Path(program).resolve()
         if not path.is_file():
             raise DDCError(f"{path}: no such file")
-        result = _call("ddc_learn:learn_program_scores(M, F, Ts, [], Ss)",
-                       {"M": self.module, "F": str(path), "Ts": list(predicates)})
+        result = _call("ddc_learn:learn_program_scores(M, F, Ts, [examples(E)], Ss)",
+                       {"M": self.module, "F": str(path), "Ts": list(predicates),
+                        "E": "true" if examples else "false"})
         return [dict(s) for s in result["Ss"]]
 
     def free(self) -> None:

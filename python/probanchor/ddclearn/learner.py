@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal
 
+import numpy as np
 from threadpoolctl import threadpool_limits
 
 from bridge.learning import LearningData
@@ -278,6 +279,7 @@ def evaluate(
     files: Sequence[str | Path],
     targets: Sequence[str] | None = None,
     bias: Sequence[str | Path] | None = None,
+    examples: bool = False,
 ) -> dict[str, dict[str, Any]]:
     """Held-out scores of a DC program's clauses on test data.
 
@@ -300,6 +302,11 @@ def evaluate(
         not read). Without it such facts are read in the dialect and with the declarations of
         the data the program was learned from (its ``learned_from/4`` record), or, for a
         program without one, in the project's own dialect.
+    examples : bool, default=False
+        Also give each grounding's weight and log-likelihood (``example_weight``,
+        ``example_log_likelihood``: arrays in the order of the target's groundings in the
+        data, the order of :func:`probanchor.ddclearn.baselines.feature_table`'s rows for data
+        without uncertain facts).
 
     Returns
     -------
@@ -314,7 +321,7 @@ def evaluate(
             known = {target_key(str(t["name"])): str(t["predicate"]) for t in data.targets()}
             for w in targets:
                 preds.append(known.get(w, w.replace(":t+1", "_t1").replace(":t", "_t")))
-        scores = data.program_scores(program, preds)
+        scores = data.program_scores(program, preds, examples=examples)
     finally:
         data.free()
     out: dict[str, dict[str, Any]] = {}
@@ -331,5 +338,9 @@ def evaluate(
             entry["accuracy"] = acc
         if not math.isnan(rmse):
             entry["rmse"] = rmse
+        if examples:
+            per = np.asarray(s["examples"], dtype=float).reshape(-1, 2)
+            entry["example_weight"] = per[:, 0]
+            entry["example_log_likelihood"] = per[:, 1]
         out[target_key(str(s["target"]))] = entry
     return out

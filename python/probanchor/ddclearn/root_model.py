@@ -6,11 +6,13 @@ of both entities of a pair). The root model gives the tree that view: a generali
 over the *root features* of a target (each candidate literal that reads only the head's
 variables: a numeric value, with its mean where undefined and an "undefined" indicator beside
 it; a count; one indicator per branch of a discrete attribute, an aggregate's mode, a threshold
-test or a relation), fitted with an L2 penalty chosen by cross-validation. Its linear predictors,
-the *scores* (one for a Boolean, continuous or count target, K - 1 for K classes), become
-regressors that every node of the tree starts with, so that a leaf's model is a regression on the
-scores and its path's own values: a leaf recalibrates the root model where the tree found it
-wrong, and a tree without splits is the root model itself.
+test or a relation), with an L2 penalty of scikit-learn's default strength. Its linear
+predictors, the *scores* (one for a Boolean, continuous or count target, K - 1 for K classes),
+are regressors that every node of the tree starts with and that a leaf's model takes as an
+*offset* (:func:`probanchor.ddclearn.leaves.fit_offset_leaf`): a leaf shifts the root model's
+prediction and adds its path's own values where the tree found it wrong, and a tree without
+splits is the root model itself. Whether a tree reads the root model at all is decided on
+held-out examples (:class:`probanchor.ddclearn.search.SearchOptions`, ``root_model``).
 
 The scores the search sees are *cross-fitted*: a row's score comes from the model fitted on the
 other folds (by example), so that a leaf weighs the score by how well it predicts rows it was not
@@ -49,8 +51,11 @@ VALUE_KINDS: frozenset[str] = frozenset({"numeric", "agg_numeric", "count"})
 #: Candidate kinds whose branches are indicator features.
 BRANCH_KINDS: frozenset[str] = frozenset({"discrete", "agg_discrete", "threshold", "test"})
 
-#: The L2 penalties (on standardised features, against the summed log-likelihood) tried.
-L2_GRID: tuple[float, ...] = (0.3, 3.0, 30.0)
+#: The L2 penalty of the root model, ``l2 / 2 ||w||^2`` on the standardised weights against
+#: the summed log-likelihood: scikit-learn's default for its logistic regression (C = 1).
+#: A penalty chosen by cross-validation from (0.3, 3, 30) was no better on held-out data (the
+#: choice is noisy where it matters, on a few hundred examples) and three times as slow.
+L2: float = 1.0
 #: Folds of the cross-validation (by example).
 FOLDS: int = 5
 #: Fewest examples for a root model (each fold needs enough rows to fit on).
@@ -169,9 +174,9 @@ class RootModel:
     rows : list of list of float
         Per score, the weights over the features in their own units and the bias last.
     l2 : float
-        The penalty chosen by cross-validation.
+        Its penalty.
     cv_log_likelihood : float
-        The cross-validated log-likelihood per unit of weight at that penalty.
+        Its cross-validated log-likelihood per unit of weight.
     plain_cv_log_likelihood : float
         The same for the model without features (class frequencies, a Gaussian, a Poisson).
     scores : ndarray of shape (n, q)
@@ -315,14 +320,15 @@ def _plain_cv(kind: str, y: np.ndarray, w: np.ndarray, folds: np.ndarray, K: int
 
 def fit_root_model(kind: str, y: np.ndarray, w: np.ndarray, example: np.ndarray,
                    features: RootFeatures, n_classes: int | None = None,
-                   smoothing: float = 1.0) -> RootModel | None:
+                   smoothing: float = 1.0, l2: float = L2) -> RootModel | None:
     """Fit a target's root model and cross-fit its scores.
 
-    The penalty is the one of ``L2_GRID`` with the best cross-validated log-likelihood
-    (``FOLDS`` folds of the examples; a continuous target's variance is each fold's mean
-    squared out-of-fold residual). None when there are no features, fewer than
-    ``MIN_EXAMPLES`` examples, a discrete target with one class, or when no penalty does
-    better in cross-validation than the model without features.
+    The scores of the training rows are out-of-fold (``FOLDS`` folds of the examples), and
+    so is the log-likelihood that decides whether the model is worth having (a continuous
+    target's variance is each fold's mean squared out-of-fold residual). None when there are
+    no features, fewer than ``MIN_EXAMPLES`` examples, a discrete target with one class in a
+    fold, or when the model does not do better in cross-validation than the model without
+    features.
 
     Parameters
     ----------
@@ -338,6 +344,8 @@ def fit_root_model(kind: str, y: np.ndarray, w: np.ndarray, example: np.ndarray,
         K for a discrete target.
     smoothing : float, default=1.0
         The pseudo-count of the model without features (``LeafOptions.smoothing``).
+    l2 : float, default=L2
+        The penalty ``l2 / 2 ||w||^2`` on the standardised weights.
 
     Returns
     -------
@@ -354,32 +362,24 @@ def fit_root_model(kind: str, y: np.ndarray, w: np.ndarray, example: np.ndarray,
     k = min(FOLDS, len(np.unique(el)))
     folds = fold_of(el, k)
     plain = _plain_cv(kind, yl, wl, folds, n_classes, smoothing)
-    best: tuple[float, float, np.ndarray] | None = None
-    for l2 in L2_GRID:
-        eta = np.zeros((len(yl), int(n_classes) if kind == "discrete" else 1))
-        total = 0.0
-        ok = True
-        for f in range(k):
-            tr, te = folds != f, folds == f
-            if kind == "discrete" and len(np.unique(yl[tr])) < 2:
-                ok = False
-                break
-            std = _Standard(Xl[tr], wl[tr])
-            coef, icpt = _fit(kind, std(Xl[tr]), yl[tr], wl[tr], n_classes, l2, smoothing)
-            eta[te] = std(Xl[te]) @ coef.T + icpt
-            if kind == "continuous":
-                r = yl[te] - eta[te, 0]
-                var = max(float(wl[te] @ r**2 / wl[te].sum()), 1e-12)
-                total += float(wl[te] @ _log_likelihood(kind, eta[te], yl[te], var))
-        if not ok or not np.isfinite(eta).all():
+    eta = np.zeros((len(yl), int(n_classes) if kind == "discrete" else 1))
+    total = 0.0
+    for f in range(k):
+        tr, te = folds != f, folds == f
+        if kind == "discrete" and len(np.unique(yl[tr])) < 2:
             return None
-        if kind != "continuous":
-            total = float(wl @ _log_likelihood(kind, eta, yl, 0.0))
-        score = total / float(wl.sum())
-        if best is None or score > best[0]:
-            best = (score, l2, eta)
-    assert best is not None
-    cv, l2, eta = best
+        std = _Standard(Xl[tr], wl[tr])
+        coef, icpt = _fit(kind, std(Xl[tr]), yl[tr], wl[tr], n_classes, l2, smoothing)
+        eta[te] = std(Xl[te]) @ coef.T + icpt
+        if kind == "continuous":
+            r = yl[te] - eta[te, 0]
+            var = max(float(wl[te] @ r**2 / wl[te].sum()), 1e-12)
+            total += float(wl[te] @ _log_likelihood(kind, eta[te], yl[te], var))
+    if not np.isfinite(eta).all():
+        return None
+    if kind != "continuous":
+        total = float(wl @ _log_likelihood(kind, eta, yl, 0.0))
+    cv = total / float(wl.sum())
     if not cv > plain:
         return None
     std = _Standard(Xl, wl)
