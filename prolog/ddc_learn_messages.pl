@@ -108,7 +108,7 @@ learn_cause(bad_model(Model, Spec)) --> !,
 learn_cause(no_root_model(T)) --> !,
     [ 'a leaf of ~w reads its root model''s scores, but none was set (learn_root_model/3)'-[T] ].
 learn_cause(test_without_facts(Ts, P, Source, Long)) --> !,
-    [ 'no test facts of ~w (the targets of ~w)'-[Ts, P] ],
+    [ 'no test facts of the random variables of ~w (~w)'-[P, Ts] ],
     test_reading(Source, Long).
 learn_cause(no_value(Key)) --> !, [ 'the example ~q has no value'-[Key] ].
 learn_cause(too_many_worlds(Max)) --> !,

@@ -5,8 +5,8 @@ once (the mean of one related entity's attribute beside the count of another's, 
 of both entities of a pair). The root model gives the tree that view: a generalised linear model
 over the *root features* of a target (each candidate literal that reads only the head's
 variables: a numeric value, with its mean where undefined and an "undefined" indicator beside
-it; a count; one indicator per branch of a discrete attribute, an aggregate's mode, a threshold
-test or a relation), with an L2 penalty of scikit-learn's default strength. Its linear
+it; a count; an indicator per branch of a discrete attribute, an aggregate's mode, a threshold
+test or a relation, but one), with an L2 penalty of scikit-learn's default strength. Its linear
 predictors, the *scores* (one for a Boolean, continuous or count target, K - 1 for K classes),
 are regressors that every node of the tree starts with and that a leaf's model takes as an
 *offset* (:func:`probanchor.ddclearn.leaves.fit_offset_leaf`): a leaf shifts the root model's
@@ -44,7 +44,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import gammaln, log_softmax
 
-__all__ = ["Feature", "RootFeatures", "RootModel", "fit_root_model", "fold_of", "root_features"]
+__all__ = ["Feature", "RootFeatures", "RootModel", "block_of", "fit_root_model", "fold_of",
+           "root_features"]
 
 #: Candidate kinds whose value is a feature (with an "undefined" indicator when it can be).
 VALUE_KINDS: frozenset[str] = frozenset({"numeric", "agg_numeric", "count"})
@@ -61,6 +62,7 @@ FOLDS: int = 5
 #: Fewest examples for a root model (each fold needs enough rows to fit on).
 MIN_EXAMPLES: int = 50
 _MAX_ITER = 500
+_TOL = 1e-6
 _DIGITS = 10
 
 
@@ -121,7 +123,8 @@ def root_features(candidates: Sequence[dict], branch: Sequence[np.ndarray],
     -------
     RootFeatures
         Columns that vary over the rows of positive weight, each once (a column equal to an
-        earlier one is left out).
+        earlier one is left out); of a candidate's branches, every one that occurs but the
+        last (the indicators of all would sum to 1, the intercept's column).
     """
     cols: list[np.ndarray] = []
     feats: list[Feature] = []
@@ -156,7 +159,9 @@ def root_features(candidates: Sequence[dict], branch: Sequence[np.ndarray],
                 add((~defined).astype(float),
                     Feature(cid, "branch", n_branches - 1, 0.0, f"{label} [undefined]"))
         elif kind in BRANCH_KINDS:
-            for k in range(n_branches):
+            # one indicator per branch that occurs but the last: they sum to 1
+            seen_branches = [k for k in range(n_branches) if (b[live] == k).any()]
+            for k in seen_branches[:-1]:
                 add((b == k).astype(float),
                     Feature(cid, "branch", k, 0.0, str(c["labels"][k])))
     X = np.column_stack(cols) if cols else np.zeros((len(w), 0))
@@ -221,6 +226,17 @@ def fold_of(example: np.ndarray, k: int = FOLDS) -> np.ndarray:
     return fold_of[inv]
 
 
+def block_of(example: np.ndarray, k: int) -> np.ndarray:
+    """A block index per row: the examples cut into ``k`` runs of consecutive examples.
+
+    Example ``e`` of ``E`` (examples are numbered in the order of the data) is in block
+    ``e * k // E``, so the rows of one example, and examples written together (one world's),
+    are in one block.
+    """
+    uniq, inv = np.unique(example, return_inverse=True)
+    return (np.arange(len(uniq)) * k // max(len(uniq), 1))[inv]
+
+
 class _Standard:
     """Weighted standardisation of the columns (each varies over the rows)."""
 
@@ -255,7 +271,7 @@ def _fit(kind: str, Z: np.ndarray, y: np.ndarray, w: np.ndarray, K: int | None,
         if kind == "discrete":
             from sklearn.linear_model import LogisticRegression
 
-            model = LogisticRegression(C=1.0 / l2, max_iter=_MAX_ITER)
+            model = LogisticRegression(C=1.0 / l2, max_iter=_MAX_ITER, tol=_TOL)
             if smoothing > 0:
                 Z = np.vstack([Z, np.zeros((int(K or 0), Z.shape[1]))])
                 y = np.concatenate([y, np.arange(int(K or 0))])

@@ -38,8 +38,8 @@ from probanchor.ddclearn.leaves import Leaf, LeafOptions, fit_leaf
 from probanchor.ddclearn.root_model import (
     RootFeatures,
     RootModel,
+    block_of,
     fit_root_model,
-    fold_of,
     root_features,
 )
 from probanchor.ddclearn.tree import Branch, Tree, TreeNode
@@ -192,8 +192,10 @@ def _scores(X: np.ndarray, model: RootModel) -> np.ndarray:
     return X @ W[:, :-1].T + W[:, -1]
 
 
-#: Folds of the examples for the decision to use a root model: one is held out.
+#: Folds of the examples for the decision to use a root model (each held out in turn).
 HOLDOUT: int = 3
+#: Standard errors of the held-out difference that decide without the remaining folds.
+DECISIVE: float = 4.0
 
 
 @dataclass(frozen=True)
@@ -499,16 +501,25 @@ class _TargetSearch:
     def choose(self, root: Root, feats: RootFeatures) -> RootChoice:
         """Whether the tree should read the root model's scores: decided on held-out examples.
 
-        The examples are dealt into ``HOLDOUT`` folds (by example, as the root model's); on
-        all but the first, the tree is grown twice, without the root model and with it (its
-        scores those of the root model fitted on those examples, cross-fitted); both trees
-        score the first fold's rows. The root model is used when its tree's held-out
-        log-likelihood is higher by more than one standard error of the difference.
+        The examples are cut into ``HOLDOUT`` blocks of consecutive examples, in the order of
+        the data (:func:`probanchor.ddclearn.root_model.block_of`); for each block, the tree is
+        grown on the other blocks twice, without the root model and with it (its scores those
+        of the root model fitted on those examples, cross-fitted), and both trees score the
+        block's rows. Data are written world by world (an episode's frames, a district's loans,
+        one interpretation after another): a block holds worlds the trees have not seen, as
+        held-out data do, where examples drawn at random would share their worlds (and what a
+        tree learned of them) with the training rows. The root model is used when its tree's
+        held-out log-likelihood, summed over the rows, is higher by more than one standard error
+        of the difference; once the difference is larger than ``DECISIVE`` standard errors
+        either way, the remaining blocks are not needed (a large data set usually decides on
+        one).
         """
-        fold = fold_of(root.example, HOLDOUT)
+        fold = block_of(root.example, HOLDOUT)
         saved = self.log_n
         plain = np.zeros(len(root.y))
         with_model = np.zeros(len(root.y))
+        scored = np.zeros(len(root.y), dtype=bool)
+        gain, se = 0.0, 0.0
         try:
             for k in range(HOLDOUT):
                 test = fold == k
@@ -521,14 +532,16 @@ class _TargetSearch:
                 plain[te_rows] = self.held_out(root, tr_rows, te_rows, None)
                 with_model[te_rows] = self.held_out(root, tr_rows, te_rows,
                                                     (model, _scores(feats.X[te_rows], model)))
+                scored |= test
+                d = (with_model - plain)[scored & (root.weight > 0)]
+                gain = float(d.sum())
+                se = math.sqrt(len(d) * float(np.var(d))) if len(d) else 0.0
+                if abs(gain) > DECISIVE * se:
+                    break
         finally:
             self.log_n = saved
             self.offsets = 0
-        live = root.weight > 0
-        d = (with_model - plain)[live]
-        gain = float(d.sum())
-        se = math.sqrt(len(d) * float(np.var(d))) if len(d) else 0.0
-        return RootChoice(gain > se, gain, se, int(live.sum()))
+        return RootChoice(gain > se, gain, se, int((scored & (root.weight > 0)).sum()))
 
     def held_out(self, root: Root, tr_rows: np.ndarray, te_rows: np.ndarray,
                  model: tuple[RootModel, np.ndarray] | None) -> np.ndarray:
