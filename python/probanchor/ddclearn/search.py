@@ -186,6 +186,22 @@ def _nodes(g: _Grown) -> list[int]:
     return [g.nd.node] + [n for _, c in g.branches for n in _nodes(c)]
 
 
+def _n_params(g: _Grown) -> int:
+    """The parameters of a grown tree's own leaves (an inherited leaf adds none)."""
+    if g.inherited:
+        return 0
+    if not g.branches:
+        return g.leaf.n_params
+    return sum(_n_params(c) for _, c in g.branches)
+
+
+def _reads_scores(g: _Grown) -> bool:
+    """Whether a leaf of a grown tree gives a root model's score a weight."""
+    if not g.branches:
+        return g.leaf.uses_regressors and any(s < 0 for s in _clause_columns(g.leaf, g.steps)[1])
+    return any(_reads_scores(c) for _, c in g.branches)
+
+
 def _scores(X: np.ndarray, model: RootModel) -> np.ndarray:
     """The root model's scores of feature rows X (its fit on every training row)."""
     W = np.asarray(model.rows, dtype=float)
@@ -204,13 +220,17 @@ class RootChoice:
 
     ``offsets``: the root model is used; ``gain``: the held-out log-likelihood of the tree with
     it minus the tree's without it (nats, summed over ``rows`` held-out rows); ``se``: the
-    standard error of that difference.
+    standard error of that difference; ``params_tree``, ``params_root_model``: the trees'
+    numbers of parameters (mean over the held-out blocks; the second counts the root model's
+    when a leaf reads it).
     """
 
     offsets: bool
     gain: float
     se: float
     rows: int
+    params_tree: float = 0.0
+    params_root_model: float = 0.0
 
 
 @dataclass
@@ -508,11 +528,14 @@ class _TargetSearch:
         block's rows. Data are written world by world (an episode's frames, a district's loans,
         one interpretation after another): a block holds worlds the trees have not seen, as
         held-out data do, where examples drawn at random would share their worlds (and what a
-        tree learned of them) with the training rows. The root model is used when its tree's
-        held-out log-likelihood, summed over the rows, is higher by more than one standard error
-        of the difference; once the difference is larger than ``DECISIVE`` standard errors
-        either way, the remaining blocks are not needed (a large data set usually decides on
-        one).
+        tree learned of them) with the training rows. The tree with the higher held-out
+        log-likelihood, summed over the rows, wins (the tree alone on a tie: then the other
+        reads no score). Even so the blocks of one world share entities (a university's courses,
+        whose attributes a tree can learn by heart): on a new world the root model's advantage
+        was larger than in these blocks, on every generated university tried, so a small
+        advantage is not discounted. Once the difference is larger than ``DECISIVE`` standard
+        errors either way, the remaining blocks are not needed (a large data set usually
+        decides on one).
         """
         fold = block_of(root.example, HOLDOUT)
         saved = self.log_n
@@ -520,6 +543,8 @@ class _TargetSearch:
         with_model = np.zeros(len(root.y))
         scored = np.zeros(len(root.y), dtype=bool)
         gain, se = 0.0, 0.0
+        k_plain: list[int] = []
+        k_model: list[int] = []
         try:
             for k in range(HOLDOUT):
                 test = fold == k
@@ -527,11 +552,13 @@ class _TargetSearch:
                 tr_rows, te_rows = np.flatnonzero(train), np.flatnonzero(test)
                 model = self.root_model(feats, root, train)
                 if model is None:
-                    return RootChoice(False, 0.0, 0.0, 0)
+                    return RootChoice(False, 0.0, 0.0, 0, 0.0, 0.0)
                 self.log_n = math.log(max(float(root.weight[train].sum()), 1.0))
-                plain[te_rows] = self.held_out(root, tr_rows, te_rows, None)
-                with_model[te_rows] = self.held_out(root, tr_rows, te_rows,
-                                                    (model, _scores(feats.X[te_rows], model)))
+                plain[te_rows], kp = self.held_out(root, tr_rows, te_rows, None)
+                with_model[te_rows], km = self.held_out(
+                    root, tr_rows, te_rows, (model, _scores(feats.X[te_rows], model)))
+                k_plain.append(kp)
+                k_model.append(km)
                 scored |= test
                 d = (with_model - plain)[scored & (root.weight > 0)]
                 gain = float(d.sum())
@@ -541,11 +568,13 @@ class _TargetSearch:
         finally:
             self.log_n = saved
             self.offsets = 0
-        return RootChoice(gain > se, gain, se, int((scored & (root.weight > 0)).sum()))
+        return RootChoice(gain > 0, gain, se, int((scored & (root.weight > 0)).sum()),
+                          float(np.mean(k_plain)), float(np.mean(k_model)))
 
     def held_out(self, root: Root, tr_rows: np.ndarray, te_rows: np.ndarray,
-                 model: tuple[RootModel, np.ndarray] | None) -> np.ndarray:
-        """A tree grown on the training rows, scored on the test rows (weighted per row)."""
+                 model: tuple[RootModel, np.ndarray] | None) -> tuple[np.ndarray, int]:
+        """A tree grown on the training rows, scored on the test rows (weighted per row), and
+        its number of parameters (with the root model's when a leaf reads its scores)."""
         tr_node = self.data.subset(root.node, tr_rows.tolist())
         te_node = self.data.subset(root.node, te_rows.tolist())
 
@@ -561,7 +590,10 @@ class _TargetSearch:
             tr_X, te_X = model[0].scores, model[1]
         g = self.grow(node(tr_node, tr_rows, tr_X))
         try:
-            return self.replay(g, node(te_node, te_rows, te_X))
+            k = _n_params(g)
+            if model is not None and _reads_scores(g):
+                k += model[0].n_scores * (len(model[0].features) + 1)
+            return self.replay(g, node(te_node, te_rows, te_X)), k
         finally:
             self.data.forget([te_node, *_nodes(g)])
 
