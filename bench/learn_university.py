@@ -63,7 +63,8 @@ def main(argv: list[str] | None = None) -> int:
     print(markdown(rows))
     counts = summary(rows)
     print(f"The learned program is at or above the best baseline on {counts['above']} of "
-          f"{counts['targets']} targets, and within two standard errors of it or above on "
+          f"{counts['targets']} targets, and above or behind by less than the test's noise "
+          f"(two standard errors of the paired difference, at least one nat in all) on "
           f"{counts['level']}; {seconds:.0f} s in all (learning "
           f"{sum(r['seconds'] for r in rows):.0f} s).")
     if args.json:

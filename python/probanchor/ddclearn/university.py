@@ -13,9 +13,12 @@ intelligence(S)     continuous                     nothing (standard normal)
 ability(P)          continuous                     nothing (standard normal)
 difficulty(C)       easy, medium, hard             nothing
 nrhours(C)          continuous                     difficulty(C)
-grade(S, C)         low, mid, high                 intelligence(S), difficulty(C), the ability of
-                                                   C's professor, the mean intelligence of S's
-                                                   friends (an ordinal logit)
+grade(S, C)         low, mid, high                 intelligence(S), difficulty(C), nrhours(C),
+                                                   the ability of C's professor, the mean
+                                                   intelligence of S's friends and of C's
+                                                   students (an ordinal logit: a sum of
+                                                   effects of three entities and two
+                                                   aggregates)
 satisfaction(S, C)  low, mid, high                 grade(S, C), the ability of C's professor, and
                                                    difficulty(C) together with intelligence(S)
 hours(S, C)         continuous                     nrhours(C), intelligence(S), the mean grade
@@ -95,7 +98,7 @@ mode(hours(_, _), count, takes(-, +)).
 class Effects:
     """The effect sizes of one data set (drawn by :meth:`draw`)."""
 
-    grade: np.ndarray          # intelligence, difficulty (per level), ability, friends
+    grade: np.ndarray          # intelligence, difficulty, ability, friends, classmates, nrhours
     grade_cuts: np.ndarray
     satisfaction: np.ndarray   # grade (per level), ability, the interaction
     satisfaction_cuts: np.ndarray
@@ -107,7 +110,7 @@ class Effects:
         r = np.random.default_rng(seed)
         return cls(
             grade=np.array([r.uniform(0.8, 1.6), -r.uniform(0.6, 1.2), r.uniform(0.4, 1.0),
-                            r.uniform(0.3, 0.8)]),
+                            r.uniform(0.3, 0.8), r.uniform(1.0, 2.0), r.uniform(0.1, 0.3)]),
             grade_cuts=np.sort(r.uniform(-1.0, 1.0, 2)) + np.array([-0.5, 0.5]),
             satisfaction=np.array([r.uniform(0.6, 1.2), r.uniform(0.5, 1.0),
                                    r.uniform(1.0, 2.0)]),
@@ -165,8 +168,11 @@ def university_data(seed: int, effects_seed: int = 0, students: int = 400, cours
     s_idx = np.repeat(np.arange(students), takes)
     c_idx = taken.ravel()
     friend_iq = iq[friend].mean(axis=1)
+    class_iq = np.bincount(c_idx, weights=iq[s_idx], minlength=courses) / np.maximum(
+        np.bincount(c_idx, minlength=courses), 1)
     z = (e.grade[0] * iq[s_idx] + e.grade[1] * (diff[c_idx] - 1) + e.grade[2] * ability[prof[c_idx]]
-         + e.grade[3] * friend_iq[s_idx])
+         + e.grade[3] * friend_iq[s_idx] + e.grade[4] * class_iq[c_idx]
+         + e.grade[5] * (nrhours[c_idx] - 5.0))
     grade = _ordinal(r, z, e.grade_cuts)
     # satisfied by a good grade and a good teacher; a hard course satisfies the clever
     z = (e.satisfaction[0] * (grade - 1) + e.satisfaction[1] * ability[prof[c_idx]]
