@@ -189,7 +189,7 @@ def learn(
                     bar.update(1)
         leaves = [(r.node, r.model_term, r.regressors) for t in results for r in t.leaves]
         background = data.background(leaves)
-        record = data.record([str(f) for f in files], [t.predicate for t in results])
+        record = data.record([Path(f).name for f in files], [t.predicate for t in results])
     finally:
         limits.restore_original_limits()
         data.free()
