@@ -2,7 +2,8 @@
 
     ddc learn DATA.pl [MORE.pl ...] --out LEARNED.pl [--target NAME]... [--json] [--seed S]
               [--plot TREE.png|TREE.svg] [--min-leaf N] [--max-depth D] [--min-gain G]
-              [--smoothing A] [--l2 L] [--no-lookahead] [--form clauses|tree] [--quiet]
+              [--smoothing A] [--l2 L] [--no-lookahead] [--root-model auto|always|never]
+              [--form clauses|tree] [--quiet]
     ddc evaluate LEARNED.pl TEST.pl [MORE.pl ...] [--target NAME]... [--bias TRAIN.pl] [--json]
     ddc split DATA.pl [MORE.pl ...] --train TRAIN.pl --test TEST.pl [--fraction F] [--seed S]
               [--unit TYPE] [--json]
@@ -116,6 +117,9 @@ def _add_search_options(parser: argparse.ArgumentParser) -> None:
                         help="L2 penalty on standardised regression weights (default 0.01)")
     parser.add_argument("--no-lookahead", action="store_true",
                         help="score literals that introduce variables by themselves")
+    parser.add_argument("--root-model", choices=["auto", "always", "never"], default="auto",
+                        help="whether the tree reads a regression over every root feature "
+                             "(default auto: when held-out examples say it predicts better)")
 
 
 def _search_options(args: argparse.Namespace) -> Any:
@@ -126,6 +130,7 @@ def _search_options(args: argparse.Namespace) -> Any:
     try:
         return SearchOptions(min_leaf=args.min_leaf, max_depth=args.max_depth,
                              min_gain=args.min_gain, lookahead=not args.no_lookahead,
+                             root_model=args.root_model,
                              leaf=LeafOptions(smoothing=args.smoothing, l2=args.l2))
     except ValueError as exc:
         raise CliError(str(exc)) from None

@@ -225,6 +225,22 @@ def leaf_comment(leaf: LeafRecord) -> str:
     return f"{what}{ll}, {leaf.leaf.family}"
 
 
+def root_model_note(t: TargetResult) -> list[str]:
+    """What the program says of a target's root model: whether its leaves read one, why."""
+    c, m = t.choice, t.root_model
+    if c is None and m is None:
+        return []
+    held = ("" if c is None or not c.rows else
+            f" (held out, {c.rows} groundings: {c.gain:+.4g} nats with it, standard error "
+            f"{c.se:.3g})")
+    if m is not None:
+        return [f"Its leaves read a root model: a regression over {len(m.features)} features "
+                f"(Score{'' if m.n_scores == 1 else ', Score1, ...'}){held}."]
+    if c is not None and c.gain == 0:
+        return ["No root model: the tree grown with it read none of its scores."]
+    return [f"No root model: the tree alone predicts better{held}."]
+
+
 def _program_text(r: LearnResult, tree: bool = False) -> str:
     o = r.options
     if tree:
@@ -245,8 +261,9 @@ def _program_text(r: LearnResult, tree: bool = False) -> str:
         lines.append(f"% Command: {r.command}")
     lines.append("% Data: " + ", ".join(Path(f).name for f in r.files))
     lines.append(f"% Search: min_leaf {o.min_leaf:g}, max_depth {o.max_depth}, min_gain "
-                 f"{o.min_gain:g}, lookahead {str(o.lookahead).lower()}; leaves: smoothing "
-                 f"{o.leaf.smoothing:g}, l2 {o.leaf.l2:g}; seed {r.seed}.")
+                 f"{o.min_gain:g}, lookahead {str(o.lookahead).lower()}, root model "
+                 f"{o.root_model}; leaves: smoothing {o.leaf.smoothing:g}, l2 {o.leaf.l2:g}; "
+                 f"seed {r.seed}.")
     lines.append("")
     if r.record:
         lines += [
@@ -264,6 +281,7 @@ def _program_text(r: LearnResult, tree: bool = False) -> str:
         lines.append(f"% {t.name}: {t.clauses} clauses, {t.groundings} groundings, training "
                      f"log-likelihood {t.log_likelihood:.6g} (mean {t.mean_log_likelihood:.6g} "
                      f"per grounding), {t.n_params} parameters.")
+        lines.extend(f"% {line}" for line in root_model_note(t))
         if tree and t.tree_clause is not None:
             lines.append(t.tree_clause)
         else:
