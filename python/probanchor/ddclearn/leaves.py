@@ -24,7 +24,6 @@ probability of the FIRST class (index 0) of the domain, ``P(0 | x) = sigmoid(w.x
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Literal
 
@@ -35,8 +34,7 @@ from scipy.special import gammaln, log_expit, logsumexp, xlogy
 if TYPE_CHECKING:  # scikit-learn takes seconds to import: only the fits that need it load it
     from sklearn.linear_model import LogisticRegression, PoissonRegressor
 
-__all__ = ["FAMILIES", "Kind", "Leaf", "LeafOptions", "cross_validated", "fit_leaf",
-           "fit_offset_leaf"]
+__all__ = ["FAMILIES", "Kind", "Leaf", "LeafOptions", "fit_leaf", "fit_offset_leaf"]
 
 Kind = Literal["discrete", "continuous", "count"]
 
@@ -435,46 +433,6 @@ def fit_offset_leaf(
     y_arr, w_arr, X_arr, K = _validate(kind, y, w, X, n_classes, 0.0)
     _check_offsets(kind, K, offsets, X_arr.shape[1])
     return _fit_offset(kind, y_arr, w_arr, X_arr, offsets, K, options)
-
-
-def cross_validated(
-    fit: Callable[[np.ndarray, np.ndarray, np.ndarray], Leaf | None],
-    y: ArrayLike,
-    w: ArrayLike,
-    X: ArrayLike,
-    folds: ArrayLike,
-) -> np.ndarray | None:
-    """Each row's out-of-fold log-likelihood under a leaf model fitted by ``fit``.
-
-    Parameters
-    ----------
-    fit : callable
-        ``fit(y, w, X)`` returns a fitted :class:`Leaf` (or None when it cannot be fitted).
-    y, w, X : array-like
-        The rows (weights >= 0; ``X`` may have 0 columns).
-    folds : array-like of int
-        Each row's fold: row i is scored by the model fitted on the rows of the other folds.
-
-    Returns
-    -------
-    ndarray of shape (n,) or None
-        ``log f(y_i | x_i)`` under the model fitted without row i's fold (0 for rows of weight
-        0), or None when a fold's model could not be fitted (too few rows, one class).
-    """
-    y_arr, w_arr = _as_vector(y, "y"), _as_vector(w, "w")
-    X_arr = _as_matrix(X, len(y_arr))
-    f_arr = np.asarray(folds)
-    out = np.zeros(len(y_arr))
-    for f in np.unique(f_arr[w_arr > 0]):
-        test = (f_arr == f) & (w_arr > 0)
-        train = (f_arr != f) & (w_arr > 0)
-        if not train.any():
-            return None
-        leaf = fit(y_arr[train], w_arr[train], X_arr[train])
-        if leaf is None:
-            return None
-        out[test] = leaf.log_prob(y_arr[test], X_arr[test])
-    return out
 
 
 def _fit_offset(
