@@ -22,6 +22,13 @@ DreaML), and when it is chosen that follow-up needs only a gain of at least 0.
 Every branch of a split becomes a clause, so the clauses of a tree cover every grounding and
 are mutually exclusive (DC's requirement); DreaML instead dropped small branches and appended a
 catch-all clause that relies on first-match semantics.
+
+A target may have a *root model* (:mod:`probanchor.ddclearn.root_model`): a regression over every
+feature the bias allows at the root. When the tree reads it, every node starts with its scores as
+regressors, which the leaves take as an offset (``leaves.fit_offset_leaf``). Whether the tree
+reads it is decided on held-out blocks of examples (:meth:`_TargetSearch.choose`): a tree is
+grown on the other blocks without and with it, both score the block (:meth:`_TargetSearch.replay`
+takes other rows down a grown tree), and the one with the higher held-out log-likelihood wins.
 """
 
 from __future__ import annotations
