@@ -24,10 +24,11 @@ from typing import Any
 from probanchor.evaluation.metrics import DEFAULT_THRESHOLD_M, Evaluation, evaluate
 from probanchor.evaluation.record import TrackingRecord
 
-SUMMARY_FIELDS = ("frames", "objects", "id_switches", "idf1", "ms_per_frame", "rejected_percepts",
-                  "ambiguous_reacquisitions")
-#: fields a summary of this version also has (older summaries may lack them)
-SUMMARY_FIELDS_NEW = ("revisions", "beliefs")
+SUMMARY_FIELDS = ("frames", "objects", "revisions", "beliefs", "id_switches", "idf1",
+                  "ms_per_frame", "rejected_percepts", "ambiguous_reacquisitions")
+#: the fields every summary has, also one written before revisions and beliefs were reported
+READ_FIELDS = ("frames", "objects", "id_switches", "idf1", "ms_per_frame", "rejected_percepts",
+               "ambiguous_reacquisitions")
 
 
 def _finite_or_none(x: float) -> float | None:
@@ -105,7 +106,7 @@ def read_summary(path: str | Path) -> dict[str, Any]:
         data = json.loads(path.read_text(encoding="utf-8"))
     except json.JSONDecodeError as exc:
         raise ValueError(f"{path}:{exc.lineno}: not JSON: {exc.msg}") from exc
-    missing = [f for f in SUMMARY_FIELDS if not isinstance(data, dict) or f not in data]
+    missing = [f for f in READ_FIELDS if not isinstance(data, dict) or f not in data]
     if missing:
         raise ValueError(f"{path}: not a run summary, missing {', '.join(missing)}")
     return data
