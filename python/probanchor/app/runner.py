@@ -271,14 +271,36 @@ def _finish(options: RunOptions, loop: AnchoringLoop, name: str,
     return output
 
 
+def _revision_lines(summary: dict[str, Any]) -> list[str]:
+    """The revisions of a run and how its beliefs about hidden objects fared, for a person."""
+    lines = []
+    for revision in summary.get("revisions", []):
+        swaps = ", ".join(f"{a} -> {b}" for a, b in revision["mapping"].items())
+        seen = ", ".join(revision["evidence"]) or "nothing"
+        lines.append(f"  frame {revision['frame']}: revised {swaps} (probability "
+                     f"{revision['probability']:.2f}, was {revision['before']:.2f}; seen again: "
+                     f"{seen}), answers since frame {min(revision['since'].values())}")
+    beliefs = summary.get("beliefs") or {}
+    if beliefs.get("hidden_frames"):
+        occluder = beliefs.get("true_occluder_probability")
+        extra = "" if occluder is None else f", P(true occluder) {occluder:.2f}"
+        lines.append(f"  hidden objects' beliefs within {100 * beliefs['threshold']:.0f} cm in "
+                     f"{100 * beliefs['within']:.0f} % of {beliefs['hidden_frames']} "
+                     f"object-frames{extra}")
+    return lines
+
+
 def format_summary(summary: dict[str, Any]) -> str:
     """The summary a person reads at the end of a run."""
     lines = [f"{summary.get('scenario', 'run')}: {summary['frames']} frames "
              f"({summary.get('method', '')})"]
     for obj in summary["objects"]:
         kept = "identity kept" if obj["identity_kept"] else "IDENTITY LOST"
+        if not obj["identity_kept"] and obj.get("identity_kept_at_end"):
+            kept = "identity kept at the end (revised)"
         lines.append(f"  {obj['id']:<10} {' -> '.join(obj['symbols']) or '(never anchored)':<30}"
                      f" {kept}")
+    lines.extend(_revision_lines(summary))
     idf1 = summary.get("idf1")
     lines.append(f"  ID switches {summary['id_switches']}, IDF1 "
                  f"{'n/a' if idf1 is None else f'{idf1:.3f}'}, rejected percepts "

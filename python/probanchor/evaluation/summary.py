@@ -1,6 +1,10 @@
 """The run summary (``DIR/summary.json``): what a run writes.
 
-Fields, exactly: ``frames``; ``objects`` (a list of ``{"id", "symbols", "identity_kept"}``);
+Fields, exactly: ``frames``; ``objects`` (a list of ``{"id", "symbols", "identity_kept",
+"identity_kept_at_end"}``: kept in every frame's answer as given, and in the answers as revised
+by the end of the run); ``revisions`` (every identity revision of the run, see
+``TrackingRecord.revised``); ``beliefs`` (belief accuracy while hidden,
+:mod:`probanchor.evaluation.beliefs`);
 ``id_switches``; ``idf1`` (``null`` when undefined: no ground truth and no hypothesis);
 ``ms_per_frame`` with ``perception``, ``anchoring``, ``filter``, ``total`` (means over frames);
 ``rejected_percepts`` (bad percepts dropped over the run); ``ambiguous_reacquisitions`` (how
@@ -20,8 +24,11 @@ from typing import Any
 from probanchor.evaluation.metrics import DEFAULT_THRESHOLD_M, Evaluation, evaluate
 from probanchor.evaluation.record import TrackingRecord
 
-SUMMARY_FIELDS = ("frames", "objects", "id_switches", "idf1", "ms_per_frame", "rejected_percepts",
-                  "ambiguous_reacquisitions")
+SUMMARY_FIELDS = ("frames", "objects", "revisions", "beliefs", "id_switches", "idf1",
+                  "ms_per_frame", "rejected_percepts", "ambiguous_reacquisitions")
+#: the fields every summary has, also one written before revisions and beliefs were reported
+READ_FIELDS = ("frames", "objects", "id_switches", "idf1", "ms_per_frame", "rejected_percepts",
+               "ambiguous_reacquisitions")
 
 
 def _finite_or_none(x: float) -> float | None:
@@ -52,12 +59,17 @@ def make_summary(
     records = list(records)
     ev = evaluation if evaluation is not None else evaluate(records, threshold)
     assert ev.mot is not None
+    at_end = {o.id: o for o in ev.objects_at_end}
     summary: dict[str, Any] = {
         "frames": ev.frames,
         "objects": [
-            {"id": o.id, "symbols": list(o.symbols), "identity_kept": bool(o.identity_kept)}
+            {"id": o.id, "symbols": list(o.symbols), "identity_kept": bool(o.identity_kept),
+             "identity_kept_at_end": bool(at_end[o.id].identity_kept if o.id in at_end
+                                          else o.identity_kept)}
             for o in ev.objects
         ],
+        "revisions": [dict(r) for rec in records for r in rec.revised],
+        "beliefs": None if ev.beliefs is None else ev.beliefs.to_json(),
         "id_switches": int(ev.mot.id_switches),
         "idf1": _finite_or_none(ev.mot.idf1),
         "ms_per_frame": ms_per_frame(records),
@@ -94,7 +106,7 @@ def read_summary(path: str | Path) -> dict[str, Any]:
         data = json.loads(path.read_text(encoding="utf-8"))
     except json.JSONDecodeError as exc:
         raise ValueError(f"{path}:{exc.lineno}: not JSON: {exc.msg}") from exc
-    missing = [f for f in SUMMARY_FIELDS if not isinstance(data, dict) or f not in data]
+    missing = [f for f in READ_FIELDS if not isinstance(data, dict) or f not in data]
     if missing:
         raise ValueError(f"{path}: not a run summary, missing {', '.join(missing)}")
     return data

@@ -92,6 +92,10 @@ def register(sub: Any) -> None:
     add_bag_options(parser)
     parser.add_argument("--no-reasoning", action="store_true",
                         help="anchoring alone: hidden anchors keep their last position")
+    parser.add_argument("--no-identity", action="store_true",
+                        help="decide look-alikes' identities once, by the most probable "
+                             "assignment, instead of keeping them as hypotheses in the "
+                             "particles and revising them (docs/anchoring.md)")
     parser.add_argument("--no-reid", action="store_true",
                         help="anchoring does not re-identify a percept by appearance alone "
                              "(a unique look-alike of an anchor left over)")
@@ -123,7 +127,8 @@ def main(args: argparse.Namespace) -> int:
         bag_topics=bag_topics(args) if args.bag is not None else None,
         particles=args.particles,
         theory=args.theory, seed=args.seed, reasoning=not args.no_reasoning,
-        resample_threshold=args.resample_threshold, reidentify=not args.no_reid, out=args.out,
+        resample_threshold=args.resample_threshold, reidentify=not args.no_reid,
+        identity=not args.no_identity, out=args.out,
         threads=args.threads, engine=args.engine, overlap=not args.sequential,
         picture_every=args.every, progress=not args.quiet, rerun=args.rerun,
         rerun_spawn=args.rerun_spawn, store=args.store, resume=args.resume, serve=args.serve,
