@@ -18,6 +18,9 @@ Two views of identity:
   be matched when they are at most ``threshold`` metres apart (Euclidean, 3-D). So an anchor
   that keeps a hidden object's position near the truth is credited, one that loses it is not.
   ``id_switches`` is motmetrics' ``num_switches``; ``idf1`` its IDF1 (global ID matching).
+
+- **HOTA** (TrackEval, the same ground truth and hypotheses, similarity falling linearly from 1
+  at the truth to 0 at ``threshold``): HOTA, DetA, AssA, LocA (:mod:`probanchor.evaluation.hota`).
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from probanchor.evaluation.hota import HotaMetrics, hota_metrics
 from probanchor.evaluation.motmetrics_compat import mm
 from probanchor.evaluation.record import TrackingRecord
 
@@ -65,6 +69,7 @@ class Evaluation:
     frames: int
     objects: list[ObjectIdentity] = field(default_factory=list)
     mot: MotMetrics | None = None
+    hota: HotaMetrics | None = None
 
     @property
     def objects_kept(self) -> int:
@@ -166,6 +171,7 @@ def mot_metrics(
 def evaluate(
     records: Sequence[TrackingRecord], threshold: float = DEFAULT_THRESHOLD_M
 ) -> Evaluation:
-    """The identity report and the motmetrics figures of one run."""
+    """The identity report, the motmetrics figures and HOTA of one run."""
     records = list(records)
-    return Evaluation(len(records), identity_report(records), mot_metrics(records, threshold))
+    return Evaluation(len(records), identity_report(records), mot_metrics(records, threshold),
+                      hota_metrics(records, threshold))
