@@ -1,5 +1,5 @@
 """A whole run: frames from a scenario or a percept stream through the loop, then the summary,
-pictures, GIF and world file in an output directory."""
+the video (and, on request, a picture per frame) and world file in an output directory."""
 
 from __future__ import annotations
 
@@ -7,8 +7,6 @@ import logging
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
-
-from tqdm import tqdm
 
 from probanchor.app.loop import AnchoringLoop, FrameOutcome, LoopConfig, run_frames
 from probanchor.app.pictures import FramePictures
@@ -29,6 +27,7 @@ from probanchor.evaluation import (
     write_records,
     write_summary,
 )
+from probanchor.progress import progress
 
 logger = logging.getLogger(__name__)
 
@@ -44,7 +43,8 @@ class RunOptions(LoopConfig):
     bag_topics: Any = None  # bags.BagTopics for the bag (the usual topics by default)
     out: Path | None = None
     picture_every: int = 1
-    progress: bool = True
+    frames: bool = False  # also write a PNG per picture (DIR/frames/), besides DIR/run.mp4
+    progress: bool = True  # a bar on a terminal, a few plain lines elsewhere
     width: int | None = None
     height: int | None = None
     # perceive the next frame while the current one is reasoned about (run_frames)
@@ -60,8 +60,8 @@ class RunOutput:
     summary: dict[str, Any]
     records: list[TrackingRecord]
     out: Path | None
-    gif: Path | None = None
-    pictures: list[Path] = field(default_factory=list)
+    video: Path | None = None
+    pictures: list[Path] = field(default_factory=list)  # the PNGs (with RunOptions.frames)
 
 
 def run(options: RunOptions) -> RunOutput:
@@ -128,14 +128,15 @@ def _run(options: RunOptions, loop: AnchoringLoop, store: WorldStore | None = No
     pictures = None
     if options.out is not None:
         options.out.mkdir(parents=True, exist_ok=True)
-        pictures = FramePictures(options.out, every=options.picture_every)
+        pictures = FramePictures(options.out, every=options.picture_every,
+                                 frames=options.frames)
     viewer = None
     if options.rerun is not None or options.rerun_spawn:
         from probanchor.app.rerun_frames import RerunFrames  # rerun-sdk only when asked for
 
         viewer = RerunFrames(options.rerun, options.rerun_spawn, name)
-    bar = tqdm(total=None if total is None else max(0, total - start), unit="frame",
-               desc=name, disable=not options.progress)
+    bar = progress(None if total is None else max(0, total - start), desc=name, unit="frame",
+                   show=options.progress)
 
     def on_frame(outcome: FrameOutcome, loop: AnchoringLoop) -> None:
         if store is not None:
@@ -189,9 +190,9 @@ def _finish(options: RunOptions, loop: AnchoringLoop, name: str,
     perceived = {s for s, h in records[-1].hypotheses.items() if h.perceived} \
         if records else set()
     write_world(options.out / "world.pl", loop, perceived)
-    if pictures is not None and stopped is None:
+    if pictures is not None:  # (the video of the frames done, also after an error)
         output.pictures = pictures.paths
-        output.gif = pictures.finish(options.out / "run.gif")
+        output.video = pictures.finish()
     return output
 
 
