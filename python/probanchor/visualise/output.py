@@ -18,6 +18,7 @@ VIDEO_CODECS: dict[str, tuple[str, dict[str, str]]] = {
     ".mp4": ("libx264", {"crf": "26", "preset": "medium"}),
     ".webm": ("libvpx-vp9", {"crf": "34", "b": "0"}),
 }
+_MILLISECONDS = Fraction(1, 1000)  # the time base of a video's frames
 
 
 def save_png(path: str | Path, image: np.ndarray) -> Path:
@@ -119,7 +120,7 @@ class VideoWriter:
             pts = self._last_pts + 1
         frame = av.VideoFrame.from_ndarray(np.ascontiguousarray(image), format="rgb24")
         frame.pts = pts
-        frame.time_base = self._stream.time_base
+        frame.time_base = _MILLISECONDS  # (not the stream's: the muxer may change that)
         for packet in self._stream.encode(frame):
             self._container.mux(packet)
         self._last_pts = pts
@@ -135,7 +136,10 @@ class VideoWriter:
                                                   options=dict(options))
         self._stream.width, self._stream.height = width + width % 2, height + height % 2
         self._stream.pix_fmt = "yuv420p"
-        self._stream.time_base = Fraction(1, 1000)
+        # time stamps in milliseconds, for the encoder and the container alike (an encoder left
+        # at 1/fps would see stamps 1000/fps times too far apart and overflow its counters)
+        self._stream.codec_context.time_base = _MILLISECONDS
+        self._stream.time_base = _MILLISECONDS
         self._shape = (height, width)
 
     def close(self) -> Path | None:
