@@ -209,6 +209,10 @@ def format_summary(summary: dict[str, Any]) -> str:
                  f"{'n/a' if idf1 is None else f'{idf1:.3f}'}, rejected percepts "
                  f"{summary.get('rejected_percepts', 0)}, ambiguous re-acquisitions "
                  f"{summary.get('ambiguous_reacquisitions', 0)}")
+    if summary.get("hota") is not None:
+        lines.append("  HOTA {hota:.3f} (DetA {deta:.3f}, AssA {assa:.3f}, LocA {loca:.3f})"
+                     .format(**{k: summary.get(k) or 0.0 for k in ("hota", "deta", "assa",
+                                                                    "loca")}))
     ms = summary["ms_per_frame"]
     fps = 1000.0 / ms["total"] if ms["total"] > 0 else float("inf")
     lines.append(f"  ms per frame: perception {ms['perception']:.1f}, anchoring "
