@@ -54,16 +54,13 @@ def score_stream(method: str, settings: dict[str, float], stream: str,
                  lost_seconds: float = 60.0) -> dict[str, Any]:
     """One tracker with ``settings`` on one percept stream: objects, kept, HOTA, IDF1 (a job)."""
     import math
-    import warnings
 
     from probanchor.evaluation.metrics import evaluate
     from probanchor.evaluation.stonesoup_trackers import StoneSoupSettings, run_stonesoup
     from probanchor.percepts import read_percepts
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # MFA's "infeasible primal problem" notes
-        records = run_stonesoup(method, read_percepts(stream), lost_seconds=lost_seconds,
-                                settings=StoneSoupSettings().replace(**settings))
+    records = run_stonesoup(method, read_percepts(stream), lost_seconds=lost_seconds,
+                            settings=StoneSoupSettings().replace(**settings))
     ev = evaluate(records)
     assert ev.mot is not None and ev.hota is not None
 
