@@ -17,7 +17,9 @@ percepts are noisier).
 
 from __future__ import annotations
 
+import json
 from collections.abc import Sequence
+from contextlib import nullcontext
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -73,7 +75,7 @@ def score_stream(method: str, settings: dict[str, float], stream: str,
 
 def tune(methods: Sequence[str], streams: Sequence[Path], *, jobs: int = 1,
          grid: dict[str, list[float]] | None = None, lost_seconds: float = 60.0,
-         progress: bool = False) -> dict[str, list[Score]]:
+         progress: bool = False, log: Path | None = None) -> dict[str, list[Score]]:
     """Score every setting of ``grid`` for each method on ``streams``.
 
     Parameters
@@ -90,6 +92,10 @@ def tune(methods: Sequence[str], streams: Sequence[Path], *, jobs: int = 1,
         The trackers' patience, as in the evaluation.
     progress : bool
         Show progress (on standard error).
+    log : Path, optional
+        A JSON Lines file that gets each run's result the moment it finishes; runs already in
+        it (the same method, settings, stream and patience) are not run again, so an
+        interrupted search goes on where it stopped.
 
     Returns
     -------
@@ -105,15 +111,26 @@ def tune(methods: Sequence[str], streams: Sequence[Path], *, jobs: int = 1,
 
     from probanchor.jobs import Job, parse_cluster, raise_failures, run_jobs
 
-    settings = list(ParameterGrid(grid or GRID))
-    work = [Job(f"{m} {i} {Path(s).stem}", score_stream, (m, dict(p), str(s), lost_seconds))
-            for m in methods for i, p in enumerate(settings) for s in streams]
-    outcomes = list(run_jobs(work, parse_cluster(None, jobs), desc="tune", bar=progress))
-    raise_failures(outcomes)
+    settings = [dict(p) for p in ParameterGrid(grid or GRID)]
+    wanted = [(m, p, str(s), lost_seconds) for m in methods for p in settings for s in streams]
+    done = {_key(*args): value for args, value in _read_log(log)}
+    work = [Job(f"{m} {settings.index(p)} {Path(s).stem}", score_stream, (m, p, s, patience))
+            for m, p, s, patience in wanted if _key(m, p, s, patience) not in done]
+    outcomes = []
+    with open(log, "a", encoding="utf-8") if log is not None else nullcontext() as out:
+        for outcome in run_jobs(work, parse_cluster(None, jobs), desc="tune", bar=progress):
+            outcomes.append(outcome)
+            if outcome.ok:
+                done[_key(*outcome.job.args)] = outcome.value
+                if out is not None:
+                    out.write(json.dumps({"args": list(outcome.job.args),
+                                          "value": outcome.value}) + "\n")
+                    out.flush()
+    raise_failures(outcomes, f"the finished are in {log}" if log is not None else "")
     totals: dict[tuple[str, int], list[dict[str, Any]]] = {}
-    for outcome in outcomes:
-        method, index = outcome.job.args[0], settings.index(outcome.job.args[1])
-        totals.setdefault((method, index), []).append(outcome.value)
+    for args in wanted:
+        method, index = args[0], settings.index(args[1])
+        totals.setdefault((method, index), []).append(done[_key(*args)])
     ranking: dict[str, list[Score]] = {}
     for (method, index), runs in totals.items():
         ranking.setdefault(method, []).append(Score(
@@ -123,6 +140,18 @@ def tune(methods: Sequence[str], streams: Sequence[Path], *, jobs: int = 1,
     for scores in ranking.values():
         scores.sort(key=Score.key, reverse=True)
     return {m: ranking[m] for m in methods if m in ranking}
+
+
+def _key(method: str, settings: dict[str, float], stream: str, lost_seconds: float) -> str:
+    return json.dumps([method, sorted(settings.items()), str(stream), lost_seconds])
+
+
+def _read_log(log: Path | None) -> list[tuple[list[Any], dict[str, Any]]]:
+    if log is None or not log.exists():
+        return []
+    with open(log, encoding="utf-8") as lines:
+        rows = [json.loads(line) for line in lines if line.strip()]
+    return [(row["args"], row["value"]) for row in rows]
 
 
 def format_ranking(ranking: dict[str, list[Score]], top: int = 5) -> str:

@@ -106,11 +106,15 @@ def tune(args: argparse.Namespace) -> int:
 
         if args.games < 1:
             raise ValueError(f"--games: {args.games} is not a positive number of games")
-        out = args.out or Path("results-tuning")
+        args.out = out = args.out or Path("results-tuning")
         games = game_scenarios(out, args.games, args.first_game_seed)
         streams = [percept_stream(game, 0, out / "percepts") for game in games]
+    log = None
+    if args.out:
+        args.out.mkdir(parents=True, exist_ok=True)
+        log = args.out / "tuning.jsonl"  # each run as it finishes; a rerun goes on from there
     ranking = search(methods, streams, jobs=args.jobs, lost_seconds=args.lost_seconds,
-                     progress=True)
+                     progress=True, log=log)
     text = format_ranking(ranking)
     grid = ", ".join(f"{k} {v}" for k, v in GRID.items())
     names = ", ".join(p.stem for p in streams)
