@@ -29,13 +29,13 @@ What the metrics see (:class:`~probanchor.evaluation.record.TrackingRecord`): a 
 ``m`` numbered ``k`` (in order of birth) is the symbol ``"m-k"``; its hypothesis is its posterior
 mean position, ``perceived`` when it took a percept this frame. The percept a JPDA track took is
 its most probable association when that is more probable than a missed detection (Stone Soup's
-own rule for an update). For MFA, the percepts given to tracks this frame are the most probable
-one-to-one assignment under the weights of the hypotheses MFA kept (each track's best
-consistent hypothesis), and that hypothesis is the track's estimate.
+own rule for an update). For MFA, each track's reported hypothesis (its estimate, and the percept
+it took this frame) is chosen among the hypotheses MFA kept, the most probable first, so that no
+two tracks' choices share a percept anywhere in MFA's window.
 
-The settings are to be tuned on generated shell games that the evaluation does not use
-(:mod:`probanchor.evaluation.stonesoup_tuning`, docs/evaluation.md); :data:`TUNED` holds them
-(provisional values until that search has run to its end). Stone Soup, and OR-Tools for MFA,
+The settings are tuned on generated shell games that the evaluation does not use
+(:mod:`probanchor.evaluation.stonesoup_tuning`, docs/evaluation.md); :data:`TUNED` holds the
+best found so far. Stone Soup, and OR-Tools for MFA,
 are the ``stonesoup`` extra of the project (``scripts/setup.sh`` installs it).
 """
 
@@ -121,14 +121,17 @@ class StoneSoupSettings:
         return StoneSoupSettings(**values)
 
 
-#: The settings each tracker runs with. PROVISIONAL: the grid search of
-#: :mod:`probanchor.evaluation.stonesoup_tuning` (``anchoring baselines --tune --games 3 --jobs 2
-#: --out DIR``) has not been run to its end yet; these are the best of a first look at the
-#: shell game (seed 0) and one generated game of the evaluation (docs/evaluation.md). Replace
-#: them with the search's best before a results table is published.
+#: The settings each tracker runs with: JPDA's, the best of the grid search of
+#: :mod:`probanchor.evaluation.stonesoup_tuning` as far as it has run (all three tuning games);
+#: MHT's, the same until its own search has run (its first runs were made before the choice of
+#: its reported hypothesis was made consistent over MFA's window, docs/evaluation.md). Run the
+#: search to its end (``anchoring baselines --tune --games 3 --jobs 2 --out DIR``) and put its
+#: best here before a results table is published.
 TUNED: dict[str, StoneSoupSettings] = {
-    "stonesoup-jpda": StoneSoupSettings(process_noise=0.1, measurement_noise=0.01),
-    "stonesoup-mht": StoneSoupSettings(process_noise=0.1, measurement_noise=0.02),
+    "stonesoup-jpda": StoneSoupSettings(process_noise=0.1, measurement_noise=0.01,
+                                        prob_gate=0.9999),
+    "stonesoup-mht": StoneSoupSettings(process_noise=0.1, measurement_noise=0.01,
+                                       prob_gate=0.9999),
 }
 
 
@@ -359,6 +362,7 @@ class _MFA:
 
         self.associator = MFADataAssociator(MFAHypothesiser(models.hypothesiser),
                                             slide_window=slide_window)
+        self.window = slide_window
         self.models = models
         self.lost = _dt.timedelta(seconds=lost_seconds)
         self.numbering = _Numbering(method)
@@ -377,7 +381,7 @@ class _MFA:
         if self.tracks:
             association = self.associator.associate(set(self.tracks), set(detections), when)
             kept = [association[track] for track in self.tracks]
-            chosen = _assign(kept)
+            chosen = _assign(kept, self.window)
             for track, options, pick in zip(self.tracks, kept, chosen, strict=True):
                 components = [self.models.updater.update(h) if h else h.prediction
                               for h in options]
@@ -419,34 +423,34 @@ class _MFA:
         return track
 
 
-def _assign(options: Sequence[Sequence[Any]]) -> list[int]:
-    """Per track, the index of its hypothesis in the most probable one-to-one assignment of
-    percepts to tracks (a track may take none: its best missed-detection hypothesis)."""
-    from scipy.optimize import linear_sum_assignment
+def _assign(options: Sequence[Sequence[Any]], window: int) -> list[int]:
+    """Per track, the index of the hypothesis reported for it: the most probable choices that
+    are consistent over MFA's window (no two tracks' chosen hypotheses give the same percept to
+    both in any of the last ``window`` frames), taken greedily from the most probable down.
 
-    big = 1e9
-    columns: dict[int, int] = {}  # percept index -> column
-    for hyps in options:
-        for h in hyps:
-            if h:
-                columns.setdefault(int(h.measurement.metadata["index"]), len(columns))
-    n = len(options)
-    # columns: one per percept, then one "no percept" column per track
-    cost = np.full((n, len(columns) + n), big)
-    choice = np.full(cost.shape, -1, dtype=int)
-    for row, hyps in enumerate(options):
-        for k, h in enumerate(hyps):
-            weight = float(h.prediction.weight)
-            c = -math.log(weight) if weight > 0 else big / 2
-            col = columns[int(h.measurement.metadata["index"])] if h else len(columns) + row
-            if c < cost[row, col]:
-                cost[row, col], choice[row, col] = c, k
-    rows, cols = linear_sum_assignment(cost)
-    picks = [0] * n
-    for row, col in zip(rows, cols, strict=True):
-        if choice[row, col] >= 0:
-            picks[row] = int(choice[row, col])
-        else:  # no consistent hypothesis (cannot happen: MFA keeps a feasible one)
-            picks[row] = max(range(len(options[row])),
-                             key=lambda k, r=row: float(options[r][k].prediction.weight))
-    return picks
+    A hypothesis's ``prediction.tag`` is its track's percept history (one index per frame since
+    the track's birth, 1-based in that frame's detections, 0 for none), aligned from the end.
+    The weights are per track: a branch that took another track's percept two frames ago can
+    weigh most in its own track while the window's global assignment has ruled it out, so the
+    current frame alone is not enough.
+    """
+    ranked = sorted(((float(h.prediction.weight), row, k)
+                     for row, hyps in enumerate(options) for k, h in enumerate(hyps)),
+                    key=lambda c: (-c[0], c[1], c[2]))
+    picks: list[int | None] = [None] * len(options)
+    used: set[tuple[int, int]] = set()  # (frames back, percept) given to a track
+    for _, row, k in ranked:
+        if picks[row] is not None:
+            continue
+        tag = list(options[row][k].prediction.tag)
+        marks = {(back, int(tag[-back])) for back in range(1, min(window, len(tag)) + 1)
+                 if tag[-back]}
+        if marks & used:
+            continue
+        picks[row] = k
+        used |= marks
+    # (a track all of whose hypotheses conflict: its most probable; MFA keeps a consistent one)
+    def best(row: int) -> int:
+        return max(range(len(options[row])), key=lambda i: float(options[row][i].prediction.weight))
+
+    return [k if k is not None else best(row) for row, k in enumerate(picks)]
