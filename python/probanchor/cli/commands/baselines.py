@@ -38,8 +38,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     tuning.add_argument("--tune", action="store_true",
                         help="search the Stone Soup trackers' settings (a grid) and print the "
                              "best, instead of the table")
-    tuning.add_argument("--games", type=int, default=4,
-                        help="without streams: generated shell games to tune on (default 4)")
+    tuning.add_argument("--games", type=int, default=3,
+                        help="without streams: generated shell games to tune on (default 3)")
     tuning.add_argument("--first-game-seed", type=int, default=1000,
                         help="their first seed (default 1000; the evaluation uses 0 to 49)")
     tuning.add_argument("--jobs", type=int, default=1, help="worker processes (default 1)")
