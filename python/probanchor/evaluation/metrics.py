@@ -23,6 +23,9 @@ Two views of identity:
   be matched when they are at most ``threshold`` metres apart (Euclidean, 3-D). So an anchor
   that keeps a hidden object's position near the truth is credited, one that loses it is not.
   ``id_switches`` is motmetrics' ``num_switches``; ``idf1`` its IDF1 (global ID matching).
+
+- **HOTA** (TrackEval, the same ground truth and hypotheses, similarity falling linearly from 1
+  at the truth to 0 at ``threshold``): HOTA, DetA, AssA, LocA (:mod:`probanchor.evaluation.hota`).
 """
 
 from __future__ import annotations
@@ -34,6 +37,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from probanchor.evaluation.beliefs import BeliefAccuracy, belief_accuracy
+from probanchor.evaluation.hota import HotaMetrics, hota_metrics
 from probanchor.evaluation.motmetrics_compat import mm
 from probanchor.evaluation.record import TrackingRecord, revised_records
 
@@ -74,6 +78,7 @@ class Evaluation:
     #: the identity report on the answers as revised by the end of the run
     objects_at_end: list[ObjectIdentity] = field(default_factory=list)
     beliefs: BeliefAccuracy | None = None
+    hota: HotaMetrics | None = None
 
     @property
     def objects_kept(self) -> int:
@@ -182,9 +187,9 @@ def mot_metrics(
 def evaluate(
     records: Sequence[TrackingRecord], threshold: float = DEFAULT_THRESHOLD_M
 ) -> Evaluation:
-    """The identity report (every frame and at the end), the motmetrics figures and the
-    belief accuracy of one run."""
+    """The identity report (every frame and at the end), the motmetrics figures, HOTA and
+    the belief accuracy of one run."""
     records = list(records)
     return Evaluation(len(records), identity_report(records), mot_metrics(records, threshold),
                       identity_report(revised_records(records)),
-                      belief_accuracy(records, threshold))
+                      belief_accuracy(records, threshold), hota_metrics(records, threshold))

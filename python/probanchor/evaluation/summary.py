@@ -11,6 +11,11 @@ by the end of the run); ``revisions`` (every identity revision of the run, see
 many times a hidden anchor was re-acquired where a look-alike's belief was about as strong,
 ``TrackingRecord.ambiguous``). A caller may add its own fields
 through ``extra`` (they never replace these).
+
+Also, when the evaluation has them (:func:`~probanchor.evaluation.metrics.evaluate` computes
+them): ``hota``, ``deta``, ``assa``, ``loca`` (:mod:`probanchor.evaluation.hota`; ``null`` when
+undefined). They are not required of a summary read back (summaries written before them have
+none).
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from probanchor.evaluation.hota import hota_fields
 from probanchor.evaluation.metrics import DEFAULT_THRESHOLD_M, Evaluation, evaluate
 from probanchor.evaluation.record import TrackingRecord
 
@@ -76,6 +82,8 @@ def make_summary(
         "rejected_percepts": int(sum(r.rejected_percepts for r in records)),
         "ambiguous_reacquisitions": int(sum(len(r.ambiguous) for r in records)),
     }
+    if ev.hota is not None:
+        summary.update(hota_fields(ev.hota))
     for key, value in (extra or {}).items():
         if key in summary:
             raise ValueError(f"extra field {key!r} would replace a summary field")

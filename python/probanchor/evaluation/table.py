@@ -14,6 +14,8 @@ line of the table:
   the end of the run (``identity_kept_at_end``) / runs;
 - ID switches: mean per run (motmetrics);
 - IDF1: mean over the runs that define it;
+- HOTA, DetA, AssA, LocA: means over the runs that define them (``summary.json``'s ``hota``,
+  ``deta``, ``assa``, ``loca``; ``-`` for runs summarised before they existed);
 - ambiguous: runs that reported at least one ambiguous re-acquisition (``summary.json``'s
   ``ambiguous_reacquisitions``: a hidden object seen again that nothing observed tells from a
   look-alike's) / runs;
@@ -32,6 +34,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TextIO
 
+from probanchor.evaluation.hota import HOTA_FIELDS, hota_fields
 from probanchor.evaluation.metrics import DEFAULT_THRESHOLD_M, Evaluation
 from probanchor.evaluation.record import TrackingRecord
 from probanchor.evaluation.summary import make_summary, read_summary
@@ -53,6 +56,7 @@ class TableRow:
     runs_kept_at_end: int = 0
     belief_within: float | None = None
     true_occluder: float | None = None
+    hota: dict[str, float | None] | None = None  # HOTA_FIELDS -> mean over the runs (_hota_means)
 
 
 def _as_summary(run: Run, threshold: float) -> dict[str, Any]:
@@ -71,8 +75,19 @@ def _as_summary(run: Run, threshold: float) -> dict[str, Any]:
             "id_switches": run.mot.id_switches,
             "idf1": run.mot.idf1,
             "ambiguous_reacquisitions": 0,
+            **(hota_fields(run.hota) if run.hota is not None else {}),
         }
     return make_summary(list(run), threshold=threshold)
+
+
+def _mean_defined(values: Sequence[Any]) -> float | None:
+    finite = [float(v) for v in values if v is not None and math.isfinite(float(v))]
+    return sum(finite) / len(finite) if finite else None
+
+
+def _hota_means(summaries: Sequence[dict[str, Any]]) -> dict[str, float | None]:
+    """HOTA, DetA, AssA, LocA: each the mean over the runs that define it."""
+    return {k: _mean_defined([s.get(k) for s in summaries]) for k in HOTA_FIELDS}
 
 
 def aggregate(
@@ -116,6 +131,7 @@ def aggregate(
                 runs_kept_at_end=runs_kept_at_end,
                 belief_within=within,
                 true_occluder=occluder,
+                hota=_hota_means(summaries),
             )
         )
     return table
@@ -144,23 +160,36 @@ def _fraction(k: int, n: int) -> str:
     return f"{k}/{n} ({100.0 * k / n:.0f} %)" if n else "-"
 
 
+def _number(x: float | None) -> str:
+    return "-" if x is None else f"{x:.3f}"
+
+
+def _hota_header() -> tuple[str, str]:
+    return " HOTA | DetA | AssA | LocA |", "---:|---:|---:|---:|"
+
+
+def _hota_cells(row: TableRow) -> str:
+    means = row.hota or {}
+    return "".join(f" {_number(means.get(k))} |" for k in HOTA_FIELDS)
+
+
 def format_table(table: Sequence[TableRow]) -> str:
     """Markdown for rows made by :func:`aggregate`."""
+    hota_names, hota_rule = _hota_header()
     lines = [
         "| scenario | method | runs | identity kept (objects) | identity kept (runs) "
-        "| at the end (runs) | ID switches per run | IDF1 | ambiguous (runs) "
-        "| belief within 10 cm | P(true occluder) |",
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "| at the end (runs) | ID switches per run | IDF1 |" + hota_names
+        + " ambiguous (runs) | belief within 10 cm | P(true occluder) |",
+        "|---|---|---:|---:|---:|---:|---:|---:|" + hota_rule + "---:|---:|---:|",
     ]
     for r in table:
-        idf1 = "-" if r.idf1_mean is None else f"{r.idf1_mean:.3f}"
         within = "-" if r.belief_within is None else f"{100 * r.belief_within:.0f} %"
         occluder = "-" if r.true_occluder is None else f"{r.true_occluder:.2f}"
         lines.append(
             f"| {r.scenario} | {r.method} | {r.runs} | {_fraction(r.objects_kept, r.objects)} "
             f"| {_fraction(r.runs_kept, r.runs)} | {_fraction(r.runs_kept_at_end, r.runs)} "
-            f"| {r.id_switches_mean:.2f} | {idf1} "
-            f"| {r.runs_ambiguous}/{r.runs} | {within} | {occluder} |"
+            f"| {r.id_switches_mean:.2f} | {_number(r.idf1_mean)} |" + _hota_cells(r)
+            + f" {r.runs_ambiguous}/{r.runs} | {within} | {occluder} |"
         )
     return "\n".join(lines) + "\n"
 
