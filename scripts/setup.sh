@@ -4,7 +4,8 @@
 #   2. SWI-Prolog >= 9.1.12: Debian's package where the release has it, otherwise Debian 13's
 #      source built into .deps/swipl (the project owns it; nothing of the system is upgraded);
 #   3. a Python virtual environment .venv with the project and its dependencies (with the
-#      extras dev, for the tests, and cluster, Ray, whose back end the tests run), janus-swi
+#      extras dev, for the tests, cluster, Ray, whose back end the tests run, and stonesoup, the
+#      Stone Soup baselines the tests run), janus-swi
 #      built against that SWI-Prolog and pointed at it at interpreter start-up.
 # Run again, it checks each step with a stamp and finishes in seconds.
 set -euo pipefail
@@ -146,7 +147,7 @@ want="$(cat pyproject.toml | sha1sum | cut -c1-12) $swipl_bin"
 if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   log "installing the project and its Python dependencies"
   PATH="$(dirname "$swipl_bin"):$PATH" SWI_HOME_DIR="$swipl_home" \
-    "$venv/bin/pip" install -q -e ".[dev,cluster]" 2>&1 | { grep -v "is ignored: it is neither" || true; }
+    "$venv/bin/pip" install -q -e ".[dev,cluster,stonesoup]" 2>&1 | { grep -v "is ignored: it is neither" || true; }
   echo "$want" > "$stamp"
 fi
 # Packages whose metadata asks for opencv-python, which would overwrite the cv2 module of our

@@ -1,5 +1,5 @@
 """A whole run: frames from a scenario or a percept stream through the loop, then the summary,
-pictures, GIF and world file in an output directory."""
+the video (and, on request, a picture per frame) and world file in an output directory."""
 
 from __future__ import annotations
 
@@ -9,8 +9,6 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
-
-from tqdm import tqdm
 
 from probanchor.app.loop import AnchoringLoop, FrameOutcome, LoopConfig, run_frames
 from probanchor.app.pictures import FramePictures
@@ -31,6 +29,7 @@ from probanchor.evaluation import (
     write_records,
     write_summary,
 )
+from probanchor.progress import progress
 
 logger = logging.getLogger(__name__)
 
@@ -46,7 +45,8 @@ class RunOptions(LoopConfig):
     bag_topics: Any = None  # bags.BagTopics for the bag (the usual topics by default)
     out: Path | None = None
     picture_every: int = 1
-    progress: bool = True
+    frames: bool = False  # also write a PNG per picture (DIR/frames/), besides DIR/run.mp4
+    progress: bool = True  # a bar on a terminal, a few plain lines elsewhere
     width: int | None = None
     height: int | None = None
     # perceive the next frame while the current one is reasoned about (run_frames)
@@ -63,8 +63,8 @@ class RunOutput:
     summary: dict[str, Any]
     records: list[TrackingRecord]
     out: Path | None
-    gif: Path | None = None
-    pictures: list[Path] = field(default_factory=list)
+    video: Path | None = None
+    pictures: list[Path] = field(default_factory=list)  # the PNGs (with RunOptions.frames)
 
 
 #: The most particles a run's filter takes: every step hands each particle's values of every
@@ -153,7 +153,8 @@ def _run(options: RunOptions, loop: AnchoringLoop, store: WorldStore | None = No
     pictures = None
     if options.out is not None:
         options.out.mkdir(parents=True, exist_ok=True)
-        pictures = FramePictures(options.out, every=options.picture_every)
+        pictures = FramePictures(options.out, every=options.picture_every,
+                                 frames=options.frames)
     viewer = None
     if options.rerun is not None or options.rerun_spawn:
         from probanchor.app.rerun_frames import RerunFrames  # rerun-sdk only when asked for
@@ -166,8 +167,8 @@ def _run(options: RunOptions, loop: AnchoringLoop, store: WorldStore | None = No
         live = LiveWorld(options.serve)
         print(f"serving the world model at {live.url}/query?q=QUERY (anchoring shell "
               f"--connect {live.port})", file=sys.stderr, flush=True)
-    bar = tqdm(total=None if total is None else max(0, total - start), unit="frame",
-               desc=name, disable=not options.progress)
+    bar = progress(None if total is None else max(0, total - start), desc=name, unit="frame",
+                   show=options.progress)
 
     def on_frame(outcome: FrameOutcome, loop: AnchoringLoop) -> None:
         if store is not None:
@@ -265,10 +266,29 @@ def _finish(options: RunOptions, loop: AnchoringLoop, name: str,
     if missing is not None:
         logger.warning("%s: written without the particles: %s", options.out / "world.pl",
                        missing)
-    if pictures is not None and stopped is None:
+    if pictures is not None:  # (the video of the frames done, also after an error)
         output.pictures = pictures.paths
-        output.gif = pictures.finish(options.out / "run.gif")
+        output.video = pictures.finish()
     return output
+
+
+def _revision_lines(summary: dict[str, Any]) -> list[str]:
+    """The revisions of a run and how its beliefs about hidden objects fared, for a person."""
+    lines = []
+    for revision in summary.get("revisions", []):
+        swaps = ", ".join(f"{a} -> {b}" for a, b in revision["mapping"].items())
+        seen = ", ".join(revision["evidence"]) or "nothing"
+        lines.append(f"  frame {revision['frame']}: revised {swaps} (probability "
+                     f"{revision['probability']:.2f}, was {revision['before']:.2f}; seen again: "
+                     f"{seen}), answers since frame {min(revision['since'].values())}")
+    beliefs = summary.get("beliefs") or {}
+    if beliefs.get("hidden_frames"):
+        occluder = beliefs.get("true_occluder_probability")
+        extra = "" if occluder is None else f", P(true occluder) {occluder:.2f}"
+        lines.append(f"  hidden objects' beliefs within {100 * beliefs['threshold']:.0f} cm in "
+                     f"{100 * beliefs['within']:.0f} % of {beliefs['hidden_frames']} "
+                     f"object-frames{extra}")
+    return lines
 
 
 def format_summary(summary: dict[str, Any]) -> str:
@@ -277,13 +297,20 @@ def format_summary(summary: dict[str, Any]) -> str:
              f"({summary.get('method', '')})"]
     for obj in summary["objects"]:
         kept = "identity kept" if obj["identity_kept"] else "IDENTITY LOST"
+        if not obj["identity_kept"] and obj.get("identity_kept_at_end"):
+            kept = "identity kept at the end (revised)"
         lines.append(f"  {obj['id']:<10} {' -> '.join(obj['symbols']) or '(never anchored)':<30}"
                      f" {kept}")
+    lines.extend(_revision_lines(summary))
     idf1 = summary.get("idf1")
     lines.append(f"  ID switches {summary['id_switches']}, IDF1 "
                  f"{'n/a' if idf1 is None else f'{idf1:.3f}'}, rejected percepts "
                  f"{summary.get('rejected_percepts', 0)}, ambiguous re-acquisitions "
                  f"{summary.get('ambiguous_reacquisitions', 0)}")
+    if summary.get("hota") is not None:
+        lines.append("  HOTA {hota:.3f} (DetA {deta:.3f}, AssA {assa:.3f}, LocA {loca:.3f})"
+                     .format(**{k: summary.get(k) or 0.0 for k in ("hota", "deta", "assa",
+                                                                    "loca")}))
     ms = summary["ms_per_frame"]
     fps = 1000.0 / ms["total"] if ms["total"] > 0 else float("inf")
     lines.append(f"  ms per frame: perception {ms['perception']:.1f}, anchoring "

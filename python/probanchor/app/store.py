@@ -46,6 +46,7 @@ from typing import Any
 import numpy as np
 
 from anchoring import AnchorManager
+from anchoring.identity import AmbiguousPercept, Revision
 from anchoring.manager import AnchorManagerError
 from probanchor.app.loop import AnchoringLoop, FrameOutcome
 from probanchor.app.naming import symbol_atom
@@ -58,13 +59,15 @@ from probanchor.app.world_file import (
 )
 from probanchor.evaluation import TrackingRecord
 
-FORMAT = "anchoring-store 1"
+FORMAT = "anchoring-store 2"  # 2: frames.filter_input holds the identity layer's input too
 
 SCHEMA = """
 CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
 CREATE TABLE IF NOT EXISTS frames (
     frame INTEGER PRIMARY KEY, time REAL NOT NULL,
-    filter_input TEXT NOT NULL,   -- JSON [[symbol, category, [x, y, z] or null], ...]
+    filter_input TEXT NOT NULL,   -- JSON {"states": [[symbol, category, [x, y, z] or null],
+                                  --  ...], "ambiguous": [...], "evidence": [...],
+                                  --  "revisions": [...]} (the identity layer's input)
     record TEXT NOT NULL          -- JSON of the frame's evaluation.TrackingRecord
 );
 CREATE TABLE IF NOT EXISTS anchors (
@@ -95,14 +98,14 @@ CREATE TABLE IF NOT EXISTS state (
 
 #: the options a resumed run must share with the stored one
 RUN_KEYS = ("source", "particles", "seed", "threads", "engine", "reasoning", "reidentify",
-            "resample_threshold", "width", "height", "bag_topics", "theory_sha1")
+            "identity", "resample_threshold", "width", "height", "bag_topics", "theory_sha1")
 
 
 #: how the stored text of each run option that a resumed run takes from its store is read back
 _STORED_OPTION: dict[str, Any] = {
     "particles": int, "seed": int, "threads": int, "engine": str, "theory": Path,
     "reasoning": lambda text: text == "True", "reidentify": lambda text: text == "True",
-    "resample_threshold": float,
+    "identity": lambda text: text == "True", "resample_threshold": float,
     "width": lambda text: None if text == "None" else int(text),
     "height": lambda text: None if text == "None" else int(text),
 }
@@ -210,6 +213,7 @@ def run_meta(source: str, options: Any) -> dict[str, str]:
         "seed": str(options.seed), "threads": str(options.threads),
         "engine": str(options.engine), "reasoning": str(bool(options.reasoning)),
         "reidentify": str(bool(options.reidentify)),
+        "identity": str(bool(options.identity)),
         "resample_threshold": repr(float(options.resample_threshold)),
         "width": str(getattr(options, "width", None)),
         "height": str(getattr(options, "height", None)),
@@ -499,8 +503,7 @@ class WorldStore:
         """
         record = outcome.record
         frame = record.frame
-        inputs = [[s.symbol, s.category, None if s.position is None else list(s.position)]
-                  for s in outcome.states]
+        inputs = filter_input_json(outcome)
         weights, values = self._particle_values(loop)
         history = []
         for anchor in loop.manager.anchors:
@@ -643,20 +646,27 @@ class WorldStore:
         loop.rejected_percepts = int(loop_state["rejected_percepts"])
         loop.ambiguities = [(int(f), int(i), {str(k): float(v) for k, v in c.items()})
                             for f, i, c in loop_state["ambiguities"]]
+        loop.revisions = [Revision.from_json(r) for record in records for r in record.revised]
         if loop.reasoner is not None:
-            for _, inputs, _ in rows:
-                loop.reasoner.step([AnchorState(s, c, None if p is None else tuple(p))
-                                    for s, c, p in json.loads(inputs)])
+            for frame, inputs, _ in rows:
+                states, ambiguous, evidence, revised = read_filter_input(inputs)
+                again = loop.reasoner.reason(states, ambiguous, int(frame), evidence)
+                if [r.to_json() for r in again] != revised:
+                    raise StoreError(f"{self.path}: replaying frame {frame} did not revise the "
+                                     "identities the store says it revised (was the store "
+                                     "changed by another program?)")
             if stored.shape != loop.reasoner.filter.weights.shape or not np.allclose(
                     stored, loop.reasoner.filter.weights, rtol=1e-9, atol=1e-12):
                 raise StoreError(f"{self.path}: replaying the stored frames did not give the "
                                  "stored particles, with the same source, options and "
                                  "versions (was the store changed by another program?)")
             last = records[-1]
+            others = sorted(last.hypotheses)
             for symbol, hyp in last.hypotheses.items():
-                belief = None if hyp.perceived else loop.reasoner.belief(symbol)
+                belief = None if hyp.perceived else loop.reasoner.belief(symbol, others)
                 if belief is not None:
-                    manager.set_position_particles(symbol, belief.positions, belief.weights)
+                    manager.set_position_particles(symbol, belief.positions, belief.weights,
+                                                   belief.occluded)
         return StoredRun(int(rows[-1][0]) + 1, records)
 
     def world_text(self) -> str:
@@ -740,3 +750,32 @@ def stored_source(meta: dict[str, str]) -> tuple[str, Path]:
     return kind, Path(path)
 
 
+
+
+def filter_input_json(outcome: FrameOutcome) -> dict[str, Any]:
+    """What the filter was given in a frame, as the store keeps it (``frames.filter_input``):
+    the anchors' states, the identity layer's ambiguous percepts and evidence, and the
+    revisions it made (checked when a resume replays the frame)."""
+    return {
+        "states": [[s.symbol, s.category, None if s.position is None else list(s.position)]
+                   for s in outcome.states],
+        "ambiguous": [{"frame": a.frame, "percept": a.percept_index, "label": a.label,
+                       "candidates": list(a.candidates), "appearance": dict(a.appearance),
+                       "position": np.asarray(a.position, dtype=float).tolist()}
+                      for a in outcome.ambiguous],
+        "evidence": list(outcome.evidence),
+        "revisions": [r.to_json() for r in outcome.revisions],
+    }
+
+
+def read_filter_input(text: str) -> tuple[list[AnchorState], list[AmbiguousPercept], list[str],
+                                          list[dict[str, Any]]]:
+    """:func:`filter_input_json` read back."""
+    data = json.loads(text)
+    states = [AnchorState(s, c, None if p is None else tuple(p)) for s, c, p in data["states"]]
+    ambiguous = [AmbiguousPercept(int(a["frame"]), int(a["percept"]), str(a["label"]),
+                                  tuple(a["candidates"]),
+                                  {str(k): float(v) for k, v in a["appearance"].items()},
+                                  np.asarray(a["position"], dtype=float))
+                 for a in data.get("ambiguous", [])]
+    return states, ambiguous, list(data.get("evidence", [])), list(data.get("revisions", []))

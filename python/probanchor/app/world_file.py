@@ -65,7 +65,7 @@ def world_facts(loop: AnchoringLoop, perceived: set[str],
         categories = sorted(anchor.category.items(), key=lambda kv: -kv[1])
         pairs = ", ".join(f"{_fmt(p)}-{category_atom(c)}" for c, p in categories)
         lines.append(f"attribute({atom}, category, [{pairs}]).")
-    for frame, index, candidates in loop.ambiguities:
+    for frame, index, candidates in loop.identity_answers():
         lines.extend(f"identity(percept({frame}, {index}), {symbol_atom(symbol)}, {_fmt(p)})."
                      for symbol, p in candidates.items())
     if loop.reasoner is not None:
