@@ -61,6 +61,8 @@
             batch_resample/3,           % +State0, +Indices, -State
             batch_holds/3,              % +State, +Goal, -Flags
             batch_values/4,             % +State, +Template, +Goal, -Values
+            batch_rows/5,               % +State, +Template, +Goal, -Width, -Floats
+            batch_packed_rows/5,        % +State, +Template, +Goal, -Width, -Rows
             batch_time/2,               % +State, -T
             batch_size/2,               % +State, -N
             batch_keep/2,               % +State, -Kept
@@ -133,7 +135,8 @@ new_group(M, N, Seed, Check, State) :-
     make_tables([older_time(-1), older(Tab0), latest_time(0), latest(Tab)], Tables),
     make_env([module(M), size(N), now(-1), tables(Tables), facts([]),
               observations([]), checked(Checked)], E),
-    numlist(1, N, All),
+    ps_all(N, All),
+    forget_collected,
     with_random_stream(seed(Seed),
                        ( sweep(M, zero, E, 0, All),
                          materialise_derived(M, E, 0, All) ),
@@ -162,10 +165,14 @@ materialise_derived(M, E, T, All) :-
                settle(Entry)
            )).
 
-sets_each([], _, _).
-sets_each([I|Is], LC, C) :-
+sets_each(Ps, LC, C) :-
+    ps_list(Ps, Is),
+    sets_each_(Is, LC, C).
+
+sets_each_([], _, _).
+sets_each_([I|Is], LC, C) :-
     col_arg(I, LC, L), list_to_set(L, Set), col_setarg(I, C, Set),
-    sets_each(Is, LC, C).
+    sets_each_(Is, LC, C).
 
 %!  batch_step(+State0, +Observations, +Facts, -Result) is det.
 %
@@ -202,8 +209,9 @@ group_step(State0, Obs, Facts, Check, step(State, LWs)) :-
     make_tables([older_time(T), older(Tab), latest_time(T1), latest(Tab1)], Tables),
     make_env([module(M), size(N), now(T), tables(Tables), facts(Facts),
               observations(HVs), checked(Checked)], E),
-    numlist(1, N, All),
+    ps_all(N, All),
     new_column(N, 0.0, LW),
+    forget_collected,
     with_random_stream(state(R0),
                        ( forall(member(H-V, HVs), weigh_observation(E, H, V, All, LW)),
                          sweep(M, next, E, T1, All),
@@ -225,7 +233,7 @@ weigh_observation(E, H, V, Ps, LW) :-
     env_at_time(E, T1, ES),
     forall(rv_clause(M, H, now, D, B, At),
            weigh_clause(ES, H, T1, now, B, D, At, V, Ps, Done, LW)),
-    (   col_uncomputed(Ps, Done, [_|_])
+    (   col_uncomputed(Ps, Done, Missing), Missing \== []
     ->  throw(error(ddc(no_observation_clause(H ~= V), query), _))
     ;   true
     ).
@@ -357,7 +365,8 @@ batch_holds(S, Goal, Flags) :-
     query_env(S, E, All),
     with_state(S, branch_union(Goal, E, All, Ps)),
     batch_state_size(S, N),
-    flags(1, N, Ps, Flags).
+    ps_list(Ps, L),
+    flags(1, N, L, Flags).
 
 %   (Each group's query on a copy of the goal: its bindings are its own.)
 group_holds(Goal, G, Flags) :-
@@ -398,8 +407,56 @@ batch_values(S, Template, Goal, Values) :-
     new_column(N, none, VC),
     new_column(N, '$u', Done),
     with_state(S, forall(eval_body(Goal, E, All, Ps),
-                         ( plan(Template, Tmpl, Bs), value_each(Ps, Bs, Tmpl, Done, VC) ))),
+                         ( plan(Template, Tmpl, Bs), ps_list(Ps, L),
+                           value_each(L, Bs, Tmpl, Done, VC) ))),
     col_list(VC, Values).
+
+%!  batch_rows(+State, +Template, +Goal, -Width, -Floats) is semidet.
+%
+%   batch_values/4 of a variable's values (Goal X:t ~= V, Template V) as
+%   rows of Width floats, particle by particle (NaN rows where undefined),
+%   read straight from the columns (the column library's col_rows/4);
+%   fails for any other goal, where a value is not a number tuple of
+%   floats, or where no particle has a value (the caller then makes the
+%   rows from batch_values/4's values).
+batch_rows(S, Template, Goal, W, Floats) :-
+    row_columns(S, Template, Goal, W, Cs),
+    foldl(column_rows(W), Cs, Floats, []).
+
+column_rows(W, C, Fs0, Fs) :- col_rows(C, W, Fs0, Fs).
+
+%!  batch_packed_rows(+State, +Template, +Goal, -Width, -Rows) is semidet.
+%
+%   batch_rows/5 with the floats in a blob of doubles
+%   (ddc_batch_col:col_pack_rows/3).
+batch_packed_rows(S, Template, Goal, W, Rows) :-
+    row_columns(S, Template, Goal, W, Cs),
+    col_pack_rows(Cs, W, Rows).
+
+%   row_columns(+S, +Template, +Goal, -W, -Columns): the columns of each
+%   group's values of the variable of Goal (every one computed), and the
+%   tuple arity W of their values (fails where a value is no tuple of W
+%   floats, or no particle has one).
+row_columns(S, Template, Goal, W, Cs) :-
+    state_groups(S, Gs),
+    maplist(group_column(Template-Goal), Gs, Cs),
+    foldl(column_width, Cs, _, W),
+    integer(W).
+
+column_width(C, W0, W) :-
+    col_row_width(C, K),
+    (   K =:= 0 -> W = W0 ; var(W0) -> W = K ; W0 == K, W = W0 ).
+
+group_column(TG, G, C) :-
+    copy_term(TG, Template-Goal0),
+    nonvar(Goal0),
+    (   Goal0 = (R0 ~= V0), timed_read(R0, X0, TE0) -> Goal = (X0:TE0 ~= V0) ; Goal = Goal0 ),
+    Goal = (X:TE ~= V), var(V), ground(X), Template == V,
+    query_env(G, E, All),
+    read_time(TE, E, T),
+    env_time_table(E, T, _),
+    with_state(G, value(E, X, T, All, Entry)),
+    entry_column(Entry, C).
 
 wrapped_value(Wrap, V, W) :-
     (   ( V == '$undef' ; V == '$u' ) -> W = none

@@ -37,13 +37,30 @@
             col_set_each/3,             % +Ps, !Column, +Value
             col_status/2,               % +Column, -Status
             col_all_same/3,             % +Ps, +Column, +I0
-            col_num_arity/2,            % +Column, -K
             col_gather/3,               % +Sources, +Pairs, -Column
+            col_plan_size/2,            % +Pairs, -N
+            ps_all/2,                   % +N, -Ps
+            ps_list/2,                  % +Ps, -List
+            ps_size/2,                  % +Ps, -K
+            ps_first/2,                 % +Ps, -I
+            ps_subtract/3,              % +Ps0, +Ps1, -Ps
+            ps_intersection/3,          % +Ps0, +Ps1, -Ps
+            ps_union/3,                 % +Ps0, +Ps1, -Ps
+            ps_union/2,                 % +Pss, -Ps
+            % fast paths (see below)
+            col_num_arity/2,            % +Column, -K
+            col_rows/4,                 % +Column, ?Width, -Floats, ?Tail
+            col_row_width/2,            % +Column, -Width
+            col_pack_rows/3,            % +Columns, +Width, -Rows
+            col_floats_into/4,          % +Rows, +Address, +Capacity, -N
+            col_floats_list/2,          % +Rows, -Floats
             col_draw_gauss/5,           % +Ps, +MeanColumn, +Factor, !Out, +Seed
             col_weigh_gauss/7,          % +Ps, +MeanColumn, +Factor, +LogNorm, +V, !Done, !LW
             col_vm_test/7,              % +Ps, +Columns, +Code, +Op, +A, +B, -Out
             col_vm_instance/5,          % +Ps, +Columns, +Code, +Registers, !Column
             col_copy_each/3,            % +Ps, +From, !Column
+            col_test/3,                 % +Ps, +Goal, -Out
+            col_instance/3,             % +Ps, +Template, !Column
             col_split/3,                % +Ps, +Columns, -Groups
             col_draw_uniform/4,         % +Ps, +ListColumn, !Column, +Seed
             col_select_eq/5,            % +Ps, +Column, +Value, +Eq, -Out
@@ -52,14 +69,11 @@
             col_append_each/3,          % +Ps, !ListColumn, +Value
             col_select_unify/4,         % +Ps, +Column, +Pattern, -Out
             col_with_arity/4,           % +Ps, +Column, +K, -Out
-            col_sets_each/3,            % +Ps, +ListColumn, !Column
-            ps_subtract/3,              % +Ps0, +Ps1, -Ps
-            ps_intersection/3,          % +Ps0, +Ps1, -Ps
-            ps_union/3,                 % +Ps0, +Ps1, -Ps
-            ps_union/2                  % +Pss, -Ps
+            col_sets_each/3             % +Ps, +ListColumn, !Column
           ]).
 
 :- use_module(library(ordsets)).
+:- use_module(library(lists), [numlist/3]).
 
 :- set_prolog_flag(optimise, true).
 
@@ -71,15 +85,33 @@ value.  A column is updated in place, as nb_setarg/3 updates a term: the
 change is not undone on backtracking.
 
 col_backend/1 says which representation is in use.  The predicates of
-the export list from col_num_arity/2 to col_sets_each/3 are fast paths:
-they fail where the library is not loaded (or does not handle the
-values), and the caller then runs its loop in Prolog; a fast path that
-fails has written nothing.
+the export list from col_num_arity/2 on are fast paths: they fail where
+the library is not loaded (or does not handle the values), and the caller
+then runs its loop in Prolog; a fast path that fails has written nothing.
+
+A batch (ps_all/2) is a set of particle indices: with the library a blob,
+a C array passed from call to call as it is; else, and wherever a caller
+gives one, a sorted list of integers.  A call given lists gives lists.
+With the library, a column whose particles all hold one value stores one
+cell (docs/batched-filter.md, "Columns in C").
 */
 
 %   The interface version the Prolog side expects of the library
 %   (DDC_COLUMNS_VERSION in prolog/c/ddc_columns.c).
-columns_version(1).
+columns_version(2).
+
+%!  ps_all(+N, -Ps) is det.
+%!  ps_list(+Ps, -List:list(integer)) is det.
+%!  ps_size(+Ps, -K) is det.
+%!  ps_first(+Ps, -I) is semidet.
+%
+%   A batch is a set of particle indices: a sorted list of integers 1..N
+%   or, where the library is loaded, a blob holding the same set as a C
+%   array (the engine's batches: passed from call to call as they are,
+%   where a list is walked and built again by each); the empty batch is
+%   [] either way.  ps_all/2: every particle 1..N; ps_list/2: the indices
+%   as a list (for a loop in Prolog); ps_size/2: how many; ps_first/2: the
+%   least (fails on []).
 
 %!  ps_subtract(+Ps0, +Ps1, -Ps) is det.
 %!  ps_intersection(+Ps0, +Ps1, -Ps) is det.
@@ -168,6 +200,11 @@ col_backend(foreign).
 col_backend(prolog).
 
 col_gc_due(_) :- fail.
+
+ps_all(N, Ps) :- numlist(1, N, Ps).
+ps_list(Ps, Ps).
+ps_size(Ps, K) :- length(Ps, K).
+ps_first([I|_], I).
 
 %!  col_has_ref(@Term) is semidet.
 %
@@ -258,6 +295,32 @@ column_status(I, C, V1, S0, S) :-
         column_status(I1, C, V1, S1, S)
     ).
 
+%!  col_rows(+Column, ?Width, -Floats, ?Tail) is semidet.
+%
+%   Fast path of a column read as rows of Width floats (filter_rows/6),
+%   NaN rows where a particle has no value (fails here).
+col_rows(_, _, _, _) :- fail.
+
+%!  col_pack_rows(+Columns:list, +Width, -Rows) is semidet.
+%!  col_floats_into(+Rows, +Address, +Capacity, -N) is semidet.
+%
+%   The rows of col_rows/4 of each column in turn, as a blob of doubles
+%   (an atom: not copied out of the filter's engine, as a list of floats
+%   is), and its N doubles copied into the memory at Address that holds
+%   Capacity doubles (a numpy array's: the Python bridge reads many rows
+%   without converting each float).  col_floats_list/2: the doubles as a
+%   list.  They fail here (no library).
+col_pack_rows(_, _, _) :- fail.
+col_floats_into(_, _, _, _) :- fail.
+col_floats_list(_, _) :- fail.
+
+%!  col_row_width(+Column, -Width) is semidet.
+%
+%   Every value of Column is a tuple of Width floats ('$u' and '$undef'
+%   aside; Width 0 if there is none): fast path of a read as rows (fails
+%   here).
+col_row_width(_, _) :- fail.
+
 %!  col_all_same(+Ps, +Column, +I0) is semidet.
 %
 %   Every particle of Ps holds particle I0's value (==).
@@ -282,6 +345,12 @@ col_gather(Srcs, Pairs, C) :-
     pair_values(Pairs, Src, Vs),
     C =.. [c|Vs].
 
+%!  col_plan_size(+Pairs, -N) is det.
+%
+%   The number of particles of a group's sources (col_sources/3's, or a
+%   list of G-L pairs).
+col_plan_size(Pairs, N) :- length(Pairs, N).
+
 pair_values([], _, []).
 pair_values([G-L|Ps], Src, [V|Vs]) :-
     arg(G, Src, C),
@@ -305,6 +374,16 @@ col_weigh_gauss(_, _, _, _, _, _, _) :- fail.
 %   Fast paths of loops of arithmetic and copies over a batch (fail here;
 %   ddc_batch_columns.pl compiles them).
 col_vm_test(_, _, _, _, _, _, _) :- fail.
+
+%!  col_test(+Ps, +Goal, -Out) is semidet.
+%!  col_instance(+Ps, +Template, !Column) is semidet.
+%
+%   Fast paths of a comparison over a batch (Out the particles where it
+%   holds) and of each particle's instance of a template, compiled from
+%   the goal's own terms (column references, deferred expressions); fail
+%   here.
+col_test(_, _, _) :- fail.
+col_instance(_, _, _) :- fail.
 col_vm_instance(_, _, _, _, _) :- fail.
 col_copy_each(_, _, _) :- fail.
 
@@ -320,8 +399,8 @@ col_draw_uniform(_, _, _, _) :- fail.
 %!  col_sources(+Indices, +Sizes, -Pairs) is semidet.
 %
 %   Fast paths of a test V == Value (Eq true) or V \== Value over a batch
-%   and of the ancestors of a resampling, as Group-Index pairs per group
-%   (fail here).
+%   and of the ancestors of a resampling, per group (in the library a blob
+%   that col_gather/3 reads as the list of Group-Index pairs; fail here).
 col_select_eq(_, _, _, _, _) :- fail.
 col_sources(_, _, _) :- fail.
 

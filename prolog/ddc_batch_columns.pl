@@ -191,20 +191,28 @@ test_goal(G) :-
     compound(G), functor(G, Op, 2),
     memberchk(Op, [<, >, =<, >=, =:=, =\=, ==, \==, =, \=, @<, @>, @=<, @>=]).
 
-arith_loop([], _, _, _).
-arith_loop([I|Is], Bs, Ex, C) :-
+arith_loop(Ps, Bs, Ex, C) :-
+    ps_list(Ps, Is),
+    arith_loop_(Is, Bs, Ex, C).
+
+arith_loop_([], _, _, _).
+arith_loop_([I|Is], Bs, Ex, C) :-
     \+ \+ ( bind(Bs, I), X is Ex, col_setarg(I, C, X) ),
-    arith_loop(Is, Bs, Ex, C).
+    arith_loop_(Is, Bs, Ex, C).
 
 %!  test_loop(+G, +Ps0:list(integer), -Ps:list(integer)) is semidet.
 %
 %   Ps: the particles of Ps0 in which the test G holds (not empty).  A
 %   batch of 16 or more particles runs a compiled loop (compiled_test/4).
 test_loop(G, Ps0, Ps) :-
-    plan(G, Tmpl, Bs),
-    (   Ps0 = [_, _, _, _, _, _, _, _, _, _, _, _, _, _, _, _|_]      % (16 or more)
-    ->  compiled_test(Ps0, Bs, Tmpl, Ps)
-    ;   test_each(Ps0, Bs, Tmpl, Ps)
+    (   col_test(Ps0, G, Ps1)                 % (in the column library, from G itself)
+    ->  Ps = Ps1
+    ;   plan(G, Tmpl, Bs),
+        (   ps_size(Ps0, K), K >= 16
+        ->  compiled_test(Ps0, Bs, Tmpl, Ps)
+        ;   ps_list(Ps0, L),
+            test_each(L, Bs, Tmpl, Ps)
+        )
     ),
     Ps \== [].
 
@@ -231,7 +239,8 @@ compiled_test(Ps0, Bs, Tmpl, Ps) :-
     Head =.. [cols|CVs],
     compiled_loop(test, Head, k(KVs), I, Cond, Name),
     Cols =.. [cols|Cs],
-    call(Name, Ps0, Cols, k(Ns), Ps).
+    ps_list(Ps0, L),
+    call(Name, L, Cols, k(Ns), Ps).
 
 %   vm_test(+Ps0, +Binds, +Test, -Ps) and vm_instance(+Ps, +Binds, +Tmpl,
 %   !C): compiled_test/4 and compiled_instance/4 in one call of the column
@@ -392,7 +401,8 @@ compiled_instance(Ps, Bs, Tmpl, C) :-
     Head =.. [cols|CVs],
     compiled_loop(instance(Value), Head, k(KVs), I, Cond, Name),
     Cols =.. [cols|Cs],
-    call(Name, Ps, Cols, k(Ns), C).
+    ps_list(Ps, L),
+    call(Name, L, Cols, k(Ns), C).
 
 %   compiled_loop(+Kind, +Head, +Consts, ?I, +Cond, -Name): the loop
 %   predicate Name/4 for this shape (Name(Ps, Cols, Consts, Out)), made the
@@ -487,7 +497,8 @@ groups_by_values(Ps, Cs, Groups) :-
     col_backend(foreign),
     col_split(Ps, Cs, Groups0), !,
     keysort(Groups0, Groups).
-groups_by_values(Ps, Cs, Groups) :-
+groups_by_values(Ps0, Cs, Groups) :-
+    ps_list(Ps0, Ps),
     split_pairs(Ps, Cs, Pairs),
     keysort(Pairs, Sorted),
     group_pairs_by_key(Sorted, Groups).
@@ -533,10 +544,13 @@ unify_column(P, C, Arity, Ps0, Ps) :-
         term_variables(Pat, PVs),
         maplist(element_ref(C, Pat), Vs, PVs)
     ;   ground(P), \+ has_column(P)
-    ->  (   col_select_unify(Ps0, C, P, Ps1) -> Ps = Ps1 ; with_value(Ps0, C, P, Ps) ),
+    ->  (   col_select_unify(Ps0, C, P, Ps1) -> Ps = Ps1
+        ;   ps_list(Ps0, L), with_value(L, C, P, Ps)
+        ),
         Ps \== []
     ;   plan(P, Tmpl, Bs),
-        unifiable_at(Ps0, C, Bs, Tmpl, Ps1),
+        ps_list(Ps0, L),
+        unifiable_at(L, C, Bs, Tmpl, Ps1),
         Ps1 \== [],
         split_column(C, Ps1, V, Ps),
         unify_value(P, V, Ps, _)
@@ -549,7 +563,8 @@ with_arity(Ps0, C, K, Ps) :-
     Ps = Ps1.
 with_arity(Ps0, C, K, Ps) :-
     tuple_shape(K, Shape),
-    with_shape(Ps0, C, Shape, Ps).
+    ps_list(Ps0, L),
+    with_shape(L, C, Shape, Ps).
 
 with_shape([], _, _, []).
 with_shape([I|Is], C, Shape, Ps) :-

@@ -11,6 +11,7 @@
           [ eval_body/4,                % +Body, +Env, +Ps0, -Ps
             branch_union/4,             % +Goal, +Env, +Ps0, -Union
             collect/6,                  % +Template, +Goal, ?List, +Env, +Ps0, -Ps
+            forget_collected/0,
             env_time_table/3,           % +Env, +T, -Table
             env_at_time/3,              % +Env0, +Now, -Env
             read_time/3,                % +TimeExpr, +Env, -T
@@ -218,8 +219,16 @@ call_static(G, E) :-
 %   answer is no).
 model_goal(G) :-
     functor(G, N, A),
+    model_export(N, A).
+
+%   model_export(?Name, ?Arity): ddc_models' exports, as facts made when
+%   this file is compiled (module_property/2 makes the list anew at each
+%   call).
+term_expansion(model_exports, Facts) :-
     module_property(ddc_models, exports(Es)),
-    memberchk(N/A, Es).
+    findall(model_export(N, A), member(N/A, Es), Facts).
+
+model_exports.
 
 %   visible(+M, +G): G's predicate is defined in M or reachable from it
 %   (imported, a builtin, autoloadable).  Asked once per predicate and
@@ -291,21 +300,50 @@ firsts([L|Ls], Taken0, [F|Fs], Taken) :-
 %   findall(T, G, L) in each particle of Ps0: L a value the batch agrees
 %   on, or a column of lists.
 collect(T, G, L, E, Ps0, Ps) :-
-    env_size(E, N),
-    col_new(N, '$u', LC),
-    col_set_each(Ps0, LC, []),
-    forall(eval_body(G, E, Ps0, Ps1),
-           (   plan(T, Tmpl, Bs),
-               (   append_grouped(Ps1, Bs, Tmpl, LC)
-               ->  true
-               ;   append_each(Ps1, Bs, Tmpl, LC)
-               )
-           )),
-    (   Ps0 = [I0|_], col_all_same(Ps0, LC, I0)
+    env_now(E, Now),
+    (   collected(Now-T-G, Ps0, LC0)
+    ->  LC = LC0
+    ;   env_size(E, N),
+        col_new(N, '$u', LC),
+        col_set_each(Ps0, LC, []),
+        forall(eval_body(G, E, Ps0, Ps1),
+               (   plan(T, Tmpl, Bs),
+                   (   append_grouped(Ps1, Bs, Tmpl, LC)
+                   ->  true
+                   ;   append_each(Ps1, Bs, Tmpl, LC)
+                   )
+               )),
+        remember_collected(Now-T-G, Ps0, LC)
+    ),
+    (   ps_first(Ps0, I0), col_all_same(Ps0, LC, I0)
     ->  col_arg(I0, LC, L0),
         unify_value(L, L0, Ps0, Ps)
     ;   unify_column(L, LC, Ps0, Ps)
     ).
+
+%!  forget_collected is det.
+%
+%   Forgets the lists of findalls made so far (collected/3): called at the
+%   start of each step and query, whose tables or particles they were.
+forget_collected :-
+    nb_setval('$ddc_collected', []).
+
+%   collected(+Key, +Ps, -LC): a findall of the same template and goal
+%   (variants, the same columns) at the same time was made, in this step
+%   or query, over particles that include Ps: LC holds their lists.  Each
+%   particle's list is the same if made again (its values are drawn once),
+%   so it is not: on the bench's model and the theory of occlusion the
+%   clauses of hidden_under/1 run the same occluder search one after the
+%   other.
+collected(Key, Ps, LC) :-
+    nb_current('$ddc_collected', Memo),
+    member(K-Pm-LC0, Memo), K =@= Key,
+    ps_subtract(Ps, Pm, []), !,
+    LC = LC0.
+
+remember_collected(Key, Ps, LC) :-
+    (   nb_current('$ddc_collected', Memo) -> true ; Memo = [] ),
+    nb_setval('$ddc_collected', [Key-Ps-LC|Memo]).
 
 %   append_grouped(+Ps, +Binds, +Tmpl, !LC): append_each/4 in the column
 %   library, a call per group of particles with the same values in the
@@ -323,10 +361,14 @@ append_grouped(Ps, Bs, Tmpl, LC) :-
                col_append_each(GPs, LC, T1)
            )).
 
-append_each([], _, _, _).
-append_each([I|Is], Bs, Tmpl, LC) :-
+append_each(Ps, Bs, Tmpl, LC) :-
+    ps_list(Ps, Is),
+    append_each_(Is, Bs, Tmpl, LC).
+
+append_each_([], _, _, _).
+append_each_([I|Is], Bs, Tmpl, LC) :-
     \+ \+ ( bind(Bs, I), col_arg(I, LC, L0), append(L0, [Tmpl], L1), col_setarg(I, LC, L1) ),
-    append_each(Is, Bs, Tmpl, LC).
+    append_each_(Is, Bs, Tmpl, LC).
 
 
 %   one branch per key, the keys held at T and the ground heads that
@@ -476,12 +518,11 @@ run_clause(E, X, T, K, B, At, Rest, C, Action) :-
     catch(forall(eval_body(B, E, Rest, Ps), call(Action, Ps)), Err, clause_error(Err, M:L)),
     (   R == true, Check \== []
     ->  ps_intersection(Rest, Check, Watched),
-        exclude(uncomputed_at(C), Watched, Given),
+        uncomputed(Watched, C, Missing),
+        ps_subtract(Watched, Missing, Given),
         check_rivals(Given, E, X, T, K, Id, L)
     ;   true
     ).
-
-uncomputed_at(C, I) :- col_is_u(I, C).
 
 %   clause_error(+Error, +Where): an error raised in the body of the clause
 %   at Where is the program's error there, as the per-particle engine
@@ -505,7 +546,9 @@ clause_error(E, Where) :-
 check_rivals([], _, _, _, _, _, _) :- !.
 check_rivals(Ps, E, X, T, K, Id, L) :-
     env_module(E, M),
-    (   M:'$b_rv'(X, K, _, B, At2), origin_id(At2, Id2), Id2 > Id, origin_line(At2, L2),
+    (   M:'$b_rv'(X, K, _, B, At2), origin_id(At2, Id2), Id2 > Id,
+        \+ M:'$b_exclusive'(Id, Id2),
+        origin_line(At2, L2),
         \+ \+ eval_body(B, E, Ps, _)
     ->  throw(error(ddc(overlapping_clauses(X:T, M:L2), M:L), _))
     ;   true

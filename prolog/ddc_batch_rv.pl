@@ -13,6 +13,7 @@
             weigh_branch/5              % +Dist, +Value, !Done, !LogWeights, +Ps
           ]).
 
+:- use_module(library(apply)).
 :- use_module(ddc_dist).
 :- use_module(ddc_batch_col).
 :- use_module(ddc_batch_columns,
@@ -50,11 +51,19 @@ assign(Ps, C, D) :-
     (   D = val(V), \+ has_column(V)
     ->  set_each(Ps, C, V)
     ;   D = val(V)
-    ->  plan(V, Tmpl, Bs),
-        (   Ps = [_, _, _, _, _, _, _, _, _, _, _, _, _, _, _, _|_]
-        ->  compiled_instance(Ps, Bs, Tmpl, C)
-        ;   instance_each(Ps, Bs, Tmpl, C)
+    ->  (   col_instance(Ps, V, C)
+        ->  true
+        ;   plan(V, Tmpl, Bs),
+            (   ps_size(Ps, K), K >= 16
+            ->  compiled_instance(Ps, Bs, Tmpl, C)
+            ;   ps_list(Ps, L),
+                instance_each(L, Bs, Tmpl, C)
+            )
         )
+    ;   D = gaussian(Ms, Cov), col_backend(foreign),
+        gaussian_in_bulk(Ms, Cov, P),
+        mean_source(Ps, Ms, C, Ps1, MC)
+    ->  draw_at(Ps1, MC, P, C)
     ;   plan(D, Tmpl, Bs),
         (   Tmpl = uniform(L), Bs = [LC-Pat], var(Pat), L == Pat,
             col_backend(foreign),
@@ -64,10 +73,80 @@ assign(Ps, C, D) :-
         ;   Tmpl = finite(Es), col_backend(foreign),
             vm_finite(Ps, Bs, Es, C)
         ->  true
-        ;   dist_prepare(Tmpl, P),
+        ;   prepared(Tmpl, P),
             draw_each(Ps, Bs, P, C)
         )
     ).
+
+%   gaussian_in_bulk(+Means, +Cov, -P): a gaussian whose mean, a list of
+%   three or one, is numbers and expressions over columns (column
+%   references, deferred expressions) and whose covariance is ground,
+%   drawn and weighed in the column library with P's factor (the
+%   distribution prepared from the goal's own terms: no plan/3).
+gaussian_in_bulk(Ms, Cov, P) :-
+    ground(Cov), \+ has_column(Cov),
+    (   is_list(Ms)
+    ->  Ms = [M1, M2, M3], bulk_mean(M1), bulk_mean(M2), bulk_mean(M3),
+        prepared(gaussian([_, _, _], Cov), P)
+    ;   bulk_mean(Ms),
+        prepared(gaussian(_, Cov), P)
+    ),
+    dist_prepared_factor(P, _, _).
+
+bulk_mean(M) :-
+    (   number(M) -> true
+    ;   compound(M), ( M = '$c'(_, _, _) -> true ; M = '$x'(_) )
+    ).
+
+%   mean_source(+Ps, +Means, +C, -Ps1, -MC): the particles Ps1 of Ps to draw
+%   or weigh and a column MC of their means: Means read from one column
+%   (pos(O):t ~= (X, Y, Z), gaussian([X, Y, Z], ...)) is that column, for
+%   all of Ps; else those of Ps not done in C, with their means computed
+%   (one value for all, or in the column library: fails where it cannot).
+mean_source(Ps, Ms, _, Ps, MC) :-
+    one_column_mean(Ms, MC), !.
+mean_source(Ps, Ms, C, Ps1, MC) :-
+    (   Ms = [M1, M2, M3] -> T = (M1, M2, M3) ; T = Ms ),
+    col_size(C, N),
+    col_uncomputed(Ps, C, Ps1),
+    (   has_column(T)
+    ->  col_new(N, '$u', MC),
+        col_instance(Ps1, T, MC)
+    ;   col_new(N, T, MC)
+    ).
+
+one_column_mean(Ms, MC) :-
+    (   Ms = [A, B, C]
+    ->  A = '$c'(MC, P, X), B = '$c'(MC1, P1, Y), C = '$c'(MC2, P2, Z),
+        MC1 == MC, MC2 == MC, P1 == P, P2 == P, P == (X, Y, Z),
+        var(X), var(Y), var(Z), X \== Y, Y \== Z, X \== Z
+    ;   Ms = '$c'(MC, P, X), var(X), P == X
+    ).
+
+%   prepared(+Tmpl, -P): dist_prepare/2 of a distribution template,
+%   remembered per template for a gaussian whose mean is variables (bound
+%   per particle) and whose covariance is ground: the covariance is
+%   usually the program's, the same at every step, and its check and
+%   Cholesky factor are worked out once, not once per batch.  (At most
+%   max_prepared/1 templates are remembered, in case a program's
+%   covariances change from step to step.)
+prepared(Tmpl, P) :-
+    Tmpl = gaussian(M, V),
+    ( var(M) ; is_list(M), maplist(var, M) ),
+    ground(V), !,
+    variant_sha1(Tmpl, Key),
+    (   '$b_prepared'(Key, Tmpl, P0)
+    ->  P = P0
+    ;   dist_prepare(Tmpl, P),
+        flag('$b_prepared', K, K+1),
+        (   max_prepared(Max), K < Max -> assertz('$b_prepared'(Key, Tmpl, P)) ; true )
+    ).
+prepared(Tmpl, P) :-
+    dist_prepare(Tmpl, P).
+
+:- dynamic '$b_prepared'/3.
+
+max_prepared(1000).
 
 %!  set_each(+Ps:list(integer), !Column, +Value) is det.
 %
@@ -96,9 +175,11 @@ draw_each(Ps0, Bs, P, C) :-
     mean_column(Ps, Bs, P, C, Means), !,
     draw_at(Ps, Means, P, C).
 draw_each(Ps, [C1-Pat], P, C) :- !,
-    draw_each1(Ps, C1, Pat, P, C).
+    ps_list(Ps, L),
+    draw_each1(L, C1, Pat, P, C).
 draw_each(Ps, Bs, P, C) :-
-    draw_loop(Ps, Bs, P, C).
+    ps_list(Ps, L),
+    draw_loop(L, Bs, P, C).
 
 draw_loop([], _, _, _).
 draw_loop([I|Is], Bs, P, C) :-
@@ -116,7 +197,8 @@ draw_at(Ps, C1, P, C) :-
     random_between(0, 0x3fffffffffffffff, Seed),
     col_draw_gauss(Ps, C1, Factor, C, Seed), !.
 draw_at(Ps, C1, P, C) :-
-    draw_at_each(Ps, C1, P, C).
+    ps_list(Ps, L),
+    draw_at_each(L, C1, P, C).
 
 draw_at_each([], _, _, _).
 draw_at_each([I|Is], C1, P, C) :-
@@ -159,9 +241,15 @@ mean_column(Ps, Bs, P, Like, Means) :-
 weigh_branch(D, _, _, _, _) :-
     var(D), !,
     throw(error(ddc(unbound_distribution, _), _)).
+weigh_branch(gaussian(Ms, Cov), V, Done, LW, Ps) :-
+    col_backend(foreign),
+    gaussian_in_bulk(Ms, Cov, P),
+    mean_source(Ps, Ms, Done, Ps1, MC),
+    dist_prepared_factor(P, Factor, LogNorm),
+    col_weigh_gauss(Ps1, MC, Factor, LogNorm, V, Done, LW), !.
 weigh_branch(D, V, Done, LW, Ps) :-
     plan(D, Tmpl, Bs),
-    dist_prepare(Tmpl, P),
+    prepared(Tmpl, P),
     weigh_each(Ps, Bs, P, V, Done, LW).
 
 weigh_each(Ps, [C1-Pat], P, V, Done, LW) :-
@@ -173,9 +261,11 @@ weigh_each(Ps0, Bs, P, V, Done, LW) :-
     mean_column(Ps, Bs, P, LW, Means), !,
     weigh_at(Ps, Means, P, V, Done, LW).
 weigh_each(Ps, [C1-Pat], P, V, Done, LW) :- !,
-    weigh_each1(Ps, C1, Pat, P, V, Done, LW).
+    ps_list(Ps, L),
+    weigh_each1(L, C1, Pat, P, V, Done, LW).
 weigh_each(Ps, Bs, P, V, Done, LW) :-
-    weigh_loop(Ps, Bs, P, V, Done, LW).
+    ps_list(Ps, L),
+    weigh_loop(L, Bs, P, V, Done, LW).
 
 weigh_loop([], _, _, _, _, _).
 weigh_loop([I|Is], Bs, P, V, Done, LW) :-
@@ -194,7 +284,8 @@ weigh_at(Ps, C1, P, V, Done, LW) :-
     dist_prepared_factor(P, Factor, LogNorm),
     col_weigh_gauss(Ps, C1, Factor, LogNorm, V, Done, LW), !.
 weigh_at(Ps, C1, P, V, Done, LW) :-
-    weigh_at_each(Ps, C1, P, V, Done, LW).
+    ps_list(Ps, L),
+    weigh_at_each(L, C1, P, V, Done, LW).
 
 weigh_at_each([], _, _, _, _, _).
 weigh_at_each([I|Is], C1, P, V, Done, LW) :-

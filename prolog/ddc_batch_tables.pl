@@ -167,7 +167,7 @@ resample_tables(Srcs0, Pairs, New) :-
     table_new(New),
     findall(K, ( member(Tab, Srcs), Tab \== none, table_match(Tab, K, _) ), Ks0),
     sort(Ks0, Ks),
-    length(Pairs, N),
+    col_plan_size(Pairs, N),
     forall(member(K, Ks),
            (   maplist(source_entry(K), Srcs, Es),
                resampled_entry(Es, Pairs, N, E),

@@ -22,6 +22,7 @@
             bridge_holds/4,             % +Key, +GoalText, -Flags, -Err
             bridge_values/4,            % +Key, +PairText, -Values, -Err
             bridge_numeric_rows/6,      % +Key, +PairText, -Width, -Floats, -Values, -Err
+            bridge_rows_into/8,         % +Key, +PairText, +Address, +Capacity, -W, -F, -V, -Err
             bridge_frames/3             % +File, -Frames, -Err
           ]).
 
@@ -31,6 +32,8 @@
 :- use_module(ddc, [ filter_new/5, filter_step/4, filter_undo/1, filter_resample/2,
                      filter_rename/3, filter_time/2, filter_engine/2, filter_free/1,
                      filter_holds/3, filter_values/4, filter_rows/6 ]).
+:- use_module(ddc_filter, [filter_packed_rows/6]).
+:- use_module(ddc_batch_col, [col_floats_into/4, col_floats_list/2]).
 :- use_module(ddc_nesting, [check_text_nesting/2]).
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
 :- use_module(library(lists), [nth1/3]).
@@ -148,6 +151,29 @@ bridge_numeric_rows(Key, PairText, Width, Floats, Values, Err) :-
               filter_rows(F, Template, Goal, Width, Floats, Values0),
               maplist(py_solution, Values0, Values) ), Err),
     ( var(Width) -> Width = 0, Floats = [], Values = [] ; true ).
+
+%!  bridge_rows_into(+Key, +PairText, +Address, +Capacity, -Width, -Floats, -Values:list,
+%!                   -Err) is det.
+%
+%   bridge_numeric_rows/6, with the floats, where the engine reads them straight from
+%   its columns (the batched engine with its column library), copied into the memory at
+%   Address that holds Capacity doubles (a numpy array of the caller's: Floats is then
+%   their number, an integer) instead of a list of floats that janus converts one by one
+%   (10,000 particles' positions: 30,000 floats).  Floats is a list where they are not
+%   copied (no library, other values, or more than Capacity of them).
+bridge_rows_into(Key, PairText, Address, Capacity, Width, Floats, Values, Err) :-
+    guarded(( must_be(integer, Address), must_be(nonneg, Capacity),
+              filter_of(Key, F), parse_goal(PairText, ddc_bridge_pair(Template, Goal)),
+              filter_packed_rows(F, Template, Goal, Width, Rows, Values0),
+              rows_into(Rows, Address, Capacity, Floats),
+              maplist(py_solution, Values0, Values) ), Err),
+    ( var(Width) -> Width = 0, Floats = [], Values = [] ; true ).
+
+rows_into(Rows, Address, Capacity, Floats) :-
+    (   is_list(Rows) -> Floats = Rows
+    ;   col_floats_into(Rows, Address, Capacity, N) -> Floats = N
+    ;   col_floats_list(Rows, Floats)
+    ).
 
 %!  bridge_frames(+File, -Frames:list, -Err) is det.
 %

@@ -63,6 +63,7 @@
             filter_holds/3,             % +Filter, +Goal, -Flags
             filter_values/4,            % +Filter, +Template, +Goal, -Values
             filter_rows/6,              % +Filter, +Template, +Goal, -Width, -Floats, -Values
+            filter_packed_rows/6,       % +Filter, +Template, +Goal, -Width, -Floats, -Values
             filter_time/2,              % +Filter, -T
             filter_engine/2,            % +Filter, -Engine
             filter_size/2,              % +Filter, -N
@@ -400,6 +401,8 @@ filter_resample(F, Is) :-
     E:engine_resample(S, Is).
 
 must_be_indices(Is, N) :-
+    indices_below(Is, N, 0, K), K =:= N, !.      % (the usual case, in one pass)
+must_be_indices(Is, N) :-
     must_be(list(nonneg), Is),
     (   length(Is, N) -> true
     ;   throw(error(ddc(bad_indices(length_differs_from_particles(N)), query), _))
@@ -407,6 +410,13 @@ must_be_indices(Is, N) :-
     (   forall(member(I, Is), I < N) -> true
     ;   throw(error(ddc(bad_indices(index_out_of_range(N)), query), _))
     ).
+
+indices_below(Is, _, _, _) :- var(Is), !, fail.
+indices_below([], _, K, K).
+indices_below([I|Is], N, K0, K) :-
+    integer(I), I >= 0, I < N,
+    K1 is K0+1,
+    indices_below(Is, N, K1, K).
 
 %!  filter_rename(+Filter, +Renaming:list(pair), +Particles) is det.
 %
@@ -556,6 +566,26 @@ filter_rows(F, Template, Goal, Width, Floats, Values) :-
     ->  Width = Width0, Floats = Floats0, Values = []
     ;   filter_values(F, value(Template), Goal, Values0),
         values_rows(Values0, Width, Floats, Values)
+    ).
+
+%!  filter_packed_rows(+Filter, +Template, +Goal, -Width, -Floats, -Values) is det.
+%
+%   filter_rows/6, with Floats, where the engine can read them straight
+%   from its columns (the batched engine's engine_packed_rows/5, with its
+%   column library), a blob of doubles (ddc_batch_col.pl's
+%   col_pack_rows/3): an atom, not copied out of the filter's engine as a
+%   list of floats is, whose doubles a reader in another language has
+%   copied into its memory at once (the Python bridge: 10,000 particles'
+%   positions are 30,000 floats).
+filter_packed_rows(F, Template, Goal, Width, Floats, Values) :-
+    outside_filter(F), !,
+    filter_call(F, filter_packed_rows(F, Template, Goal, Width, Floats, Values)).
+filter_packed_rows(F, Template, Goal, Width, Floats, Values) :-
+    filter_handle(F, E, S),
+    (   current_predicate(E:engine_packed_rows/5),
+        E:engine_packed_rows(S, Template, Goal, Width0, Rows)
+    ->  Width = Width0, Floats = Rows, Values = []
+    ;   filter_rows(F, Template, Goal, Width, Floats, Values)
     ).
 
 %   step_input(+Obs, +Acts, -Weighted, -Facts): a step's input checked

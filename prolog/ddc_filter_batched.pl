@@ -111,10 +111,21 @@ engine_values(State, Template, Goal, Values) :-
     batch_query_goal(S, Goal, G),
     batch_values(S, Template, G, Values).
 
-%   (No rows read straight from the batch: the filter API makes them from
-%   the values.)
-engine_rows(_, _, _, _, _) :-
-    fail.
+%   (A variable's values read straight from its columns where it can,
+%   ddc_batch:batch_rows/5; else the filter API makes the rows from the
+%   values.)
+engine_rows(State, Template, Goal, Width, Floats) :-
+    batched_current(State, S),
+    batch_query_goal(S, Goal, G),
+    batch_rows(S, Template, G, Width, Floats).
+
+%   engine_packed_rows(+State, +Template, +Goal, -Width, -Rows) is semidet:
+%   engine_rows/5 with the floats in a blob of doubles
+%   (ddc_filter:filter_packed_rows/6).
+engine_packed_rows(State, Template, Goal, Width, Rows) :-
+    batched_current(State, S),
+    batch_query_goal(S, Goal, G),
+    batch_packed_rows(S, Template, G, Width, Rows).
 
 engine_time(State, T) :-
     batched_current(State, S),

@@ -18,9 +18,16 @@
     on backtracking) and freed when the atom garbage collector finds it
     unreferenced.
 
+    A batch of particles is a blob too (a C array of indices), or a Prolog
+    list (BATCHES below); a column that every particle agrees on stores one
+    cell (a uniform column, CI/2); the loops over a batch compile the goal's
+    arithmetic to a small register machine (LOOPS); the rows of a variable
+    are read into a caller's memory (col_floats_into/4).
+
     The random draws come from a xoshiro256+ generator seeded, at each
     call, with a seed that the caller draws from the filter's own Prolog
     random stream: the particles still depend on the filter's seed alone.
+    Its normals are a ziggurat's.
 */
 
 #include <SWI-Stream.h>
@@ -30,7 +37,7 @@
 #include <stdint.h>
 #include <math.h>
 
-#define DDC_COLUMNS_VERSION 1
+#define DDC_COLUMNS_VERSION 2
 
 #define T_U      0                      /* '$u': not drawn yet */
 #define T_UNDEF  1                      /* '$undef': no clause applies */
@@ -57,7 +64,18 @@ typedef struct column
   uint32_t *cls;                        /* class of each cell: equal values, equal
 					   classes (valid while cls_valid) */
   int       cls_valid;
+  int       uni;                        /* every cell holds cell 0's value, the only
+					   one stored (the arrays have one cell) */
 } column;
+
+/* A uniform column (uni) holds one value for all its cells: made by
+   col_new/3, kept by the writes that give every cell the same value
+   (col_set_each/3, col_append_each/3 and col_sets_each/3 over every
+   particle) and read as it is (CI(c, i): the stored cell of particle i);
+   any other write expands it first (expand/1).  A column of 10,000
+   particles that every particle agrees on (a perceived object's position,
+   a flag, a list of instances) costs one cell, not 10,000. */
+#define CI(c, i) ((c)->uni ? (size_t)0 : (size_t)(i))
 
 /* SET_TAG(c, i, t): cell i's tag is t (the counts kept) */
 #define SET_TAG(c, i, t) \
@@ -152,7 +170,8 @@ alist_push(alist **lp, const item *it)
 static void
 free_cells(column *c)
 { if ( c->x )
-  { for(size_t i=0; i<c->n; i++)
+  { size_t n = c->uni ? (c->n ? 1 : 0) : c->n;
+    for(size_t i=0; i<n; i++)
     { if ( c->tag[i] == T_ATOM )
 	PL_unregister_atom((atom_t)c->x[i]);
       else if ( c->tag[i] == T_TERM )
@@ -188,8 +207,10 @@ static PL_blob_t column_blob =
   .write   = write_column
 };
 
+/* get_column_raw(t, &c): t is a column (uniform or not: its cells read
+   through CI/2) */
 static int
-get_column(term_t t, column **cp)
+get_column_raw(term_t t, column **cp)
 { void *data; PL_blob_t *type;
   *cp = NULL;
   if ( PL_get_blob(t, &data, NULL, &type) && type == &column_blob )
@@ -197,6 +218,15 @@ get_column(term_t t, column **cp)
     return TRUE;
   }
   return PL_type_error("ddc_column", t);
+}
+
+static int expand(column *c);
+
+/* get_column(t, &c): t is a column, expanded if it was uniform (for the
+   code that reads and writes its cells by index) */
+static int
+get_column(term_t t, column **cp)
+{ return get_column_raw(t, cp) && expand(*cp);
 }
 
 static column *
@@ -208,6 +238,20 @@ new_column(size_t n)
   if ( !c->tag ) { free(c); return NULL; }
   count_bytes(sizeof(*c) + n);
   c->cnt[T_U] = n;
+  return c;
+}
+
+/* new_uniform(n): a uniform column of n particles, each '$u' */
+static column *
+new_uniform(size_t n)
+{ column *c;
+  if ( n == 0 ) return new_column(0);
+  if ( !(c = calloc(1, sizeof(*c))) ) return NULL;
+  c->n = n;
+  if ( !(c->tag = calloc(1, 1)) ) { free(c); return NULL; }
+  c->uni = 1;
+  c->cnt[T_U] = n;
+  count_bytes(sizeof(*c));
   return c;
 }
 
@@ -223,18 +267,20 @@ unify_column(term_t t, column *c)
 static int
 ensure_x(column *c)
 { if ( !c->x )
-  { c->x = calloc(c->n ? c->n : 1, sizeof(uintptr_t));
+  { size_t n = c->uni ? 1 : c->n;
+    c->x = calloc(n ? n : 1, sizeof(uintptr_t));
     if ( !c->x ) return PL_resource_error("memory");
-    count_bytes(c->n*sizeof(uintptr_t));
+    count_bytes(n*sizeof(uintptr_t));
   }
   return TRUE;
 }
 
 static int
 set_k(column *c, int k)
-{ c->f = calloc((c->n ? c->n : 1)*(size_t)k, sizeof(double));
+{ size_t n = c->uni ? 1 : c->n;
+  c->f = calloc((n ? n : 1)*(size_t)k, sizeof(double));
   if ( !c->f ) return PL_resource_error("memory");
-  count_bytes(c->n*(size_t)k*sizeof(double));
+  count_bytes(n*(size_t)k*sizeof(double));
   c->k = k;
   return TRUE;
 }
@@ -278,9 +324,10 @@ float_tuple(term_t t, double *fs, int max)
 
 #define MAX_K 16
 
-/* set_cell(c, i, v): cell i gets the value v (the previous one freed) */
+/* set_cell_raw(c, i, v): cell i (of the cells stored) gets the value v
+   (the previous one freed) */
 static int
-set_cell(column *c, size_t i, term_t v)
+set_cell_raw(column *c, size_t i, term_t v)
 { atom_t a;
   double fs[MAX_K];
   int m;
@@ -331,6 +378,76 @@ set_cell(column *c, size_t i, term_t v)
   }
 }
 
+/* set_cell(c, i, v): particle i's cell gets the value v (a uniform column
+   expanded first) */
+static int
+set_cell(column *c, size_t i, term_t v)
+{ if ( c->uni && !expand(c) ) return FALSE;
+  return set_cell_raw(c, i, v);
+}
+
+/* set_uniform(c, v): every cell of the uniform column c gets v */
+static int
+set_uniform(column *c, term_t v)
+{ int rc = set_cell_raw(c, 0, v);
+  memset(c->cnt, 0, sizeof(c->cnt));
+  c->cnt[c->tag[0]] = c->n;
+  c->cls_valid = 0;
+  return rc;
+}
+
+/* expand(c): a uniform column c becomes a column of n cells, each a copy of
+   its value */
+static int
+expand(column *c)
+{ size_t n = c->n;
+  uint8_t t;
+  uint8_t *tag;
+  double *f = NULL;
+  uintptr_t *x = NULL;
+  if ( !c->uni ) return TRUE;
+  t = c->tag[0];
+  if ( !(tag = malloc(n ? n : 1)) ) return PL_resource_error("memory");
+  memset(tag, t, n);
+  if ( c->k )
+  { if ( !(f = malloc(n*(size_t)c->k*sizeof(double))) ) { free(tag); return PL_resource_error("memory"); }
+    if ( t == T_NUM )
+      for(size_t i=0; i<n; i++) memcpy(&f[i*(size_t)c->k], c->f, sizeof(double)*(size_t)c->k);
+    else
+      memset(f, 0, n*(size_t)c->k*sizeof(double));
+  }
+  if ( c->x )
+  { if ( !(x = calloc(n, sizeof(uintptr_t))) )
+    { free(f); free(tag); return PL_resource_error("memory"); }
+    x[0] = c->x[0];
+    for(size_t i=1; i<n; i++)
+    { switch(t)
+      { case T_ATOM:
+	  PL_register_atom((atom_t)c->x[0]);
+	  x[i] = c->x[0];
+	  break;
+	case T_TERM:
+	  x[i] = (uintptr_t)PL_duplicate_record((record_t)c->x[0]);
+	  break;
+	case T_LIST:
+	{ alist *from = (alist*)c->x[0], *l = new_alist(from->n);
+	  if ( !l ) return PL_resource_error("memory");	/* (leaks what was copied) */
+	  for(size_t q=0; q<from->n; q++) copy_item(&l->a[q], &from->a[q]);
+	  l->n = from->n;
+	  x[i] = (uintptr_t)l;
+	  break;
+	}
+      }
+    }
+  }
+  free(c->tag); free(c->f); free(c->x);
+  c->tag = tag; c->f = f; c->x = x;
+  c->uni = 0;
+  c->cls_valid = 0;
+  count_bytes(n*(1 + (size_t)c->k*sizeof(double) + (x ? sizeof(uintptr_t) : 0)));
+  return TRUE;
+}
+
 /* put_floats(t, fs, k): t is the k-tuple of the floats fs */
 static int
 put_floats(term_t t, const double *fs, int k)
@@ -350,7 +467,8 @@ put_floats(term_t t, const double *fs, int k)
 /* put_cell(t, c, i): t is particle i's value in c */
 static int
 put_cell(term_t t, column *c, size_t i)
-{ switch(c->tag[i])
+{ i = CI(c, i);
+  switch(c->tag[i])
   { case T_U:     return PL_put_atom(t, ATOM_u);
     case T_UNDEF: return PL_put_atom(t, ATOM_undef);
     case T_NUM:   return put_floats(t, &c->f[i*(size_t)c->k], c->k);
@@ -372,7 +490,9 @@ put_cell(term_t t, column *c, size_t i)
 /* copy_cell(d, j, s, i): d's cell j is s's cell i */
 static int
 copy_cell(column *d, size_t j, column *s, size_t i)
-{ switch(s->tag[i])
+{ i = CI(s, i);
+  if ( d->uni && !expand(d) ) return FALSE;
+  switch(s->tag[i])
   { case T_U:
     case T_UNDEF:
       clear_cell(d, j);
@@ -421,7 +541,8 @@ copy_cell(column *d, size_t j, column *s, size_t i)
 /* same_cell(a, i, b, j): the two values are == */
 static int
 same_cell(column *a, size_t i, column *b, size_t j)
-{ if ( a->tag[i] != b->tag[j] )
+{ i = CI(a, i); j = CI(b, j);
+  if ( a->tag[i] != b->tag[j] )
   { if ( a->tag[i] == T_TERM || b->tag[j] == T_TERM )
       goto general;
     return FALSE;
@@ -468,6 +589,189 @@ get_index(term_t t, column *c, size_t *ip)
 }
 
 		 /*******************************
+		 *           BATCHES            *
+		 *******************************/
+
+/* A batch is a set of particle indices: a Prolog list of integers 1..N in
+   ascending order, or a blob of the same set held as a C array (0-based,
+   ascending), which is what the engine passes from call to call (a list
+   of N integers is walked and built again by every call; a blob is
+   passed as it is).  The empty batch is [] in both.  Every predicate
+   here takes either; one that makes a batch makes a blob if its (first)
+   batch argument is one, else a list, so that a caller that passes lists
+   gets lists back. */
+
+typedef struct pset { size_t n; uint32_t v[]; } pset;
+
+static int
+release_pset(atom_t a)
+{ pset *p = PL_blob_data(a, NULL, NULL);
+  free(p);
+  return TRUE;
+}
+
+static int
+write_pset(IOSTREAM *s, atom_t a, int flags)
+{ pset *p = PL_blob_data(a, NULL, NULL);
+  (void)flags;
+  Sfprintf(s, "<ddc_batch>(%zu)", p ? p->n : (size_t)0);
+  return TRUE;
+}
+
+static PL_blob_t pset_blob =
+{ .magic   = PL_BLOB_MAGIC,
+  .flags   = PL_BLOB_NOCOPY|PL_BLOB_UNIQUE,
+  .name    = "ddc_batch",
+  .release = release_pset,
+  .write   = write_pset
+};
+
+/* A view of a batch: its n indices (0-based, ascending) v, owned (to be
+   freed) when read from a list */
+typedef struct pview { const uint32_t *v; size_t n; uint32_t *own; int blob; } pview;
+
+static void
+free_view(pview *p)
+{ free(p->own);
+  p->own = NULL;
+}
+
+static int
+is_pset(term_t t, pset **pp)
+{ void *data; PL_blob_t *type;
+  if ( PL_get_blob(t, &data, NULL, &type) && type == &pset_blob )
+  { *pp = data;
+    return TRUE;
+  }
+  return FALSE;
+}
+
+/* get_view(t, limit, &p): t is a batch whose indices are at most limit
+   (0: any); FALSE, with no exception but a resource error, if it is not
+   one */
+static int
+get_view(term_t t, size_t limit, pview *p)
+{ pset *s;
+  p->own = NULL;
+  if ( is_pset(t, &s) )
+  { if ( limit && s->n && s->v[s->n-1] >= limit ) return FALSE;
+    p->v = s->v; p->n = s->n; p->blob = TRUE;
+    return TRUE;
+  }
+  { size_t n;
+    term_t l = PL_copy_term_ref(t), h = PL_new_term_ref();
+    if ( PL_skip_list(t, 0, &n) != PL_LIST ) return FALSE;
+    if ( !(p->own = malloc((n ? n : 1)*sizeof(uint32_t))) ) return PL_resource_error("memory");
+    for(size_t j=0; PL_get_list(l, h, l); j++)
+    { int64_t i;
+      if ( !PL_get_int64(h, &i) || i < 1 || i > (int64_t)UINT32_MAX ||
+	   (limit && (uint64_t)i > limit) )
+      { free_view(p); return FALSE; }
+      p->own[j] = (uint32_t)(i-1);
+    }
+    p->v = p->own; p->n = n; p->blob = FALSE;
+    return TRUE;
+  }
+}
+
+/* unify_batch(t, v, n, blob): t is the batch of the n indices v (0-based,
+   ascending): [] if n = 0, else a blob (blob) or a list */
+static int
+unify_batch(term_t t, const uint32_t *v, size_t n, int blob)
+{ if ( n == 0 ) return PL_unify_nil(t);
+  if ( blob )
+  { pset *s = malloc(sizeof(pset) + n*sizeof(uint32_t));
+    if ( !s ) return PL_resource_error("memory");
+    s->n = n;
+    memcpy(s->v, v, n*sizeof(uint32_t));
+    count_bytes(sizeof(pset) + n*sizeof(uint32_t));
+    if ( !PL_unify_blob(t, s, sizeof(*s), &pset_blob) ) { free(s); return FALSE; }
+    return TRUE;
+  }
+  { term_t l = PL_new_term_ref(), h = PL_new_term_ref();
+    PL_put_nil(l);
+    for(size_t j=n; j-- > 0; )
+    { if ( !PL_put_int64(h, (int64_t)v[j]+1) || !PL_cons_list(l, h, l) ) return FALSE;
+    }
+    return PL_unify(t, l);
+  }
+}
+
+/* unify_selected(t, in, p, keep, m): t is the batch of the elements of p
+   whose keep is set (m of them): in itself if every one is */
+static int
+unify_selected(term_t t, term_t in, const pview *p, const char *keep, size_t m)
+{ if ( m == p->n ) return PL_unify(t, in);
+  if ( m == 0 ) return PL_unify_nil(t);
+  { uint32_t *v = malloc(m*sizeof(uint32_t));
+    size_t q = 0;
+    int rc;
+    if ( !v ) return PL_resource_error("memory");
+    for(size_t j=0; j<p->n; j++) if ( keep[j] ) v[q++] = p->v[j];
+    rc = unify_batch(t, v, m, p->blob);
+    free(v);
+    return rc;
+  }
+}
+
+/* ps_all(+N, -Ps): the batch of every particle 1..N, a blob */
+static foreign_t
+ps_all(term_t tn, term_t out)
+{ int64_t n;
+  if ( !PL_get_int64_ex(tn, &n) ) return FALSE;
+  if ( n < 0 || n > (int64_t)UINT32_MAX ) return PL_domain_error("particle_count", tn);
+  if ( n == 0 ) return PL_unify_nil(out);
+  { pset *s = malloc(sizeof(pset) + (size_t)n*sizeof(uint32_t));
+    if ( !s ) return PL_resource_error("memory");
+    s->n = (size_t)n;
+    for(size_t j=0; j<s->n; j++) s->v[j] = (uint32_t)j;
+    count_bytes(sizeof(pset) + s->n*sizeof(uint32_t));
+    if ( !PL_unify_blob(out, s, sizeof(*s), &pset_blob) ) { free(s); return FALSE; }
+    return TRUE;
+  }
+}
+
+/* ps_list(+Ps, -List): the batch's indices as a list (a list as it is) */
+static foreign_t
+ps_list(term_t ps, term_t out)
+{ pset *s;
+  if ( is_pset(ps, &s) ) return unify_batch(out, s->v, s->n, FALSE);
+  return PL_unify(out, ps);
+}
+
+/* ps_blob(+Ps, -Blob): the batch as a blob ([] if empty) */
+static foreign_t
+ps_blob(term_t ps, term_t out)
+{ pview p;
+  int rc;
+  if ( !get_view(ps, 0, &p) ) return PL_exception(0) ? FALSE : PL_type_error("ddc_batch", ps);
+  if ( p.blob ) return PL_unify(out, ps);
+  rc = unify_batch(out, p.v, p.n, TRUE);
+  free_view(&p);
+  return rc;
+}
+
+/* ps_size(+Ps, -K) */
+static foreign_t
+ps_size(term_t ps, term_t tk)
+{ pset *s;
+  size_t n;
+  if ( is_pset(ps, &s) ) return PL_unify_int64(tk, (int64_t)s->n);
+  if ( PL_skip_list(ps, 0, &n) != PL_LIST ) return PL_type_error("list", ps);
+  return PL_unify_int64(tk, (int64_t)n);
+}
+
+/* ps_first(+Ps, -I): the batch's first (least) index; fails if empty */
+static foreign_t
+ps_first(term_t ps, term_t ti)
+{ pset *s;
+  if ( is_pset(ps, &s) ) return s->n > 0 && PL_unify_int64(ti, (int64_t)s->v[0]+1);
+  { term_t h = PL_new_term_ref(), t = PL_new_term_ref();
+    return PL_get_list(ps, h, t) && PL_unify(ti, h);
+  }
+}
+
+		 /*******************************
 		 *          PREDICATES          *
 		 *******************************/
 
@@ -478,11 +782,13 @@ col_new(term_t tn, term_t v, term_t tc)
   column *c;
   if ( !PL_get_int64_ex(tn, &n) ) return FALSE;
   if ( n < 0 ) return PL_domain_error("not_less_than_zero", tn);
-  if ( !(c = new_column((size_t)n)) ) return PL_resource_error("memory");
+  if ( !(c = new_uniform((size_t)n)) ) return PL_resource_error("memory");
   { atom_t a;
     if ( PL_get_atom(v, &a) && a == ATOM_u )
-      ;					/* (calloc: all T_U) */
-    else
+      ;					/* (all T_U) */
+    else if ( c->uni )
+    { if ( !set_uniform(c, v) ) { free_cells(c); return FALSE; }
+    } else
     { for(size_t i=0; i<c->n; i++)
       { if ( !set_cell(c, i, v) ) { free_cells(c); return FALSE; }
       }
@@ -496,7 +802,7 @@ col_new(term_t tn, term_t v, term_t tc)
 static foreign_t
 col_arg(term_t ti, term_t tc, term_t v)
 { column *c = NULL; size_t i;
-  if ( !get_column(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
+  if ( !get_column_raw(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
   { term_t t = PL_new_term_ref();
     return put_cell(t, c, i) && PL_unify(t, v);
   }
@@ -514,15 +820,15 @@ col_setarg(term_t ti, term_t tc, term_t v)
 static foreign_t
 col_is_u(term_t ti, term_t tc)
 { column *c = NULL; size_t i;
-  if ( !get_column(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
-  return c->tag[i] == T_U;
+  if ( !get_column_raw(tc, &c) || !get_index(ti, c, &i) ) return FALSE;
+  return c->tag[CI(c, i)] == T_U;
 }
 
 /* col_size(+C, -N) */
 static foreign_t
 col_size(term_t tc, term_t tn)
 { column *c = NULL;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   return PL_unify_int64(tn, (int64_t)c->n);
 }
 
@@ -537,7 +843,7 @@ col_is(term_t tc)
 static foreign_t
 col_list(term_t tc, term_t vs)
 { column *c = NULL;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   { term_t l = PL_new_term_ref(), h = PL_new_term_ref();
     PL_put_nil(l);
     for(size_t i=c->n; i-- > 0; )
@@ -563,29 +869,31 @@ col_from_list(term_t vs, term_t tc)
   return TRUE;
 }
 
-/* Walks a batch, a list of particle indices (1-based), with the
-   particles whose cell satisfies a test collected in a list. */
+/* Walks a batch with the particles whose cell satisfies a test
+   collected in a batch. */
 typedef int (*cell_test)(column *c, size_t i);
 
-static int test_u(column *c, size_t i) { return c->tag[i] == T_U; }
-static int test_defined(column *c, size_t i) { return c->tag[i] >= T_NUM; }
+static int test_u(column *c, size_t i) { return c->tag[CI(c, i)] == T_U; }
+static int test_defined(column *c, size_t i) { return c->tag[CI(c, i)] >= T_NUM; }
 
 static foreign_t
 select_cells(term_t ps, term_t tc, term_t out, cell_test test)
 { column *c = NULL;
-  if ( !get_column(tc, &c) ) return FALSE;
-  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
-    term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref();
-    size_t i;
-    while( PL_get_list(l, h, l) )
-    { if ( !get_index(h, c, &i) )
-	return PL_exception(0) ? FALSE : PL_domain_error("particle_index", h);
-      if ( (*test)(c, i) )
-      { if ( !PL_unify_list(tail, oh, tail) || !PL_unify(oh, h) ) return FALSE;
-      }
-    }
-    return PL_unify_nil(tail);
+  pview p;
+  char *keep;
+  size_t m = 0;
+  int rc;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
+  if ( !get_view(ps, c->n, &p) )
+    return PL_exception(0) ? FALSE : PL_domain_error("particle_batch", ps);
+  if ( !(keep = malloc(p.n ? p.n : 1)) ) { free_view(&p); return PL_resource_error("memory"); }
+  for(size_t j=0; j<p.n; j++)
+  { keep[j] = (char)(*test)(c, p.v[j]);
+    m += (size_t)keep[j];
   }
+  rc = unify_selected(out, ps, &p, keep, m);
+  free(keep); free_view(&p);
+  return rc;
 }
 
 /* col_uncomputed(+Ps, +C, -Missing) */
@@ -613,20 +921,167 @@ col_defined_at(term_t ps, term_t tc, term_t out)
 static foreign_t
 col_set_each(term_t ps, term_t tc, term_t v)
 { column *c = NULL;
-  if ( !get_column(tc, &c) ) return FALSE;
-  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
-    size_t i, first = (size_t)-1;
-    while( PL_get_list(l, h, l) )
-    { if ( !get_index(h, c, &i) ) return FALSE;
-      if ( c->tag[i] == T_U )
-      { if ( first == (size_t)-1 )
-	{ if ( !set_cell(c, i, v) ) return FALSE;
-	  first = i;
-	} else if ( !copy_cell(c, i, c, first) )
-	  return FALSE;
+  pview p;
+  size_t first = (size_t)-1;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
+  if ( c->cnt[T_U] == 0 ) return TRUE;
+  if ( !get_view(ps, c->n, &p) ) return FALSE;
+  if ( c->uni && p.n == c->n )		/* (every particle: the column stays uniform) */
+  { free_view(&p);
+    return set_uniform(c, v);
+  }
+  if ( !expand(c) ) { free_view(&p); return FALSE; }
+  for(size_t j=0; j<p.n; j++)
+  { size_t i = p.v[j];
+    if ( c->tag[i] == T_U )
+    { if ( first == (size_t)-1 )
+      { if ( !set_cell(c, i, v) ) { free_view(&p); return FALSE; }
+	first = i;
+      } else if ( !copy_cell(c, i, c, first) )
+      { free_view(&p); return FALSE; }
+    }
+  }
+  free_view(&p);
+  return TRUE;
+}
+
+/* col_rows(+C, ?W, -Floats, ?Tail): each particle's value in C as a row of
+   W floats, particle by particle (a row of NaNs where it has none), then
+   Tail; fails unless every value is a tuple of W floats ('$u', '$undef'
+   aside) and one at least is (W unbound: the column's arity) */
+static foreign_t
+col_rows(term_t tc, term_t tw, term_t out, term_t tail)
+{ column *c;
+  int w;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
+  if ( c->cnt[T_NUM] == 0 || c->cnt[T_NUM] + c->cnt[T_U] + c->cnt[T_UNDEF] != c->n )
+    return FALSE;
+  if ( PL_is_variable(tw) )
+  { if ( !PL_unify_integer(tw, c->k) ) return FALSE;
+    w = c->k;
+  } else if ( !PL_get_integer(tw, &w) || w != c->k )
+    return FALSE;
+  { term_t l = PL_copy_term_ref(tail), h = PL_new_term_ref();
+    for(size_t i=c->n; i-- > 0; )
+    { for(int q=w; q-- > 0; )
+      { size_t ii = CI(c, i);
+	double x = c->tag[ii] == T_NUM ? c->f[ii*(size_t)w+(size_t)q] : NAN;
+	if ( !PL_put_float(h, x) || !PL_cons_list(l, h, l) ) return FALSE;
       }
     }
-    return TRUE;
+    return PL_unify(out, l);
+  }
+}
+
+/* col_row_width(+C, -W): every value in C is a tuple of W floats, '$u' and
+   '$undef' aside (W 0 if there is none); fails if another value is there */
+static foreign_t
+col_row_width(term_t tc, term_t tw)
+{ column *c;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
+  if ( c->cnt[T_NUM] + c->cnt[T_U] + c->cnt[T_UNDEF] != c->n ) return FALSE;
+  return PL_unify_integer(tw, c->cnt[T_NUM] > 0 ? c->k : 0);
+}
+
+/* Rows of floats held in C (a blob), made in the filter's engine and read
+   by another thread: an atom is not copied out of an engine, a list of
+   30,000 floats is; the Python bridge then has them copied into a numpy
+   array's memory (col_floats_into/4) instead of converting each float. */
+
+typedef struct frows { size_t n; double v[]; } frows;
+
+static int
+release_frows(atom_t a)
+{ free(PL_blob_data(a, NULL, NULL));
+  return TRUE;
+}
+
+static int
+write_frows(IOSTREAM *s, atom_t a, int flags)
+{ frows *r = PL_blob_data(a, NULL, NULL);
+  (void)flags;
+  Sfprintf(s, "<ddc_floats>(%zu)", r ? r->n : (size_t)0);
+  return TRUE;
+}
+
+static PL_blob_t frows_blob =
+{ .magic   = PL_BLOB_MAGIC,
+  .flags   = PL_BLOB_NOCOPY|PL_BLOB_UNIQUE,
+  .name    = "ddc_floats",
+  .release = release_frows,
+  .write   = write_frows
+};
+
+/* col_pack_rows(+Columns, +W, -Rows): the rows of col_rows/4 of each column
+   in turn (of W floats each, NaNs where a particle has no value), as a
+   blob of doubles; fails where col_rows/4 would (a value that is not a
+   tuple of W floats) */
+static foreign_t
+col_pack_rows(term_t tcols, term_t tw, term_t out)
+{ size_t n = 0, j = 0;
+  int w;
+  frows *r;
+  term_t l = PL_copy_term_ref(tcols), h = PL_new_term_ref();
+  if ( !PL_get_integer(tw, &w) || w < 1 ) return FALSE;
+  while( PL_get_list(l, h, l) )
+  { column *c;
+    if ( !get_column_raw(h, &c) ) return FALSE;
+    if ( c->cnt[T_NUM] + c->cnt[T_U] + c->cnt[T_UNDEF] != c->n ) return FALSE;
+    if ( c->cnt[T_NUM] > 0 && c->k != w ) return FALSE;
+    n += c->n*(size_t)w;
+  }
+  if ( !(r = malloc(sizeof(frows) + (n ? n : 1)*sizeof(double))) )
+    return PL_resource_error("memory");
+  r->n = n;
+  l = PL_copy_term_ref(tcols);
+  while( PL_get_list(l, h, l) )
+  { column *c;
+    if ( !get_column_raw(h, &c) ) { free(r); return FALSE; }
+    for(size_t i=0; i<c->n; i++)
+    { size_t ii = CI(c, i);
+      if ( c->tag[ii] == T_NUM )
+	memcpy(&r->v[j], &c->f[ii*(size_t)w], sizeof(double)*(size_t)w);
+      else
+	for(int q=0; q<w; q++) r->v[j+(size_t)q] = NAN;
+      j += (size_t)w;
+    }
+  }
+  count_bytes(sizeof(frows) + n*sizeof(double));
+  if ( !PL_unify_blob(out, r, sizeof(*r), &frows_blob) ) { free(r); return FALSE; }
+  return TRUE;
+}
+
+/* col_floats_into(+Rows, +Address, +Capacity, -N): the N doubles of Rows
+   (col_pack_rows/3's) copied to the memory at Address, which holds
+   Capacity doubles (a numpy array's, from the Python bridge); fails,
+   copying nothing, if N > Capacity */
+static foreign_t
+col_floats_into(term_t tr, term_t ta, term_t tcap, term_t tn)
+{ void *data; PL_blob_t *type;
+  int64_t addr, cap;
+  frows *r;
+  if ( !PL_get_blob(tr, &data, NULL, &type) || type != &frows_blob )
+    return PL_type_error("ddc_floats", tr);
+  r = data;
+  if ( !PL_get_int64_ex(ta, &addr) || !PL_get_int64_ex(tcap, &cap) ) return FALSE;
+  if ( addr == 0 || cap < 0 || r->n > (size_t)cap ) return FALSE;
+  memcpy((void*)(intptr_t)addr, r->v, r->n*sizeof(double));
+  return PL_unify_int64(tn, (int64_t)r->n);
+}
+
+/* col_floats_list(+Rows, -Floats): the doubles of Rows as a list */
+static foreign_t
+col_floats_list(term_t tr, term_t out)
+{ void *data; PL_blob_t *type;
+  frows *r;
+  if ( !PL_get_blob(tr, &data, NULL, &type) || type != &frows_blob )
+    return PL_type_error("ddc_floats", tr);
+  r = data;
+  { term_t l = PL_new_term_ref(), h = PL_new_term_ref();
+    PL_put_nil(l);
+    for(size_t j=r->n; j-- > 0; )
+      if ( !PL_put_float(h, r->v[j]) || !PL_cons_list(l, h, l) ) return FALSE;
+    return PL_unify(out, l);
   }
 }
 
@@ -635,9 +1090,13 @@ col_set_each(term_t ps, term_t tc, term_t v)
 static foreign_t
 col_status(term_t tc, term_t ts)
 { column *c = NULL;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( c->n == 0 ) return FALSE;
   if ( c->cnt[T_U] > 0 ) return PL_unify_atom(ts, ATOM_open);
+  if ( c->uni )
+  { term_t v = PL_new_term_ref();
+    return put_cell(v, c, 0) && PL_unify_term(ts, PL_FUNCTOR, FUNCTOR_same1, PL_TERM, v);
+  }
   { int same = TRUE, undef = FALSE;
     for(size_t i=0; i<c->n; i++)
     { if ( c->tag[i] == T_U ) return PL_unify_atom(ts, ATOM_open);
@@ -656,15 +1115,16 @@ col_status(term_t tc, term_t ts)
 /* col_all_same(+Ps, +C, +I0): every particle of Ps has particle I0's value */
 static foreign_t
 col_all_same(term_t ps, term_t tc, term_t ti)
-{ column *c = NULL; size_t i0, i;
-  if ( !get_column(tc, &c) || !get_index(ti, c, &i0) ) return FALSE;
-  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
-    while( PL_get_list(l, h, l) )
-    { if ( !get_index(h, c, &i) ) return FALSE;
-      if ( !same_cell(c, i, c, i0) ) return FALSE;
-    }
-    return TRUE;
-  }
+{ column *c = NULL; size_t i0;
+  pview p;
+  int rc = TRUE;
+  if ( !get_column_raw(tc, &c) || !get_index(ti, c, &i0) ) return FALSE;
+  if ( !get_view(ps, c->n, &p) ) return FALSE;
+  if ( c->uni ) { free_view(&p); return TRUE; }
+  for(size_t j=0; j<p.n && rc; j++)
+    rc = same_cell(c, p.v[j], c, i0);
+  free_view(&p);
+  return rc;
 }
 
 /* col_num_arity(+C, -K): the arity of the column's number tuples when
@@ -672,51 +1132,126 @@ col_all_same(term_t ps, term_t tc, term_t ti)
 static foreign_t
 col_num_arity(term_t tc, term_t tk)
 { column *c = NULL;
-  if ( !get_column(tc, &c) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
   if ( c->k == 0 || c->cnt[T_NUM] != c->n ) return FALSE;
   return PL_unify_integer(tk, c->k);
 }
 
+/* A resampling's sources for one group: for each of its n particles the
+   group g (1-based) and the particle l (0-based) of that group it copies
+   (col_sources/3 makes them; a list of G-L pairs, 1-based, is read the
+   same way) */
+typedef struct gplan { size_t n; uint32_t gl[]; } gplan;
+
+static int
+release_gplan(atom_t a)
+{ free(PL_blob_data(a, NULL, NULL));
+  return TRUE;
+}
+
+static int
+write_gplan(IOSTREAM *s, atom_t a, int flags)
+{ gplan *p = PL_blob_data(a, NULL, NULL);
+  (void)flags;
+  Sfprintf(s, "<ddc_sources>(%zu)", p ? p->n : (size_t)0);
+  return TRUE;
+}
+
+static PL_blob_t gplan_blob =
+{ .magic   = PL_BLOB_MAGIC,
+  .flags   = PL_BLOB_NOCOPY|PL_BLOB_UNIQUE,
+  .name    = "ddc_sources",
+  .release = release_gplan,
+  .write   = write_gplan
+};
+
+/* get_plan(t, &p, &own): the sources t (a blob, or a list of G-L pairs,
+   read into an owned plan); FALSE (a type error) if it is neither */
+static int
+get_plan(term_t t, gplan **pp, int *own)
+{ void *data; PL_blob_t *type;
+  size_t n;
+  *own = FALSE;
+  if ( PL_get_blob(t, &data, NULL, &type) && type == &gplan_blob )
+  { *pp = data;
+    return TRUE;
+  }
+  if ( PL_skip_list(t, 0, &n) != PL_LIST ) return PL_type_error("list", t);
+  { gplan *p = malloc(sizeof(gplan) + (n ? 2*n : 1)*sizeof(uint32_t));
+    term_t l = PL_copy_term_ref(t), h = PL_new_term_ref(), a = PL_new_term_ref();
+    if ( !p ) return PL_resource_error("memory");
+    p->n = n;
+    for(size_t j=0; PL_get_list(l, h, l); j++)
+    { int64_t g, li;
+      if ( !PL_is_functor(h, FUNCTOR_minus2) ) goto type;
+      _PL_get_arg(1, h, a); if ( !PL_get_int64_ex(a, &g) ) { free(p); return FALSE; }
+      _PL_get_arg(2, h, a); if ( !PL_get_int64_ex(a, &li) ) { free(p); return FALSE; }
+      if ( g < 1 || li < 1 || g > (int64_t)UINT32_MAX || li > (int64_t)UINT32_MAX ) goto type;
+      p->gl[2*j] = (uint32_t)g; p->gl[2*j+1] = (uint32_t)(li-1);
+    }
+    *pp = p; *own = TRUE;
+    return TRUE;
+  type:
+    free(p);
+    return PL_domain_error("group_index_pair", t);
+  }
+}
+
+/* col_plan_size(+Sources, -N): the number of particles of a group's
+   sources (col_sources/3's) */
+static foreign_t
+col_plan_size(term_t t, term_t tn)
+{ void *data; PL_blob_t *type;
+  size_t n;
+  if ( PL_get_blob(t, &data, NULL, &type) && type == &gplan_blob )
+    return PL_unify_int64(tn, (int64_t)((gplan*)data)->n);
+  if ( PL_skip_list(t, 0, &n) != PL_LIST ) return PL_type_error("list", t);
+  return PL_unify_int64(tn, (int64_t)n);
+}
+
 /* col_gather(+Sources, +Pairs, -C): C's particle j is particle L of the
-   G-th source of the j-th pair G-L (1-based; a source '$none' gives '$u') */
+   G-th source of the j-th pair G-L (Pairs a group's sources, col_sources/3's
+   blob, or a list of G-L pairs, 1-based; a source '$none' gives '$u') */
 static foreign_t
 col_gather(term_t srcs, term_t pairs, term_t tc)
-{ size_t nsrc, n;
+{ size_t nsrc;
   column **src;
-  column *c;
+  column *c = NULL;
+  gplan *p = NULL;
+  int own;
   if ( !PL_skip_list(srcs, 0, &nsrc) ) return PL_type_error("list", srcs);
-  if ( !PL_skip_list(pairs, 0, &n) ) return PL_type_error("list", pairs);
-  if ( !(src = calloc(nsrc ? nsrc : 1, sizeof(column*))) ) return PL_resource_error("memory");
+  if ( !get_plan(pairs, &p, &own) ) return FALSE;
+  if ( !(src = calloc(nsrc ? nsrc : 1, sizeof(column*))) )
+  { if ( own ) free(p);
+    return PL_resource_error("memory");
+  }
   { term_t l = PL_copy_term_ref(srcs), h = PL_new_term_ref();
     for(size_t g=0; PL_get_list(l, h, l); g++)
     { atom_t a;
       if ( PL_get_atom(h, &a) && a == ATOM_none )
 	src[g] = NULL;			/* '$none' */
-      else if ( !get_column(h, &src[g]) ) { free(src); return FALSE; }
+      else if ( !get_column_raw(h, &src[g]) ) goto error;
     }
   }
-  if ( !(c = new_column(n)) ) { free(src); return PL_resource_error("memory"); }
-  { term_t l = PL_copy_term_ref(pairs), h = PL_new_term_ref(), a = PL_new_term_ref();
-    for(size_t j=0; PL_get_list(l, h, l); j++)
-    { int64_t g, li;
-      if ( !PL_is_functor(h, FUNCTOR_minus2) ) goto type;
-      _PL_get_arg(1, h, a); if ( !PL_get_int64_ex(a, &g) ) goto error;
-      _PL_get_arg(2, h, a); if ( !PL_get_int64_ex(a, &li) ) goto error;
-      if ( g < 1 || (size_t)g > nsrc ) goto type;
-      { column *s = src[g-1];
-	if ( !s ) continue;			/* (T_U) */
-	if ( li < 1 || (size_t)li > s->n ) goto type;
-	if ( !copy_cell(c, j, s, (size_t)(li-1)) ) goto error;
-      }
-    }
+  if ( !(c = new_column(p->n)) ) { PL_resource_error("memory"); goto error; }
+  for(size_t j=0; j<p->n; j++)
+  { uint32_t g = p->gl[2*j], li = p->gl[2*j+1];
+    column *s;
+    if ( g < 1 || (size_t)g > nsrc ) goto type;
+    if ( !(s = src[g-1]) ) continue;			/* (T_U) */
+    if ( (size_t)li >= s->n ) goto type;
+    if ( !copy_cell(c, j, s, li) ) goto error;
   }
   free(src);
+  if ( own ) free(p);
   if ( !unify_column(tc, c) ) { free_cells(c); return FALSE; }
   return TRUE;
 type:
   PL_domain_error("group_index_pair", pairs);
 error:
-  free(src); free_cells(c);
+  free(src);
+  if ( own ) free(p);
+  if ( c ) free_cells(c);
   return FALSE;
 }
 
@@ -724,7 +1259,7 @@ error:
 		 *        RANDOM NUMBERS        *
 		 *******************************/
 
-typedef struct rng { uint64_t s[4]; int has; double spare; } rng;
+typedef struct rng { uint64_t s[4]; } rng;
 
 static uint64_t
 splitmix64(uint64_t *x)
@@ -737,7 +1272,6 @@ splitmix64(uint64_t *x)
 static void
 rng_seed(rng *r, uint64_t seed)
 { for(int i=0; i<4; i++) r->s[i] = splitmix64(&seed);
-  r->has = 0;
 }
 
 static inline uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
@@ -759,14 +1293,58 @@ rng_uniform(rng *r)
 { return ((rng_next(r) >> 11) + 1) * 0x1.0p-53;
 }
 
-/* a standard normal (Box-Muller, both outputs used) */
+/* Standard normals by the ziggurat method (Marsaglia and Tsang, with
+   Doornik's layers: the density under 128 rectangles of equal area and a
+   tail; a draw is nearly always one 64-bit number, a multiplication and a
+   comparison, where Box-Muller takes a logarithm, a square root and two
+   trigonometric functions per two draws).  The layers' edges are computed
+   once, when the library is loaded (zig_init/0). */
+
+#define ZIG_N 128
+#define ZIG_R 3.442619855899			/* the start of the tail */
+#define ZIG_V 9.91256303526217e-3		/* each layer's area */
+
+static double zig_x[ZIG_N+1];			/* the layers' right edges */
+static double zig_ratio[ZIG_N];			/* zig_x[i+1]/zig_x[i] */
+
+static void
+zig_init(void)
+{ double f = exp(-0.5*ZIG_R*ZIG_R);
+  zig_x[0] = ZIG_V/f;				/* (the base layer's width with its tail) */
+  zig_x[1] = ZIG_R;
+  zig_x[ZIG_N] = 0.0;
+  for(int i=2; i<ZIG_N; i++)
+  { zig_x[i] = sqrt(-2.0*log(ZIG_V/zig_x[i-1] + f));
+    f = exp(-0.5*zig_x[i]*zig_x[i]);
+  }
+  for(int i=0; i<ZIG_N; i++) zig_ratio[i] = zig_x[i+1]/zig_x[i];
+}
+
+/* a standard normal's tail beyond ZIG_R (Marsaglia's method), negated if neg */
+static double
+zig_tail(rng *r, int neg)
+{ double x, y;
+  do
+  { x = log(rng_uniform(r))/ZIG_R;
+    y = log(rng_uniform(r));
+  } while( -2.0*y < x*x );
+  return neg ? x - ZIG_R : ZIG_R - x;
+}
+
+/* a standard normal */
 static inline double
 rng_normal(rng *r)
-{ if ( r->has ) { r->has = 0; return r->spare; }
-  { double u1 = rng_uniform(r), u2 = rng_uniform(r);
-    double rad = sqrt(-2.0*log(u1)), th = 2.0*M_PI*u2;
-    r->spare = rad*sin(th); r->has = 1;
-    return rad*cos(th);
+{ for(;;)
+  { uint64_t b = rng_next(r);
+    int i = (int)((b >> 4) & (ZIG_N-1));	/* (not the lowest bits: xoshiro256+'s weakest) */
+    double u = 2.0*((double)(b >> 11) * 0x1.0p-53) - 1.0;	/* [-1, 1) */
+    double x, f0, f1;
+    if ( fabs(u) < zig_ratio[i] ) return u*zig_x[i];	/* (inside the layer's rectangle) */
+    if ( i == 0 ) return zig_tail(r, u < 0.0);
+    x = u*zig_x[i];
+    f0 = exp(-0.5*(zig_x[i]*zig_x[i] - x*x));
+    f1 = exp(-0.5*(zig_x[i+1]*zig_x[i+1] - x*x));
+    if ( f1 + rng_uniform(r)*(f0 - f1) < 1.0 ) return x;
   }
 }
 
@@ -798,20 +1376,11 @@ get_factor(term_t t, double *L, int *kp)
   return TRUE;
 }
 
-/* batch(ps, c, idx, &m): the particle indices of the list ps (0-based) */
-static size_t *
-get_batch(term_t ps, column *c, size_t *mp)
-{ size_t m;
-  size_t *idx;
-  if ( !PL_skip_list(ps, 0, &m) ) { PL_type_error("list", ps); return NULL; }
-  if ( !(idx = malloc((m ? m : 1)*sizeof(size_t))) ) { PL_resource_error("memory"); return NULL; }
-  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
-    for(size_t j=0; PL_get_list(l, h, l); j++)
-    { if ( !get_index(h, c, &idx[j]) ) { free(idx); return NULL; }
-    }
-  }
-  *mp = m;
-  return idx;
+/* get_batch(ps, c, &p): the batch ps of particles of c (a view of its
+   0-based indices); FALSE if it is not one */
+static int
+get_batch(term_t ps, column *c, pview *p)
+{ return get_view(ps, c->n, p);
 }
 
 /* col_draw_gauss(+Ps, +MeanC, +Factor, +Out, +Seed) is semidet: each
@@ -824,22 +1393,26 @@ col_draw_gauss(term_t ps, term_t tm, term_t tf, term_t to, term_t ts)
 { column *mc, *out;
   double L[6];
   int k;
-  size_t m, *idx;
+  size_t m;
+  const uint32_t *idx;
+  pview pv;
   rng r;
 
-  if ( !get_column(tm, &mc) || !get_column(to, &out) ) return FALSE;
+  if ( !get_column_raw(tm, &mc) || !get_column(to, &out) ) return FALSE;
   if ( !get_factor(tf, L, &k) || !get_seed(ts, &r) ) return FALSE;
   if ( mc->k != k || mc->n != out->n ) return FALSE;
   if ( out->k != 0 && out->k != k ) return FALSE;
-  if ( !(idx = get_batch(ps, out, &m)) ) return FALSE;
+  if ( !get_batch(ps, out, &pv) ) return FALSE;
+  idx = pv.v; m = pv.n;
   for(size_t j=0; j<m; j++)
-  { if ( out->tag[idx[j]] == T_U && mc->tag[idx[j]] != T_NUM ) { free(idx); return FALSE; }
+  { if ( out->tag[idx[j]] == T_U && mc->tag[CI(mc, idx[j])] != T_NUM )
+    { free_view(&pv); return FALSE; }
   }
-  if ( out->k == 0 && !set_k(out, k) ) { free(idx); return FALSE; }
+  if ( out->k == 0 && !set_k(out, k) ) { free_view(&pv); return FALSE; }
   for(size_t j=0; j<m; j++)
   { size_t i = idx[j];
     if ( out->tag[i] != T_U ) continue;
-    { const double *mu = &mc->f[i*(size_t)k];
+    { const double *mu = &mc->f[CI(mc, i)*(size_t)k];
       double *x = &out->f[i*(size_t)k];
       if ( k == 3 )
       { double z1 = rng_normal(&r), z2 = rng_normal(&r), z3 = rng_normal(&r);
@@ -851,8 +1424,23 @@ col_draw_gauss(term_t ps, term_t tm, term_t tf, term_t to, term_t ts)
       SET_TAG(out, i, T_NUM);
     }
   }
-  free(idx);
+  free_view(&pv);
   return TRUE;
+}
+
+/* gauss_log_density(v, mu, L, k, ln): the log density at v of the gaussian
+   of mean mu, Cholesky factor L (k = 3 or 1) and log normaliser ln */
+static double
+gauss_log_density(const double *v, const double *mu, const double *L, int k, double ln)
+{ if ( k == 3 )
+  { double y1 = (v[0] - mu[0])/L[0];
+    double y2 = (v[1] - mu[1] - L[1]*y1)/L[2];
+    double y3 = (v[2] - mu[2] - L[3]*y1 - L[4]*y2)/L[5];
+    return -0.5*(y1*y1 + y2*y2 + y3*y3) + ln;
+  } else
+  { double y = (v[0] - mu[0])/L[0];
+    return -0.5*y*y + ln;
+  }
 }
 
 static inline void
@@ -875,41 +1463,40 @@ col_weigh_gauss(term_t ps, term_t tm, term_t tf, term_t tln, term_t tv,
 { column *mc, *done, *lw;
   double L[6], v[MAX_K], ln;
   int k;
-  size_t m, *idx;
+  size_t m;
+  const uint32_t *idx;
+  pview pv;
 
-  if ( !get_column(tm, &mc) || !get_column(td, &done) || !get_column(tlw, &lw) )
+  if ( !get_column_raw(tm, &mc) || !get_column_raw(td, &done) || !get_column_raw(tlw, &lw) )
     return FALSE;
   if ( !get_factor(tf, L, &k) || !PL_get_float(tln, &ln) ) return FALSE;
   if ( float_tuple(tv, v, MAX_K) != k || mc->k != k || lw->k != 1 ) return FALSE;
   if ( mc->n != lw->n || done->n != lw->n ) return FALSE;
-  if ( !(idx = get_batch(ps, lw, &m)) ) return FALSE;
+  if ( !get_batch(ps, lw, &pv) ) return FALSE;
+  idx = pv.v; m = pv.n;
   for(size_t j=0; j<m; j++)
   { size_t i = idx[j];
-    if ( done->tag[i] == T_U && (mc->tag[i] != T_NUM || lw->tag[i] != T_NUM) )
-    { free(idx); return FALSE; }
+    if ( done->tag[CI(done, i)] == T_U &&
+	 (mc->tag[CI(mc, i)] != T_NUM || lw->tag[CI(lw, i)] != T_NUM) )
+    { free_view(&pv); return FALSE; }
   }
-  if ( !ensure_x(done) ) { free(idx); return FALSE; }
+  if ( mc->uni && done->uni && lw->uni && m == lw->n && done->tag[0] == T_U )
+  { /* (every particle, one mean, one log weight so far: one log weight after) */
+    term_t t = PL_new_term_ref();
+    free_view(&pv);
+    return PL_put_atom(t, ATOM_done) && set_uniform(done, t) &&
+	   (add_log(lw, 0, gauss_log_density(v, mc->f, L, k, ln)), TRUE);
+  }
+  if ( !expand(done) || !expand(lw) || !ensure_x(done) ) { free_view(&pv); return FALSE; }
   for(size_t j=0; j<m; j++)
   { size_t i = idx[j];
     if ( done->tag[i] != T_U ) continue;
     PL_register_atom(ATOM_done);
     done->x[i] = (uintptr_t)ATOM_done;
     SET_TAG(done, i, T_ATOM);
-    { const double *mu = &mc->f[i*(size_t)k];
-      double lp;
-      if ( k == 3 )
-      { double y1 = (v[0] - mu[0])/L[0];
-	double y2 = (v[1] - mu[1] - L[1]*y1)/L[2];
-	double y3 = (v[2] - mu[2] - L[3]*y1 - L[4]*y2)/L[5];
-	lp = -0.5*(y1*y1 + y2*y2 + y3*y3) + ln;
-      } else
-      { double y = (v[0] - mu[0])/L[0];
-	lp = -0.5*y*y + ln;
-      }
-      add_log(lw, i, lp);
-    }
+    add_log(lw, i, gauss_log_density(v, &mc->f[CI(mc, i)*(size_t)k], L, k, ln));
   }
-  free(idx);
+  free_view(&pv);
   return TRUE;
 }
 
@@ -1055,11 +1642,12 @@ vm_run(const vm *m, size_t i, double *r)
     switch(in->op)
     { case I_LD:
       { const column *c = m->col[in->j];
-	if ( c->tag[i] != T_NUM )	/* (a tuple pattern unifies with no atom or list:
+	size_t ii = CI(c, i);
+	if ( c->tag[ii] != T_NUM )	/* (a tuple pattern unifies with no atom or list:
 					    the particle is skipped; a variable with
 					    anything: an error in Prolog) */
-	  return in->k > 1 && c->tag[i] != T_TERM ? VM_SKIP : VM_ABANDON;
-	r[in->r] = c->f[i*(size_t)in->k + (size_t)in->c];
+	  return in->k > 1 && c->tag[ii] != T_TERM ? VM_SKIP : VM_ABANDON;
+	r[in->r] = c->f[ii*(size_t)in->k + (size_t)in->c];
 	continue;
       }
       case I_CST: r[in->r] = in->f; continue;
@@ -1102,31 +1690,39 @@ cmp_code(atom_t a, int *op)
   return TRUE;
 }
 
-/* col_vm_test(+Ps, +Cols, +Code, +Op, +A, +B, -Out) is semidet: Out the
-   particles of Ps in which register A Op register B after Code (Op a
-   comparison); fails if the loop is abandoned (above) */
-static foreign_t
-col_vm_test(term_t ps, term_t cols, term_t code, term_t top, term_t ta, term_t tb,
-	    term_t out)
-{ vm m;
-  atom_t opa;
-  int op, a, b;
-  double r[MAX_REGS];
-  size_t np, *idx, nout = 0;
-  char *hold;
+/* vm_uniform(m): every column m reads is uniform: the loop gives every
+   particle the same answer */
+static int
+vm_uniform(const vm *m)
+{ for(int j=0; j<m->ncol; j++)
+    if ( !m->col[j]->uni ) return FALSE;
+  return TRUE;
+}
 
-  if ( !PL_get_atom(top, &opa) || !cmp_code(opa, &op) ) return FALSE;
-  if ( !PL_get_integer(ta, &a) || !PL_get_integer(tb, &b) || !reg_ok(a) || !reg_ok(b) )
-    return FALSE;
-  if ( !vm_load(cols, code, &m) ) return FALSE;
-  if ( m.ncol == 0 ) { free(m.code); return FALSE; }
-  if ( !(idx = get_batch(ps, m.col[0], &np)) ) { free(m.code); return FALSE; }
-  for(int j=1; j<m.ncol; j++)
-    if ( m.col[j]->n != m.col[0]->n ) { free(idx); free(m.code); return FALSE; }
-  if ( !(hold = malloc(np ? np : 1)) ) { free(idx); free(m.code); return FALSE; }
+/* run_test(m, op, a, b, ps, out): Out the particles of Ps in which
+   register a op register b after m's code (op a comparison); FALSE if the
+   loop is abandoned (above) */
+static int
+run_test(const vm *m, int op, int a, int b, term_t ps, term_t out)
+{ double r[MAX_REGS];
+  size_t np, nout = 0;
+  const uint32_t *idx;
+  pview pv;
+  char *hold;
+  int uni;
+
+  if ( m->ncol == 0 ) return FALSE;
+  for(int j=1; j<m->ncol; j++)
+    if ( m->col[j]->n != m->col[0]->n ) return FALSE;
+  if ( !get_batch(ps, m->col[0], &pv) ) return FALSE;
+  idx = pv.v; np = pv.n;
+  if ( !(hold = malloc(np ? np : 1)) ) { free_view(&pv); return FALSE; }
+  uni = vm_uniform(m);
   for(size_t j=0; j<np; j++)
-  { int h, rc = vm_run(&m, idx[j], r);
-    if ( rc == VM_ABANDON ) { free(hold); free(idx); free(m.code); return FALSE; }
+  { int h, rc;
+    if ( j > 0 && uni ) { hold[j] = hold[0]; nout += (size_t)hold[0]; continue; }
+    rc = vm_run(m, idx[j], r);
+    if ( rc == VM_ABANDON ) { free(hold); free_view(&pv); return FALSE; }
     if ( rc == VM_SKIP ) { hold[j] = 0; continue; }
     switch(op)
     { case C_LT: h = r[a] <  r[b]; break;
@@ -1139,17 +1735,79 @@ col_vm_test(term_t ps, term_t cols, term_t code, term_t top, term_t ta, term_t t
     hold[j] = (char)h;
     nout += h;
   }
-  free(m.code);
-  { term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref();
-    for(size_t j=0; j<np; j++)
-    { if ( hold[j] )
-      { if ( !PL_unify_list(tail, oh, tail) || !PL_unify_int64(oh, (int64_t)idx[j]+1) )
-	{ free(hold); free(idx); return FALSE; }
-      }
-    }
-    free(hold); free(idx);
-    return PL_unify_nil(tail);
+  { int rc = unify_selected(out, ps, &pv, hold, nout);
+    free(hold); free_view(&pv);
+    return rc;
   }
+}
+
+/* col_vm_test(+Ps, +Cols, +Code, +Op, +A, +B, -Out) is semidet: Out the
+   particles of Ps in which register A Op register B after Code (Op a
+   comparison); fails if the loop is abandoned (above) */
+static foreign_t
+col_vm_test(term_t ps, term_t cols, term_t code, term_t top, term_t ta, term_t tb,
+	    term_t out)
+{ vm m;
+  atom_t opa;
+  int op, a, b, rc;
+
+  if ( !PL_get_atom(top, &opa) || !cmp_code(opa, &op) ) return FALSE;
+  if ( !PL_get_integer(ta, &a) || !PL_get_integer(tb, &b) || !reg_ok(a) || !reg_ok(b) )
+    return FALSE;
+  if ( !vm_load(cols, code, &m) ) return FALSE;
+  rc = run_test(&m, op, a, b, ps, out);
+  free(m.code);
+  return rc;
+}
+
+/* run_instance(m, regs, k, ps, c): each particle of ps not drawn yet in c
+   gets the tuple of the k registers regs after m's code; FALSE, writing
+   nothing, if the loop is abandoned (above) */
+static int
+run_instance(const vm *m, const int *regs, int k, term_t ps, column *c)
+{ double r[MAX_REGS], *buf;
+  size_t np;
+  const uint32_t *idx;
+  pview pv;
+  char *skip;
+
+  if ( k == 0 || (c->k != 0 && c->k != k) ) return FALSE;
+  for(int j=0; j<m->ncol; j++)
+    if ( m->col[j]->n != c->n ) return FALSE;
+  if ( !get_batch(ps, c, &pv) ) return FALSE;
+  idx = pv.v; np = pv.n;
+  if ( c->uni && c->tag[0] == T_U && np == c->n && vm_uniform(m) )
+  { int rc = vm_run(m, 0, r);			/* (one value for every particle) */
+    free_view(&pv);
+    if ( rc == VM_ABANDON ) return FALSE;
+    if ( rc == VM_SKIP ) return TRUE;
+    if ( c->k == 0 && !set_k(c, k) ) return FALSE;
+    for(int q=0; q<k; q++) c->f[q] = r[regs[q]];
+    c->tag[0] = T_NUM;
+    c->cnt[T_U] = 0; c->cnt[T_NUM] = c->n;
+    c->cls_valid = 0;
+    return TRUE;
+  }
+  if ( !expand(c) ) { free_view(&pv); return FALSE; }
+  if ( !(buf = malloc((np ? np : 1)*(size_t)k*sizeof(double))) ) { free_view(&pv); return FALSE; }
+  if ( !(skip = calloc(np ? np : 1, 1)) ) { free(buf); free_view(&pv); return FALSE; }
+  for(size_t j=0; j<np; j++)
+  { int rc;
+    if ( c->tag[idx[j]] != T_U ) continue;
+    if ( (rc=vm_run(m, idx[j], r)) == VM_ABANDON )
+    { free(skip); free(buf); free_view(&pv); return FALSE; }
+    if ( rc == VM_SKIP ) { skip[j] = 1; continue; }
+    for(int q=0; q<k; q++) buf[j*(size_t)k+(size_t)q] = r[regs[q]];
+  }
+  if ( c->k == 0 && !set_k(c, k) ) { free(skip); free(buf); free_view(&pv); return FALSE; }
+  for(size_t j=0; j<np; j++)
+  { size_t i = idx[j];
+    if ( c->tag[i] != T_U || skip[j] ) continue;
+    memcpy(&c->f[i*(size_t)k], &buf[j*(size_t)k], sizeof(double)*(size_t)k);
+    SET_TAG(c, i, T_NUM);
+  }
+  free(skip); free(buf); free_view(&pv);
+  return TRUE;
 }
 
 /* col_vm_instance(+Ps, +Cols, +Code, +Regs, !C) is semidet: each particle
@@ -1159,10 +1817,7 @@ static foreign_t
 col_vm_instance(term_t ps, term_t cols, term_t code, term_t tregs, term_t tc)
 { vm m;
   column *c;
-  int regs[MAX_K], k = 0;
-  double r[MAX_REGS], *buf;
-  size_t np, *idx;
-  char *skip;
+  int regs[MAX_K], k = 0, rc;
 
   if ( !get_column(tc, &c) ) return FALSE;
   { term_t l = PL_copy_term_ref(tregs), h = PL_new_term_ref();
@@ -1173,30 +1828,9 @@ col_vm_instance(term_t ps, term_t cols, term_t code, term_t tregs, term_t tc)
   }
   if ( k == 0 || (c->k != 0 && c->k != k) ) return FALSE;
   if ( !vm_load(cols, code, &m) ) return FALSE;
-  for(int j=0; j<m.ncol; j++)
-    if ( m.col[j]->n != c->n ) { free(m.code); return FALSE; }
-  if ( !(idx = get_batch(ps, c, &np)) ) { free(m.code); return FALSE; }
-  if ( !(buf = malloc((np ? np : 1)*(size_t)k*sizeof(double))) )
-  { free(idx); free(m.code); return FALSE; }
-  if ( !(skip = calloc(np ? np : 1, 1)) ) { free(buf); free(idx); free(m.code); return FALSE; }
-  for(size_t j=0; j<np; j++)
-  { int rc;
-    if ( c->tag[idx[j]] != T_U ) continue;
-    if ( (rc=vm_run(&m, idx[j], r)) == VM_ABANDON )
-    { free(skip); free(buf); free(idx); free(m.code); return FALSE; }
-    if ( rc == VM_SKIP ) { skip[j] = 1; continue; }
-    for(int q=0; q<k; q++) buf[j*(size_t)k+(size_t)q] = r[regs[q]];
-  }
+  rc = run_instance(&m, regs, k, ps, c);
   free(m.code);
-  if ( c->k == 0 && !set_k(c, k) ) { free(skip); free(buf); free(idx); return FALSE; }
-  for(size_t j=0; j<np; j++)
-  { size_t i = idx[j];
-    if ( c->tag[i] != T_U || skip[j] ) continue;
-    memcpy(&c->f[i*(size_t)k], &buf[j*(size_t)k], sizeof(double)*(size_t)k);
-    SET_TAG(c, i, T_NUM);
-  }
-  free(skip); free(buf); free(idx);
-  return TRUE;
+  return rc;
 }
 
 /* col_copy_each(+Ps, +From, !C): each particle of Ps not drawn yet in C
@@ -1204,16 +1838,316 @@ col_vm_instance(term_t ps, term_t cols, term_t code, term_t tregs, term_t tc)
 static foreign_t
 col_copy_each(term_t ps, term_t tf, term_t tc)
 { column *from, *c;
-  size_t np, *idx;
-  if ( !get_column(tf, &from) || !get_column(tc, &c) ) return FALSE;
+  size_t np;
+  const uint32_t *idx;
+  pview pv;
+  if ( !get_column_raw(tf, &from) || !get_column_raw(tc, &c) ) return FALSE;
   if ( from->n != c->n ) return FALSE;
-  if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
+  if ( !get_batch(ps, c, &pv) ) return FALSE;
+  idx = pv.v; np = pv.n;
+  if ( c->uni && c->tag[0] == T_U && from->uni && np == c->n )
+  { term_t t = PL_new_term_ref();		/* (one value for every particle) */
+    free_view(&pv);
+    return put_cell(t, from, 0) && set_uniform(c, t);
+  }
+  if ( !expand(c) ) { free_view(&pv); return FALSE; }
   for(size_t j=0; j<np; j++)
   { if ( c->tag[idx[j]] == T_U && !copy_cell(c, idx[j], from, idx[j]) )
-    { free(idx); return FALSE; }
+    { free_view(&pv); return FALSE; }
   }
-  free(idx);
+  free_view(&pv);
   return TRUE;
+}
+
+		 /*******************************
+		 *   LOOPS COMPILED FROM TERMS  *
+		 *******************************/
+
+/* The same loops, compiled here from the goal's own terms instead of from
+   the Prolog side's instructions (ddc_batch_columns.pl's plan/3 and
+   vm_expr/5: a goal's compilation in Prolog costs more than the loop over
+   a thousand particles).  An expression is a number, pi or e, a column
+   reference '$c'(C, P, V) (the particle's value V in column C: P is V, or
+   a tuple of distinct variables one of which is V), a deferred expression
+   '$x'(E), or one of the loop's operations over expressions.  Anything
+   else (a variable, an atom, a reference whose pattern a split bound)
+   makes the compilation fail, and the caller takes the Prolog path. */
+
+#define MAX_CODE 256
+
+typedef struct vmc
+{ vm	   m;				/* m.code is buf */
+  insn	   buf[MAX_CODE];
+  int	   nreg;
+  term_t   xt[MAX_REGS];		/* deferred expressions compiled, */
+  int	   xr[MAX_REGS], xf[MAX_REGS];	/* their registers and floatness */
+  int	   nx;
+  column  *lc[MAX_REGS];		/* loads made: column, component, arity */
+  int	   lcomp[MAX_REGS], lk[MAX_REGS], lr[MAX_REGS];
+  int	   nl;
+} vmc;
+
+static functor_t FUNCTOR_cref3, FUNCTOR_xref1;
+
+static void
+vmc_init(vmc *v)
+{ v->m.code = v->buf; v->m.ncode = 0; v->m.ncol = 0;
+  v->nreg = 0; v->nx = 0; v->nl = 0;
+}
+
+static insn *
+vmc_emit(vmc *v, int op)
+{ insn *in;
+  if ( v->m.ncode >= MAX_CODE || v->nreg >= MAX_REGS ) return NULL;
+  in = &v->buf[v->m.ncode++];
+  memset(in, 0, sizeof(*in));
+  in->op = op;
+  in->r = v->nreg++;
+  return in;
+}
+
+/* tuple_component(p, x, &c, &k): p is a tuple of k >= 2 distinct variables
+   whose c-th (0-based) is x */
+static int
+tuple_component(term_t p, term_t x, int *cp, int *kp)
+{ term_t el[MAX_K];
+  term_t r = PL_copy_term_ref(p);
+  int k = 0, c = -1;
+  while( PL_is_functor(r, FUNCTOR_comma2) )
+  { if ( k >= MAX_K-1 ) return FALSE;
+    el[k] = PL_new_term_ref();
+    _PL_get_arg(1, r, el[k]);
+    _PL_get_arg(2, r, r);
+    k++;
+  }
+  if ( k == 0 ) return FALSE;
+  el[k++] = r;
+  for(int i=0; i<k; i++)
+  { if ( !PL_is_variable(el[i]) ) return FALSE;
+    for(int j=0; j<i; j++) if ( PL_compare(el[i], el[j]) == 0 ) return FALSE;
+    if ( PL_compare(el[i], x) == 0 ) c = i;
+  }
+  if ( c < 0 ) return FALSE;
+  *cp = c; *kp = k;
+  return TRUE;
+}
+
+static int compile_expr(vmc *v, term_t t, int *rp, int *fp, int depth);
+
+static int
+compile_ref(vmc *v, term_t t, int *rp, int *fp)
+{ term_t a = PL_new_term_ref(), p = PL_new_term_ref(), x = PL_new_term_ref();
+  void *data; PL_blob_t *type;
+  column *c;
+  int comp, k, j;
+  _PL_get_arg(1, t, a); _PL_get_arg(2, t, p); _PL_get_arg(3, t, x);
+  if ( !PL_get_blob(a, &data, NULL, &type) || type != &column_blob ) return FALSE;
+  c = data;
+  if ( !PL_is_variable(x) ) return FALSE;
+  if ( PL_compare(p, x) == 0 ) { comp = 0; k = 1; }
+  else if ( !tuple_component(p, x, &comp, &k) ) return FALSE;
+  if ( c->k != k ) return FALSE;
+  for(int q=0; q<v->nl; q++)
+  { if ( v->lc[q] == c && v->lcomp[q] == comp && v->lk[q] == k )
+    { *rp = v->lr[q]; *fp = TRUE;
+      return TRUE;
+    }
+  }
+  for(j=0; j<v->m.ncol && v->m.col[j] != c; j++) ;
+  if ( j == v->m.ncol )
+  { if ( j >= MAX_COLS ) return FALSE;
+    v->m.col[v->m.ncol++] = c;
+  }
+  { insn *in = vmc_emit(v, I_LD);
+    if ( !in || v->nl >= MAX_REGS ) return FALSE;
+    in->j = j; in->c = comp; in->k = k;
+    v->lc[v->nl] = c; v->lcomp[v->nl] = comp; v->lk[v->nl] = k; v->lr[v->nl] = in->r;
+    v->nl++;
+    *rp = in->r; *fp = TRUE;
+    return TRUE;
+  }
+}
+
+static int
+compile_expr(vmc *v, term_t t, int *rp, int *fp, int depth)
+{ atom_t name;
+  size_t arity;
+  if ( depth > 200 ) return FALSE;
+  if ( PL_is_number(t) )
+  { double f;
+    insn *in;
+    if ( PL_is_integer(t) )
+    { int64_t i;
+      if ( !PL_get_int64(t, &i) || i > ((int64_t)1<<53) || i < -((int64_t)1<<53) ) return FALSE;
+      f = (double)i; *fp = FALSE;
+    } else
+    { if ( !PL_get_float(t, &f) ) return FALSE;
+      *fp = TRUE;
+    }
+    if ( !(in = vmc_emit(v, I_CST)) ) return FALSE;
+    in->f = f; *rp = in->r;
+    return TRUE;
+  }
+  if ( PL_get_atom(t, &name) )
+  { const char *sn = PL_atom_chars(name);
+    insn *in;
+    double f;
+    if ( !strcmp(sn, "pi") ) f = 3.141592653589793;
+    else if ( !strcmp(sn, "e") ) f = 2.718281828459045;
+    else return FALSE;
+    if ( !(in = vmc_emit(v, I_CST)) ) return FALSE;
+    in->f = f; *rp = in->r; *fp = TRUE;
+    return TRUE;
+  }
+  if ( !PL_get_name_arity(t, &name, &arity) ) return FALSE;
+  if ( PL_is_functor(t, FUNCTOR_cref3) ) return compile_ref(v, t, rp, fp);
+  if ( PL_is_functor(t, FUNCTOR_xref1) )
+  { term_t e = PL_new_term_ref();
+    for(int q=0; q<v->nx; q++)
+    { if ( PL_compare(v->xt[q], t) == 0 )
+      { *rp = v->xr[q]; *fp = v->xf[q];
+	return TRUE;
+      }
+    }
+    _PL_get_arg(1, t, e);
+    if ( !compile_expr(v, e, rp, fp, depth+1) || v->nx >= MAX_REGS ) return FALSE;
+    v->xt[v->nx] = PL_copy_term_ref(t); v->xr[v->nx] = *rp; v->xf[v->nx] = *fp;
+    v->nx++;
+    return TRUE;
+  }
+  if ( arity == 2 )
+  { term_t a = PL_new_term_ref(), b = PL_new_term_ref();
+    int op, ra, rb, fa, fb;
+    insn *in;
+    _PL_get_arg(1, t, a); _PL_get_arg(2, t, b);
+    if ( !strcmp(PL_atom_chars(name), "atan") ) op = I_ATAN2;
+    else if ( !op_code(name, TRUE, &op) ) return FALSE;
+    if ( op == I_POW && PL_is_integer(b) )	/* (A*A: the same float as A**2) */
+    { int64_t e;
+      if ( PL_get_int64(b, &e) && e == 2 )
+      { if ( !compile_expr(v, a, &ra, &fa, depth+1) || !(in = vmc_emit(v, I_MUL)) )
+	  return FALSE;
+	in->a = ra; in->b = ra; *rp = in->r; *fp = fa;
+	return TRUE;
+      }
+    }
+    if ( !compile_expr(v, a, &ra, &fa, depth+1) || !compile_expr(v, b, &rb, &fb, depth+1) ||
+	 !(in = vmc_emit(v, op)) )
+      return FALSE;
+    in->a = ra; in->b = rb; *rp = in->r;
+    *fp = op == I_ATAN2 ? TRUE : (fa || fb);
+    return TRUE;
+  }
+  if ( arity == 1 )
+  { term_t a = PL_new_term_ref();
+    int op, ra, fa;
+    insn *in;
+    if ( !op_code(name, FALSE, &op) ) return FALSE;
+    _PL_get_arg(1, t, a);
+    if ( !compile_expr(v, a, &ra, &fa, depth+1) || !(in = vmc_emit(v, op)) ) return FALSE;
+    in->a = ra; *rp = in->r;
+    *fp = (op == I_NEG || op == I_ABS) ? fa : TRUE;
+    return TRUE;
+  }
+  return FALSE;
+}
+
+/* plain_ref(t, &c): t is '$c'(C, V, V), a plain read of column C */
+static int
+plain_ref(term_t t, column **cp)
+{ term_t a, p, x;
+  void *data; PL_blob_t *type;
+  if ( !PL_is_functor(t, FUNCTOR_cref3) ) return FALSE;
+  a = PL_new_term_ref(); p = PL_new_term_ref(); x = PL_new_term_ref();
+  _PL_get_arg(1, t, a); _PL_get_arg(2, t, p); _PL_get_arg(3, t, x);
+  if ( !PL_get_blob(a, &data, NULL, &type) || type != &column_blob ) return FALSE;
+  if ( !PL_is_variable(x) || PL_compare(p, x) != 0 ) return FALSE;
+  *cp = data;
+  return TRUE;
+}
+
+static int has_ref(term_t t, int depth);
+static foreign_t col_select_eq(term_t ps, term_t tc, term_t v, term_t teq, term_t out);
+
+/* col_test(+Ps, +Goal, -Out) is semidet: Out the particles of Ps in which
+   Goal holds: a comparison of expressions over columns (at least one
+   column), or V == Value or V \== Value with V a plain read of a column
+   and Value ground; fails where it cannot (the caller's Prolog loop runs) */
+static foreign_t
+col_test(term_t ps, term_t goal, term_t out)
+{ atom_t name;
+  size_t arity;
+  term_t a, b;
+  int op;
+  if ( !PL_get_name_arity(goal, &name, &arity) || arity != 2 ) return FALSE;
+  a = PL_new_term_ref(); b = PL_new_term_ref();
+  _PL_get_arg(1, goal, a); _PL_get_arg(2, goal, b);
+  { const char *sn = PL_atom_chars(name);
+    int eq = !strcmp(sn, "==") ? 1 : !strcmp(sn, "\\==") ? 0 : -1;
+    if ( eq >= 0 )
+    { column *c;
+      term_t v;
+      if ( plain_ref(a, &c) ) v = b;
+      else if ( plain_ref(b, &c) ) v = a;
+      else return FALSE;
+      if ( !PL_is_ground(v) || has_ref(v, 0) ) return FALSE;
+      { term_t teq = PL_new_term_ref(), tc = PL_new_term_ref();
+	if ( !PL_put_bool(teq, eq) ) return FALSE;
+	_PL_get_arg(1, v == b ? a : b, tc);
+	return col_select_eq(ps, tc, v, teq, out);
+      }
+    }
+  }
+  if ( !cmp_code(name, &op) ) return FALSE;
+  { vmc *v = malloc(sizeof(vmc));
+    int ra, rb, fa, fb, rc;
+    if ( !v ) return FALSE;
+    vmc_init(v);
+    rc = compile_expr(v, a, &ra, &fa, 0) && compile_expr(v, b, &rb, &fb, 0) &&
+	 run_test(&v->m, op, ra, rb, ps, out);
+    free(v);
+    return rc;
+  }
+}
+
+/* col_instance(+Ps, +Tmpl, !C) is semidet: each particle of Ps not drawn
+   yet in C gets its instance of Tmpl: a plain read of a column (the
+   particle's value copied), or a tuple of expressions (or one expression)
+   whose values are floats in every particle (a column's number, a float,
+   arithmetic with a float in it: as the Prolog loop would make them); a
+   template's components are instantiated, not evaluated, so each is a
+   float, a column reference or a deferred expression.  Fails where it
+   cannot (the caller's Prolog loop runs). */
+static foreign_t
+col_instance(term_t ps, term_t tmpl, term_t tc)
+{ column *c, *from;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
+  if ( plain_ref(tmpl, &from) )
+  { term_t tf = PL_new_term_ref();
+    _PL_get_arg(1, tmpl, tf);
+    return col_copy_each(ps, tf, tc);
+  }
+  { vmc *v = malloc(sizeof(vmc));
+    int regs[MAX_K], k = 0, rc = FALSE;
+    term_t r = PL_copy_term_ref(tmpl), e = PL_new_term_ref();
+    if ( !v ) return FALSE;
+    vmc_init(v);
+    for(;;)
+    { int last = !PL_is_functor(r, FUNCTOR_comma2), f;
+      if ( last ) { if ( !PL_put_term(e, r) ) goto out; } else _PL_get_arg(1, r, e);
+      if ( k >= MAX_K ) goto out;
+      if ( !(PL_is_float(e) || PL_is_functor(e, FUNCTOR_cref3) ||
+	     PL_is_functor(e, FUNCTOR_xref1)) ) goto out;
+      if ( !compile_expr(v, e, &regs[k], &f, 0) || !f ) goto out;
+      k++;
+      if ( last ) break;
+      _PL_get_arg(2, r, r);
+    }
+    rc = run_instance(&v->m, regs, k, ps, c);
+  out:
+    free(v);
+    return rc;
+  }
 }
 
 		 /*******************************
@@ -1223,10 +2157,11 @@ col_copy_each(term_t ps, term_t tf, term_t tc)
 /* The key of particle i in the columns cs: a hash of its cells (FALSE for
    a term with variables, which the caller groups in Prolog). */
 static int
-cell_hash(column **cs, int nc, size_t i, uint64_t *hp)
+cell_hash(column **cs, int nc, size_t i0, uint64_t *hp)
 { uint64_t h = 1469598103934665603ULL;
   for(int j=0; j<nc; j++)
   { column *c = cs[j];
+    size_t i = CI(c, i0);
     uint64_t x;
     switch(c->tag[i])
     { case T_U: x = 1; break;
@@ -1295,6 +2230,13 @@ classes(column *c)
 { size_t cap, ncls = 0;
   size_t *slot;
   if ( c->cls_valid ) return TRUE;
+  if ( c->uni )				/* (one class, of the one value) */
+  { uint64_t h;
+    column *one = c;
+    if ( c->n > 0 && !cell_hash(&one, 1, 0, &h) ) return FALSE;
+    c->cls_valid = 1;
+    return TRUE;
+  }
   if ( !c->cls )
   { if ( !(c->cls = malloc((c->n ? c->n : 1)*sizeof(uint32_t))) ) return FALSE;
     count_bytes(c->n*sizeof(uint32_t));
@@ -1323,11 +2265,13 @@ classes(column *c)
   return TRUE;
 }
 
+#define CLS(c, i) ((c)->uni ? (uint32_t)0 : (c)->cls[i])
+
 static int
 class_hash(column **cs, int nc, size_t i, uint64_t *hp)
 { uint64_t h = 1469598103934665603ULL;
   for(int j=0; j<nc; j++)
-  { h = (h ^ cs[j]->cls[i]) * 1099511628211ULL;
+  { h = (h ^ CLS(cs[j], i)) * 1099511628211ULL;
     h ^= h >> 29;
   }
   *hp = h;
@@ -1337,7 +2281,7 @@ class_hash(column **cs, int nc, size_t i, uint64_t *hp)
 static int
 same_class(column **cs, int nc, size_t i, size_t j)
 { for(int q=0; q<nc; q++)
-    if ( cs[q]->cls[i] != cs[q]->cls[j] ) return FALSE;
+    if ( CLS(cs[q], i) != CLS(cs[q], j) ) return FALSE;
   return TRUE;
 }
 
@@ -1349,7 +2293,9 @@ static foreign_t
 col_split(term_t ps, term_t tcols, term_t out)
 { column *cs[MAX_COLS];
   int nc = 0;
-  size_t np, *idx, ng = 0, cap;
+  size_t np, ng = 0, cap;
+  const uint32_t *idx;
+  pview pv;
   size_t *slot_rep = NULL, *group_of = NULL, *rep = NULL, *count = NULL, *next = NULL;
   size_t *head = NULL, *tail = NULL;
   int rc = FALSE;
@@ -1364,8 +2310,9 @@ col_split(term_t ps, term_t tcols, term_t out)
   }
   if ( nc == 0 ) return FALSE;
   for(int q=0; q<nc; q++) if ( !classes(cs[q]) ) return FALSE;
-  if ( !(idx = get_batch(ps, cs[0], &np)) ) return FALSE;
-  for(int q=1; q<nc; q++) if ( cs[q]->n != cs[0]->n ) { free(idx); return FALSE; }
+  if ( !get_batch(ps, cs[0], &pv) ) return FALSE;
+  idx = pv.v; np = pv.n;
+  for(int q=1; q<nc; q++) if ( cs[q]->n != cs[0]->n ) { free_view(&pv); return FALSE; }
   for(cap=16; cap < 2*np; cap *= 2) ;
   slot_rep = malloc(cap*sizeof(size_t));	/* group number + 1, 0 free */
   group_of = malloc((np?np:1)*sizeof(size_t));
@@ -1397,21 +2344,21 @@ col_split(term_t ps, term_t tcols, term_t out)
   }
   { term_t gl = PL_copy_term_ref(out), gh = PL_new_term_ref();
     term_t vs = PL_new_term_ref(), v = PL_new_term_ref(), pl = PL_new_term_ref();
-    term_t pair = PL_new_term_ref(), ih = PL_new_term_ref();
+    term_t pair = PL_new_term_ref();
     for(size_t g=0; g<ng; g++)
     { PL_put_nil(vs);
       for(int q=nc-1; q>=0; q--)
       { if ( !put_cell(v, cs[q], rep[g]) || !PL_cons_list(vs, v, vs) ) goto out;
       }
-      PL_put_nil(pl);
-      { /* (the group's particles, last first, consed) */
-	size_t *mine = malloc(count[g]*sizeof(size_t)), m = 0;
+      if ( ng == 1 )			/* (one group: the batch itself) */
+      { if ( !PL_put_term(pl, ps) ) goto out;
+      } else
+      { uint32_t *mine = malloc(count[g]*sizeof(uint32_t));
+	size_t m = 0;
 	if ( !mine ) goto out;
 	for(size_t j=head[g]; j != (size_t)-1; j = next[j]) mine[m++] = idx[j];
-	for(size_t q=m; q-- > 0; )
-	{ if ( !PL_put_int64(ih, (int64_t)mine[q]+1) || !PL_cons_list(pl, ih, pl) )
-	  { free(mine); goto out; }
-	}
+	PL_put_variable(pl);
+	if ( !unify_batch(pl, mine, m, pv.blob) ) { free(mine); goto out; }
 	free(mine);
       }
       if ( !PL_cons_functor(pair, FUNCTOR_minus2, vs, pl) ||
@@ -1421,7 +2368,7 @@ col_split(term_t ps, term_t tcols, term_t out)
     rc = PL_unify_nil(gl);
   }
 out:
-  free(idx); free(slot_rep); free(group_of); free(rep); free(next); free(head); free(tail);
+  free_view(&pv); free(slot_rep); free(group_of); free(rep); free(next); free(head); free(tail);
   free(count);
   return rc;
 }
@@ -1433,23 +2380,26 @@ out:
 static foreign_t
 col_draw_uniform(term_t ps, term_t tl, term_t tc, term_t ts)
 { column *lc, *c;
-  size_t np, *idx;
+  size_t np;
+  const uint32_t *idx;
+  pview pv;
   rng r;
   fid_t fid;
   int rc = FALSE;
-  if ( !get_column(tl, &lc) || !get_column(tc, &c) || !get_seed(ts, &r) ) return FALSE;
+  if ( !get_column_raw(tl, &lc) || !get_column(tc, &c) || !get_seed(ts, &r) ) return FALSE;
   if ( lc->n != c->n ) return FALSE;
-  if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
+  if ( !get_batch(ps, c, &pv) ) return FALSE;
+  idx = pv.v; np = pv.n;
   for(size_t j=0; j<np; j++)
-    if ( c->tag[idx[j]] == T_U && lc->tag[idx[j]] != T_TERM && lc->tag[idx[j]] != T_LIST )
-    { free(idx); return FALSE; }
+    if ( c->tag[idx[j]] == T_U && lc->tag[CI(lc, idx[j])] != T_TERM && lc->tag[CI(lc, idx[j])] != T_LIST )
+    { free_view(&pv); return FALSE; }
   { term_t l = PL_new_term_ref(), h = PL_new_term_ref();   /* (before the frame) */
     size_t len;
     fid = PL_open_foreign_frame();
     /* (first every list checked, then the draws: nothing written on failure) */
     for(size_t j=0; j<np; j++)
-    { if ( c->tag[idx[j]] != T_U || lc->tag[idx[j]] == T_LIST ) continue;
-      if ( !PL_recorded((record_t)lc->x[idx[j]], l) ||
+    { if ( c->tag[idx[j]] != T_U || lc->tag[CI(lc, idx[j])] == T_LIST ) continue;
+      if ( !PL_recorded((record_t)lc->x[CI(lc, idx[j])], l) ||
 	   PL_skip_list(l, 0, &len) != PL_LIST || len == 0 )
 	goto out;
       PL_rewind_foreign_frame(fid);
@@ -1457,15 +2407,15 @@ col_draw_uniform(term_t ps, term_t tl, term_t tc, term_t ts)
     for(size_t j=0; j<np; j++)
     { size_t i = idx[j], pick;
       if ( c->tag[i] != T_U ) continue;
-      if ( lc->tag[i] == T_LIST )
-      { alist *al = (alist*)lc->x[i];
+      if ( lc->tag[CI(lc, i)] == T_LIST )
+      { alist *al = (alist*)lc->x[CI(lc, i)];
 	pick = (size_t)floor((rng_uniform(&r) - 0x1.0p-53) * (double)al->n);
 	if ( pick >= al->n ) pick = al->n-1;
 	if ( !put_item(l, &al->a[pick]) || !set_cell(c, i, l) ) goto out;
 	PL_rewind_foreign_frame(fid);
 	continue;
       }
-      if ( !PL_recorded((record_t)lc->x[i], l) ) goto out;
+      if ( !PL_recorded((record_t)lc->x[CI(lc, i)], l) ) goto out;
       if ( PL_skip_list(l, 0, &len) != PL_LIST || len == 0 ) goto out;
       pick = (size_t)floor((rng_uniform(&r) - 0x1.0p-53) * (double)len);
       if ( pick >= len ) pick = len-1;
@@ -1479,7 +2429,7 @@ col_draw_uniform(term_t ps, term_t tl, term_t tc, term_t ts)
   }
 out:
   PL_close_foreign_frame(fid);
-  free(idx);
+  free_view(&pv);
   return rc;
 }
 
@@ -1490,120 +2440,135 @@ col_select_eq(term_t ps, term_t tc, term_t v, term_t teq, term_t out)
 { column *c, *tmp;
   int eq;
   int rc = FALSE;
-  if ( !get_column(tc, &c) || !PL_get_bool_ex(teq, &eq) ) return FALSE;
-  if ( !(tmp = new_column(1)) ) return PL_resource_error("memory");
-  if ( !set_cell(tmp, 0, v) ) { free_cells(tmp); return FALSE; }
-  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
-    term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref();
-    size_t i;
-    while( PL_get_list(l, h, l) )
-    { if ( !get_index(h, c, &i) ) goto out;
-      if ( same_cell(c, i, tmp, 0) == eq )
-      { if ( !PL_unify_list(tail, oh, tail) || !PL_unify(oh, h) ) goto out;
-      }
-    }
-    rc = PL_unify_nil(tail);
+  pview p;
+  char *keep;
+  size_t m = 0;
+  if ( !get_column_raw(tc, &c) || !PL_get_bool_ex(teq, &eq) ) return FALSE;
+  if ( !get_batch(ps, c, &p) ) return FALSE;
+  if ( !(tmp = new_column(1)) ) { free_view(&p); return PL_resource_error("memory"); }
+  if ( !(keep = malloc(p.n ? p.n : 1)) )
+  { free_cells(tmp); free_view(&p); return PL_resource_error("memory"); }
+  if ( !set_cell(tmp, 0, v) ) goto out;
+  for(size_t j=0; j<p.n; j++)
+  { keep[j] = (char)(same_cell(c, p.v[j], tmp, 0) == eq);
+    m += (size_t)keep[j];
   }
+  rc = unify_selected(out, ps, &p, keep, m);
 out:
-  free_cells(tmp);
+  free(keep); free_cells(tmp); free_view(&p);
   return rc;
 }
 
-/* col_sources(+Indices, +Sizes, -Pairs): for each group (of the sizes
-   Sizes, in order), the Group-Index pairs (1-based) of its particles'
-   ancestors, the 0-based indices into all groups' particles Indices */
+/* col_sources(+Indices, +Sizes, -Plans): for each group (of the sizes
+   Sizes, in order), the sources of its particles (a blob: for each the
+   group and the index in it of its ancestor), the 0-based indices into all
+   groups' particles Indices */
 static foreign_t
 col_sources(term_t tis, term_t tsizes, term_t out)
 { size_t ng, total = 0, *size, *start;
+  gplan **plan;
+  int rc = FALSE;
   if ( !PL_skip_list(tsizes, 0, &ng) || ng == 0 ) return PL_type_error("list", tsizes);
-  if ( !(size = malloc(ng*sizeof(size_t))) || !(start = malloc(ng*sizeof(size_t))) )
-    return PL_resource_error("memory");
+  size = malloc(ng*sizeof(size_t)); start = malloc(ng*sizeof(size_t));
+  plan = calloc(ng, sizeof(gplan*));
+  if ( !size || !start || !plan ) { free(size); free(start); free(plan); return PL_resource_error("memory"); }
   { term_t l = PL_copy_term_ref(tsizes), h = PL_new_term_ref();
     for(size_t g=0; PL_get_list(l, h, l); g++)
     { int64_t n;
-      if ( !PL_get_int64_ex(h, &n) || n < 0 ) { free(size); free(start); return FALSE; }
+      if ( !PL_get_int64_ex(h, &n) || n < 0 ) goto out;
       size[g] = (size_t)n; start[g] = total; total += (size_t)n;
+      if ( !(plan[g] = malloc(sizeof(gplan) + (n ? 2*(size_t)n : 1)*sizeof(uint32_t))) )
+      { PL_resource_error("memory"); goto out; }
+      plan[g]->n = (size_t)n;
     }
   }
   { term_t l = PL_copy_term_ref(tis), h = PL_new_term_ref();
-    term_t gl = PL_copy_term_ref(out), gh = PL_new_term_ref();
-    term_t pl = PL_new_term_ref(), pair = PL_new_term_ref();
-    term_t a = PL_new_term_ref(), b = PL_new_term_ref();
-    int rc = TRUE;
-    for(size_t g=0; g<ng && rc; g++)
-    { term_t tail = PL_new_term_ref();
-      if ( !PL_unify_list(gl, gh, gl) ) { rc = FALSE; break; }
-      if ( !PL_put_term(tail, gh) ) { rc = FALSE; break; }
-      for(size_t j=0; j<size[g]; j++)
+    size_t len;
+    if ( PL_skip_list(tis, 0, &len) != PL_LIST || len != total ) goto out;
+    for(size_t g=0; g<ng; g++)
+    { for(size_t j=0; j<size[g]; j++)
       { int64_t x;
 	size_t q = 0;
-	if ( !PL_get_list(l, h, l) || !PL_get_int64_ex(h, &x) || x < 0 || (size_t)x >= total )
-	{ rc = FALSE; break; }
+	if ( !PL_get_list(l, h, l) || !PL_get_int64(h, &x) || x < 0 || (size_t)x >= total )
+	  goto out;
 	while( q+1 < ng && (size_t)x >= start[q+1] ) q++;
-	if ( !PL_put_int64(a, (int64_t)q+1) || !PL_put_int64(b, x - (int64_t)start[q] + 1) ||
-	     !PL_cons_functor(pair, FUNCTOR_minus2, a, b) ||
-	     !PL_unify_list(tail, pl, tail) || !PL_unify(pl, pair) )
-	{ rc = FALSE; break; }
+	plan[g]->gl[2*j] = (uint32_t)(q+1);
+	plan[g]->gl[2*j+1] = (uint32_t)((size_t)x - start[q]);
       }
-      if ( rc && !PL_unify_nil(tail) ) rc = FALSE;
     }
-    free(size); free(start);
-    return rc && PL_unify_nil(gl);
   }
+  { term_t gl = PL_copy_term_ref(out), gh = PL_new_term_ref();
+    for(size_t g=0; g<ng; g++)
+    { count_bytes(sizeof(gplan) + 2*plan[g]->n*sizeof(uint32_t));
+      if ( !PL_unify_list(gl, gh, gl) || !PL_unify_blob(gh, plan[g], sizeof(gplan), &gplan_blob) )
+	goto out;
+      plan[g] = NULL;			/* (the blob's now) */
+    }
+    rc = PL_unify_nil(gl);
+  }
+out:
+  for(size_t g=0; g<ng; g++) free(plan[g]);
+  free(plan); free(size); free(start);
+  return rc;
 }
 
 		 /*******************************
 		 *     SETS OF PARTICLES        *
 		 *******************************/
 
-/* Batches are sorted lists of particle indices (positive integers); these
-   are ord_subtract/3, ord_union/3, ord_union/2 and ord_intersection/3 on
-   them, through a bitmap (each fails, for the caller's ordsets, on a list
-   of anything else). */
+/* ord_subtract/3, ord_union/3, ord_union/2 and ord_intersection/3 on
+   batches (each fails, for the caller's ordsets, on a list of anything
+   else).  The result is one of the arguments where it can be (a batch
+   minus one it does not meet is itself); else a blob if the first batch
+   is one. */
 
-typedef struct ints { int64_t *v; size_t n; int64_t max; } ints;
-
+/* in_view(p, x, &from): x is in p (binary search from index from on,
+   which moves past x) */
 static int
-get_ints(term_t l0, ints *is)
-{ size_t n;
-  term_t l = PL_copy_term_ref(l0), h = PL_new_term_ref();
-  if ( PL_skip_list(l, 0, &n) != PL_LIST ) return FALSE;
-  is->n = n; is->max = 0;
-  if ( !(is->v = malloc((n ? n : 1)*sizeof(int64_t))) ) return FALSE;
-  for(size_t j=0; PL_get_list(l, h, l); j++)
-  { if ( !PL_get_int64(h, &is->v[j]) || is->v[j] < 1 || is->v[j] > 100000000 )
-    { free(is->v); return FALSE; }
-    if ( is->v[j] > is->max ) is->max = is->v[j];
+in_view(const pview *p, uint32_t x, size_t *from)
+{ size_t lo = *from, hi = p->n;
+  while( lo < hi )
+  { size_t mid = lo + (hi-lo)/2;
+    if ( p->v[mid] < x ) lo = mid+1; else hi = mid;
   }
-  return TRUE;
-}
-
-static int
-unify_ints_where(term_t out, const ints *a, const uint8_t *mark, int want)
-{ term_t tail = PL_copy_term_ref(out), h = PL_new_term_ref();
-  for(size_t j=0; j<a->n; j++)
-  { if ( (mark[a->v[j]] != 0) == want )
-    { if ( !PL_unify_list(tail, h, tail) || !PL_unify_int64(h, a->v[j]) ) return FALSE;
-    }
-  }
-  return PL_unify_nil(tail);
+  *from = lo;
+  return lo < p->n && p->v[lo] == x;
 }
 
 /* ps_filter(a, b, out, want): the elements of a that are (want) or are
    not in b */
 static foreign_t
 ps_filter(term_t ta, term_t tb, term_t out, int want)
-{ ints a, b;
-  uint8_t *mark;
+{ pview a, b;
+  char *keep;
+  size_t m = 0;
   int rc;
-  if ( !get_ints(ta, &a) ) return FALSE;
-  if ( !get_ints(tb, &b) ) { free(a.v); return FALSE; }
-  { int64_t max = a.max > b.max ? a.max : b.max;
-    if ( !(mark = calloc((size_t)max+1, 1)) ) { free(a.v); free(b.v); return FALSE; }
+  if ( !get_view(ta, 0, &a) ) return FALSE;
+  if ( !get_view(tb, 0, &b) ) { free_view(&a); return FALSE; }
+  if ( !(keep = malloc(a.n ? a.n : 1)) )
+  { free_view(&a); free_view(&b); return PL_resource_error("memory"); }
+  if ( b.n*8 < a.n )			/* (a few elements in b: searched) */
+  { size_t from = 0;
+    memset(keep, !want, a.n);
+    m = want ? 0 : a.n;
+    for(size_t j=0; j<b.n; j++)
+    { size_t at = from;
+      if ( in_view(&a, b.v[j], &at) )
+      { keep[at] = (char)want;
+	m += want ? 1 : (size_t)-1;
+      }
+      from = at;
+    }
+  } else
+  { size_t q = 0;
+    for(size_t j=0; j<a.n; j++)
+    { while( q < b.n && b.v[q] < a.v[j] ) q++;
+      keep[j] = (char)((q < b.n && b.v[q] == a.v[j]) == want);
+      m += (size_t)keep[j];
+    }
   }
-  for(size_t j=0; j<b.n; j++) mark[b.v[j]] = 1;
-  rc = unify_ints_where(out, &a, mark, want);
-  free(mark); free(a.v); free(b.v);
+  rc = unify_selected(out, ta, &a, keep, m);
+  free(keep); free_view(&a); free_view(&b);
   return rc;
 }
 
@@ -1614,40 +2579,53 @@ ps_subtract(term_t a, term_t b, term_t out)
 
 static foreign_t
 ps_intersection(term_t a, term_t b, term_t out)
-{ return ps_filter(a, b, out, TRUE);
+{ pview va, vb;				/* (the smaller one filtered: the same set) */
+  int swap;
+  if ( !get_view(a, 0, &va) ) return FALSE;
+  if ( !get_view(b, 0, &vb) ) { free_view(&va); return FALSE; }
+  swap = vb.n < va.n && vb.blob == va.blob;
+  free_view(&va); free_view(&vb);
+  return swap ? ps_filter(b, a, out, TRUE) : ps_filter(a, b, out, TRUE);
 }
 
 /* ps_union(+Lists, -Union) */
 static foreign_t
 ps_union_list(term_t ls, term_t out)
 { term_t l = PL_copy_term_ref(ls), h = PL_new_term_ref();
-  size_t cap = 1024, max = 0;
+  size_t cap = 1024, max = 0, total = 0, nonempty = 0;
   uint8_t *mark = calloc(cap, 1);
-  if ( !mark ) return FALSE;
+  int blob = FALSE, rc;
+  term_t one = PL_new_term_ref();
+  if ( !mark ) return PL_resource_error("memory");
   while( PL_get_list(l, h, l) )
-  { ints a;
-    if ( !get_ints(h, &a) ) { free(mark); return FALSE; }
-    if ( (size_t)a.max+1 > cap )
+  { pview a;
+    if ( !get_view(h, 0, &a) ) { free(mark); return FALSE; }
+    if ( a.blob ) blob = TRUE;
+    if ( a.n == 0 ) { free_view(&a); continue; }
+    nonempty++;
+    if ( !PL_put_term(one, h) ) { free(mark); return FALSE; }
+    if ( (size_t)a.v[a.n-1]+1 > cap )
     { size_t ncap = cap;
       uint8_t *m2;
-      while( ncap < (size_t)a.max+1 ) ncap *= 2;
-      if ( !(m2 = realloc(mark, ncap)) ) { free(a.v); free(mark); return FALSE; }
+      while( ncap < (size_t)a.v[a.n-1]+1 ) ncap *= 2;
+      if ( !(m2 = realloc(mark, ncap)) ) { free_view(&a); free(mark); return PL_resource_error("memory"); }
       memset(m2+cap, 0, ncap-cap);
       mark = m2; cap = ncap;
     }
     for(size_t j=0; j<a.n; j++) mark[a.v[j]] = 1;
-    if ( (size_t)a.max > max ) max = (size_t)a.max;
-    free(a.v);
+    if ( (size_t)a.v[a.n-1]+1 > max ) max = (size_t)a.v[a.n-1]+1;
+    total += a.n;
+    free_view(&a);
   }
-  { term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref();
-    for(size_t i=1; i<=max; i++)
-    { if ( mark[i] )
-      { if ( !PL_unify_list(tail, oh, tail) || !PL_unify_int64(oh, (int64_t)i) )
-	{ free(mark); return FALSE; }
-      }
-    }
+  if ( nonempty == 1 ) { free(mark); return PL_unify(out, one); }
+  { uint32_t *v = malloc((total ? total : 1)*sizeof(uint32_t));
+    size_t m = 0;
+    if ( !v ) { free(mark); return PL_resource_error("memory"); }
+    for(size_t i=0; i<max; i++) if ( mark[i] ) v[m++] = (uint32_t)i;
     free(mark);
-    return PL_unify_nil(tail);
+    rc = unify_batch(out, v, m, blob);
+    free(v);
+    return rc;
   }
 }
 
@@ -1667,14 +2645,61 @@ ps_union(term_t a, term_t b, term_t out)
    last of positive probability); fails, writing nothing, if the loop is
    abandoned or a particle's probabilities are not a distribution (the
    caller's Prolog loop raises the error) */
+static int
+run_finite(const vm *m, const int *regs, int k, column *vals, term_t ps, column *c, rng *g)
+{ double r[MAX_REGS];
+  size_t np, *pick;
+  const uint32_t *idx;
+  pview pv;
+
+  if ( k == 0 || (size_t)k != vals->n ) return FALSE;
+  for(int j=0; j<m->ncol; j++)
+    if ( m->col[j]->n != c->n ) return FALSE;
+  if ( !get_batch(ps, c, &pv) ) return FALSE;
+  idx = pv.v; np = pv.n;
+  if ( !(pick = malloc((np ? np : 1)*sizeof(size_t))) ) { free_view(&pv); return FALSE; }
+  for(size_t j=0; j<np; j++)
+  { double sum = 0.0, u;
+    int q, last = -1;
+    pick[j] = (size_t)-1;
+    if ( c->tag[idx[j]] != T_U ) continue;
+    { int rc = vm_run(m, idx[j], r);
+      if ( rc == VM_ABANDON ) goto abandon;
+      if ( rc == VM_SKIP ) continue;
+    }
+    for(q=0; q<k; q++)
+    { double p = r[regs[q]];
+      if ( !(p >= 0.0) ) goto abandon;
+      if ( p > 0.0 ) last = q;
+      sum += p;
+    }
+    if ( fabs(sum - 1.0) > 1.0e-9 || last < 0 ) goto abandon;
+    u = rng_uniform(g) - 0x1.0p-53;		/* [0, 1) */
+    for(q=0; q<k; q++)
+    { double p = r[regs[q]];
+      if ( u < p ) break;
+      if ( q == k-1 ) { q = last; break; }
+      u -= p;
+    }
+    pick[j] = (size_t)q;
+  }
+  for(size_t j=0; j<np; j++)
+  { if ( c->tag[idx[j]] != T_U || pick[j] == (size_t)-1 ) continue;
+    if ( !copy_cell(c, idx[j], vals, pick[j]) ) { free(pick); free_view(&pv); return FALSE; }
+  }
+  free(pick); free_view(&pv);
+  return TRUE;
+abandon:
+  free(pick); free_view(&pv);
+  return FALSE;
+}
+
 static foreign_t
 col_vm_finite(term_t ps, term_t cols, term_t code, term_t tregs, term_t tvals, term_t tc,
 	      term_t ts)
 { vm m;
   column *c, *vals;
-  int regs[MAX_REGS], k = 0;
-  double r[MAX_REGS];
-  size_t np, *idx, *pick;
+  int regs[MAX_REGS], k = 0, rc;
   rng g;
 
   if ( !get_column(tc, &c) || !get_column(tvals, &vals) || !get_seed(ts, &g) ) return FALSE;
@@ -1686,45 +2711,9 @@ col_vm_finite(term_t ps, term_t cols, term_t code, term_t tregs, term_t tvals, t
   }
   if ( k == 0 || (size_t)k != vals->n ) return FALSE;
   if ( !vm_load(cols, code, &m) ) return FALSE;
-  for(int j=0; j<m.ncol; j++)
-    if ( m.col[j]->n != c->n ) { free(m.code); return FALSE; }
-  if ( !(idx = get_batch(ps, c, &np)) ) { free(m.code); return FALSE; }
-  if ( !(pick = malloc((np ? np : 1)*sizeof(size_t))) ) { free(idx); free(m.code); return FALSE; }
-  for(size_t j=0; j<np; j++)
-  { double sum = 0.0, u;
-    int q, last = -1;
-    pick[j] = (size_t)-1;
-    if ( c->tag[idx[j]] != T_U ) continue;
-    { int rc = vm_run(&m, idx[j], r);
-      if ( rc == VM_ABANDON ) goto abandon;
-      if ( rc == VM_SKIP ) continue;
-    }
-    for(q=0; q<k; q++)
-    { double p = r[regs[q]];
-      if ( !(p >= 0.0) ) goto abandon;
-      if ( p > 0.0 ) last = q;
-      sum += p;
-    }
-    if ( fabs(sum - 1.0) > 1.0e-9 || last < 0 ) goto abandon;
-    u = rng_uniform(&g) - 0x1.0p-53;		/* [0, 1) */
-    for(q=0; q<k; q++)
-    { double p = r[regs[q]];
-      if ( u < p ) break;
-      if ( q == k-1 ) { q = last; break; }
-      u -= p;
-    }
-    pick[j] = (size_t)q;
-  }
+  rc = run_finite(&m, regs, k, vals, ps, c, &g);
   free(m.code);
-  for(size_t j=0; j<np; j++)
-  { if ( c->tag[idx[j]] != T_U || pick[j] == (size_t)-1 ) continue;
-    if ( !copy_cell(c, idx[j], vals, pick[j]) ) { free(pick); free(idx); return FALSE; }
-  }
-  free(pick); free(idx);
-  return TRUE;
-abandon:
-  free(m.code); free(pick); free(idx);
-  return FALSE;
+  return rc;
 }
 
 /* col_append_each(+Ps, !LC, +V) is semidet: each particle of Ps gets V
@@ -1733,37 +2722,50 @@ abandon:
 static foreign_t
 col_append_each(term_t ps, term_t tc, term_t v)
 { column *c;
-  size_t np, *idx;
+  size_t np;
+  const uint32_t *idx;
+  pview pv;
   int rc = FALSE;
   fid_t fid;
-  if ( !get_column(tc, &c) ) return FALSE;
-  if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
+  if ( !get_batch(ps, c, &pv) ) return FALSE;
+  idx = pv.v; np = pv.n;
   { if ( PL_is_ground(v) )		/* (a ground term: lists of items, in place) */
-    { int fast = TRUE;
+    { int fast = TRUE, whole = c->uni && np == c->n;
       item it;
       for(size_t j=0; j<np && fast; j++)
-      { uint8_t t = c->tag[idx[j]];
-	fast = t == T_LIST || (t == T_ATOM && (atom_t)c->x[idx[j]] == ATOM_nil);
+      { size_t i = CI(c, idx[j]);
+	uint8_t t = c->tag[i];
+	fast = t == T_LIST || (t == T_ATOM && (atom_t)c->x[i] == ATOM_nil);
       }
+      if ( fast && whole )		/* (every particle's list: the one list) */
+      { static const uint32_t zero = 0;
+	idx = &zero; np = 1;
+      } else if ( fast && !expand(c) )
+      { free_view(&pv); return FALSE; }
       if ( fast )
-      { if ( !make_item(v, &it) ) { free(idx); return FALSE; }
+      { if ( !make_item(v, &it) ) { free_view(&pv); return FALSE; }
 	for(size_t j=0; j<np; j++)
 	{ size_t i = idx[j];
 	  if ( c->tag[i] == T_ATOM )
 	  { alist *l = new_alist(4);
-	    if ( !l ) { free_item(&it); free(idx); return FALSE; }
+	    if ( !l ) { free_item(&it); free_view(&pv); return FALSE; }
 	    clear_cell(c, i);
 	    c->x[i] = (uintptr_t)l;
 	    SET_TAG(c, i, T_LIST);
 	  }
 	  { alist *l = (alist*)c->x[i];
-	    if ( !alist_push(&l, &it) ) { free_item(&it); free(idx); return FALSE; }
+	    if ( !alist_push(&l, &it) ) { free_item(&it); free_view(&pv); return FALSE; }
 	    c->x[i] = (uintptr_t)l;
 	    c->cls_valid = 0;
 	  }
 	}
+	if ( whole )
+	{ memset(c->cnt, 0, sizeof(c->cnt));
+	  c->cnt[T_LIST] = c->n;
+	}
 	free_item(&it);
-	free(idx);
+	free_view(&pv);
 	return TRUE;
       }
     }
@@ -1795,7 +2797,7 @@ col_append_each(term_t ps, term_t tc, term_t v)
   }
 out:
   PL_close_foreign_frame(fid);
-  free(idx);
+  free_view(&pv);
   return rc;
 }
 
@@ -1807,19 +2809,21 @@ col_select_unify(term_t ps, term_t tc, term_t p, term_t out)
 { column *c, *tmp;
   int rc = FALSE, pnum;
   double pv = 0.0;
-  fid_t fid;
-  if ( !get_column(tc, &c) ) return FALSE;
-  if ( !(tmp = new_column(1)) ) return PL_resource_error("memory");
-  if ( !set_cell(tmp, 0, p) ) { free_cells(tmp); return FALSE; }
+  pview b;
+  char *keep;
+  size_t m = 0;
+  if ( !get_column_raw(tc, &c) ) return FALSE;
+  if ( !get_batch(ps, c, &b) ) return FALSE;
+  if ( !(tmp = new_column(1)) ) { free_view(&b); return PL_resource_error("memory"); }
+  if ( !(keep = malloc(b.n ? b.n : 1)) )
+  { free_cells(tmp); free_view(&b); return PL_resource_error("memory"); }
+  if ( !set_cell(tmp, 0, p) ) goto out;
   pnum = PL_is_number(p) && PL_get_float(p, &pv);
-  fid = PL_open_foreign_frame();
-  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
-    term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref(), v = PL_new_term_ref();
-    size_t i;
-    while( PL_get_list(l, h, l) )
-    { int ok;
-      if ( !get_index(h, c, &i) ) goto out;
-      if ( c->tag[i] == T_TERM )
+  { term_t v = PL_new_term_ref();
+    for(size_t j=0; j<b.n; j++)
+    { size_t i = b.v[j];
+      int ok;
+      if ( c->tag[CI(c, i)] == T_TERM )
       { fid_t f2 = PL_open_foreign_frame();
 	double x;
 	ok = put_cell(v, c, i) && PL_unify(v, p);
@@ -1832,16 +2836,14 @@ col_select_unify(term_t ps, term_t tc, term_t p, term_t out)
       } else if ( same_cell(c, i, tmp, 0) )
 	ok = TRUE;
       else
-	ok = pnum && c->tag[i] == T_NUM && c->k == 1 && c->f[i] == pv;
-      if ( ok )
-      { if ( !PL_unify_list(tail, oh, tail) || !PL_unify(oh, h) ) goto out;
-      }
+	ok = pnum && c->tag[CI(c, i)] == T_NUM && c->k == 1 && c->f[CI(c, i)] == pv;
+      keep[j] = (char)ok;
+      m += (size_t)ok;
     }
-    rc = PL_unify_nil(tail);
   }
+  rc = unify_selected(out, ps, &b, keep, m);
 out:
-  PL_close_foreign_frame(fid);
-  free_cells(tmp);
+  free(keep); free_cells(tmp); free_view(&b);
   return rc;
 }
 
@@ -1850,32 +2852,42 @@ out:
 static foreign_t
 col_with_arity(term_t ps, term_t tc, term_t tk, term_t out)
 { column *c;
-  int k;
-  if ( !get_column(tc, &c) || !PL_get_integer_ex(tk, &k) ) return FALSE;
-  { term_t l = PL_copy_term_ref(ps), h = PL_new_term_ref();
-    term_t tail = PL_copy_term_ref(out), oh = PL_new_term_ref(), v = PL_new_term_ref();
-    size_t i;
-    while( PL_get_list(l, h, l) )
-    { int ok;
-      if ( !get_index(h, c, &i) ) return FALSE;
-      switch(c->tag[i])
+  int k, rc;
+  pview b;
+  char *keep;
+  size_t m = 0;
+  if ( !get_column_raw(tc, &c) || !PL_get_integer_ex(tk, &k) ) return FALSE;
+  if ( !get_batch(ps, c, &b) ) return FALSE;
+  if ( c->k >= k && c->cnt[T_NUM] == c->n )
+  { free_view(&b);
+    return PL_unify(out, ps);
+  }
+  if ( !(keep = malloc(b.n ? b.n : 1)) ) { free_view(&b); return PL_resource_error("memory"); }
+  { term_t v = PL_new_term_ref();
+    for(size_t j=0; j<b.n; j++)
+    { size_t i = b.v[j];
+      int ok;
+      switch(c->tag[CI(c, i)])
       { case T_NUM: ok = c->k >= k; break;
 	case T_TERM:
 	{ fid_t f = PL_open_foreign_frame();
-	  int m = 1;
+	  int q = 1;
 	  ok = put_cell(v, c, i);
-	  while( ok && m < k && PL_is_functor(v, FUNCTOR_comma2) )
-	  { _PL_get_arg(2, v, v); m++; }
-	  ok = ok && m == k;
+	  while( ok && q < k && PL_is_functor(v, FUNCTOR_comma2) )
+	  { _PL_get_arg(2, v, v); q++; }
+	  ok = ok && q == k;
 	  PL_discard_foreign_frame(f);
 	  break;
 	}
 	default: ok = FALSE;
       }
-      if ( ok && (!PL_unify_list(tail, oh, tail) || !PL_unify(oh, h)) ) return FALSE;
+      keep[j] = (char)ok;
+      m += (size_t)ok;
     }
-    return PL_unify_nil(tail);
   }
+  rc = unify_selected(out, ps, &b, keep, m);
+  free(keep); free_view(&b);
+  return rc;
 }
 
 /* col_sets_each(+Ps, +LC, !C): each particle of Ps gets in C its list in LC
@@ -1883,11 +2895,18 @@ col_with_arity(term_t ps, term_t tc, term_t tk, term_t out)
 static foreign_t
 col_sets_each(term_t ps, term_t tl, term_t tc)
 { column *lc, *c;
-  size_t np, *idx;
-  int rc = FALSE;
-  if ( !get_column(tl, &lc) || !get_column(tc, &c) ) return FALSE;
+  size_t np;
+  const uint32_t *idx;
+  pview pv;
+  int rc = FALSE, whole;
+  static const uint32_t zero = 0;
+  if ( !get_column_raw(tl, &lc) || !get_column_raw(tc, &c) ) return FALSE;
   if ( lc->n != c->n ) return FALSE;
-  if ( !(idx = get_batch(ps, c, &np)) ) return FALSE;
+  if ( !get_batch(ps, c, &pv) ) return FALSE;
+  idx = pv.v; np = pv.n;
+  whole = c->uni && c->tag[0] == T_U && lc->uni && np == c->n;
+  if ( whole ) { idx = &zero; np = 1; }	/* (one list for every particle: one set) */
+  else if ( !expand(c) ) { free_view(&pv); return FALSE; }
   { term_t l = PL_new_term_ref(), nl = PL_new_term_ref();
     fid_t fid = PL_open_foreign_frame();
     for(size_t j=0; j<np; j++)
@@ -1895,7 +2914,11 @@ col_sets_each(term_t ps, term_t tl, term_t tc)
       term_t el;
       int dup = FALSE;
       if ( !put_cell(l, lc, i) || PL_skip_list(l, 0, &len) != PL_LIST ) goto out;
-      if ( len < 2 ) { if ( !copy_cell(c, i, lc, i) ) goto out; PL_rewind_foreign_frame(fid); continue; }
+      if ( len < 2 )
+      { if ( whole ? !set_uniform(c, l) : !copy_cell(c, i, lc, i) ) goto out;
+	PL_rewind_foreign_frame(fid);
+	continue;
+      }
       if ( !(el = PL_new_term_refs((int)len)) ) goto out;
       for(size_t q=0; q<len; q++)
       { term_t x = PL_new_term_ref();
@@ -1907,12 +2930,13 @@ col_sets_each(term_t ps, term_t tl, term_t tc)
 	else if ( !PL_put_term(el+m++, x) ) goto out;
       }
       if ( !dup )
-      { if ( !copy_cell(c, i, lc, i) ) goto out;
+      { if ( whole ? !(put_cell(nl, lc, 0) && set_uniform(c, nl)) : !copy_cell(c, i, lc, i) )
+	  goto out;
       } else
       { PL_put_nil(nl);
 	for(size_t q=m; q-- > 0; )
 	  if ( !PL_cons_list(nl, el+q, nl) ) goto out;
-	if ( !set_cell(c, i, nl) ) goto out;
+	if ( whole ? !set_uniform(c, nl) : !set_cell(c, i, nl) ) goto out;
       }
       PL_rewind_foreign_frame(fid);
     }
@@ -1920,7 +2944,7 @@ col_sets_each(term_t ps, term_t tl, term_t tc)
   out:
     PL_close_foreign_frame(fid);
   }
-  free(idx);
+  free_view(&pv);
   return rc;
 }
 
@@ -1940,8 +2964,6 @@ col_gc_due(term_t tl)
 /* col_has_ref(@T) is semidet: T holds a column reference '$c'(C, P, V) or a
    deferred expression '$x'(E) (ddc_batch_columns:has_column/1, walked in
    C: it is asked of every goal and distribution of a batch) */
-static functor_t FUNCTOR_cref3, FUNCTOR_xref1;
-
 static int
 has_ref(term_t t, int depth)
 { if ( !PL_is_compound(t) ) return FALSE;
@@ -1976,7 +2998,8 @@ col_version(term_t v)
 
 install_t
 install_ddc_columns(void)
-{ ATOM_u       = PL_new_atom("$u");
+{ zig_init();
+ ATOM_u       = PL_new_atom("$u");
   ATOM_undef   = PL_new_atom("$undef");
   ATOM_open    = PL_new_atom("open");
   ATOM_defined = PL_new_atom("defined");
@@ -2004,14 +3027,22 @@ install_ddc_columns(void)
   PL_register_foreign("col_defined_at",  3, col_defined_at,  0);
   PL_register_foreign("col_set_each",    3, col_set_each,    0);
   PL_register_foreign("col_status",      2, col_status,      0);
+  PL_register_foreign("col_rows",        4, col_rows,        0);
+  PL_register_foreign("col_pack_rows",   3, col_pack_rows,   0);
+  PL_register_foreign("col_floats_into", 4, col_floats_into, 0);
+  PL_register_foreign("col_floats_list", 2, col_floats_list, 0);
+  PL_register_foreign("col_row_width",   2, col_row_width,   0);
   PL_register_foreign("col_all_same",    3, col_all_same,    0);
   PL_register_foreign("col_num_arity",   2, col_num_arity,   0);
   PL_register_foreign("col_gather",      3, col_gather,      0);
+  PL_register_foreign("col_plan_size",   2, col_plan_size,   0);
   PL_register_foreign("col_draw_gauss",  5, col_draw_gauss,  0);
   PL_register_foreign("col_weigh_gauss", 7, col_weigh_gauss, 0);
   PL_register_foreign("col_vm_test",     7, col_vm_test,     0);
   PL_register_foreign("col_vm_instance", 5, col_vm_instance, 0);
   PL_register_foreign("col_copy_each",   3, col_copy_each,   0);
+  PL_register_foreign("col_test",        3, col_test,        0);
+  PL_register_foreign("col_instance",    3, col_instance,    0);
   PL_register_foreign("col_split",       3, col_split,       0);
   PL_register_foreign("col_draw_uniform",4, col_draw_uniform,0);
   PL_register_foreign("col_select_eq",   5, col_select_eq,   0);
@@ -2021,6 +3052,11 @@ install_ddc_columns(void)
   PL_register_foreign("col_select_unify",4, col_select_unify,0);
   PL_register_foreign("col_with_arity",  4, col_with_arity,  0);
   PL_register_foreign("col_sets_each",   3, col_sets_each,   0);
+  PL_register_foreign("ps_all",          2, ps_all,          0);
+  PL_register_foreign("ps_list",         2, ps_list,         0);
+  PL_register_foreign("ps_blob",         2, ps_blob,         0);
+  PL_register_foreign("ps_size",         2, ps_size,         0);
+  PL_register_foreign("ps_first",        2, ps_first,        0);
   PL_register_foreign("$ps_subtract",     3, ps_subtract,     0);
   PL_register_foreign("$ps_intersection", 3, ps_intersection, 0);
   PL_register_foreign("$ps_union",        3, ps_union,        0);

@@ -74,6 +74,9 @@ from bridge.threads import DEFAULT_THREADS
 logger = logging.getLogger(__name__)
 
 _TEMPLATE_VAR = "DdcBridgeValue__"
+# The widest row the batched engine's column library holds (MAX_K in prolog/c/ddc_columns.c):
+# samples() lends it a buffer of this many floats per particle.
+_MAX_ROW_WIDTH = 16
 
 
 class FilterError(RuntimeError):
@@ -557,14 +560,17 @@ class Filter:
         """Per particle, ``template`` at the first solution of ``goal`` (None: no solution)."""
         return list(self._query("bridge_values(K, P, V, Err)", template, goal)["V"])
 
-    def _query(self, call: str, template: Any, goal: Any) -> dict[str, Any]:
+    def _query(self, call: str, template: Any, goal: Any,
+               extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """One bridge query over the particles: ``template`` at the first solution of
-        ``goal`` (bound to ``P`` as a pair), the filter as ``K``; ``Err`` raised."""
+        ``goal`` (bound to ``P`` as a pair), the filter as ``K``, ``extra`` bindings too;
+        ``Err`` raised."""
         template_text = _as_term_text(template)
         goal_text = _as_term_text(goal)
         result = _call(
             call,
-            {"K": self._handle(), "P": f"ddc_bridge_pair(({template_text}),({goal_text}))"},
+            {"K": self._handle(), "P": f"ddc_bridge_pair(({template_text}),({goal_text}))",
+             **(extra or {})},
         )
         if result["Err"]:
             raise FilterError(f"query {template_text!r} for {goal_text!r}: {result['Err']}")
@@ -609,12 +615,19 @@ class Filter:
         """(values, weights): N rows of values (float, NaN where undefined, when numeric)."""
         # numbers or k-tuples of numbers come flattened from Prolog (no per-particle Python
         # work); other values as values() gives them
-        result = self._query("bridge_numeric_rows(K, P, W, F, V, Err)",
-                             *self._template_goal(term, goal))
+        # (the floats copied into `buffer` by the column library where it is loaded: no
+        # conversion of each float by janus; else a list.  The buffer's address and size are
+        # _-named: janus gives back no such binding.)
+        buffer = np.empty(self.particles * _MAX_ROW_WIDTH, dtype=float)
+        result = self._query("bridge_rows_into(K, P, _A, _C, W, F, V, Err)",
+                             *self._template_goal(term, goal),
+                             extra={"_A": buffer.ctypes.data, "_C": buffer.size})
         width = int(result["W"])
         if width == 0:
             return _as_array(result["V"]), self.weights
-        flat = np.asarray(result["F"], dtype=float)
+        floats = result["F"]
+        flat = (buffer[:floats].copy() if isinstance(floats, int)
+                else np.asarray(floats, dtype=float))
         return (flat if width == 1 else flat.reshape(self.particles, width)), self.weights
 
     @_locked

@@ -232,6 +232,34 @@ test(overlapping_clauses_are_an_error_as_in_the_other_engine) :-
     T1 == T2,
     once(sub_atom(T2, _, _, _, ':2: two clauses define x:1')).
 
+%   Clauses whose bodies contradict each other (s ~= a against s ~= b, G
+%   against \+ G, h ~= V, V \== a against h ~= a, findall(T, G, L), L \== []
+%   against findall(T, G, [])) are not checked for overlaps; the others
+%   are, and an overlap is still the error.
+test(contradicting_clauses_are_not_checked_for_overlaps_the_others_are) :-
+    program([ ':- dynamic(on/0).',
+              's:0 ~ uniform([a, b]).',
+              's:t+1 ~ val(S) := s:t ~= S.',
+              'x:t+1 ~ val(1) := s:t ~= a.',
+              'x:t+1 ~ val(2) := s:t ~= b.',
+              'z:t+1 ~ val(1) := on.',
+              'z:t+1 ~ val(2) := \\+ on.',
+              'u:t+1 ~ val(1) := s:t ~= S, S \\== a.',
+              'u:t+1 ~ val(2) := s:t ~= a.',
+              'y:t+1 ~ val(1) := s:t ~= a.',
+              'y:t+1 ~ val(2) := s:t ~= S, S \\== b.',
+              'w:t+1 ~ uniform(L) := s:t ~= S, findall(X, member(X, [S, c]), L), L \\== [].',
+              'w:t+1 ~ val(none) := s:t ~= S, findall(X, member(X, [S, c]), []).' ], File),
+    filter_new(File, 30, 1, [engine(batched)], F),
+    ddc_filter:filter_engine_(F, _, M, _),
+    findall(X-R, ( M:'$b_rv'(X0, next, _, _, origin(_, _, R)), functor(X0, X, _) ), Rs),
+    Rs == [s-false, x-false, x-false, z-false, z-false, u-false, u-false, y-true, y-false,
+           w-false, w-false],
+    catch(filter_step(F, [], [], _), E, true),
+    message_to_codes(E, Text),
+    once(sub_atom(Text, _, _, _, 'two clauses define y:1')),
+    filter_free(F).
+
 %   Groups: the same seed and number of threads, the same particles; other
 %   thread counts, other random streams.
 test(groups_are_deterministic) :-

@@ -164,6 +164,79 @@ test(finite_draws_with_probabilities_over_the_batch) :-
     aggregate_all(count, ( nth1(I, Vs, yes), I mod 2 =:= 0 ), Even),
     abs(Odd - 450) < 60, abs(Even - 50) < 30.
 
+%   The library's gaussian draws (its standard normals: a ziggurat) have the
+%   normal's moments and tails, within five standard errors of 100,000
+%   draws.
+test(gaussian_draws_have_the_normals_moments_and_tails) :-
+    (   col_backend(foreign)
+    ->  N = 100000,
+        col_new(N, (1.0, -2.0, 0.0), M), col_new(N, '$u', Out), ps_all(N, All),
+        col_draw_gauss(All, M, chol(2.0, 0.0, 1.0, 0.0, 0.0, 1.0), Out, 42),
+        col_list(Out, Vs),
+        findall(Z, ( member((X, _, _), Vs), Z is (X - 1.0)/2.0 ), Zs),
+        findall(Z, ( member((_, Y, _), Vs), Z is Y + 2.0 ), Ws),
+        forall(member(S, [Zs, Ws]),
+               (   moments(S, N, Mean, Var, Kurt),
+                   abs(Mean) < 5*sqrt(1/N), abs(Var - 1) < 5*sqrt(2/N),
+                   abs(Kurt - 3) < 5*sqrt(96/N),
+                   forall(member(T-P, [1-0.31731, 2-0.04550, 3-0.0026998, 3.5-0.00046527]),
+                          (   aggregate_all(count, ( member(Z, S), abs(Z) > T ), K),
+                              abs(K/N - P) < 5*sqrt(P*(1-P)/N)
+                          ))
+               ))
+    ;   true
+    ).
+
+moments(S, N, Mean, Var, Kurt) :-
+    sum_list(S, S1), Mean is S1/N,
+    foldl([Z, A0, A]>>(A is A0 + (Z-Mean)**2), S, 0.0, S2), Var is S2/N,
+    foldl([Z, A0, A]>>(A is A0 + (Z-Mean)**4), S, 0.0, S4), Kurt is S4/N/(Var*Var).
+
+%   A column whose particles all hold one value (the library keeps one cell
+%   for it) reads and writes as any other: a write to some particles gives
+%   them their own values.
+test(a_column_of_one_value_reads_and_writes_as_any_other) :-
+    col_new(5, '$u', C),
+    col_set_each([1, 2, 3, 4, 5], C, (1.0, 2.0)),
+    col_status(C, S0), S0 == same((1.0, 2.0)),
+    col_arg(3, C, V3), V3 == (1.0, 2.0),
+    col_all_same([1, 4], C, 2),
+    findall(V-Ps, split_column(C, [1, 2, 5], V, Ps), G0), G0 == [(1.0, 2.0)-[1, 2, 5]],
+    col_gather([C, C], [2-5, 1-1], G), col_list(G, GL), GL == [(1.0, 2.0), (1.0, 2.0)],
+    col_setarg(2, C, x),
+    col_list(C, L), L == [(1.0, 2.0), x, (1.0, 2.0), (1.0, 2.0), (1.0, 2.0)],
+    col_status(C, S1), S1 == defined,
+    col_new(4, [], LC),
+    (   col_append_each([1, 2, 3, 4], LC, a) -> true ; collect_append([1, 2, 3, 4], LC, a) ),
+    col_status(LC, S2), S2 == same([a]),
+    (   col_append_each([2], LC, b) -> true ; collect_append([2], LC, b) ),
+    col_list(LC, LL), LL == [[a], [a, b], [a], [a]],
+    col_new(3, [x, y, x], D), col_new(3, '$u', Set),
+    (   col_sets_each([1, 2, 3], D, Set) -> true
+    ;   forall(between(1, 3, I), ( col_arg(I, D, X), list_to_set(X, Y), col_setarg(I, Set, Y) ))
+    ),
+    col_list(Set, SL), SL == [[x, y], [x, y], [x, y]],
+    col_new(3, '$u', U), col_set_each([2], U, z), col_list(U, UL), UL == ['$u', z, '$u'].
+
+%   Rows of floats straight from columns (the library only; the Prolog
+%   columns fail, and the caller makes the rows from the values).
+test(columns_read_as_rows_of_floats) :-
+    (   col_backend(foreign)
+    ->  col_from_list([(1.0, 2.0), '$undef', (3.0, 4.0)], C1),
+        col_from_list(['$u', (5.0, 6.0)], C2),
+        col_row_width(C1, 2), col_row_width(C2, 2),
+        col_rows(C1, W, Fs, []), W == 2,
+        Fs = [A, B, X, Y, E, F], A-B-E-F == 1.0-2.0-3.0-4.0, X =\= X, Y =\= Y,
+        col_pack_rows([C1, C2], 2, Rows),
+        col_floats_list(Rows, L), length(L, 10),
+        append(Fs, [U, V, 5.0, 6.0], L0), L0 = L, U =\= U, V =\= V,
+        \+ col_floats_into(Rows, 1, 9, _),         % (too little room: nothing copied)
+        col_from_list([a, (1.0, 2.0)], C3), \+ col_row_width(C3, _),
+        \+ col_rows(C3, _, _, []), \+ col_pack_rows([C3], 2, _),
+        col_from_list(['$undef'], C4), col_row_width(C4, 0), \+ col_rows(C4, _, _, [])
+    ;   col_from_list([(1.0, 2.0)], C), \+ col_rows(C, _, _, [])
+    ).
+
 %   A split binds a reference's pattern to its branch's value: the reference
 %   is ground, and still reads its column (a goal after the split filters by
 %   it).

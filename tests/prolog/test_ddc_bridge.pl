@@ -131,6 +131,19 @@ test(numeric_rows_flatten_numbers_and_tuples) :-
     assertion(W3 == 0), assertion(Err \== ""),
     bridge_free(Key).
 
+%   (Rows that cannot be copied into the caller's memory, here none, come as a list.)
+test(rows_into_memory_or_as_a_list) :-
+    new_filter(4, Key),
+    bridge_rows_into(Key, "ddc_bridge_pair(P, position:t ~= P)", 0, 0, W, Fs, Vs, ""),
+    assertion(W == 2),
+    assertion(Fs == [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
+    assertion(Vs == []),
+    bridge_rows_into(Key, "ddc_bridge_pair(V, maze(0,1):t ~= V)", 0, 0, W2, Fs2, _, ""),
+    assertion(W2 == 0), assertion(Fs2 == []),
+    bridge_rows_into(Key, "ddc_bridge_pair(V, maze(0,1):t ~= V)", x, 0, W3, _, _, Err),
+    assertion(W3 == 0), assertion(Err \== ""),
+    bridge_free(Key).
+
 test(rename_swaps_names_in_the_particles_given_and_reports_bad_renamings) :-
     new_filter(4, Key),
     step_null(Key, _),
