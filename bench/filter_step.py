@@ -2,6 +2,7 @@
 
     .venv/bin/python bench/filter_step.py     # the grid N in {100,1000,5000} x M in {3,10,20}
     .venv/bin/python bench/filter_step.py --particles 1000 --objects 10 --json
+    .venv/bin/python bench/filter_step.py --scaling   # N=1000 M=10, N=10000 M=10, N=1000 M=30
 
 For each configuration it generates the DDC program of the occlusion model for M objects
 (bench/filter_numpy_reference.py: each hidden object picks an occluder uniformly among the
@@ -25,7 +26,14 @@ The engine steps the particles in ``--threads`` Prolog threads (default 2, as
 profiler and prints the K most-called predicates per particle and step; with the per-particle
 engine also the lookups in the value tables (``store_get``) per particle, step and object.
 
-Target: N = 1000, M = 10 in at most 33 ms per step (30 Hz).
+``--scaling`` runs the three configurations of the targets in one run and prints, beside the
+ratio to numpy of each, the scaling: the time at 10 N over the time at N (linear: 10) and at
+3 M over M (linear: 3), each with its ratio to linear.  The last column names the batched
+engine's columns (``foreign``: the compiled library, prolog/c/ddc_columns.c; ``prolog``: terms,
+as with ``DDC_COLUMNS=prolog``).
+
+Targets: N = 1000, M = 10 in at most 33 ms per step (30 Hz); within 2x of numpy there, within
+3x at N = 10000 and at M = 30; time linear in N and in M within 1.2x.
 """
 
 from __future__ import annotations
@@ -47,9 +55,11 @@ sys.path.insert(0, str(HERE.parent / "python"))
 import filter_numpy_reference as model  # noqa: E402
 from bridge import DEFAULT_THREADS, Filter, FilterError  # noqa: E402
 from bridge import prolog as bridge_prolog  # noqa: E402
+from bridge import resources as bridge_resources  # noqa: E402
 from bridge.engines import ENGINES  # noqa: E402
 
 TARGET_MS = 33.0
+TARGET_RATIO = {(1000, 10): 2.0, (10000, 10): 3.0, (1000, 30): 3.0}
 
 
 def write_program(directory: str, objects: int) -> Path:
@@ -74,8 +84,10 @@ def time_ddc(particles: int, objects: int, steps: int, seed: int,
         f = Filter(program, particles=particles, seed=seed, threads=threads, engine=engine)
         new_ms = 1000 * (time.perf_counter() - started)
         with f:
+            cpu_started = time.process_time()
             for frame in frames:
                 f.step(frame.terms(names))
+            cpu_ms = 1000 * (time.process_time() - cpu_started) / len(frames)
             step_ms = [1000 * s for s in f.step_seconds]
             prolog_ms = [1000 * s for s in f.step_prolog_seconds]
             return {
@@ -85,6 +97,7 @@ def time_ddc(particles: int, objects: int, steps: int, seed: int,
                 "resamplings": f.resample_count,
                 "zero_weight_events": f.zero_weight_events,
                 "prolog_share": sum(prolog_ms) / sum(step_ms),
+                "cpu_ms_per_step": cpu_ms,
             }
 
 
@@ -144,13 +157,48 @@ def time_floor(particles: int, objects: int) -> float | None:
     return float(json.loads(out.strip().splitlines()[-1])["floor_ms_per_step"])
 
 
+def column_backend() -> str:
+    """The batched engine's columns in this process: foreign or prolog."""
+    path = str(bridge_resources.prolog_file("ddc_batch_col.pl"))
+    return str(bridge_prolog.query_once("use_module(P), ddc_batch_col:col_backend(B)",
+                                        {"P": path})["B"])
+
+
 def time_numpy(particles: int, objects: int, steps: int, seed: int) -> float:
+    return time_numpy_both(particles, objects, steps, seed)[0]
+
+
+def time_numpy_both(particles: int, objects: int, steps: int,
+                    seed: int) -> tuple[float, float]:
+    """(wall, CPU) ms per step of the numpy twin."""
     frames = model.scenario(objects, steps, seed=seed)
     f = model.NumpyOcclusionFilter(objects, particles, seed=seed)
-    started = time.perf_counter()
+    started, cpu_started = time.perf_counter(), time.process_time()
     for frame in frames:
         f.step(frame)
-    return 1000 * (time.perf_counter() - started) / steps
+    return (1000 * (time.perf_counter() - started) / steps,
+            1000 * (time.process_time() - cpu_started) / steps)
+
+
+def print_scaling(measured: dict[tuple[int, int], tuple[float, float, float, float]]) -> None:
+    """The targets' ratios to numpy and the scaling in N and in M, from one run: in wall
+    time (what the targets are about, on an idle machine) and in CPU time (the whole process's,
+    every Prolog thread's included; steadier on a shared machine)."""
+    print("ratios to numpy in this run (wall; CPU of the process):")
+    for (n, m), target in TARGET_RATIO.items():
+        ddc_ms, numpy_ms, ddc_cpu, numpy_cpu = measured[(n, m)]
+        ratio = ddc_ms / numpy_ms
+        verdict = "meets" if ratio <= target else "misses"
+        print(f"  N={n} M={m}: {ddc_ms:.1f} / {numpy_ms:.2f} ms = {ratio:.1f}x "
+              f"({verdict} the {target:.0f}x target); CPU {ddc_cpu:.1f} / {numpy_cpu:.2f} ms "
+              f"= {ddc_cpu / numpy_cpu:.1f}x")
+    base, base_cpu = measured[(1000, 10)][0], measured[(1000, 10)][2]
+    for label, (n, m), linear in (("10 N", (10000, 10), 10.0), ("3 M", (1000, 30), 3.0)):
+        scale = measured[(n, m)][0] / base
+        verdict = "within" if scale <= 1.2 * linear else "beyond"
+        print(f"  time at {label} / time at N=1000 M=10: {scale:.2f} (linear {linear:.0f}; "
+              f"{scale / linear:.2f}x linear, {verdict} 1.2x); CPU "
+              f"{measured[(n, m)][2] / base_cpu:.2f}")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -164,6 +212,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--json", action="store_true", help="end with a JSON line")
     parser.add_argument("--engine", choices=ENGINES, default="auto",
                         help="the filter engine, as bridge.Filter's engine (default auto)")
+    parser.add_argument("--scaling", action="store_true",
+                        help="N=1000 M=10, N=10000 M=10 and N=1000 M=30 in one run, with the "
+                             "ratios to numpy and the scaling in N and in M")
     parser.add_argument("--calls", type=int, default=0, metavar="K",
                         help="with one configuration: also print the K most-called predicates "
                              "(one thread, profiled)")
@@ -172,18 +223,23 @@ def main(argv: list[str] | None = None) -> int:
         parser.error("give both --particles and --objects, or neither (the full grid)")
     if args.calls and args.particles is None:
         parser.error("--calls needs one configuration (--particles and --objects)")
-    if args.particles is not None:
+    if args.scaling and args.particles is not None:
+        parser.error("--scaling runs its own configurations")
+    if args.scaling:
+        configs = list(TARGET_RATIO)
+    elif args.particles is not None:
         configs = [(args.particles, args.objects)]
     else:
         configs = [(n, m) for m in (3, 10, 20) for n in (100, 1000, 5000)]
-    print(f"engine: {args.engine}, {args.threads} thread(s)")
+    print(f"engine: {args.engine}, {args.threads} thread(s), columns: {column_backend()}")
     print(f"{'N':>6} {'M':>4} {'ddc ms/step':>12} {'numpy ms/step':>14} {'ratio':>8} "
           f"{'floor ms':>9} {'/floor':>7} "
           f"{'us/particle':>12} {'in Prolog':>9} {'new ms':>9} {'resampled':>9}", flush=True)
     last = None
     failed = False
+    measured: dict[tuple[int, int], tuple[float, float]] = {}
     for n, m in configs:
-        numpy_ms = time_numpy(n, m, args.steps, args.seed)
+        numpy_ms, numpy_cpu_ms = time_numpy_both(n, m, args.steps, args.seed)
         try:
             ddc = time_ddc(n, m, args.steps, args.seed, args.threads, args.engine)
         except FilterError as exc:  # e.g. the engine ran out of stack: report, go on
@@ -192,6 +248,8 @@ def main(argv: list[str] | None = None) -> int:
             failed = True
             continue
         ratio = ddc["ms_per_step"] / numpy_ms
+        measured[(n, m)] = (ddc["ms_per_step"], numpy_ms, ddc["cpu_ms_per_step"],
+                            numpy_cpu_ms)
         floor = time_floor(n, m)
         floor_text = (f"{floor:>9.1f} {ddc['ms_per_step'] / floor:>7.1f}" if floor
                       else f"{'-':>9} {'-':>7}")
@@ -206,6 +264,8 @@ def main(argv: list[str] | None = None) -> int:
                   f"{TARGET_MS:.0f} ms target", flush=True)
         last = {"ms_per_step": ddc["ms_per_step"], "numpy_ms_per_step": numpy_ms,
                 "floor_ms_per_step": floor}
+    if args.scaling and not failed:
+        print_scaling(measured)
     if args.calls and not failed:
         print_call_counts(args.particles, args.objects, args.steps, args.seed, args.calls,
                           args.engine)

@@ -18,6 +18,7 @@
       ddc_filter_batched.pl  the batched engine (ddc_batch.pl) behind it
       ddc_pool.pl       both engines' group split, seeds and worker threads
       ddc_rows.pl       a filter's values as rows of floats
+      ddc_rename.pl     constants renamed in a particle's values (filter_rename/3)
       ddc_store.pl      a world's store; ddc_dist.pl the distributions;
       ddc_records.pl    records with named fields
       ddc_ops.pl        the operators of the DC language (~, ~=, :=, <-, pr)
@@ -50,6 +51,7 @@
             filter_step/4,              % +Filter, +Observations, +Actions, -LogWeights
             filter_undo/1,              % +Filter
             filter_resample/2,          % +Filter, +Indices
+            filter_rename/3,            % +Filter, +Renaming, +Particles
             filter_holds/3,             % +Filter, +Goal, -Flags
             filter_values/4,            % +Filter, +Template, +Goal, -Values
             filter_rows/6,              % +Filter, +Template, +Goal, -Width, -Floats, -Values
@@ -70,7 +72,7 @@
 :- use_module(ddc_programs, [load_program/2, set_current_program/1, current_program_/1]).
 :- use_module(ddc_query).
 :- use_module(ddc_filter, [ filter_new/4, filter_new/5, filter_step/4, filter_undo/1,
-                            filter_resample/2, filter_holds/3, filter_values/4,
+                            filter_resample/2, filter_rename/3, filter_holds/3, filter_values/4,
                             filter_rows/6, filter_time/2, filter_engine/2, filter_size/2,
                             filter_statistics/2, filter_free/1, filter_call/2 ]).
 :- use_module(ddc_world, [eval_dist/2]).
@@ -100,7 +102,9 @@
   - Particle filter (ddc_filter.pl): filter_new(+ProgramFile, +N, +Seed, -Filter),
     filter_new(+ProgramFile, +N, +Seed, +Options, -Filter),
     filter_step(+Filter, +Observations, +Actions, -LogWeights), filter_undo(+Filter),
-    filter_resample(+Filter, +Indices), filter_holds(+Filter, +Goal, -Flags),
+    filter_resample(+Filter, +Indices),
+    filter_rename(+Filter, +Renaming, +Particles) (constants renamed in chosen particles),
+    filter_holds(+Filter, +Goal, -Flags),
     filter_values(+Filter, +Template, +Goal, -Values),
     filter_rows(+Filter, +Template, +Goal, -Width, -Floats, -Values),
     filter_time(+Filter, -T), filter_engine(+Filter, -Engine),

@@ -61,6 +61,8 @@
             batch_resample/3,           % +State0, +Indices, -State
             batch_holds/3,              % +State, +Goal, -Flags
             batch_values/4,             % +State, +Template, +Goal, -Values
+            batch_rows/5,               % +State, +Template, +Goal, -Width, -Floats
+            batch_packed_rows/5,        % +State, +Template, +Goal, -Width, -Rows
             batch_time/2,               % +State, -T
             batch_size/2,               % +State, -N
             batch_keep/2,               % +State, -Kept
@@ -74,6 +76,7 @@
 :- use_module(ddc_records).
 :- use_module(ddc_batch_program).
 :- use_module(ddc_batch_tables).
+:- use_module(ddc_batch_col).
 :- use_module(ddc_batch_columns, [plan/3, bind/2]).
 :- use_module(ddc_batch_rv, [weigh_branch/5]).
 :- use_module(ddc_batch_eval).
@@ -132,7 +135,8 @@ new_group(M, N, Seed, Check, State) :-
     make_tables([older_time(-1), older(Tab0), latest_time(0), latest(Tab)], Tables),
     make_env([module(M), size(N), now(-1), tables(Tables), facts([]),
               observations([]), checked(Checked)], E),
-    numlist(1, N, All),
+    ps_all(N, All),
+    forget_collected,
     with_random_stream(seed(Seed),
                        ( sweep(M, zero, E, 0, All),
                          materialise_derived(M, E, 0, All) ),
@@ -150,10 +154,10 @@ materialise_derived(M, E, T, All) :-
                env_time_table(E, T, Tab),
                env_size(E, Size),
                collect(G, G:(t+1), L, E1, All, _),
-               functor(C, c, Size),
                (   L = '$c'(LC, _, _)
-               ->  sets_each(All, LC, C)
-               ;   list_to_set(L, Set), fill_column(Size, C, Set)
+               ->  col_new(Size, '$u', C),
+                   (   col_sets_each(All, LC, C) -> true ; sets_each(All, LC, C) )
+               ;   list_to_set(L, Set), col_new(Size, Set, C)
                ),
                make_entry([column(C), status(open), arity(none)], Entry0),
                table_put(Tab, '$inst'(N/A), Entry0),
@@ -161,10 +165,14 @@ materialise_derived(M, E, T, All) :-
                settle(Entry)
            )).
 
-sets_each([], _, _).
-sets_each([I|Is], LC, C) :-
-    arg(I, LC, L), list_to_set(L, Set), arg(I, C, Set),
-    sets_each(Is, LC, C).
+sets_each(Ps, LC, C) :-
+    ps_list(Ps, Is),
+    sets_each_(Is, LC, C).
+
+sets_each_([], _, _).
+sets_each_([I|Is], LC, C) :-
+    col_arg(I, LC, L), list_to_set(L, Set), col_setarg(I, C, Set),
+    sets_each_(Is, LC, C).
 
 %!  batch_step(+State0, +Observations, +Facts, -Result) is det.
 %
@@ -175,9 +183,11 @@ batch_step(groups([G1|Gs]), Obs, Facts, step(groups([S1|Ss]), LWs)) :- !,
     maplist(step_job(Obs, Facts), Gs, Jobs),
     pool_run(group_step(G1, Obs, Facts, true, step(S1, LWs1)), Jobs, Results),
     maplist(group_done(Facts), Gs, Results, Ss, LWss),
-    append([LWs1|LWss], LWs).
+    append([LWs1|LWss], LWs),
+    col_collect_garbage.
 batch_step(State0, Obs, Facts, Result) :-
-    group_step(State0, Obs, Facts, true, Result).
+    group_step(State0, Obs, Facts, true, Result),
+    col_collect_garbage.
 
 %   check_list(+Check, +N, -Checked): the particles a group checks for
 %   overlapping clauses (none unless Check is true).
@@ -199,14 +209,15 @@ group_step(State0, Obs, Facts, Check, step(State, LWs)) :-
     make_tables([older_time(T), older(Tab), latest_time(T1), latest(Tab1)], Tables),
     make_env([module(M), size(N), now(T), tables(Tables), facts(Facts),
               observations(HVs), checked(Checked)], E),
-    numlist(1, N, All),
+    ps_all(N, All),
     new_column(N, 0.0, LW),
+    forget_collected,
     with_random_stream(state(R0),
                        ( forall(member(H-V, HVs), weigh_observation(E, H, V, All, LW)),
                          sweep(M, next, E, T1, All),
                          materialise_derived(M, E, T1, All) ),
                        R),
-    LW =.. [_|LWs],
+    col_list(LW, LWs),
     duplicate_term(Facts, Facts1),
     make_batch_state([module(M), size(N), time(T1), tables(Tables), facts(Facts1),
                       random(R)], State).
@@ -222,7 +233,7 @@ weigh_observation(E, H, V, Ps, LW) :-
     env_at_time(E, T1, ES),
     forall(rv_clause(M, H, now, D, B, At),
            weigh_clause(ES, H, T1, now, B, D, At, V, Ps, Done, LW)),
-    (   member(I, Ps), arg(I, Done, U), U == '$u'
+    (   col_uncomputed(Ps, Done, Missing), Missing \== []
     ->  throw(error(ddc(no_observation_clause(H ~= V), query), _))
     ;   true
     ).
@@ -263,6 +274,8 @@ older_table(S, Tab) :-
 
 %   sources(+Indices, +Sizes, -Pairs): for each group (of Sizes), its
 %   particles' ancestors as Group-Index pairs (1-based).
+sources(Is, Sizes, Pairs) :-
+    col_sources(Is, Sizes, Pairs), !.
 sources(Is, Sizes, Pairs) :-
     maplist(source(Sizes), Is, All),
     split_by(Sizes, All, Pairs).
@@ -352,7 +365,8 @@ batch_holds(S, Goal, Flags) :-
     query_env(S, E, All),
     with_state(S, branch_union(Goal, E, All, Ps)),
     batch_state_size(S, N),
-    flags(1, N, Ps, Flags).
+    ps_list(Ps, L),
+    flags(1, N, L, Flags).
 
 %   (Each group's query on a copy of the goal: its bindings are its own.)
 group_holds(Goal, G, Flags) :-
@@ -382,7 +396,7 @@ batch_values(S, Template, Goal, Values) :-          % a variable's values: read 
     (   env_time_table(E, T, _)
     ->  with_state(S, value(E, X, T, All, Entry)),
         entry_column(Entry, C),
-        C =.. [_|Vs],
+        col_list(C, Vs),
         maplist(wrapped_value(Wrap), Vs, Values)
     ;   batch_state_size(S, N),
         length(Values, N), maplist(=(none), Values)
@@ -393,8 +407,56 @@ batch_values(S, Template, Goal, Values) :-
     new_column(N, none, VC),
     new_column(N, '$u', Done),
     with_state(S, forall(eval_body(Goal, E, All, Ps),
-                         ( plan(Template, Tmpl, Bs), value_each(Ps, Bs, Tmpl, Done, VC) ))),
-    VC =.. [_|Values].
+                         ( plan(Template, Tmpl, Bs), ps_list(Ps, L),
+                           value_each(L, Bs, Tmpl, Done, VC) ))),
+    col_list(VC, Values).
+
+%!  batch_rows(+State, +Template, +Goal, -Width, -Floats) is semidet.
+%
+%   batch_values/4 of a variable's values (Goal X:t ~= V, Template V) as
+%   rows of Width floats, particle by particle (NaN rows where undefined),
+%   read straight from the columns (the column library's col_rows/4);
+%   fails for any other goal, where a value is not a number tuple of
+%   floats, or where no particle has a value (the caller then makes the
+%   rows from batch_values/4's values).
+batch_rows(S, Template, Goal, W, Floats) :-
+    row_columns(S, Template, Goal, W, Cs),
+    foldl(column_rows(W), Cs, Floats, []).
+
+column_rows(W, C, Fs0, Fs) :- col_rows(C, W, Fs0, Fs).
+
+%!  batch_packed_rows(+State, +Template, +Goal, -Width, -Rows) is semidet.
+%
+%   batch_rows/5 with the floats in a blob of doubles
+%   (ddc_batch_col:col_pack_rows/3).
+batch_packed_rows(S, Template, Goal, W, Rows) :-
+    row_columns(S, Template, Goal, W, Cs),
+    col_pack_rows(Cs, W, Rows).
+
+%   row_columns(+S, +Template, +Goal, -W, -Columns): the columns of each
+%   group's values of the variable of Goal (every one computed), and the
+%   tuple arity W of their values (fails where a value is no tuple of W
+%   floats, or no particle has one).
+row_columns(S, Template, Goal, W, Cs) :-
+    state_groups(S, Gs),
+    maplist(group_column(Template-Goal), Gs, Cs),
+    foldl(column_width, Cs, _, W),
+    integer(W).
+
+column_width(C, W0, W) :-
+    col_row_width(C, K),
+    (   K =:= 0 -> W = W0 ; var(W0) -> W = K ; W0 == K, W = W0 ).
+
+group_column(TG, G, C) :-
+    copy_term(TG, Template-Goal0),
+    nonvar(Goal0),
+    (   Goal0 = (R0 ~= V0), timed_read(R0, X0, TE0) -> Goal = (X0:TE0 ~= V0) ; Goal = Goal0 ),
+    Goal = (X:TE ~= V), var(V), ground(X), Template == V,
+    query_env(G, E, All),
+    read_time(TE, E, T),
+    env_time_table(E, T, _),
+    with_state(G, value(E, X, T, All, Entry)),
+    entry_column(Entry, C).
 
 wrapped_value(Wrap, V, W) :-
     (   ( V == '$undef' ; V == '$u' ) -> W = none
@@ -408,9 +470,9 @@ group_values(TG, G, Values) :-
 
 value_each([], _, _, _, _).
 value_each([I|Is], Bs, Tmpl, Done, VC) :-
-    (   arg(I, Done, U), U == '$u'
-    ->  nb_setarg(I, Done, done),
-        \+ \+ ( bind(Bs, I), nb_setarg(I, VC, Tmpl) )
+    (   col_is_u(I, Done)
+    ->  col_setarg(I, Done, done),
+        \+ \+ ( bind(Bs, I), col_setarg(I, VC, Tmpl) )
     ;   true
     ),
     value_each(Is, Bs, Tmpl, Done, VC).

@@ -18,6 +18,7 @@
             test_goal/1,                % +Goal
             test_loop/3,                % +Goal, +Ps0, -Ps
             compiled_instance/4,        % +Ps, +Binds, +Template, !Column
+            vm_finite/4,                % +Ps, +Binds, +Entries, !Column
             split/4,                    % +Term, +Ps0, -Term1, -Ps
             split_column/4,             % +Column, +Ps0, -V, -Ps
             unify_value/4,              % ?P, +V, +Ps0, -Ps
@@ -30,6 +31,7 @@
 :- use_module(library(lists)).
 :- use_module(library(pairs)).
 :- use_module(ddc_batch_tables, [tuple_shape/2]).
+:- use_module(ddc_batch_col).
 :- use_module(ddc_body, [conj_from_list/2]).
 :- use_module(ddc_programs, [optimised/1]).
 
@@ -38,8 +40,8 @@
 /** <module> Goals over columns for the batched filter
 
 A particle index is an integer 1..N; a batch is a sorted list of them.
-Column terms c(V1, ..., VN) are read and written by particle index
-(arg/3, nb_setarg/3): they are arrays, not records.
+Columns (ddc_batch_col.pl) are read and written by particle index
+(col_arg/3, col_setarg/3): they are arrays, not records.
 
 Body variables are bound to values (the same for the whole batch) or
 to column references '$c'(C, Pattern, V): the particle's value in
@@ -101,7 +103,7 @@ map_args([X|Xs], Leaf, [Y|Ys], A0, A) :-
 bind([], _).
 bind([B|Bs], I) :- bind_one(B, I), bind(Bs, I).
 
-bind_one(C-P, I) :- arg(I, C, P).
+bind_one(C-P, I) :- col_arg(I, C, P).
 bind_one('$e'(W, Ex, _), _) :- W is Ex.
 
 %   column_ref(+Column, ?V, -Ref): Ref is a reference to Column whose
@@ -110,10 +112,12 @@ column_ref(C, V, '$c'(C, V, V)).
 
 %!  has_column(+T) is semidet.
 %
-%   T holds a column reference or a deferred expression.
+%   T holds a column reference or a deferred expression.  (A reference
+%   may be ground: a split binds its pattern to the value of the branch's
+%   particles, and the reference still reads the column, so no ground(T)
+%   short cut.)
 has_column(T) :-
-    compound(T),
-    (   T = '$c'(_, _, _) -> true ; T = '$x'(_) -> true ; arg(_, T, A), has_column(A) ), !.
+    col_has_ref(T).
 
 %!  materialise(+T, +Ps:list(integer), -T1) is det.
 %
@@ -123,9 +127,9 @@ materialise(T, Ps, T1) :-
     (   deferred_in(T, X)
     ->  X = '$x'(Ex),
         once(column_in(Ex, C0)),
-        functor(C0, _, N),
+        col_size(C0, N),
         plan(X, W, Bs),
-        functor(C, c, N),
+        col_new(N, '$u', C),
         arith_loop(Ps, Bs, W, C),
         column_ref(C, _, Ref),
         replace_eq(T, X, Ref, T2),
@@ -187,20 +191,28 @@ test_goal(G) :-
     compound(G), functor(G, Op, 2),
     memberchk(Op, [<, >, =<, >=, =:=, =\=, ==, \==, =, \=, @<, @>, @=<, @>=]).
 
-arith_loop([], _, _, _).
-arith_loop([I|Is], Bs, Ex, C) :-
-    \+ \+ ( bind(Bs, I), X is Ex, nb_setarg(I, C, X) ),
-    arith_loop(Is, Bs, Ex, C).
+arith_loop(Ps, Bs, Ex, C) :-
+    ps_list(Ps, Is),
+    arith_loop_(Is, Bs, Ex, C).
+
+arith_loop_([], _, _, _).
+arith_loop_([I|Is], Bs, Ex, C) :-
+    \+ \+ ( bind(Bs, I), X is Ex, col_setarg(I, C, X) ),
+    arith_loop_(Is, Bs, Ex, C).
 
 %!  test_loop(+G, +Ps0:list(integer), -Ps:list(integer)) is semidet.
 %
 %   Ps: the particles of Ps0 in which the test G holds (not empty).  A
 %   batch of 16 or more particles runs a compiled loop (compiled_test/4).
 test_loop(G, Ps0, Ps) :-
-    plan(G, Tmpl, Bs),
-    (   Ps0 = [_, _, _, _, _, _, _, _, _, _, _, _, _, _, _, _|_]      % (16 or more)
-    ->  compiled_test(Ps0, Bs, Tmpl, Ps)
-    ;   test_each(Ps0, Bs, Tmpl, Ps)
+    (   col_test(Ps0, G, Ps1)                 % (in the column library, from G itself)
+    ->  Ps = Ps1
+    ;   plan(G, Tmpl, Bs),
+        (   ps_size(Ps0, K), K >= 16
+        ->  compiled_test(Ps0, Bs, Tmpl, Ps)
+        ;   ps_list(Ps0, L),
+            test_each(L, Bs, Tmpl, Ps)
+        )
     ),
     Ps \== [].
 
@@ -216,6 +228,9 @@ test_loop(G, Ps0, Ps) :-
 %   have: loops asserted and retracted per batch made each run there seven
 %   times slower).
 compiled_test(Ps0, Bs, Tmpl, Ps) :-
+    col_backend(foreign),
+    vm_test(Ps0, Bs, Tmpl, Ps), !.
+compiled_test(Ps0, Bs, Tmpl, Ps) :-
     bind_goals(Bs, I, Cs, CVs, Gets, Evals),
     append([Gets, Evals, [Tmpl]], Gs),
     conj_from_list(Gs, Cond0),
@@ -224,7 +239,149 @@ compiled_test(Ps0, Bs, Tmpl, Ps) :-
     Head =.. [cols|CVs],
     compiled_loop(test, Head, k(KVs), I, Cond, Name),
     Cols =.. [cols|Cs],
-    call(Name, Ps0, Cols, k(Ns), Ps).
+    ps_list(Ps0, L),
+    call(Name, L, Cols, k(Ns), Ps).
+
+%   vm_test(+Ps0, +Binds, +Test, -Ps) and vm_instance(+Ps, +Binds, +Tmpl,
+%   !C): compiled_test/4 and compiled_instance/4 in one call of the column
+%   library (col_vm_test/7, col_vm_instance/5), for a comparison of
+%   arithmetic over number tuples and a tuple of floats computed from them;
+%   fail (the caller's Prolog loop runs) for any other goal, or where the
+%   library abandons the loop (a value that is not a number tuple, an
+%   arithmetic error).  An instance's components must be floats whatever
+%   the particle (computed from a column's floats or float constants), as
+%   the Prolog loop would give them.
+vm_test(Ps0, [C-P], Tmpl, Ps) :-
+    var(P), compound(Tmpl), Tmpl =.. [Op, A, B],
+    memberchk(Op-Eq, [(==)-true, (\==)-false]),
+    (   A == P, ground(B) -> V = B
+    ;   B == P, ground(A) -> V = A
+    ), !,
+    col_select_eq(Ps0, C, V, Eq, Ps).
+vm_test(Ps0, Bs, Tmpl, Ps) :-
+    compound(Tmpl), Tmpl =.. [Op, A, B],
+    memberchk(Op, [<, >, =<, >=, =:=, =\=]),
+    vm_binds(Bs, S1),
+    vm_expr(A, RA, _, S1, S2),
+    vm_expr(B, RB, _, S2, S),
+    vm_state(S, Cols, Code),
+    col_vm_test(Ps0, Cols, Code, Op, RA, RB, Ps).
+
+%!  vm_finite(+Ps, +Binds, +Entries, !C) is semidet.
+%
+%   Each particle of Ps not drawn yet in C gets a draw of finite(Entries)
+%   (a plan/3 template: its probabilities variables the binds compute or
+%   numbers, its values ground), in one call of the column library; fails
+%   where it cannot (the caller draws in Prolog).
+vm_finite(Ps, Bs, Es, C) :-
+    is_list(Es), Es \== [],
+    pairs_of_entries(Es, Ws, Vs),
+    ground(Vs),
+    vm_binds(Bs, S1),
+    foldl(vm_prob, Ws, Rs, S1, S2),
+    S2 = vm(_, Code0, _, _),
+    (   Code0 == [] -> S = vm([], [cst(0, 0.0)], [], 1) ; S = S2 ),  % (a program is not empty)
+    vm_state(S, Cols, Code),
+    col_from_list(Vs, Values),
+    col_size(C, N), N > 0,
+    random_between(0, 0x3fffffffffffffff, Seed),
+    col_vm_finite(Ps, Cols, Code, Rs, Values, C, Seed).
+
+pairs_of_entries([], [], []).
+pairs_of_entries([E|Es], [W|Ws], [V|Vs]) :-
+    nonvar(E), E = W:V,
+    pairs_of_entries(Es, Ws, Vs).
+
+vm_prob(W, R, S0, S) :-
+    ( var(W) ; number(W) ), !,
+    vm_expr(W, R, _, S0, S).
+
+vm_instance(Ps, [C1-P], Tmpl, C) :-
+    var(P), Tmpl == P, !,
+    col_copy_each(Ps, C1, C).
+vm_instance(Ps, Bs, Tmpl, C) :-
+    vm_binds(Bs, S1),
+    (   nonvar(Tmpl), Tmpl = (_, _) -> conj_to_list(Tmpl, Es) ; Es = [Tmpl] ),
+    foldl(vm_float_expr, Es, Rs, S1, S),
+    vm_state(S, Cols, Code),
+    col_vm_instance(Ps, Cols, Code, Rs, C).
+
+conj_to_list(T, [A|Es]) :-
+    nonvar(T), T = (A, B), !,
+    conj_to_list(B, Es).
+conj_to_list(T, [T]).
+
+%   (A component is a variable or a float: a template is instantiated,
+%   not evaluated; its arithmetic comes as deferred expressions, '$e'
+%   bindings.)
+vm_float_expr(E, R, S0, S) :-
+    ( var(E) ; float(E) ), !,
+    vm_expr(E, R, true, S0, S).
+
+%   The compiler's state: vm(Columns, Code, Env, Next), Columns and Code
+%   reversed, Env the variables' registers V-R-Float (Float true: a float
+%   in every particle), Next the next free register.
+vm_binds(Bs, S) :-
+    foldl(vm_bind, Bs, vm([], [], [], 0), S).
+
+vm_state(vm(Cols0, Code0, _, _), Cols, Code) :-
+    reverse(Cols0, Cols), reverse(Code0, Code),
+    Code \== [].
+
+vm_bind(C-P, vm(Cs0, Code0, Env0, N0), vm(Cs, Code, Env, N)) :- !,
+    vm_column(C, Cs0, Cs, J),
+    (   var(P)
+    ->  Vs = [P]
+    ;   tuple_of_vars(P, Vs)
+    ),
+    length(Vs, K),
+    foldl(vm_load(J, K), Vs, 0-(Code0-Env0-N0), _-(Code-Env-N)).
+vm_bind('$e'(W, Ex, _), S0, vm(Cs, Code, [W-R-F|Env], N)) :-
+    vm_expr(Ex, R, F, S0, vm(Cs, Code, Env, N)).
+
+vm_load(J, K, V, Comp-(Code0-Env0-N0), Comp1-([ld(N0, J, Comp, K)|Code0]-[V-N0-true|Env0]-N)) :-
+    Comp1 is Comp+1, N is N0+1, N < 64.
+
+vm_column(C, Cs, Cs, J) :-
+    nth0(J0, Cs, C0), C0 == C, !,
+    length(Cs, L), J is L-1-J0.
+vm_column(C, Cs, [C|Cs], J) :-
+    length(Cs, J), J < 32.
+
+%   vm_expr(+Ex, -R, -Float, +S0, -S): Ex computed into register R.
+vm_expr(X, R, F, S, S) :-
+    var(X), !,
+    S = vm(_, _, Env, _),
+    member(V-R0-F0, Env), V == X, !,
+    R = R0, F = F0.
+vm_expr(X, R, F, vm(Cs, Code, Env, R), vm(Cs, [cst(R, X)|Code], Env, N)) :-
+    number(X), !,
+    ( float(X) -> F = true ; F = false ),
+    N is R+1, N < 64.
+vm_expr(X, R, true, vm(Cs, Code, Env, R), vm(Cs, [cst(R, V)|Code], Env, N)) :-
+    atom(X), memberchk(X-V, [pi-3.141592653589793, e-2.718281828459045]), !,
+    N is R+1, N < 64.
+vm_expr(X, R, F, S0, vm(Cs, [op(R, *, RA, RA)|Code], Env, N)) :-
+    compound(X), X = A**B, B == 2, !,             % (A*A: the same float as A**2)
+    vm_expr(A, RA, F, S0, vm(Cs, Code, Env, R)),
+    N is R+1, N < 64.
+vm_expr(X, R, F, S0, vm(Cs, [op(R, Op, RA, RB)|Code], Env, N)) :-
+    compound(X), X =.. [Op0, A, B],
+    memberchk(Op0-Op, [(+)-(+), (-)-(-), (*)-(*), (/)-(/), (**)-(**), atan2-atan2,
+                       atan-atan2]), !,
+    vm_expr(A, RA, FA, S0, S1),
+    vm_expr(B, RB, FB, S1, vm(Cs, Code, Env, R)),
+    (   memberchk(Op, [atan2]) -> F = true
+    ;   ( FA == true ; FB == true ) -> F = true
+    ;   F = false
+    ),
+    N is R+1, N < 64.
+vm_expr(X, R, F, S0, vm(Cs, [fn(R, Fn, RA)|Code], Env, N)) :-
+    compound(X), X =.. [Fn, A],
+    memberchk(Fn, [-, sqrt, exp, log, sin, cos, tan, atan, tanh, abs]), !,
+    vm_expr(A, RA, FA, S0, vm(Cs, Code, Env, R)),
+    (   memberchk(Fn, [-, abs]) -> F = FA ; F = true ),
+    N is R+1, N < 64.
 
 %!  compiled_instance(+Ps:list(integer), +Binds, +Tmpl, !C) is det.
 %
@@ -232,6 +389,9 @@ compiled_test(Ps0, Bs, Tmpl, Ps) :-
 %   gets its instance of Tmpl (plan/3), by a compiled loop (see
 %   compiled_test/4; ddc_batch_rv:instance_each/4 is the same without
 %   one).
+compiled_instance(Ps, Bs, Tmpl, C) :-
+    col_backend(foreign),
+    vm_instance(Ps, Bs, Tmpl, C), !.
 compiled_instance(Ps, Bs, Tmpl, C) :-
     bind_goals(Bs, I, Cs, CVs, Gets, Evals),
     append(Gets, Evals, Gs0),
@@ -241,7 +401,8 @@ compiled_instance(Ps, Bs, Tmpl, C) :-
     Head =.. [cols|CVs],
     compiled_loop(instance(Value), Head, k(KVs), I, Cond, Name),
     Cols =.. [cols|Cs],
-    call(Name, Ps, Cols, k(Ns), C).
+    ps_list(Ps, L),
+    call(Name, L, Cols, k(Ns), C).
 
 %   compiled_loop(+Kind, +Head, +Consts, ?I, +Cond, -Name): the loop
 %   predicate Name/4 for this shape (Name(Ps, Cols, Consts, Out)), made the
@@ -270,8 +431,9 @@ loop_clauses(test, Name, Head, Consts, I, Cond,
     Rec =.. [Name, [I|Is], Head, Consts, Out],
     Next =.. [Name, Is, Head, Consts, Out1].
 loop_clauses(instance(Value), Name, Head, Consts, I, Cond,
-             [ Base, (Rec :- ( arg(I, Out, U), U == '$u', Cond -> nb_setarg(I, Out, Value)
-                              ; true ), Next) ]) :-
+             [ Base, (Rec :- ( IsU, Cond -> SetArg ; true ), Next) ]) :-
+    is_u_goal(I, Out, IsU),
+    setarg_goal(I, Out, Value, SetArg),
     Base =.. [Name, [], _, _, _],
     Rec =.. [Name, [I|Is], Head, Consts, Out],
     Next =.. [Name, Is, Head, Consts, Out].
@@ -287,10 +449,24 @@ number_leaf(T, V, [V-T|Ps], Ps) :- number(T).
 %   that bind/2 runs for particle I, each column a variable (a clause must
 %   not hold a column: asserting it would copy it).
 bind_goals([], _, [], [], [], []).
-bind_goals([C-P|Bs], I, [C|Cs], [CV|CVs], [arg(I, CV, P)|Gs], Es) :- !,
+bind_goals([C-P|Bs], I, [C|Cs], [CV|CVs], [Arg|Gs], Es) :- !,
+    arg_goal(I, CV, P, Arg),
     bind_goals(Bs, I, Cs, CVs, Gs, Es).
+
 bind_goals(['$e'(W, Ex, _)|Bs], I, Cs, CVs, Gs, [W is Ex|Es]) :-
     bind_goals(Bs, I, Cs, CVs, Gs, Es).
+
+%   arg_goal(?I, ?C, ?V, -G), is_u_goal(?I, ?C, -G), setarg_goal(?I, ?C,
+%   ?V, -G): a compiled loop's goals that read and write a column: with
+%   columns as terms, the builtins themselves (compiled inline).
+arg_goal(I, C, V, G) :-
+    (   col_backend(prolog) -> G = arg(I, C, V) ; G = col_arg(I, C, V) ).
+
+is_u_goal(I, C, G) :-
+    (   col_backend(prolog) -> G = (arg(I, C, U), U == '$u') ; G = col_is_u(I, C) ).
+
+setarg_goal(I, C, V, G) :-
+    (   col_backend(prolog) -> G = nb_setarg(I, C, V) ; G = col_setarg(I, C, V) ).
 
 test_each([], _, _, []).
 test_each([I|Is], Bs, G, Ps) :-
@@ -308,13 +484,24 @@ split(T0, Ps0, T1, Ps) :-
     ->  materialise(T0, Ps0, T),
         plan(T, Tmpl, Bs),
         pairs_keys_values(Bs, Cs, Pats),
-        split_pairs(Ps0, Cs, Pairs),
-        keysort(Pairs, Sorted),
-        group_pairs_by_key(Sorted, Groups),
+        groups_by_values(Ps0, Cs, Groups),
         member(Pats-Ps, Groups),
         T1 = Tmpl
     ;   T1 = T0, Ps = Ps0
     ).
+
+%   groups_by_values(+Ps, +Columns, -Groups): Vs-Ps pairs, the particles
+%   of Ps grouped by their values Vs in Columns, in the standard order of
+%   Vs (each group's particles in the order of Ps).
+groups_by_values(Ps, Cs, Groups) :-
+    col_backend(foreign),
+    col_split(Ps, Cs, Groups0), !,
+    keysort(Groups0, Groups).
+groups_by_values(Ps0, Cs, Groups) :-
+    ps_list(Ps0, Ps),
+    split_pairs(Ps, Cs, Pairs),
+    keysort(Pairs, Sorted),
+    group_pairs_by_key(Sorted, Groups).
 
 split_pairs([], _, []).
 split_pairs([I|Is], Cs, [Vs-I|Ps]) :-
@@ -322,7 +509,7 @@ split_pairs([I|Is], Cs, [Vs-I|Ps]) :-
     split_pairs(Is, Cs, Ps).
 
 args_at([], _, []).
-args_at([C|Cs], I, [V|Vs]) :- arg(I, C, V), args_at(Cs, I, Vs).
+args_at([C|Cs], I, [V|Vs]) :- col_arg(I, C, V), args_at(Cs, I, Vs).
 
 %!  unify_value(?P, +V, +Ps0:list(integer), -Ps:list(integer)) is semidet.
 %
@@ -357,9 +544,13 @@ unify_column(P, C, Arity, Ps0, Ps) :-
         term_variables(Pat, PVs),
         maplist(element_ref(C, Pat), Vs, PVs)
     ;   ground(P), \+ has_column(P)
-    ->  with_value(Ps0, C, P, Ps), Ps \== []
+    ->  (   col_select_unify(Ps0, C, P, Ps1) -> Ps = Ps1
+        ;   ps_list(Ps0, L), with_value(L, C, P, Ps)
+        ),
+        Ps \== []
     ;   plan(P, Tmpl, Bs),
-        unifiable_at(Ps0, C, Bs, Tmpl, Ps1),
+        ps_list(Ps0, L),
+        unifiable_at(L, C, Bs, Tmpl, Ps1),
         Ps1 \== [],
         split_column(C, Ps1, V, Ps),
         unify_value(P, V, Ps, _)
@@ -368,24 +559,28 @@ unify_column(P, C, Arity, Ps0, Ps) :-
 element_ref(C, Pat, V, PV) :- V = '$c'(C, Pat, PV).
 
 with_arity(Ps0, C, K, Ps) :-
+    col_with_arity(Ps0, C, K, Ps1), !,
+    Ps = Ps1.
+with_arity(Ps0, C, K, Ps) :-
     tuple_shape(K, Shape),
-    with_shape(Ps0, C, Shape, Ps).
+    ps_list(Ps0, L),
+    with_shape(L, C, Shape, Ps).
 
 with_shape([], _, _, []).
 with_shape([I|Is], C, Shape, Ps) :-
-    arg(I, C, V),
+    col_arg(I, C, V),
     (   subsumes_term(Shape, V), V \== '$undef', V \== '$u' -> Ps = [I|Ps1] ; Ps = Ps1 ),
     with_shape(Is, C, Shape, Ps1).
 
 with_value([], _, _, []).
 with_value([I|Is], C, P, Ps) :-
-    arg(I, C, V),
+    col_arg(I, C, V),
     (   ( V = P -> true ; number(V), number(P), V =:= P ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
     with_value(Is, C, P, Ps1).
 
 unifiable_at([], _, _, _, []).
 unifiable_at([I|Is], C, Bs, Tmpl, Ps) :-
-    arg(I, C, V),
+    col_arg(I, C, V),
     (   \+ \+ ( bind(Bs, I), Tmpl = V ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
     unifiable_at(Is, C, Bs, Tmpl, Ps1).
 
@@ -394,10 +589,8 @@ unifiable_at([I|Is], C, Bs, Tmpl, Ps) :-
 %   For each value V that particles of Ps0 hold in column C, Ps those
 %   particles (in the standard order of the values).
 split_column(C, Ps0, V, Ps) :-
-    findall(V0-I, ( member(I, Ps0), arg(I, C, V0) ), Pairs),
-    keysort(Pairs, Sorted),
-    group_pairs_by_key(Sorted, Groups),
-    member(V-Ps, Groups).
+    groups_by_values(Ps0, [C], Groups),
+    member([V]-Ps, Groups).
 
 %!  tuple_of_vars(@P, -Vs:list) is semidet.
 %

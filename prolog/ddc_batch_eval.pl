@@ -11,6 +11,7 @@
           [ eval_body/4,                % +Body, +Env, +Ps0, -Ps
             branch_union/4,             % +Goal, +Env, +Ps0, -Union
             collect/6,                  % +Template, +Goal, ?List, +Env, +Ps0, -Ps
+            forget_collected/0,
             env_time_table/3,           % +Env, +T, -Table
             env_at_time/3,              % +Env0, +Now, -Env
             read_time/3,                % +TimeExpr, +Env, -T
@@ -30,6 +31,7 @@
 :- use_module(ddc_errors, [engine_error/1]).
 :- use_module(ddc_batch_program, [timed_read/3, origin_line/2, origin_id/2, origin_rivals/2]).
 :- use_module(ddc_batch_tables).
+:- use_module(ddc_batch_col).
 :- use_module(ddc_batch_columns).
 :- use_module(ddc_batch_rv, [assign/3, set_each/3]).
 :- use_module(ddc_ops).
@@ -138,7 +140,7 @@ eval_body((A ; B), E, Ps0, Ps) :- !,
     (   eval_body(A, E, Ps0, Ps) ; eval_body(B, E, Ps0, Ps) ).
 eval_body(\+ G, E, Ps0, Ps) :- !,
     branch_union(G, E, Ps0, Done),
-    ord_subtract(Ps0, Done, Ps),
+    ps_subtract(Ps0, Done, Ps),
     Ps \== [].
 eval_body(findall_forward(T, G, L), E, Ps0, Ps) :- !,
     collect(T, G, L, E, Ps0, Ps).
@@ -217,8 +219,16 @@ call_static(G, E) :-
 %   answer is no).
 model_goal(G) :-
     functor(G, N, A),
+    model_export(N, A).
+
+%   model_export(?Name, ?Arity): ddc_models' exports, as facts made when
+%   this file is compiled (module_property/2 makes the list anew at each
+%   call).
+term_expansion(model_exports, Facts) :-
     module_property(ddc_models, exports(Es)),
-    memberchk(N/A, Es).
+    findall(model_export(N, A), member(N/A, Es), Facts).
+
+model_exports.
 
 %   visible(+M, +G): G's predicate is defined in M or reachable from it
 %   (imported, a builtin, autoloadable).  Asked once per predicate and
@@ -253,8 +263,14 @@ static_body_call(G, E) :- call_static(G, E).
 %
 %   Union: the particles of Ps0 in which G has a solution.
 branch_union(G, E, Ps0, Union) :-
+    col_backend(foreign), !,
+    env_size(E, N),                     % (each branch's particles marked in a column, not
+    col_new(N, '$u', Marks),            %  copied into a findall list)
+    forall(eval_body(G, E, Ps0, Ps), col_set_each(Ps, Marks, in)),
+    col_defined_at(Ps0, Marks, Union).
+branch_union(G, E, Ps0, Union) :-
     findall(Ps, eval_body(G, E, Ps0, Ps), Ls),
-    ord_union(Ls, Union).
+    ps_union(Ls, Union).
 
 %   if_then_else(+C, +T, +F, +E, +Ps0, -Ps): each particle takes T with
 %   C's first solution of its own, or F if C has none.
@@ -265,18 +281,18 @@ if_then_else(C, T, F, E, Ps0, Ps) :-
         eval_body(C, E, Ps0, Ps1),
         cell_value(Counter, K0), K is K0+1, nb_set_cell_value(Counter, K),
         nth1(K, Firsts, Ps2),
-        ord_intersection(Ps1, Ps2, Ps3),
+        ps_intersection(Ps1, Ps2, Ps3),
         Ps3 \== [],
         eval_body(T, E, Ps3, Ps)
-    ;   ord_subtract(Ps0, Taken, Rest),
+    ;   ps_subtract(Ps0, Taken, Rest),
         Rest \== [],
         eval_body(F, E, Rest, Ps)
     ).
 
 firsts([], Taken, [], Taken).
 firsts([L|Ls], Taken0, [F|Fs], Taken) :-
-    ord_subtract(L, Taken0, F),
-    ord_union(Taken0, F, Taken1),
+    ps_subtract(L, Taken0, F),
+    ps_union(Taken0, F, Taken1),
     firsts(Ls, Taken1, Fs, Taken).
 
 %!  collect(+T, +G, ?L, +Env, +Ps0:list(integer), -Ps:list(integer)) is nondet.
@@ -284,26 +300,75 @@ firsts([L|Ls], Taken0, [F|Fs], Taken) :-
 %   findall(T, G, L) in each particle of Ps0: L a value the batch agrees
 %   on, or a column of lists.
 collect(T, G, L, E, Ps0, Ps) :-
-    env_size(E, N),
-    functor(LC, c, N),
-    set_all(Ps0, LC, []),
-    forall(eval_body(G, E, Ps0, Ps1),
-           ( plan(T, Tmpl, Bs), append_each(Ps1, Bs, Tmpl, LC) )),
-    (   Ps0 = [I0|_], arg(I0, LC, L0), all_same(Ps0, LC, L0)
-    ->  unify_value(L, L0, Ps0, Ps)
+    env_now(E, Now),
+    (   collected(Now-T-G, Ps0, LC0)
+    ->  LC = LC0
+    ;   env_size(E, N),
+        col_new(N, '$u', LC),
+        col_set_each(Ps0, LC, []),
+        forall(eval_body(G, E, Ps0, Ps1),
+               (   plan(T, Tmpl, Bs),
+                   (   append_grouped(Ps1, Bs, Tmpl, LC)
+                   ->  true
+                   ;   append_each(Ps1, Bs, Tmpl, LC)
+                   )
+               )),
+        remember_collected(Now-T-G, Ps0, LC)
+    ),
+    (   ps_first(Ps0, I0), col_all_same(Ps0, LC, I0)
+    ->  col_arg(I0, LC, L0),
+        unify_value(L, L0, Ps0, Ps)
     ;   unify_column(L, LC, Ps0, Ps)
     ).
 
-set_all([], _, _).
-set_all([I|Is], C, V) :- nb_setarg(I, C, V), set_all(Is, C, V).
+%!  forget_collected is det.
+%
+%   Forgets the lists of findalls made so far (collected/3): called at the
+%   start of each step and query, whose tables or particles they were.
+forget_collected :-
+    nb_setval('$ddc_collected', []).
 
-all_same([], _, _).
-all_same([I|Is], C, V) :- arg(I, C, V1), V1 == V, all_same(Is, C, V).
+%   collected(+Key, +Ps, -LC): a findall of the same template and goal
+%   (variants, the same columns) at the same time was made, in this step
+%   or query, over particles that include Ps: LC holds their lists.  Each
+%   particle's list is the same if made again (its values are drawn once),
+%   so it is not: on the bench's model and the theory of occlusion the
+%   clauses of hidden_under/1 run the same occluder search one after the
+%   other.
+collected(Key, Ps, LC) :-
+    nb_current('$ddc_collected', Memo),
+    member(K-Pm-LC0, Memo), K =@= Key,
+    ps_subtract(Ps, Pm, []), !,
+    LC = LC0.
 
-append_each([], _, _, _).
-append_each([I|Is], Bs, Tmpl, LC) :-
-    \+ \+ ( bind(Bs, I), arg(I, LC, L0), append(L0, [Tmpl], L1), nb_setarg(I, LC, L1) ),
-    append_each(Is, Bs, Tmpl, LC).
+remember_collected(Key, Ps, LC) :-
+    (   nb_current('$ddc_collected', Memo) -> true ; Memo = [] ),
+    nb_setval('$ddc_collected', [Key-Ps-LC|Memo]).
+
+%   append_grouped(+Ps, +Binds, +Tmpl, !LC): append_each/4 in the column
+%   library, a call per group of particles with the same values in the
+%   columns the template reads (fails where the library cannot: a deferred
+%   expression, a value that is not ground).
+append_grouped(Ps, [], Tmpl, LC) :- !,
+    col_append_each(Ps, LC, Tmpl).
+append_grouped(Ps, Bs, Tmpl, LC) :-
+    col_backend(foreign),
+    \+ memberchk('$e'(_, _, _), Bs),
+    pairs_keys_values(Bs, Cs, Pats),
+    col_split(Ps, Cs, Groups),
+    forall(member(Vs-GPs, Groups),
+           (   copy_term(Pats-Tmpl, Vs-T1),
+               col_append_each(GPs, LC, T1)
+           )).
+
+append_each(Ps, Bs, Tmpl, LC) :-
+    ps_list(Ps, Is),
+    append_each_(Is, Bs, Tmpl, LC).
+
+append_each_([], _, _, _).
+append_each_([I|Is], Bs, Tmpl, LC) :-
+    \+ \+ ( bind(Bs, I), col_arg(I, LC, L0), append(L0, [Tmpl], L1), col_setarg(I, LC, L1) ),
+    append_each_(Is, Bs, Tmpl, LC).
 
 
 %   one branch per key, the keys held at T and the ground heads that
@@ -452,13 +517,12 @@ run_clause(E, X, T, K, B, At, Rest, C, Action) :-
     env_checked(E, Check),
     catch(forall(eval_body(B, E, Rest, Ps), call(Action, Ps)), Err, clause_error(Err, M:L)),
     (   R == true, Check \== []
-    ->  ord_intersection(Rest, Check, Watched),
-        exclude(uncomputed_at(C), Watched, Given),
+    ->  ps_intersection(Rest, Check, Watched),
+        uncomputed(Watched, C, Missing),
+        ps_subtract(Watched, Missing, Given),
         check_rivals(Given, E, X, T, K, Id, L)
     ;   true
     ).
-
-uncomputed_at(C, I) :- arg(I, C, V), V == '$u'.
 
 %   clause_error(+Error, +Where): an error raised in the body of the clause
 %   at Where is the program's error there, as the per-particle engine
@@ -482,7 +546,9 @@ clause_error(E, Where) :-
 check_rivals([], _, _, _, _, _, _) :- !.
 check_rivals(Ps, E, X, T, K, Id, L) :-
     env_module(E, M),
-    (   M:'$b_rv'(X, K, _, B, At2), origin_id(At2, Id2), Id2 > Id, origin_line(At2, L2),
+    (   M:'$b_rv'(X, K, _, B, At2), origin_id(At2, Id2), Id2 > Id,
+        \+ M:'$b_exclusive'(Id, Id2),
+        origin_line(At2, L2),
         \+ \+ eval_body(B, E, Ps, _)
     ->  throw(error(ddc(overlapping_clauses(X:T, M:L2), M:L), _))
     ;   true
@@ -513,11 +579,9 @@ derived(G, T, E, Ps0, Ps) :-
 derived(G, T, E, Ps0, Ps) :-
     env_module(E, M),
     (   T =:= 0 -> K = zero, Now = 0 ; K = next, Now is T-1 ),
-    (   M:'$b_der'(H, K, B0, L), Now1 = Now
-    ;   M:'$b_der'(H, now, B0, L), Now1 = T
+    (   M:'$b_der'(G, K, B, L), Now1 = Now         % (a called clause is a fresh copy, and
+    ;   M:'$b_der'(G, now, B, L), Now1 = T         %  G its first argument: indexed)
     ),
-    copy_term(H-B0, G1-B),
-    G1 = G,
     env_at_time(E, Now1, E1),
     catch(eval_body(B, E1, Ps0, Ps), Err, clause_error(Err, M:L)),
     (   has_free_var(G)                 % not range-restricted: as ddc_compile.pl's, an error
@@ -544,7 +608,7 @@ sweep(M, K, E, T, All) :-
     group_pairs_by_key(Pairs, Groups),
     forall(member(X-Pss, Groups),
            (   memberchk(all, Pss) -> value(E, X, T, All, _)
-           ;   ord_union(Pss, Ps), value(E, X, T, Ps, _)
+           ;   ps_union(Pss, Ps), value(E, X, T, Ps, _)
            )).
 
 %   (Ps is all when the prefix is static: every particle.  A head whose

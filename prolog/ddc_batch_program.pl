@@ -34,14 +34,20 @@ module, are untouched):
     '$b_static'(Head, Body)                 an untimed derived atom with a static body
     '$b_static_pred'(Head, Kind)            a static predicate: derived or plain
     '$b_lookback'(Name/Arity)               a derived predicate read at t by a transition
+    '$b_exclusive'(Id1, Id2)                clause Id2 applies in no particle that clause Id1
+                                            gives a value, and evaluating its body there
+                                            draws nothing (see exclusive/3)
     '$b_visible'(Name/Arity, Bool)          (filled by the evaluation: a predicate visible
                                             from the module or not)
 
 Origin is an origin/3 record (origin_line/2, origin_id/2,
 origin_rivals/2): the clause's line and id in the program, and whether
 a later clause of the same kind may define the same variable (and the
-program does not declare first_applicable for it): then the evaluation
-checks the clause for overlaps (ddc_batch_eval:run_clause/9).
+program does not declare first_applicable for it) that is not shown
+exclusive with it ('$b_exclusive'/2): then the evaluation checks the
+clause for overlaps (ddc_batch_eval:run_clause/9), evaluating each later
+clause not shown exclusive in the checked particles that this one gave a
+value.
 */
 
 %   origin(Line, Id, Rivals): where a random variable's clause comes from
@@ -147,20 +153,20 @@ compile_batch_program(M, Items) :-
     retractall(M:'$b_static_pred'(_, _)),
     retractall(M:'$b_lookback'(_)),
     retractall(M:'$b_visible'(_, _)),
+    retractall(M:'$b_exclusive'(_, _)),
     forall(lookback(Items, NA), assertz(M:'$b_lookback'(NA))),
     findall(N/A, ( member(rv(_, X, _, _, _, _), Items), functor(X, N, A) ), Rvs0),
     sort(Rvs0, Rvs),
     findall(Id-R, member(rivals(Id, R), Items), RivalPairs),
     list_to_assoc(RivalPairs, RivalsOf),
-    forall(member(rv(Id, X, K, D0, B0, L), Items),
-           (   kind(K, K1),
-               ( get_assoc(Id, RivalsOf, R0) -> R = R0 ; R = false ),
-               param_goals(D0, D, Ps),
-               operand_reads(B0, Rvs, B1),
-               conj_with(B1, Ps, B),
-               make_origin([line(L), id(Id), rivals(R)], Origin),
-               assertz(M:'$b_rv'(X, K1, D, B, Origin))
-           )),
+    findall(rv(Id, X, K1, D, B, L, R),
+            (   member(rv(Id, X, K, D0, B0, L), Items),
+                kind(K, K1),
+                ( get_assoc(Id, RivalsOf, R0) -> R = R0 ; R = false ),
+                param_goals(D0, D, Ps),
+                operand_reads(B0, Rvs, B1),
+                conj_with(B1, Ps, B)
+            ), Compiled),
     forall(member(der(_, X, K, B0, L), Items),
            (   K == u
            ->  assertz(M:'$b_static'(X, B0)), static_pred(M, X, derived)
@@ -169,7 +175,200 @@ compile_batch_program(M, Items) :-
                assertz(M:'$b_der'(X, K1, B, L))
            )),
     forall(member(plain(C, _), Items),
-           ( clause_head(C, H), callable(H) -> static_pred(M, H, plain) ; true )).
+           ( clause_head(C, H), callable(H) -> static_pred(M, H, plain) ; true )),
+    forall(( member(rv(Id, X, K, _, B, _, true), Compiled),
+             member(rv(Id2, X2, K, _, B2, _, _), Compiled), Id2 > Id,
+             exclusive(M, K, X-B, X2-B2) ),
+           assertz(M:'$b_exclusive'(Id, Id2))),
+    forall(member(rv(Id, X, K, D, B, L, R0), Compiled),
+           (   (   R0 == true,
+                   \+ ( member(rv(Id2, X2, K, _, _, _, _), Compiled), Id2 > Id,
+                        \+ X \= X2, \+ M:'$b_exclusive'(Id, Id2) )
+               ->  R = false                  % (every later clause exclusive)
+               ;   R = R0
+               ),
+               make_origin([line(L), id(Id), rivals(R)], Origin),
+               assertz(M:'$b_rv'(X, K, D, B, Origin))
+           )).
+
+                 /*******************************
+                 *     EXCLUSIVE CLAUSES        *
+                 *******************************/
+
+%   exclusive(+M, +Kind, +X1-Body1, +X2-Body2): no particle in which the first
+%   clause's body holds makes the second's hold, for the same head, shown
+%   from their top-level goals (a later clause's body fails, at the latest,
+%   at a goal that contradicts one of the first's: h ~= a against
+%   h ~= b, or h ~= V, V \== a; G against \+ G'; h ~= _ against \+ h ~= _;
+%   findall(T, G, []) against findall(T, G, L), L \== []);
+%   and evaluating the second body's goals up to that one in those
+%   particles draws nothing and raises nothing (each reads a variable the
+%   first body read, of a key made of head variables, or the first body's
+%   findall, or an observation of the step, or is a test, a call of facts,
+%   or, in a transition clause (Kind next), a derived atom at t, whose
+%   instances are materialised):
+%   the overlap check of the second clause in those particles would find
+%   nothing and change nothing, so it is not made.
+exclusive(M, K, X1-B1, X2-B2) :-
+    copy_term(X1-B1, H-A),
+    copy_term(X2-B2, H2-B),
+    (   H \= H2
+    ->  true                            % (never the same variable)
+    ;   H = H2,
+        term_variables(H, HVs),
+        conj_goals(A, GA),
+        conj_goals(B, GB),
+        exclusive_goals(GB, M-K, GA, GB, HVs)
+    ).
+
+exclusive_goals([G|Gs], MK, GA, GB, HVs) :-
+    (   contradicts(G, Gs, MK, GA, GB, HVs)
+    ->  true
+    ;   quiet_goal(G, MK, GA, HVs),
+        exclusive_goals(Gs, MK, GA, GB, HVs)
+    ).
+
+%   conj_goals(+Body, -Goals): Body's top-level conjuncts, reads as
+%   X:TE ~= P (current(h) as h:t, ...).
+conj_goals(B, Gs) :-
+    conj_goals(B, Gs, []).
+
+conj_goals(B, Gs0, Gs) :- var(B), !, Gs0 = [B|Gs].
+conj_goals((A, B), Gs0, Gs) :- !, conj_goals(A, Gs0, Gs1), conj_goals(B, Gs1, Gs).
+conj_goals(true, Gs, Gs) :- !.
+conj_goals(R ~= P, [X:TE ~= P|Gs], Gs) :- timed_read(R, X, TE), !.
+conj_goals(\+ (R ~= P), [\+ (X:TE ~= P)|Gs], Gs) :- timed_read(R, X, TE), !.
+conj_goals(G, [G|Gs], Gs).
+
+%   contradicts(+G, +Rest, +M, +GA, +GB, +HVs): goal G of the second body
+%   (Rest the goals after it) fails in every particle where the first
+%   body's goals GA hold, drawing and raising nothing.
+contradicts(G, _, _, GA, _, HVs) :-                      % h ~= b against h ~= a
+    read_goal(G, K, C2), ground(C2), key_of_head(K, HVs),
+    member(G1, GA), read_goal(G1, K1, C1), K1 == K,
+    (   ground(C1)
+    ->  different_values(C1, C2)
+    ;   var(C1), \+ memberchk_eq(C1, HVs),               % h ~= V, V \== b
+        member(T, GA), nonvar(T), T = (V1 \== C3), V1 == C1, C3 == C2,
+        \+ number(C2)
+    ), !.
+contradicts(G, [T|_], _, GA, GB, HVs) :-                  % h ~= V, V \== a against h ~= a
+    read_goal(G, K, V2), var(V2), key_of_head(K, HVs),
+    only_in(V2, [G, T], GB),
+    nonvar(T), T = (V3 \== C), V3 == V2, ground(C), \+ number(C),
+    member(G1, GA), read_goal(G1, K1, C1), K1 == K, C1 == C, !.
+contradicts(\+ G2, _, MK, GA, GB, HVs) :-                 % \+ G' against G
+    callable(G2), quiet_call(G2, MK),
+    local_vars(G2, \+ G2, GB, HVs),
+    member(G1, GA), callable(G1), quiet_call(G1, MK),
+    subsumes_term(G2, G1), !.
+contradicts(G, _, MK, GA, _, HVs) :-                       % G against \+ G'
+    callable(G), quiet_call(G, MK),
+    member(N1, GA), nonvar(N1), N1 = (\+ G1), callable(G1), quiet_call(G1, MK),
+    local_vars(G1, N1, GA, HVs),
+    subsumes_term(G1, G), !.
+contradicts(G, _, _, GA, _, HVs) :-                       % findall(.., []) against
+    findall_goal(G, T, Q, L), L == [],                    %   findall(.., L), L \== []
+    member(F, GA), findall_goal(F, T1, Q1, L1), var(L1),
+    same_collection(T-Q, T1-Q1, HVs),
+    member(N, GA), nonvar(N), N = (L2 \== E), L2 == L1, E == [], !.
+contradicts(G, [N|_], _, GA, GB, HVs) :-                  % findall(.., L), L \== [] against
+    findall_goal(G, T, Q, L), var(L),                     %   findall(.., [])
+    nonvar(N), N = (L2 \== E), L2 == L, E == [],
+    only_in(L, [G, N], GB),
+    member(F, GA), findall_goal(F, T1, Q1, L1), L1 == [],
+    same_collection(T-Q, T1-Q1, HVs), !.
+contradicts(\+ G, _, _, GA, _, HVs) :-                   % \+ h ~= _ against h ~= _
+    nonvar(G), read_goal(G, K, _), key_of_head(K, HVs),
+    member(G1, GA), read_goal(G1, K1, _), K1 == K, !.
+contradicts(G, _, _, GA, _, HVs) :-                       % h ~= _ against \+ h ~= _
+    read_goal(G, K, _), key_of_head(K, HVs),
+    member(N1, GA), nonvar(N1), N1 = (\+ G1), nonvar(G1), read_goal(G1, K1, _), K1 == K, !.
+
+findall_goal(G, T, Q, L) :-
+    nonvar(G), ( G = findall(T, Q, L) -> true ; G = findall_forward(T, Q, L) ).
+
+%   same_collection(+TQ1, +TQ2, +HVs): the template and goal of two
+%   findalls are the same but for their own variables (the head's the
+%   same), so they collect the same list in every particle.
+same_collection(TQ1, TQ2, HVs) :-
+    \+ \+ ( foldl(head_constant, HVs, 0, _), TQ1 =@= TQ2 ).
+
+head_constant(V, K0, K) :- V = '$head'(K0), K is K0+1.
+
+%   quiet_goal(+G, +M, +GA, +HVs): G, evaluated where GA holds, draws and
+%   raises nothing: a read of a key (of head variables) that GA reads too
+%   (its values are there), a test == or \==, a call of facts.
+quiet_goal(G, _, GA, HVs) :-
+    read_goal(G, K, _), !,
+    key_of_head(K, HVs),
+    read_in(K, GA).
+quiet_goal(G, _, _, _) :-
+    nonvar(G), ( G = (_ == _) ; G = (_ \== _) ), !.
+quiet_goal(G, _, _, _) :-                       % an observation of the step
+    nonvar(G), G = (X ~= _), callable(X), X \= _:_, \+ timed_read(X, _, _), !.
+quiet_goal(G, _, GA, HVs) :-                    % the same findall as the first body's
+    findall_goal(G, T, Q, L), var(L), !,
+    member(F, GA), findall_goal(F, T1, Q1, L1), var(L1),
+    same_collection(T-Q, T1-Q1, HVs), !.
+quiet_goal(G, MK, _, _) :-
+    callable(G), quiet_call(G, MK).
+
+read_in(K, GA) :-
+    member(G1, GA), nonvar(G1),
+    (   read_goal(G1, K1, _) -> true ; G1 = (\+ G2), nonvar(G2), read_goal(G2, K1, _) ),
+    K1 == K, !.
+
+read_goal(G, X:TE, P) :- nonvar(G), G = (X0:TE ~= P), nonvar(X0), X = X0, ground(TE).
+
+key_of_head(K, HVs) :-
+    term_variables(K, Vs),
+    forall(member(V, Vs), memberchk_eq(V, HVs)).
+
+memberchk_eq(X, [Y|Ys]) :- ( X == Y -> true ; memberchk_eq(X, Ys) ).
+
+different_values(C1, C2) :-
+    C1 \= C2,
+    \+ ( number(C1), number(C2), C1 =:= C2 ).
+
+%   local_vars(+G, +In, +Goals, +HVs): each variable of G is a head
+%   variable or occurs in no goal of Goals but In.
+local_vars(G, In, Goals, HVs) :-
+    term_variables(G, Vs),
+    forall(( member(V, Vs), \+ memberchk_eq(V, HVs) ),
+           only_in(V, [In], Goals)).
+
+only_in(V, Ins, Goals) :-
+    forall(( member(G, Goals), \+ ( member(I, Ins), I == G ) ),
+           ( term_variables(G, GVs), \+ memberchk_eq(V, GVs) )).
+
+%   quiet_call(+G, +M-Kind): G calls facts: a static predicate all of whose
+%   clauses are facts of the program (h := true), or a dynamic predicate
+%   or one the program does not define (the step's facts: object(A),
+%   observed(A)), or in a transition clause a derived atom at t (its
+%   instances materialised at the step before: ddc_batch.pl's
+%   materialise_derived/4).
+quiet_call(G, M-K) :-
+    G = D:TE, !,
+    K == next, TE == t, callable(D),
+    functor(D, N, A), M:'$b_lookback'(N/A).
+quiet_call(G, M-_) :-
+    \+ special_goal(G),
+    functor(G, N, A), functor(P, N, A),
+    (   M:'$b_static_pred'(P, Kind)
+    ->  Kind == derived,
+        forall(M:'$b_static'(P, B), B == true)
+    ;   predicate_property(M:P, dynamic)
+    ->  true
+    ;   \+ predicate_property(M:P, visible)
+    ).
+
+special_goal(G) :-
+    (   G = _:_ ; G = (_ ~= _) ; G = (_, _) ; G = (_ ; _) ; G = (_ -> _) ; G = (\+ _)
+    ;   G = findall(_, _, _) ; G = findall_forward(_, _, _)
+    ;   G = (_ is _) ; G = (_ = _)
+    ;   functor(G, Op, 2), memberchk(Op, [<, >, =<, >=, =:=, =\=, ==, \==, @<, @>, @=<, @>=])
+    ), !.
 
 %   lookback(+Items, -N/A): a derived predicate that a transition body
 %   reads at t: materialised at every step (ddc_batch:materialise_derived/4),

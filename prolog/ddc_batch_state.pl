@@ -14,6 +14,7 @@
 
 :- use_module(ddc_records).
 :- use_module(ddc_batch_tables).
+:- use_module(ddc_batch_col, [ps_all/2]).
 :- use_module(ddc_batch_eval).
 :- use_module(ddc_pool, [with_random_stream/3]).
 
@@ -77,13 +78,14 @@ query_env(S, E, All) :-
     batch_state_tables(S, Tables), batch_state_facts(S, Facts),
     make_env([module(M), size(N), now(T), tables(Tables), facts(Facts), observations([]),
               checked([])], E),
-    numlist(1, N, All).
+    ps_all(N, All).
 
 %!  with_state(+State, :Goal) is semidet.
 %
 %   Goal (a query) draws what it needs from State's random stream, which
 %   goes on from there (in place: State is the filter's own term).
 with_state(S, Goal) :-
+    forget_collected,
     batch_state_random(S, R0),
     with_random_stream(state(R0), Goal, R1),
     nb_set_batch_state_random(S, R1).

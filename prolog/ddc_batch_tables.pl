@@ -13,28 +13,31 @@
             table_get/3,                % +Table, +Key, -Entry
             table_put/3,                % +Table, +Key, +Entry
             table_match/3,              % +Table, ?Key, -Entry
-            new_column/3,               % +N, +Value, -Column
-            fill_column/3,              % +N, !Column, +Value
-            uncomputed/3,               % +Ps, +Column, -Missing
-            defined_at/3,               % +Ps, +Column, -Defined
+            new_column/3,               % +N, +Value, -Column (ddc_batch_col.pl's col_new/3)
+            uncomputed/3,               % +Ps, +Column, -Missing (col_uncomputed/3)
+            defined_at/3,               % +Ps, +Column, -Defined (col_defined_at/3)
             settle/1,                   % !Entry
             entry_tuple_arity/2,        % !Entry, -Arity
             tuple_shape/2,              % +K, -Shape
             real_table/2,               % +Table0, -Table
-            resample_tables/3           % +Sources, +Pairs, -Table
+            resample_tables/3,          % +Sources, +Pairs, -Table
+            rename_table/5              % +Table0, +Moves, +Ps, +N, -Table
           ]).
 
 :- use_module(library(apply)).
 :- use_module(library(lists)).
 :- use_module(ddc_records).
+:- use_module(ddc_batch_col).
+:- reexport(ddc_batch_col, [col_new/3 as new_column, col_uncomputed/3 as uncomputed,
+                            col_defined_at/3 as defined_at]).
+:- use_module(ddc_rename, [rename_term/3, rename_arguments/3]).
 
 :- set_prolog_flag(optimise, true).
 
 /** <module> Tables of columns for the batched filter
 
-A column is a term c(V1, ..., VN) with an argument per particle: '$u'
-where the particle's value is not drawn yet, '$undef' where no clause
-applies.
+A column (ddc_batch_col.pl) holds a value per particle: '$u' where the
+particle's value is not drawn yet, '$undef' where no clause applies.
 
 A table holds the columns of one time: Key -> entry(Column, Status,
 Arity), Status one of open (some particle may lack its value: '$u'),
@@ -96,41 +99,6 @@ table_match(T, K, E) :-
     arg(_, T, L), nonvar(L), member(K-E, L).
 
                  /*******************************
-                 *            COLUMNS           *
-                 *******************************/
-
-%!  new_column(+N, +Value, -Column) is det.
-%
-%   A column of N particles, each holding Value.
-new_column(N, V, C) :-
-    functor(C, c, N),
-    fill_column(N, C, V).
-
-%!  fill_column(+N, !Column, +Value) is det.
-%
-%   Binds the arguments N..1 of Column (fresh variables) to Value.
-fill_column(0, _, _) :- !.
-fill_column(I, C, V) :- arg(I, C, V), I1 is I-1, fill_column(I1, C, V).
-
-%!  uncomputed(+Ps, +Column, -Missing) is det.
-%
-%   Missing: the particles of Ps whose value in Column is not drawn yet.
-uncomputed([], _, []).
-uncomputed([I|Is], C, Ps) :-
-    arg(I, C, V),
-    (   V == '$u' -> Ps = [I|Ps1] ; Ps = Ps1 ),
-    uncomputed(Is, C, Ps1).
-
-%!  defined_at(+Ps, +Column, -Defined) is det.
-%
-%   Defined: the particles of Ps that have a value in Column.
-defined_at([], _, []).
-defined_at([I|Is], C, Ps) :-
-    arg(I, C, V),
-    (   ( V == '$u' ; V == '$undef' ) -> Ps = Ps1 ; Ps = [I|Ps1] ),
-    defined_at(Is, C, Ps1).
-
-                 /*******************************
                  *            ENTRIES           *
                  *******************************/
 
@@ -140,28 +108,9 @@ defined_at([I|Is], C, Ps) :-
 %   while one lacks it).
 settle(Entry) :-
     entry_column(Entry, C),
-    functor(C, _, N),
-    arg(1, C, V1),
-    column_status(N, C, V1, same, S0),
-    (   S0 == open -> true
-    ;   S0 == same -> nb_set_entry_status(Entry, same(V1))
-    ;   nb_set_entry_status(Entry, S0)
-    ).
-
-%   column_status(+I, +C, +V1, +S0, -S): the status of C's arguments I..1
-%   (open as soon as one lacks its value).
-column_status(0, _, _, S, S) :- !.
-column_status(I, C, V1, S0, S) :-
-    arg(I, C, V),
-    (   V == '$u' -> S = open
-    ;   (   S0 == same, V == V1 -> S1 = same
-        ;   S0 == mixed -> S1 = mixed
-        ;   V == '$undef' -> S1 = mixed
-        ;   V1 == '$undef' -> S1 = mixed
-        ;   S1 = defined
-        ),
-        I1 is I-1,
-        column_status(I1, C, V1, S1, S)
+    col_status(C, S),
+    (   S == open -> true
+    ;   nb_set_entry_status(Entry, S)
     ).
 
 %!  entry_tuple_arity(!Entry, -Arity) is det.
@@ -173,16 +122,19 @@ entry_tuple_arity(Entry, Arity) :-
     (   A0 \== unknown
     ->  Arity = A0
     ;   entry_column(Entry, C),
-        arg(1, C, V1),
-        value_arity(V1, 1, K),
-        (   K > 1, functor(C, _, N), with_arity_all(N, C, K) -> A = K ; A = none ),
+        (   col_num_arity(C, K0)
+        ->  ( K0 > 1 -> A = K0 ; A = none )
+        ;   col_arg(1, C, V1),
+            value_arity(V1, 1, K),
+            (   K > 1, col_size(C, N), with_arity_all(N, C, K) -> A = K ; A = none )
+        ),
         nb_set_entry_arity(Entry, A),
         Arity = A
     ).
 
 with_arity_all(N, C, K) :-
     tuple_shape(K, Shape),
-    forall(between(1, N, I), ( arg(I, C, V), subsumes_term(Shape, V) )).
+    forall(between(1, N, I), ( col_arg(I, C, V), subsumes_term(Shape, V) )).
 
 value_arity(V, K0, K) :-
     (   nonvar(V), V = (_, B) -> K1 is K0+1, value_arity(B, K1, K) ; K = K0 ).
@@ -215,7 +167,7 @@ resample_tables(Srcs0, Pairs, New) :-
     table_new(New),
     findall(K, ( member(Tab, Srcs), Tab \== none, table_match(Tab, K, _) ), Ks0),
     sort(Ks0, Ks),
-    length(Pairs, N),
+    col_plan_size(Pairs, N),
     forall(member(K, Ks),
            (   maplist(source_entry(K), Srcs, Es),
                resampled_entry(Es, Pairs, N, E),
@@ -231,15 +183,13 @@ resampled_entry(Es, Pairs, N, E) :-
     (   Es = [E1|_], E1 \== none, entry_status(E1, Same), Same = same(V),
         entry_arity(E1, A),
         forall(member(E2, Es), same_entry(E2, V))
-    ->  (   member(E2, Es), E2 \== none, entry_column(E2, C0), functor(C0, _, N)
+    ->  (   member(E2, Es), E2 \== none, entry_column(E2, C0), col_size(C0, N)
         ->  C1 = C0
-        ;   functor(C, c, N), fill_column(N, C, V), duplicate_term(C, C1)
+        ;   col_new(N, V, C), duplicate_term(C, C1)
         ),
         linked_entry(C1, Same, A, E)
     ;   maplist(source_column, Es, Cs),
-        Src =.. [s|Cs],
-        pair_values(Pairs, Src, Vs),
-        C =.. [c|Vs],
+        col_gather(Cs, Pairs, C),
         (   forall(member(E1, Es), defined_entry(E1))
         ->  common_arity(Es, A),
             linked_entry(C, defined, A, E)
@@ -268,16 +218,91 @@ defined_entry(E) :- E \== none, entry_status(E, defined).
 source_column(none, '$none') :- !.
 source_column(E, C) :- entry_column(E, C).
 
-%   (Src: the groups' columns, an argument per group.)
-pair_values([], _, []).
-pair_values([G-L|Ps], Src, [V|Vs]) :-
-    arg(G, Src, C),
-    (   C == '$none' -> V = '$u' ; arg(L, C, V) ),
-    pair_values(Ps, Src, Vs).
-
 common_arity([E|Es], Arity) :-
     entry_arity(E, A),
     (   forall(( member(E1, Es), E1 \== none ), ( entry_arity(E1, A1), A1 == A ))
     ->  Arity = A
     ;   Arity = unknown
+    ).
+
+                 /*******************************
+                 *           RENAMING           *
+                 *******************************/
+
+%!  rename_table(+Table0, +Moves:list(pair), +Ps:list(integer), +N, -Table) is det.
+%
+%   Table (none if Table0 is none): Table0 of N particles with the
+%   constants renamed by Moves (ddc_rename.pl; filter_rename/3) in the
+%   particles Ps (sorted): under each key K, a particle of Ps holds its
+%   value of the key that K renames, itself renamed ('$u' where it had
+%   none: not drawn), the others their own value of K.  An entry the
+%   rename leaves as it is (its key names no moved constant, nor do the
+%   values of Ps) is Table0's own; any other is a new column, so a column
+%   of one value (same/1, possibly another table's, see resampled_entry/4)
+%   is never written.  Table0 is not changed.
+rename_table(none, _, _, _, none) :- !.
+rename_table(Tab0, Moves, Ps, N, Tab) :-
+    table_new(Tab),
+    findall(K, table_match(Tab0, K, _), Ks0),
+    maplist(renamed_key(Moves), Ks0, Ks1),
+    append(Ks0, Ks1, Ks2),
+    sort(Ks2, Ks),
+    maplist(inverse_move, Moves, Inverse),
+    forall(member(K, Ks), rename_entry(Tab0, Moves, Inverse, Ps, N, K, Tab)).
+
+inverse_move(Old-New, New-Old).
+
+%   renamed_key(+Moves, +K, -K1): a table's key renamed: a random
+%   variable's arguments; '$inst'(N/A) (a predicate's instances) stays.
+renamed_key(Moves, K, K1) :-
+    (   K = '$inst'(_) -> K1 = K ; rename_arguments(Moves, K, K1) ).
+
+%   renamed_value(+Moves, +K, +V, -V1): a value under key K renamed: each
+%   instance's arguments in a '$inst' list, else the value throughout.
+renamed_value(Moves, K, V, V1) :-
+    (   K = '$inst'(_), is_list(V)
+    ->  maplist(rename_arguments(Moves), V, V1)
+    ;   rename_term(Moves, V, V1)
+    ).
+
+%   rename_entry(+Tab0, +Moves, +Inverse, +Ps, +N, +K, !Tab): K's entry of
+%   the renamed table (rename_table/5).
+rename_entry(Tab0, Moves, Inverse, Ps, N, K, Tab) :-
+    renamed_key(Inverse, K, K0),
+    (   table_get(Tab0, K, E) -> true ; E = none ),
+    (   table_get(Tab0, K0, E0) -> true ; E0 = none ),
+    (   K0 == K, E \== none,
+        entry_column(E, C),
+        forall(member(I, Ps), ( col_arg(I, C, V), renamed_value(Moves, K, V, V1), V1 == V ))
+    ->  table_link(Tab, K, E)
+    ;   entry_column_or_none(E, C),
+        entry_column_or_none(E0, C0),
+        col_new(N, '$u', C1),
+        renamed_column(1, N, Ps, Moves, K, C, C0, C1),
+        (   K = '$inst'(_) -> A = none ; A = unknown ),
+        linked_entry(C1, open, A, E1),
+        duplicate_term(E1, E2),
+        settle(E2),
+        table_link(Tab, K, E2)
+    ).
+
+entry_column_or_none(E, C) :-
+    (   E == none -> C = none ; entry_column(E, C) ).
+
+%   renamed_column(+I, +N, +Ps, +Moves, +K, +C, +C0, !C1): arguments I..N
+%   of C1: a particle of Ps (sorted, those from I on) its value in C0
+%   renamed, any other its value in C ('$u' for a column none).
+renamed_column(I, N, Ps, Moves, K, C, C0, C1) :-
+    (   I > N
+    ->  true
+    ;   (   Ps = [I|Ps1]
+        ->  (   C0 == none -> V = '$u'
+            ;   col_arg(I, C0, V0), renamed_value(Moves, K, V0, V)
+            )
+        ;   Ps1 = Ps,
+            (   C == none -> V = '$u' ; col_arg(I, C, V) )
+        ),
+        col_setarg(I, C1, V),
+        I1 is I+1,
+        renamed_column(I1, N, Ps1, Moves, K, C, C0, C1)
     ).

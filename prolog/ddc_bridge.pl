@@ -16,21 +16,28 @@
             bridge_step/5,              % +Key, +ObsTexts, +ActTexts, -LogWeights, -Err
             bridge_undo/1,              % +Key
             bridge_resample/2,          % +Key, +Indices
+            bridge_rename/5,            % +Key, +Olds, +News, +Indices, -Err
             bridge_time/2,              % +Key, -T
             bridge_free/1,              % +Key
             bridge_holds/4,             % +Key, +GoalText, -Flags, -Err
             bridge_values/4,            % +Key, +PairText, -Values, -Err
             bridge_numeric_rows/6,      % +Key, +PairText, -Width, -Floats, -Values, -Err
+            bridge_rows_into/8,         % +Key, +PairText, +Address, +Capacity, -W, -F, -V, -Err
             bridge_frames/3             % +File, -Frames, -Err
           ]).
 
 :- use_module(library(apply)).
 :- use_module(library(error)).
+:- use_module(library(pairs)).
 :- use_module(ddc, [ filter_new/5, filter_step/4, filter_undo/1, filter_resample/2,
-                     filter_time/2, filter_engine/2, filter_free/1, filter_holds/3,
-                     filter_values/4, filter_rows/6 ]).
+                     filter_rename/3, filter_time/2, filter_engine/2, filter_free/1,
+                     filter_holds/3, filter_values/4, filter_rows/6 ]).
+:- use_module(ddc_filter, [filter_packed_rows/6]).
+:- use_module(ddc_batch_col, [col_floats_into/4, col_floats_list/2]).
 :- use_module(ddc_nesting, [check_text_nesting/2]).
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
+:- use_module(library(lists), [nth1/3]).
+:- use_module(ddc_observation_types, [observation_type_error/4]).
 
 /** <module> The Prolog side of the Python bridge
 
@@ -70,12 +77,14 @@ bridge_new(Program, N, Seed, Share, Threads, Engine, F, Used, Err) :-
 %
 %   One filter_step/4 with the observations and actions parsed from their texts; LogWeights
 %   are the step's log weights as floats ([] when Err is not "").  A text that does not parse
-%   or is not ground is an error naming its kind (observation, action), its 1-based place
-%   and its text.
+%   or is not ground, or an observation whose value is of a type the program does not weigh
+%   (ddc_observation_types.pl), is an error naming its kind (observation, action), its
+%   1-based place and its text.
 bridge_step(Key, ObsTexts, ActTexts, LW, Err) :-
     guarded(( filter_of(Key, F),
               parse_terms(observation, ObsTexts, Obs),
               parse_terms(action, ActTexts, Acts),
+              check_observation_types(F, ObsTexts, Obs),
               filter_step(F, Obs, Acts, LW0),
               maplist(to_float, LW0, LW)
             ), Err),
@@ -92,6 +101,19 @@ bridge_undo(Key) :- filter_of(Key, F), filter_undo(F).
 %
 %   filter_resample/2: particle i becomes a copy of particle Indices[i] (0-based).
 bridge_resample(Key, Indices) :- filter_of(Key, F), filter_resample(F, Indices).
+
+%!  bridge_rename(+Key, +Olds:list(text), +News:list(text), +Indices:list(integer), -Err)
+%!      is det.
+%
+%   filter_rename/3 with the renaming Old-New of the atoms of the texts Olds and News (taken
+%   as names, not parsed) in the particles Indices (1-based).
+bridge_rename(Key, Olds, News, Indices, Err) :-
+    guarded(( filter_of(Key, F),
+              must_be(list(text), Olds), must_be(list(text), News),
+              maplist(atom_string, OldAtoms, Olds),
+              maplist(atom_string, NewAtoms, News),
+              pairs_keys_values(Renaming, OldAtoms, NewAtoms),
+              filter_rename(F, Renaming, Indices) ), Err).
 
 %!  bridge_time(+Key, -T:integer) is det.
 bridge_time(Key, T) :- filter_of(Key, F), filter_time(F, T).
@@ -129,6 +151,29 @@ bridge_numeric_rows(Key, PairText, Width, Floats, Values, Err) :-
               filter_rows(F, Template, Goal, Width, Floats, Values0),
               maplist(py_solution, Values0, Values) ), Err),
     ( var(Width) -> Width = 0, Floats = [], Values = [] ; true ).
+
+%!  bridge_rows_into(+Key, +PairText, +Address, +Capacity, -Width, -Floats, -Values:list,
+%!                   -Err) is det.
+%
+%   bridge_numeric_rows/6, with the floats, where the engine reads them straight from
+%   its columns (the batched engine with its column library), copied into the memory at
+%   Address that holds Capacity doubles (a numpy array of the caller's: Floats is then
+%   their number, an integer) instead of a list of floats that janus converts one by one
+%   (10,000 particles' positions: 30,000 floats).  Floats is a list where they are not
+%   copied (no library, other values, or more than Capacity of them).
+bridge_rows_into(Key, PairText, Address, Capacity, Width, Floats, Values, Err) :-
+    guarded(( must_be(integer, Address), must_be(nonneg, Capacity),
+              filter_of(Key, F), parse_goal(PairText, ddc_bridge_pair(Template, Goal)),
+              filter_packed_rows(F, Template, Goal, Width, Rows, Values0),
+              rows_into(Rows, Address, Capacity, Floats),
+              maplist(py_solution, Values0, Values) ), Err),
+    ( var(Width) -> Width = 0, Floats = [], Values = [] ; true ).
+
+rows_into(Rows, Address, Capacity, Floats) :-
+    (   is_list(Rows) -> Floats = Rows
+    ;   col_floats_into(Rows, Address, Capacity, N) -> Floats = N
+    ;   col_floats_list(Rows, Floats)
+    ).
 
 %!  bridge_frames(+File, -Frames:list, -Err) is det.
 %
@@ -203,6 +248,16 @@ parse_term(Kind, Text, Term, I, I1) :-
           ( error_text(E, Msg0), clean(Msg0, Msg), throw(bridge(Kind, I, Text, Msg)) )),
     (   ground(Term) -> true
     ;   throw(bridge(Kind, I, Text, "not ground (observations and actions must be)"))
+    ).
+
+%   check_observation_types(+F, +Texts, +Obs): bridge(observation, I, Text, Message) for
+%   the first observation whose value is of a type no clause of F's program weighs
+%   (ddc_observation_types.pl).
+check_observation_types(F, Texts, Obs) :-
+    (   observation_type_error(F, Obs, I, Message)
+    ->  nth1(I, Texts, Text),
+        throw(bridge(observation, I, Text, Message))
+    ;   true
     ).
 
 %   clean(+Message, -FirstLine)

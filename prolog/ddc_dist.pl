@@ -29,7 +29,8 @@
             dist_log_density_prepared/3,% +Prepared, +Value, -LogP
             dist_mean_slots/2,          % +Prepared, -MeanSlots
             dist_sample_at/3,           % +Prepared, +Mean, -Value
-            dist_log_density_at/4       % +Prepared, +Mean, +Value, -LogP
+            dist_log_density_at/4,      % +Prepared, +Mean, +Value, -LogP
+            dist_prepared_factor/3      % +Prepared, -Factor, -LogNorm
           ]).
 %   Arithmetic compiled inline (local to this file; see ddc.pl).
 :- set_prolog_flag(optimise, true).
@@ -757,6 +758,16 @@ dist_log_density_at(gauss1(_, V, SD, LN), M, X, LP) :-
         LP is -0.5*Y*Y + LN
     ;   dist_log_density(gaussian(M, V), X, LP)
     ).
+
+%!  dist_prepared_factor(+Prepared, -Factor, -LogNorm) is semidet.
+%
+%   The prepared gaussian's covariance factor and log normaliser, for a
+%   caller that draws or weighs in bulk (the batched filter's column
+%   library): chol(L11, L21, L22, L31, L32, L33) of a 3-D one, sd(SD) of a
+%   1-D one; fails for a distribution kept as it was.
+dist_prepared_factor(gauss3(_, _, _, _, L11, L21, L22, L31, L32, L33, LN),
+                     chol(L11, L21, L22, L31, L32, L33), LN).
+dist_prepared_factor(gauss1(_, _, SD, LN), sd(SD), LN).
 
 %!  dist_log_density_prepared(+Prepared, +Value, -LogP) is det.
 %

@@ -14,6 +14,7 @@
       filter_step(+Filter, +Observations, +Actions, -LogWeights)
       filter_undo(+Filter)
       filter_resample(+Filter, +Indices)
+      filter_rename(+Filter, +Renaming, +Particles)
       filter_holds(+Filter, +Goal, -Flags)
       filter_values(+Filter, +Template, +Goal, -Values)
       filter_rows(+Filter, +Template, +Goal, -Width, -Floats, -Values)
@@ -34,6 +35,10 @@
       engine_step(!State, +WeightedObservations, +Facts, -LogWeights)
       engine_undo(!State)
       engine_resample(!State, +Indices)          (checked by the API)
+      engine_rename(!State, +Moves, +Particles)  (checked by the API: Moves
+          the pairs Old-New of a renaming with Old \== New, not empty;
+          Particles a sorted list of 1-based indices without repeats, not
+          empty)
       engine_holds(!State, +Goal, -Flags)
       engine_values(!State, +Template, +Goal, -Values)
       engine_rows(+State, +Template, +Goal, -Width, -Floats)   (semidet:
@@ -54,9 +59,11 @@
             filter_step/4,              % +Filter, +Observations, +Actions, -LogWeights
             filter_undo/1,              % +Filter
             filter_resample/2,          % +Filter, +Indices
+            filter_rename/3,            % +Filter, +Renaming, +Particles
             filter_holds/3,             % +Filter, +Goal, -Flags
             filter_values/4,            % +Filter, +Template, +Goal, -Values
             filter_rows/6,              % +Filter, +Template, +Goal, -Width, -Floats, -Values
+            filter_packed_rows/6,       % +Filter, +Template, +Goal, -Width, -Floats, -Values
             filter_time/2,              % +Filter, -T
             filter_engine/2,            % +Filter, -Engine
             filter_size/2,              % +Filter, -N
@@ -71,6 +78,7 @@
 :- use_module(library(apply)).
 :- use_module(library(option)).
 :- use_module(library(error)).
+:- use_module(library(pairs)).
 :- use_module(library(terms), [mapsubterms/3]).
 :- use_module(ddc_records).
 :- use_module(ddc_read, [resolve_file/2]).
@@ -79,6 +87,7 @@
 :- use_module(ddc_rows, [values_rows/4]).
 :- use_module(ddc_particles, [particles_new/7]).
 :- use_module(ddc_filter_batched, [batched_init/6]).
+:- use_module(ddc_rename, [renaming_moves/2]).
 
 :- use_module(ddc_ops).
 
@@ -319,7 +328,8 @@ filter_size(F, N) :-
 %   ddc_world.pl), O values held by the particles themselves (summed over
 %   particles), K steps in which the particles agreed on everything new
 %   (computed once).  A batched filter: [particles(N), time(T),
-%   engine(batched)].
+%   engine(batched), columns(B)], B foreign (the compiled column
+%   library) or prolog (ddc_batch_col.pl).
 filter_statistics(F, S) :-
     outside_filter(F), !,
     filter_call(F, filter_statistics(F, S)).
@@ -391,12 +401,122 @@ filter_resample(F, Is) :-
     E:engine_resample(S, Is).
 
 must_be_indices(Is, N) :-
+    indices_below(Is, N, 0, K), K =:= N, !.      % (the usual case, in one pass)
+must_be_indices(Is, N) :-
     must_be(list(nonneg), Is),
     (   length(Is, N) -> true
     ;   throw(error(ddc(bad_indices(length_differs_from_particles(N)), query), _))
     ),
     (   forall(member(I, Is), I < N) -> true
     ;   throw(error(ddc(bad_indices(index_out_of_range(N)), query), _))
+    ).
+
+indices_below(Is, _, _, _) :- var(Is), !, fail.
+indices_below([], _, K, K).
+indices_below([I|Is], N, K0, K) :-
+    integer(I), I >= 0, I < N,
+    K1 is K0+1,
+    indices_below(Is, N, K1, K).
+
+%!  filter_rename(+Filter, +Renaming:list(pair), +Particles) is det.
+%
+%   In each particle of Particles (a list of 1-based indices, repeats
+%   ignored, or `all`), the constants Old of Renaming (a list Old-New of
+%   atoms, each Old once, the News the same set as the Olds: a
+%   permutation; pairs Old-Old are allowed) are named New: every value the
+%   particle holds, of the current time t, of t-1 (which the next step's
+%   :t reads see) and untimed, has every Old replaced by its New, in its
+%   key (the arguments of a random variable or derived atom: pos(mug_1),
+%   occluded_by(ball_1, mug_1)) and in the value itself (a value mug_1,
+%   or an atom inside a value).  The next filter_step/4 goes on from the
+%   renamed worlds exactly as if the constants had always been named so
+%   in those particles.  Names of random variables, predicates and
+%   functors are not constants and stay; so do the program's clauses, the
+%   facts of the current step (actions, plain observations: the input of
+%   the step, replaced at the next one) and the untimed copies of the
+%   step's observations that are dropped at the next step.  The other
+%   particles keep their values (the same values, read as before);
+%   weights are Python's and untouched.
+%
+%   A rename changes the state the next step starts from: filter_undo/1
+%   after a rename and a step undoes the step and keeps the rename; after
+%   a rename with no step since, it goes back to before the last step (or
+%   resampling), as it would have without the rename.
+%
+%   Cost: proportional to the values the renamed particles hold (their
+%   own and the shared ones they read; a value held once for all
+%   particles that the rename changes becomes each particle's own, one
+%   entry per particle).  Meant for rare events (an ambiguous
+%   association); a filter that never renames pays nothing for it.
+%
+%   @error type_error(list, Renaming), type_error(pair, Item),
+%          type_error(atom, Name) for a malformed Renaming;
+%          domain_error(permutation, Renaming) if an Old occurs twice or
+%          the News are not the Olds; type_error(integer, I) and
+%          domain_error(between(1, N), I) for a bad particle index
+%          (all with context(filter_rename/3, _)).
+filter_rename(F, Renaming, Particles) :-
+    outside_filter(F), !,
+    filter_call(F, filter_rename(F, Renaming, Particles)).
+filter_rename(F, Renaming, Particles) :-
+    filter_handle(F, E, S),
+    E:engine_size(S, N),
+    in_context(filter_rename/3, ( must_be_renaming(Renaming),
+                                  rename_particles(Particles, N, Is) )),
+    renaming_moves(Renaming, Moves),
+    (   ( Moves == [] ; Is == [] )
+    ->  true
+    ;   E:engine_rename(S, Moves, Is)
+    ).
+
+%   in_context(+PI, :Goal): Goal, its errors raised with context(PI, _)
+%   (and the message they had, if any).
+in_context(PI, Goal) :-
+    catch(Goal, error(Formal, Ctx0),
+          ( error_context(Ctx0, PI, Ctx), throw(error(Formal, Ctx)) )).
+
+error_context(Ctx, PI, context(PI, _)) :- var(Ctx), !.
+error_context(context(P, Msg), PI, context(PI, Msg)) :- var(P), !.
+error_context(Ctx, _, Ctx).
+
+%   must_be_renaming(+Renaming): Old-New atom pairs, a permutation.
+must_be_renaming(R) :-
+    must_be(list, R),
+    forall(member(P, R), must_be_rename_pair(P)),
+    pairs_keys_values(R, Olds, News),
+    msort(Olds, Sorted),
+    (   sort(Olds, Sorted)
+    ->  true
+    ;   throw(error(domain_error(permutation, R),
+                    context(_, 'a name is renamed twice')))
+    ),
+    (   msort(News, Sorted)
+    ->  true
+    ;   throw(error(domain_error(permutation, R),
+                    context(_, 'the new names are not the old ones')))
+    ).
+
+must_be_rename_pair(P) :-
+    (   nonvar(P), P = Old-New
+    ->  must_be(atom, Old),
+        must_be(atom, New)
+    ;   var(P)
+    ->  instantiation_error(P)
+    ;   type_error(pair, P)
+    ).
+
+must_be_particle(I, N) :-
+    must_be(integer, I),
+    (   between(1, N, I) -> true ; domain_error(between(1, N), I) ).
+
+%   rename_particles(+Particles, +N, -Is): the 1-based indices of
+%   Particles (all, or a list), sorted, without repeats.
+rename_particles(Ps, N, Is) :-
+    (   Ps == all
+    ->  numlist(1, N, Is)
+    ;   must_be(list, Ps),
+        forall(member(I, Ps), must_be_particle(I, N)),
+        sort(Ps, Is)
     ).
 
 
@@ -446,6 +566,26 @@ filter_rows(F, Template, Goal, Width, Floats, Values) :-
     ->  Width = Width0, Floats = Floats0, Values = []
     ;   filter_values(F, value(Template), Goal, Values0),
         values_rows(Values0, Width, Floats, Values)
+    ).
+
+%!  filter_packed_rows(+Filter, +Template, +Goal, -Width, -Floats, -Values) is det.
+%
+%   filter_rows/6, with Floats, where the engine can read them straight
+%   from its columns (the batched engine's engine_packed_rows/5, with its
+%   column library), a blob of doubles (ddc_batch_col.pl's
+%   col_pack_rows/3): an atom, not copied out of the filter's engine as a
+%   list of floats is, whose doubles a reader in another language has
+%   copied into its memory at once (the Python bridge: 10,000 particles'
+%   positions are 30,000 floats).
+filter_packed_rows(F, Template, Goal, Width, Floats, Values) :-
+    outside_filter(F), !,
+    filter_call(F, filter_packed_rows(F, Template, Goal, Width, Floats, Values)).
+filter_packed_rows(F, Template, Goal, Width, Floats, Values) :-
+    filter_handle(F, E, S),
+    (   current_predicate(E:engine_packed_rows/5),
+        E:engine_packed_rows(S, Template, Goal, Width0, Rows)
+    ->  Width = Width0, Floats = Rows, Values = []
+    ;   filter_rows(F, Template, Goal, Width, Floats, Values)
     ).
 
 %   step_input(+Obs, +Acts, -Weighted, -Facts): a step's input checked

@@ -10,9 +10,13 @@
           [ batched_init/6              % !State, +Module, +Items, +N, +Seed, +Threads
           ]).
 
+:- use_module(library(apply)).
 :- use_module(ddc_records).
 :- use_module(ddc_body, [info_derived_timed/2, info_rvs_untimed/2, info_rvs_timed/2]).
 :- use_module(ddc_batch).
+:- use_module(ddc_batch_col, [col_backend/1]).
+:- use_module(ddc_batch_state).
+:- use_module(ddc_batch_tables).
 
 :- use_module(ddc_ops).
 
@@ -59,6 +63,44 @@ engine_resample(State, Is) :-
     batch_resample(S0, Is, S),
     commit(State, S0, S).
 
+%   engine_rename(!State, +Moves, +Is): the constants renamed by Moves in
+%   the particles Is (1-based, sorted; filter_rename/3): a new current
+%   state (the previous one, for undo, is kept) whose groups holding a
+%   particle of Is have both tables renamed (ddc_batch_tables.pl,
+%   rename_table/5; a pending older table is resampled first), the other
+%   groups as they were.
+engine_rename(State, Moves, Is) :-
+    batched_current(State, S0),
+    (   S0 = groups(Gs0)
+    ->  foldl(renamed_group(Moves, Is), Gs0, Gs, 0, _),
+        S = groups(Gs)
+    ;   renamed_group(Moves, Is, S0, S, 0, _)
+    ),
+    batch_keep(S, Kept),
+    nb_link_batched_current(State, Kept).
+
+%   renamed_group(+Moves, +Is, +G0, -G, +Offset0, -Offset): group G0, whose
+%   particles follow the first Offset0 of the filter, renamed in those of
+%   Is.
+renamed_group(Moves, Is, G0, G, Off0, Off) :-
+    batch_size(G0, N),
+    Off is Off0+N,
+    findall(L, ( member(I, Is), I > Off0, I =< Off, L is I-Off0 ), Ls),
+    (   Ls == []
+    ->  G = G0
+    ;   batch_state_module(G0, M), batch_state_time(G0, T),
+        batch_state_facts(G0, Facts), batch_state_random(G0, R),
+        batch_state_tables(G0, Tables0),
+        tables_older_time(Tables0, T0), tables_older(Tables0, Older0),
+        tables_latest_time(Tables0, T1), tables_latest(Tables0, Latest0),
+        (   Older0 == none -> Older1 = none ; real_table(Older0, Older1) ),
+        rename_table(Older1, Moves, Ls, N, Older),
+        rename_table(Latest0, Moves, Ls, N, Latest),
+        make_tables([older_time(T0), older(Older), latest_time(T1), latest(Latest)], Tables),
+        make_batch_state([module(M), size(N), time(T), tables(Tables), facts(Facts),
+                          random(R)], G)
+    ).
+
 engine_holds(State, Goal, Flags) :-
     batched_current(State, S),
     batch_query_goal(S, Goal, G),
@@ -69,10 +111,21 @@ engine_values(State, Template, Goal, Values) :-
     batch_query_goal(S, Goal, G),
     batch_values(S, Template, G, Values).
 
-%   (No rows read straight from the batch: the filter API makes them from
-%   the values.)
-engine_rows(_, _, _, _, _) :-
-    fail.
+%   (A variable's values read straight from its columns where it can,
+%   ddc_batch:batch_rows/5; else the filter API makes the rows from the
+%   values.)
+engine_rows(State, Template, Goal, Width, Floats) :-
+    batched_current(State, S),
+    batch_query_goal(S, Goal, G),
+    batch_rows(S, Template, G, Width, Floats).
+
+%   engine_packed_rows(+State, +Template, +Goal, -Width, -Rows) is semidet:
+%   engine_rows/5 with the floats in a blob of doubles
+%   (ddc_filter:filter_packed_rows/6).
+engine_packed_rows(State, Template, Goal, Width, Rows) :-
+    batched_current(State, S),
+    batch_query_goal(S, Goal, G),
+    batch_packed_rows(S, Template, G, Width, Rows).
 
 engine_time(State, T) :-
     batched_current(State, S),
@@ -82,10 +135,11 @@ engine_size(State, N) :-
     batched_current(State, S),
     batch_size(S, N).
 
-engine_statistics(State, [particles(N), time(T), engine(batched)]) :-
+engine_statistics(State, [particles(N), time(T), engine(batched), columns(B)]) :-
     batched_current(State, S),
     batch_size(S, N),
-    batch_time(S, T).
+    batch_time(S, T),
+    col_backend(B).
 
 engine_free(_).
 

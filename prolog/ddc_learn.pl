@@ -32,11 +32,14 @@
             learn_evaluate_rows/5,      % +Data, +Node, +CandidateId, +Rows, -Outcome
             learn_split/4,              % +Data, +Node, +CandidateId, -Children
             learn_forget/2,             % +Data, +Node
+            learn_forget_rows/2,        % +Data, +Node
+            learn_subset/4,             % +Data, +Node, +Rows, -Subset
             learn_clause/5,             % +Data, +Node, +Model, +Regressors, -Clause
             learn_clause_text/3,        % +Data, +Clause, -Text
             learn_leaf_text/5,          % +Data, +Node, +ModelText, +Regressors, -Texts
             learn_background_for/3,     % +Data, +Leaves, -Texts
             learn_tree_text/3,          % +Data, +Leaves, -Text
+            learn_root_model/3,         % +Data, +Target, +ModelText
             learn_background/3,         % +Data, +Clauses, -Texts
             learn_groundings/3,         % +Data, +Node, -Groundings
             learn_program_scores/5      % +Data, +ProgramFile, +Targets, +Options, -Scores
@@ -50,11 +53,12 @@
 :- use_module(ddc_learn_text, [clause_names/3, term_text/3]).
 :- use_module(ddc_learn_candidates, [allowed_by_rank/4, literal_preds/2]).
 :- use_module(ddc_learn_nodes, [head_vars/5]).
-:- reexport(ddc_learn_nodes, [learn_root/4, learn_split/4, learn_forget/2, learn_groundings/3]).
+:- reexport(ddc_learn_nodes, [learn_root/4, learn_split/4, learn_forget/2, learn_forget_rows/2,
+                              learn_subset/4, learn_groundings/3]).
 :- reexport(ddc_learn_candidates, [learn_candidates/3]).
 :- reexport(ddc_learn_outcomes, [learn_evaluate/4, learn_evaluate_rows/5]).
 :- reexport(ddc_learn_clauses, [learn_clause/5, learn_leaf_text/5, learn_background_for/3,
-                                learn_tree_text/3]).
+                                learn_tree_text/3, learn_root_model/3]).
 :- reexport(ddc_learn_background, [learn_background/3]).
 :- reexport(ddc_learn_text, [learn_clause_text/3]).
 :- reexport(ddc_learn_scores, [learn_program_scores/5]).

@@ -7,17 +7,21 @@
           [ learn_clause/5,             % +Data, +Node, +Model, +Regressors, -Clause
             learn_leaf_text/5,          % +Data, +Node, +ModelText, +Regressors, -Texts
             learn_background_for/3,     % +Data, +Leaves, -Texts
-            learn_tree_text/3           % +Data, +Leaves, -Text
+            learn_tree_text/3,          % +Data, +Leaves, -Text
+            learn_root_model/3          % +Data, +Target, +ModelText
           ]).
 
 :- use_module(library(lists)).
 :- use_module(library(apply)).
+:- use_module(library(error)).
+:- use_module(library(pairs)).
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_records).
 :- use_module(ddc_body, [conj_from_list/2]).
 :- use_module(ddc_learn_text, [clause_names/3, learn_clause_text/3, new_var/4, print_conj/1,
                                print_literal/1, print_dc_term/1, term_text/3]).
-:- use_module(ddc_learn_candidates, [agg_call/4, fresh_values/2, node_branch_literal/8]).
+:- use_module(ddc_learn_candidates, [agg_call/4, branch_count/2, fresh_values/2,
+                                     node_branch_literal/8]).
 :- use_module(ddc_learn_background, [learn_background/3]).
 
 :- set_prolog_flag(optimise, true).
@@ -53,7 +57,8 @@ learn_clause(M, Node, Model, Regs, Clause) :-
 %
 %   learn_clause/5 for Python: the model as Prolog text; Texts has clause
 %   (the clause in DC syntax), distribution (its head's) and model (the
-%   statistical model's goals, "" without regressors).
+%   statistical model's goals, "" without regressors; a root model's
+%   features and scores left out).
 learn_leaf_text(M, Node, ModelText, Regs, _{clause: CT, distribution: DT, model: MT}) :-
     term_string(Model, ModelText),
     leaf_clause(M, Node, Model, Regs, Clause, Dist, Goals),
@@ -66,10 +71,11 @@ learn_leaf_text(M, Node, ModelText, Regs, _{clause: CT, distribution: DT, model:
 
 %   leaf_clause(+M, +Node, +Model, +Regs, -Clause, -Dist, -Goals): the
 %   leaf's clause(Term, Bindings) (learn_clause/5), its head's distribution
-%   and its model's goals.
+%   and its model's goals (not those of a root model's features and
+%   scores, which the clause computes before them).
 leaf_clause(M, Node, Model, Regs, clause((Head ~ Dist := Body), Bs), Dist, Goals) :-
-    clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs),
-    append(Lits, Goals, Ls),
+    clause_parts(M, Node, Model, Regs, Head, Dist, Lits, SGoals-Goals, Bs),
+    append([Lits, SGoals, Goals], Ls),
     conj_from_list(Ls, Body).
 
 strip_parens(S0, S) :-
@@ -86,6 +92,24 @@ learn_background_for(M, Leaves, Texts) :-
     findall(C, ( member([Node, MT, Regs], Leaves), term_string(Model, MT),
                  learn_clause(M, Node, Model, Regs, C) ), Cs),
     learn_background(M, Cs, Texts).
+
+%!  learn_root_model(+Data, +Target:atom, +ModelText:string) is det.
+%
+%   Set the root model of Target (its internal name) that the leaves'
+%   negative regressors read: ModelText is the text of
+%   root_model(Features, Rows).  Features are the model's inputs, each
+%   value(CandidateId, Fill) (a numeric candidate's value, Fill where it is
+%   undefined; a count) or branch(CandidateId, Branch) (1 where the
+%   branch's literal holds, else 0) of a candidate that reads only the
+%   head's variables; Rows are the weights [w1, ..., wn, b] of each score,
+%   the linear predictor z_J = w.x + b over the features.
+learn_root_model(M, N, Text) :-
+    term_string(T, Text),
+    (   T = root_model(Fs, Rows), is_list(Fs), is_list(Rows) -> true
+    ;   type_error(root_model, T)
+    ),
+    retractall(M:'$ddcl_root_model'(N, _)),
+    assertz(M:'$ddcl_root_model'(N, T)).
 
 %!  learn_tree_text(+Data, +Leaves:list, -Text:string) is semidet.
 %
@@ -111,7 +135,7 @@ learn_tree_text(M, Leaves, Text) :-
     dist_template(Dist0, Dist, Bs0, Bs1),
     maplist(leaf_item(M), Leaves, Items),
     start_path(HeadVars, Bs1, S0),
-    tree_node(Items, tree_context(M, Spec, Dist), S0, Bs, Tree),
+    tree_node(Items, tree_context(M, Spec, Dist, N-A), S0, Bs, Tree),
     dedupe_names(Bs, Bs2),
     copy_term(t(Head, Dist, Guard, Tree)-Bs2, t(H1, D1, G1, T1)-Bs3),
     maplist([Name=V]>>( var(V) -> V = '$VAR'(Name) ; true ), Bs3),
@@ -155,20 +179,23 @@ param_goal(P, Q, [Q = P|Gs], Gs).
 %   path_state record, see path_literal/4) in the context
 %   tree_context(Data, Spec, HeadDist); Tree is leaf(Comment, Goals) or
 %   node([Lit-Tree, ...]).
-tree_node([[]-leaf(Model, Regs, Comment)], tree_context(_, Spec, Dist), S, Bs,
+tree_node([[]-leaf(Model, Regs, Comment)], tree_context(M, Spec, Dist, N-A), S, Bs,
           leaf(Comment, Goals)) :- !,
     path_state_names(S, Bs0),
     path_state_regressors(S, Xs0),
-    regressor_vars(Regs, Xs0, Xs),
-    once(model_goals(Model, Spec, Xs, D, Goals0, Bs0, Bs)),
+    path_state_values(S, VT),
+    length(HeadVars, A), append(HeadVars, _, VT),
+    score_goals(M, N, HeadVars, Regs, SGoals, Xs0, Xs1, Bs0, Bs1),
+    regressor_vars(Regs, Xs1, Xs),
+    once(model_goals(Model, Spec, Xs, D, Goals0, Bs1, Bs)),
     leaf_params(D, Dist, Eqs),
-    append(Goals0, Eqs, Goals).
+    append([SGoals, Goals0, Eqs], Goals).
 tree_node(Items, Ctx, S0, Bs, node(Branches)) :-
     Items = [[step(Id, _)|_]-_|_],
     forall(member(P-_, Items), P = [step(Id, _)|_]),
     group_branches(Items, Groups),
     tree_branches(Groups, Id, Ctx, S0, Bs, Branches0),
-    Ctx = tree_context(M, _, _),
+    Ctx = tree_context(M, _, _, _),
     (   exhaustive(M, Id, Groups)
     ->  append(Front, [_-Last], Branches0),
         (   threshold_node(Front, Last, Branches1) -> true
@@ -218,7 +245,7 @@ same_branch(Is, _, [], Is).
 tree_branches([], _, _, S, Bs, []) :-
     path_state_names(S, Bs).
 tree_branches([B-Sub|Gs], Id, Ctx, S0, Bs, [Lit-T|Ts]) :-
-    Ctx = tree_context(M, _, _),
+    Ctx = tree_context(M, _, _, _),
     path_literal(M, step(Id, B), S0, S1),
     path_state_literals(S1, [Lit|_]),
     tree_node(Sub, Ctx, S1, Bs1, T),
@@ -266,7 +293,10 @@ print_cond((G -> true)) :- !, print_literal(G).
 print_cond((A, B)) :- !, print_conj((A, B)).
 print_cond(G) :- print_literal(G).
 
-clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs) :-
+%   clause_parts(+M, +Node, +Model, +Regs, -Head, -Dist, -Lits, -ScoreGoals-ModelGoals, -Bs):
+%   a leaf clause's head, distribution, path literals, the goals of its
+%   root model's features and scores (score_goals/9), its model's goals.
+clause_parts(M, Node, Model, Regs, Head, Dist, Lits, SGoals-MGoals, Bs) :-
     M:'$ddcl_node'(Node, Info, _),
     node_info_target(Info, target(N, A, Spec)),
     node_info_path(Info, Path),
@@ -278,8 +308,9 @@ clause_parts(M, Node, Model, Regs, Head, Dist, Lits, Goals, Bs) :-
     path_state_regressors(S, Xs0),
     reverse(RevLits, Lits1),
     examples_guard(M, N, A, HeadVars, Lits1, Lits),
-    regressor_vars(Regs, Xs0, Xs),
-    (   model_goals(Model, Spec, Xs, Dist, Goals, Bs1, Bs) -> true
+    score_goals(M, N, HeadVars, Regs, SGoals, Xs0, Xs1, Bs1, Bs2),
+    regressor_vars(Regs, Xs1, Xs),
+    (   model_goals(Model, Spec, Xs, Dist, MGoals, Bs2, Bs) -> true
     ;   throw(error(ddc_learn(bad_model(Model, Spec), Node), _))
     ).
 
@@ -354,6 +385,72 @@ regressor_of(numeric, _, V, V) :- !.
 regressor_of(count, (_, length(_, X)), _, X) :- !.
 regressor_of(agg_numeric, (_, Call), _, X) :- agg_call(_, _, X, Call), !.   % mean_list(L, X)
 regressor_of(_, _, _, none).
+
+%   score_goals(+M, +Target, +HeadVars, +Regs, -Goals, +Xs0, -Xs, +Bs0, -Bs):
+%   when Regs has a negative regressor (a score of the root model), Goals
+%   compute the root model's features (feature_goals/7) and scores
+%   (linear/3), and Xs is Xs0 with the pairs (-1-J)-ScoreJ; else Goals is
+%   [] and Xs is Xs0.
+score_goals(M, N, HeadVars, Regs, Goals, Xs0, Xs, Bs0, Bs) :-
+    (   member(R, Regs), R < 0
+    ->  (   M:'$ddcl_root_model'(N, root_model(Fs, Rows)) -> true
+        ;   throw(error(ddc_learn(no_root_model(N), N), _))
+        ),
+        feature_goals(M, Fs, HeadVars, FVs, FGoals, Bs0, Bs1),
+        score_vars(Rows, FVs, 1, LGoals, Pairs, Bs1, Bs),
+        append(Xs0, Pairs, Xs),
+        append(FGoals, LGoals, Goals)
+    ;   Goals = [], Xs = Xs0, Bs = Bs0
+    ).
+
+%   score_vars(+Rows, +FeatureVars, +J, -Goals, -Pairs, +Bs0, -Bs): one
+%   goal linear(FeatureVars, Row, Score) per row, from the J-th score on;
+%   Pairs are the regressors (-J)-Score.
+score_vars([], _, _, [], [], Bs, Bs).
+score_vars([Row|Rows], FVs, J, [linear(FVs, Row, Z)|Gs], [R-Z|Ps], Bs0, Bs) :-
+    R is -J,
+    new_var('Score', Z, Bs0, Bs1),
+    J1 is J+1,
+    score_vars(Rows, FVs, J1, Gs, Ps, Bs1, Bs).
+
+%   feature_goals(+M, +Features, +HeadVars, -Vars, -Goals, +Bs0, -Bs): the
+%   goals that give each feature of a root model its value, Vars in the
+%   order of Features.  A numeric value whose undefined branch is a
+%   feature too is read by one goal, (Lit -> U = 0 ; X = Fill, U = 1).
+feature_goals(M, Fs, HeadVars, Vs, Goals, Bs0, Bs) :-
+    length(Fs, NF), length(Vs, NF),
+    pairs_keys_values(FVs, Fs, Vs),
+    feature_goals_(FVs, M, HeadVars, FVs, [], Goals, Bs0, Bs).
+
+feature_goals_([], _, _, _, _, [], Bs, Bs).
+feature_goals_([F-V|Rest], M, HeadVars, FVs, Done, Goals, Bs0, Bs) :-
+    (   memberchk(F, Done)
+    ->  Goals = Goals1, Done1 = Done, Bs1 = Bs0
+    ;   feature_goal_(M, HeadVars, FVs, F, V, G, Also, Bs0, Bs1),
+        Goals = [G|Goals1],
+        append([F|Also], Done, Done1)
+    ),
+    feature_goals_(Rest, M, HeadVars, FVs, Done1, Goals1, Bs1, Bs).
+
+feature_goal_(M, HeadVars, FVs, value(Id, Fill), X, G, Also, Bs0, Bs) :- !,
+    M:'$ddcl_cand'(Id, _, Spec),
+    node_branch_literal(M, Spec, HeadVars, 0, S1, Lit, Bs0, Bs1),
+    candidate_kind(S1, Kind),
+    candidate_value(S1, Val),
+    regressor_of(Kind, Lit, Val, X0),
+    branch_count(Spec, NB), Last is NB-1,
+    (   Kind == count
+    ->  G = Lit, Also = [], Bs = Bs1
+    ;   Last > 0, memberchk(branch(Id, Last)-U, FVs)
+    ->  G = (Lit -> U = 0 ; X0 = Fill, U = 1), Also = [branch(Id, Last)],
+        new_var('U', U, Bs1, Bs)
+    ;   G = (Lit -> true ; X0 = Fill), Also = [], Bs = Bs1
+    ),
+    X = X0.
+feature_goal_(M, HeadVars, _, branch(Id, B), F, (Lit -> F = 1 ; F = 0), [], Bs0, Bs) :- !,
+    M:'$ddcl_cand'(Id, _, Spec),
+    node_branch_literal(M, Spec, HeadVars, B, _, Lit, Bs0, Bs1),
+    new_var('I', F, Bs1, Bs).
 
 regressor_vars([], _, []).
 regressor_vars([R|Rs], Xs0, [X|Xs]) :-

@@ -31,6 +31,7 @@
             fact_where/3,               % +Data, +Key, -Where
             dist_points/3,              % +Dist, +Samples, -Points
             data_read_terms/3,          % +File, +Mode, -Items
+            learn_data_record/4,        % +Data, +Files, +Targets, -Text
             op(700, xfx, ::)            % P :: Atom, a probabilistic atom (the DC
           ]).                           % operators: reexported from ddc_ops)
 
@@ -43,7 +44,7 @@
 :- use_module(ddc_dist).
 :- use_module(ddc_models).
 :- use_module(ddc_learn_syntax, [time_rename_items/3]).
-:- use_module(ddc_learn_bias, [bias_items/2, finish_preds/2, given_weight/3]).
+:- use_module(ddc_learn_bias, [bias_items/2, bias_term/2, finish_preds/2, given_weight/3]).
 :- use_module(ddc_learn_facts, [load_item/2, prob_table/2]).
 :- reexport(ddc_learn_syntax, [dc_goal/4, internal_key/3, dc_term/3]).
 :- reexport(ddc_learn_facts, [pick/3, fact_where/3, dist_points/3]).
@@ -95,7 +96,12 @@ data_counter(0).
 %
 %   Read the data files into a new module Data.  Options: targets(false)
 %   reads data to score a program on (no target need be declared, none
-%   need have facts).  Every fact is checked against the bias: a value outside a
+%   need have facts); for such data, when no file has a declaration (a
+%   test file of facts only), bias_files(Fs) gives the declarations that
+%   say how their facts are read (those of the files Fs, in their
+%   dialect), else program(File) takes them from the record of the
+%   program File was learned from (learn_data_record/4).  Every fact is
+%   checked against the bias: a value outside a
 %   declared domain, a non-number for a continuous attribute, a key with
 %   two values, a mode that names an unknown predicate, a target without
 %   facts, a rank that lists a predicate twice are errors naming the file
@@ -109,7 +115,7 @@ learn_data_load(Files, Options, Data) :-
     maplist(resolve_data_file, Files, Paths),
     new_data_module(Data),
     (   option(targets(false), Options) -> Check = false ; Check = true ),
-    catch(load_into(Data, Paths, Check), E, ( learn_data_free(Data), throw(E) )).
+    catch(load_into(Data, Paths, Check, Options), E, ( learn_data_free(Data), throw(E) )).
 
 resolve_data_file(Spec, Path) :-
     (   absolute_file_name(Spec, Path, [access(read), file_errors(fail)])
@@ -134,7 +140,9 @@ new_data_module(M) :-
                                  '$ddcl_dreaml'/3, '$ddcl_timed'/3, '$ddcl_mode'/6,
                                  '$ddcl_thresholds'/2, '$ddcl_rank'/2, '$ddcl_target'/4,
                                  '$ddcl_examples'/4, '$ddcl_background'/3, '$ddcl_file'/2,
-                                 '$ddcl_warning'/1, '$ddcl_prob_pred'/2, '$ddcl_bg_rv'/2]).
+                                 '$ddcl_warning'/1, '$ddcl_prob_pred'/2, '$ddcl_bg_rv'/2,
+                                 '$ddcl_root_model'/2, '$ddcl_declaration'/3,
+                                 '$ddcl_bias_source'/1]).
 
 declare_dynamic(M, PI) :- dynamic(M:PI).
 
@@ -149,12 +157,22 @@ learn_data_free(M) :-
     ;   true
     ).
 
-load_into(M, Paths, Check) :-
-    maplist(read_file_items, Paths, ItemLists),
-    append(ItemLists, Items0),
-    maplist(dialect_of, Paths, ItemLists, Dialects),
+load_into(M, Paths, Check, Options) :-
+    maplist(read_file_items, Paths, ItemLists0),
+    (   \+ ( member(Is, ItemLists0), member(item(T, _, D, _), Is), bias_term(D, T) )
+    ->  (   Check == false, reading_bias(Options, Dialect, Extra, Source)
+        ->  maplist(maplist(set_dialect(Dialect)), ItemLists0, ItemLists)
+        ;   ItemLists = ItemLists0, Extra = [], Source = none
+        ),
+        assertz(M:'$ddcl_bias_source'(Source))
+    ;   ItemLists = ItemLists0, Extra = []
+    ),
+    append([Extra|ItemLists], Items0),
+    maplist(file_dialect, ItemLists, Dialects),
     pairs_keys_values(FDs, Paths, Dialects),
     forall(member(F-D, FDs), assertz(M:'$ddcl_file'(F, D))),
+    forall(( member(item(T, _, D, W), Items0), reading_declaration(D, T) ),
+           assertz(M:'$ddcl_declaration'(D, T, W))),
     time_rename_items(M, Items0, Items),
     bias_items(M, Items),
     finish_preds(M, Items),
@@ -170,6 +188,75 @@ read_file_items(Path, Items) :-
     maplist(set_dialect(D), Items0, Items).
 
 set_dialect(D, item(T, Vs, _, W), item(T, Vs, D, W)).
+
+file_dialect([item(_, _, D, _)|_], D) :- !.
+file_dialect([], own).
+
+%   reading_declaration(+Dialect, +Term): a declaration that says how facts
+%   are read (which predicates are random variables, their values, their
+%   argument types, the groundings of a target given as atoms), as opposed
+%   to the search's (modes, targets, ranks, thresholds).
+reading_declaration(dreaml, T) :-
+    functor(T, N, A), memberchk(N/A, [base/1, thres/4, randomVariableNames/1]).
+reading_declaration(own, T) :-
+    functor(T, N, A), memberchk(N/A, [type/1, rv/1, rv/2, examples/2]).
+
+%   reading_bias(+Options, -Dialect, -Items, -Source): the declarations to
+%   read test facts by, when their files have none: those of the files of
+%   bias_files(Fs), or of the record of the program of program(File).
+reading_bias(Options, D, Items, bias_files(Fs)) :-
+    option(bias_files(Fs0), Options), Fs0 \== [], !,
+    maplist(resolve_data_file, Fs0, Fs),
+    maplist(read_file_items, Fs, Lists),
+    Lists = [L0|_], file_dialect(L0, D),
+    findall(I, ( member(L, Lists), member(I, L), I = item(T, _, D, _),
+                 reading_declaration(D, T) ), Items).
+reading_bias(Options, D, Items, program(P, Files)) :-
+    option(program(P0), Options),
+    resolve_data_file(P0, P),
+    program_record(P, learned_from(D, Files, _, Decls), Line),
+    findall(item(T, [], D, P:Line), ( member(T, Decls), reading_declaration(D, T) ), Items).
+
+%   program_record(+ProgramFile, -Record, -Line:integer) is semidet.
+%
+%   Record is the learned_from(Dialect, Files, Targets, Declarations) fact
+%   of a learned program (learn_data_record/4) and Line its line; fails if
+%   the program has none.
+program_record(P, learned_from(D, Fs, Ts, Ds), Line) :-
+    data_read_terms(P, own, Items),
+    member(item(learned_from(D, Fs, Ts, Ds), _, _, _:Line), Items),
+    atom(D), is_list(Fs), is_list(Ds), !.
+
+%!  learn_data_record(+Data, +Files:list, +Targets:list(atom), -Text:string) is det.
+%
+%   The record a learned program keeps of its data, as the DC text of a
+%   fact learned_from(Dialect, Files, Targets, Declarations): the dialect
+%   of the data (dreaml if a file is DreaML's), the data files (as given),
+%   the targets (their DC keys, e.g. occluder(_, _):t+1, of the internal
+%   names Targets) and the declarations that say how the facts are read
+%   (reading_declaration/2: base/1, thres/4, randomVariableNames/1; type/1,
+%   rv/1,2, examples/2).  `ddc evaluate` reads test files that have no
+%   declarations by them.
+learn_data_record(M, Files, Targets, Text) :-
+    (   M:'$ddcl_file'(_, dreaml) -> D = dreaml ; D = own ),
+    findall(T, M:'$ddcl_declaration'(D, T, _), Ds),
+    findall(K, ( member(N, Targets), M:'$ddcl_target'(N, A, _, _),
+                 length(As, A), K0 =.. [N|As], dc_term(M, K0, K) ), Ks),
+    maplist([F, A]>>( atom(F) -> A = F ; atom_string(A, F) ), Files, FAs),
+    copy_term(t(FAs, Ks, Ds), t(FAs1, Ks1, Ds1)),
+    maplist([T]>>numbervars(T, 0, _, [singletons(true)]), Ks1),
+    maplist([T]>>numbervars(T, 0, _, [singletons(true)]), Ds1),
+    with_output_to(string(Text),
+                   ( format('learned_from(~q, ', [D]), record_term(FAs1), write(','), nl,
+                     write('    '), record_term(Ks1), write(','), nl,
+                     write('    ['),
+                     foldl([T, Sep0, Sep]>>( write(Sep0), record_term(T), Sep = ',\n      ' ),
+                           Ds1, ' ', _),
+                     write(']).') )).
+
+record_term(T) :-
+    write_term(T, [quoted(true), numbervars(true), spacing(next_argument),
+                   module(ddc_learn_data)]).
 
 dialect_of(_, Items, dreaml) :-
     member(item(T, _, _, _), Items),

@@ -111,6 +111,10 @@ dreaml_item(M, F, _, W) :-
     (   A > 0, A1 is A-1, M:'$ddcl_pred'(N, A1, rv(_)), ground(F)
     ->  F =.. [N|As], append(Ks, [V], As), K =.. [N|Ks],
         rv_fact(M, K, V, W)
+    ;   ground(F), M:'$ddcl_pred'(N, A, rv(S)), \+ M:'$ddcl_pred'(N, A, atom),
+        memberchk(S, [infer, infer_numeric, discrete([true, false])])
+    ->  rv_fact(M, F, true, W)              % DreaML's held-out files: hasLoan(a, l) for
+                                            % hasLoan(a, l, true), as its loader reads them
     ;   ground(F)
     ->  atom_fact(M, F, W)
     ;   prolog_background(M, F, W)

@@ -105,6 +105,11 @@ learn_cause(no_types(P)) --> !,
     [ 'a mode with + or - arguments needs the argument types of ~w: declare type(...) (or base/1)'-[P] ].
 learn_cause(bad_model(Model, Spec)) --> !,
     [ 'the model ~q does not fit a target with values ~q'-[Model, Spec] ].
+learn_cause(no_root_model(T)) --> !,
+    [ 'a leaf of ~w reads its root model''s scores, but none was set (learn_root_model/3)'-[T] ].
+learn_cause(test_without_facts(Ts, P, Source, Long)) --> !,
+    [ 'no test facts of the random variables of ~w (~w)'-[P, Ts] ],
+    test_reading(Source, Long).
 learn_cause(no_value(Key)) --> !, [ 'the example ~q has no value'-[Key] ].
 learn_cause(too_many_worlds(Max)) --> !,
     [ 'a grounding splits into more than ~D partial worlds (uncertain facts it reads); raise max_worlds or make facts certain'-[Max] ].
@@ -116,3 +121,19 @@ learn_cause(cyclic_targets(Ts)) --> !,
 learn_cause(random_variable_as_atom(P)) --> !,
     [ '~w is a random variable: read it with ~~= (K ~~= V)'-[P] ].
 learn_cause(C) --> [ '~q'-[C] ].
+
+%   test_reading(+Source, +DreamlForm): how the test data were read, and
+%   what to do; DreamlForm are the targets' N/A+1 that the data have as
+%   atoms (DreaML's form of a random variable, the value last).
+test_reading(declared, _) --> !,
+    [ ': the test data were read with their own declarations'-[] ].
+test_reading(bias_files(Fs), _) --> !,
+    [ ': the test facts were read with the declarations of ~w'-[Fs] ].
+test_reading(program(_, Fs), _) --> !,
+    [ ': the test facts were read in the dialect and with the declarations of the data the program was learned from (~w); pass the files whose declarations say how they are written with --bias FILE'-[Fs] ].
+test_reading(none, Long) -->
+    [ ': the test data have no declarations (no bias) and the program does not say what it was learned from, so their facts were read in the project''s own dialect (a random variable''s fact is K ~~= V)'-[] ],
+    (   { Long == [] } -> []
+    ;   [ '; they hold ~w facts, DreaML''s form (the value last)'-[Long] ]
+    ),
+    [ '. If they are DreaML''s facts, whose declarations are in the training file, pass that file: ddc evaluate PROGRAM TEST.pl --bias TRAIN.pl'-[] ].

@@ -6,6 +6,8 @@
           [ learn_root/4,               % +Data, +Target, +Options, -Root
             learn_split/4,              % +Data, +Node, +CandidateId, -Children
             learn_forget/2,             % +Data, +Node
+            learn_forget_rows/2,        % +Data, +Node
+            learn_subset/4,             % +Data, +Node, +Rows, -Subset
             learn_groundings/3,         % +Data, +Node, -Groundings
             target_examples/4,          % +Data, +Name, +KeyArity, -Keys
             target_value_goal/6,        % +Data, +Name, +KeyArity, -Key, -Value, -Goal
@@ -16,6 +18,7 @@
 :- use_module(library(apply)).
 :- use_module(library(assoc)).
 :- use_module(library(pairs)).
+:- use_module(library(error)).
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_facts, [prob_table/2]).
 :- use_module(ddc_learn_records).
@@ -193,6 +196,42 @@ new_node(M, Info, Rows, Id) :-
 %   Drop a node's rows (a branch the search did not keep, a lookahead).
 learn_forget(M, Node) :-
     retractall(M:'$ddcl_node'(Node, _, _)).
+
+%!  learn_forget_rows(+Data, +Node) is det.
+%
+%   Drop a node's rows but keep the node (its path): a node that was split
+%   can still become a leaf, whose clause needs only its path.
+learn_forget_rows(M, Node) :-
+    (   retract(M:'$ddcl_node'(Node, Info, _))
+    ->  assertz(M:'$ddcl_node'(Node, Info, []))
+    ;   true
+    ).
+
+%!  learn_subset(+Data, +Node, +Rows:list(integer), -Subset:integer) is det.
+%
+%   A new node with Node's path and the rows of Node at the indices Rows
+%   (from 0, in this order): a tree grown on some of the data, or other
+%   data taken down a tree.
+learn_subset(M, Node, Is, Id) :-
+    must_be(list(nonneg), Is),
+    M:'$ddcl_node'(Node, Info, Rows),
+    msort(Is, Sorted),
+    rows_at(Sorted, 0, Rows, Picked0),
+    (   Is == Sorted -> Picked = Picked0
+    ;   pairs_keys_values(Ps, Sorted, Picked0),
+        list_to_assoc(Ps, Assoc),
+        maplist(row_of(Assoc), Is, Picked)
+    ),
+    new_node(M, Info, Picked, Id).
+
+row_of(Assoc, I, R) :- get_assoc(I, Assoc, R).
+
+rows_at([], _, _, []) :- !.
+rows_at([I|Is], K, [R|Rs], Out) :-
+    (   I =:= K
+    ->  Out = [R|Out1], rows_at(Is, K, [R|Rs], Out1)
+    ;   K1 is K+1, rows_at([I|Is], K1, Rs, Out)
+    ).
 
 %!  learn_groundings(+Data, +Node, -Groundings:list) is det.
 %

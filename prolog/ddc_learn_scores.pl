@@ -9,6 +9,7 @@
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(assoc)).
+:- use_module(library(option)).
 :- use_module(ddc_dist).
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_text, [term_text/3]).
@@ -42,18 +43,40 @@ proof needs (ddc_learn_worlds.pl).
 %   give weighted partial worlds (expected scores).  Scores: one dict per
 %   target with target, n (groundings), weight, log_likelihood (sum),
 %   mean_log_likelihood, uncovered (groundings no clause applied to),
-%   accuracy (discrete targets) or rmse (continuous).
+%   accuracy (discrete targets) or rmse (continuous).  Options:
+%   examples(true) adds examples, each example's [Weight, LogLikelihood]
+%   in the order of the target's groundings.
 %
 %   @error ddc_learn(value_not_in_program(Key, Value, Values), File:Line)
-learn_program_scores(M, File, Targets0, _Options, Scores) :-
+learn_program_scores(M, File, Targets0, Options, Scores) :-
     data_read_terms(File, own, Items),
     load_program(M, Items, Heads),
     (   Targets0 == []
     ->  findall(N, ( member(N/A, Heads), M:'$ddcl_pred'(N, A, rv(_)),
-                     target_examples(M, N, A, Ks), Ks \== [] ), Targets)
+                     target_examples(M, N, A, Ks), Ks \== [] ), Targets),
+        (   Targets == [] -> no_facts_error(M, File, Heads) ; true )
     ;   Targets = Targets0
     ),
-    maplist(target_scores(M, File), Targets, Scores).
+    maplist(target_scores(M, File), Targets, Scores0),
+    (   option(examples(true), Options)
+    ->  Scores = Scores0
+    ;   maplist([D0, D]>>del_dict(examples, D0, _, D), Scores0, Scores)
+    ).
+
+%   no_facts_error(+M, +Program, +Targets): none of the targets (N/A) has
+%   a grounding in the test data; the error says how the test data were
+%   read (their own declarations, the program's record, --bias files, or
+%   none) and, without declarations, which file to pass.
+no_facts_error(M, Program, Targets) :-
+    (   M:'$ddcl_file'(Test, _) -> true ; Test = Program ),
+    (   M:'$ddcl_bias_source'(Source) -> true ; Source = declared ),
+    maplist(target_key_text(M), Targets, Names),
+    atomic_list_concat(Names, ', ', Text),
+    findall(N/A1, ( member(N/A, Targets), A1 is A+1, M:'$ddcl_pred'(N, A1, atom) ), Long),
+    throw(error(ddc_learn(test_without_facts(Text, Program, Source, Long), Test:0), _)).
+
+target_key_text(M, N/A, Text) :-
+    length(As, A), K =.. [N|As], dc_term(M, K, DK), term_text(DK, [], Text).
 
 load_program(M, Items0, Heads) :-
     maplist(internal_item(M), Items0, Items),
@@ -96,9 +119,11 @@ program_rv(M, K, D, B, W) :-
     assertz(M:'$prog_clause'(N/A, Ks-D-W, G)).
 
 target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_likelihood: LL,
-                           mean_log_likelihood: MLL, uncovered: U, accuracy: Acc, rmse: RMSE}) :-
+                           mean_log_likelihood: MLL, uncovered: U, accuracy: Acc, rmse: RMSE,
+                           examples: PerExample}) :-
     (   M:'$ddcl_pred'(N, A, rv(Spec)) -> true
-    ;   throw(error(ddc_learn(target_without_facts(N/any), File:0), _))
+    ;   M:'$prog_clause'(N/A0, _, _) -> no_facts_error(M, File, [N/A0])
+    ;   no_facts_error(M, File, [N/0])
     ),
     length(Vs, A), K0 =.. [N|Vs], dc_term(M, K0, T0), term_text(T0, [], Text),
     target_examples(M, N, A, Keys),
@@ -109,7 +134,8 @@ target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_l
              ->  ddc_learn_facts:eval_dist_at(D0, CW, D), R = d(D)
              ;   R = uncovered
              ) ),
-    foldl(score_example(M, N, Ks, Goal, Y-R, Spec), Keys, score_sums(0, 0, 0, 0, 0), S),
+    foldl(score_example(M, N, Ks, Goal, Y-R, Spec), Keys, score_sums(0, 0, 0, 0, 0)-PerExample,
+          S-[]),
     S = score_sums(SW, SLL, SC, SE, U),
     (   SW > 0, U =:= 0 -> MLL is SLL / SW ; SW > 0 -> MLL = -inf ; MLL = nan ),
     LL = SLL,
@@ -118,12 +144,19 @@ target_scores(M, File, N, _{target: Text, predicate: N, n: NE, weight: SW, log_l
     ;   Acc = nan, ( SW > 0 -> RMSE is sqrt(SE / SW) ; RMSE = nan )
     ).
 
-score_example(M, N, Ks, Goal, Out, Spec, Key, S0, S) :-
+%   score_example(..., +Key, +Sums0-[[Weight, LogLik]|Es], -Sums-Es): an
+%   example's scores added to the sums, and its own weight and
+%   log-likelihood (over its partial worlds) listed.
+score_example(M, N, Ks, Goal, Out, Spec, Key, S0-[[W1, L1]|Es], S-Es) :-
     copy_term(Ks-Goal-Out, Key-G-O),
     empty_assoc(E0),
     K =.. [N|Key], example_weight(M, K, W),
     world_alternatives(M, G, O, E0, W, Alts),
-    foldl(score_alternative(M, N, Key, Spec), Alts, S0, S).
+    foldl(score_alternative(M, N, Key, Spec), Alts, S0, S),
+    S0 = score_sums(Wa, La, _, _, _),
+    S = score_sums(Wb, Lb, _, _, _),
+    W1 is Wb - Wa,
+    (   La =:= Lb -> L1 = 0.0 ; L1 is Lb - La ).
 
 %   score_sums(Weight, LogLikelihood, Correct, SquaredError, Uncovered):
 %   the sums over a target's groundings and partial worlds.

@@ -97,6 +97,9 @@ conj_to_list(A, [A]).
 %   Write a body literal in DC syntax (negations, if-then, comparisons
 %   with their operators, findall_forward/3 with a conjunction).
 print_literal(\+ G) :- !, write('\\+ '), print_literal(G).
+print_literal((A -> B ; C)) :- !,
+    write('('), print_literal(A), write(' -> '), print_conj(B), write(' ; '), print_conj(C),
+    write(')').
 print_literal((A -> B)) :- !, write('('), print_literal(A), write(' -> '), print_literal(B), write(')').
 print_literal((A, B)) :- !, write('('), print_conj((A, B)), write(')').
 print_literal(findall_forward(T, G, L)) :- !,

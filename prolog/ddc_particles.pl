@@ -55,6 +55,7 @@
 :- use_module(library(apply)).
 :- use_module(library(aggregate)).
 :- use_module(library(pairs)).
+:- use_module(library(ordsets)).
 :- use_module(ddc_records).
 :- use_module(ddc_store).
 :- use_module(ddc_body).
@@ -62,6 +63,7 @@
 :- use_module(ddc_programs, [optimised/1]).
 :- use_module(ddc_pool).
 :- use_module(ddc_rows).
+:- use_module(ddc_rename, [rename_term/3, rename_arguments/3]).
 
 :- use_module(ddc_ops).
 
@@ -172,6 +174,105 @@ engine_resample(State, Is) :-
     findall(W, ( member(I, Is), I1 is I+1, arg(I1, Ws0, W) ), L),
     Ws =.. [ws|L],
     commit(State, T, Ws, Sh, T, Ws0, Sh, R).
+
+%   engine_rename(!State, +Moves, +Is): in the particles Is (1-based,
+%   sorted), the constants renamed by Moves (filter_rename/3): each one's
+%   store is built anew with its entries renamed (renamed_entry/3).  A
+%   shared value that the rename changes (its key or its value names a
+%   moved constant) cannot stay shared: it leaves a copy of the shared
+%   values (the previous state, kept for undo, may hold the same record),
+%   goes into every particle's own store (renamed in the renamed ones) and
+%   into the impure keys, so that nothing computed from it later is
+%   shared; so do the keys the renamed particles now hold.  A moved key
+%   that leaves the shared store leaves the step's moved list too (its
+%   copies are no longer dropped at the next step).  The untimed copies
+%   of the step's observations (raw keys) are the step's input: they stay.
+%   The particles are the filter's own terms (a step and a resampling
+%   make new ones; the previous state keeps its own): changed in place.
+engine_rename(State, Moves, Is) :-
+    particles_name(State, F),
+    particles_size(State, N),
+    particles_time(State, T),
+    particles_worlds(State, Ws),
+    particles_shared(State, Sh0),
+    atom_concat(F, '$rename', FN),
+    nb_setval(FN, Sh0),
+    nb_getval(FN, Sh),
+    shared_store(Sh, SS), shared_impure_keys(Sh, Impure), shared_raw_keys(Sh, Raw),
+    findall(KV, ( store_match(SS, K, V), value_key(K), \+ memberchk(K, Raw),
+                  KV = K-V, renamed_entry(Moves, KV, KV1), KV1 \== KV ),
+            Unshared),
+    forall(member(K-_, Unshared), ( store_delete(SS, K), impure_key(Impure, K) )),
+    drop_moved(SS, T, Unshared),
+    (   Unshared == []
+    ->  Others = []
+    ;   numlist(1, N, All), ord_subtract(All, Is, Others)
+    ),
+    forall(member(I, Others),
+           forall(member(K-V, Unshared), own_copy(Ws, I, K, V))),
+    forall(( member(I, Is), arg(I, Ws, W) ),
+           rename_world(W, Moves, Unshared, Impure)),
+    nb_link_particles_shared(State, Sh),
+    nb_delete(FN).
+
+%   value_key(+Key): a key of a value a particle holds (a random variable
+%   X-T, a memoised or materialised derived atom), not a step's marker.
+value_key(_-_).
+value_key('$memo'(_, _)).
+value_key('$mat'(_, _)).
+
+%   renamed_entry(+Moves, +K-V, -K1-V1): a store entry renamed: a random
+%   variable's arguments and its value, a memoised atom's arguments (its
+%   value is true or false; a timed one is A:T), the arguments of each instance of a
+%   materialised predicate.
+renamed_entry(Moves, (X-T)-V, (X1-T)-V1) :- !,
+    rename_arguments(Moves, X, X1),
+    rename_term(Moves, V, V1).
+renamed_entry(Moves, '$memo'(G, T)-V, '$memo'(G1, T)-V) :- !,
+    (   G = A:TA                        % a timed derived atom A:TA
+    ->  rename_arguments(Moves, A, A1),
+        G1 = A1:TA
+    ;   rename_arguments(Moves, G, G1)
+    ).
+renamed_entry(Moves, '$mat'(NA, T)-L, '$mat'(NA, T)-L1) :-
+    maplist(rename_arguments(Moves), L, L1).
+
+impure_key(Impure, K) :-
+    (   store_get(Impure, K, _) -> true ; store_put(Impure, K, true) ).
+
+%   drop_moved(!SS, +T, +Unshared): the keys of Unshared are no longer in
+%   the list of keys of time T that moved to the shared store
+%   (moved_keys/3).
+drop_moved(SS, T, Unshared) :-
+    (   Unshared \== [],
+        store_get(SS, '$moved'(T), Keys0),
+        exclude(unshared_key(Unshared), Keys0, Keys),
+        Keys \== Keys0
+    ->  store_delete(SS, '$moved'(T)),
+        store_put(SS, '$moved'(T), Keys)
+    ;   true
+    ).
+
+unshared_key(Unshared, K) :-
+    memberchk(K-_, Unshared).
+
+%   rename_world(!W, +Moves, +Unshared, !Impure): W's store anew: its own
+%   entries and those of Unshared it does not hold, renamed.
+rename_world(W, Moves, Unshared, Impure) :-
+    world_store(W, S0),
+    store_entries(S0, Own),
+    exclude(held_in(S0), Unshared, FromShared),
+    particle_store(S1),
+    nb_set_world_store(W, S1),
+    world_store(W, S),
+    forall(( member(KV, Own) ; member(KV, FromShared) ),
+           (   renamed_entry(Moves, KV, K1-V1),
+               store_put(S, K1, V1),
+               impure_key(Impure, K1)
+           )).
+
+held_in(S, K-_) :-
+    store_get(S, K, _).
 
 engine_holds(State, Goal, Flags) :-
     particles_query(State, Goal, true, Sols),

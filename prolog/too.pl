@@ -23,12 +23,18 @@
 obs_var(0.0001).            % measurement noise of a perceived position: (1 cm)^2
 motion_var(0.0004).         % how far a perceived object moves in one frame: (2 cm)^2
 reappear_var(0.0025).       % where a hidden object shows up again, around its belief: (5 cm)^2
+lost_var(0.09).             % where an object lost while the camera saw nothing shows up again:
+                            % (30 cm)^2 around its belief (it may have been moved anywhere)
 follow_var(0.000004).       % jitter of a hidden object that follows its occluder: (2 mm)^2
 wander_var(0.0001).         % how far a hidden object under nothing may move in a frame: (1 cm)^2
 coast_keep(0.9).            % fraction of its velocity a hidden object under nothing keeps per frame
 follow_keep(0.95).          % fraction of its offset from the occluder's centre kept per frame
 occluder_reach(0.15).       % an occluder is within 15 cm of the object in the table plane ...
 occluder_rise(0.02).        % ... and its centre is no more than 2 cm lower than the object's
+lowering_speed(0.003).      % an occluder coming down sinks by more than this per frame (m) ...
+lowered_reach(0.05).        % ... onto an object within this distance in the table plane (m)
+behind_when_covered(0.1).   % the probability that an object vanishing as an occluder comes down
+                            % onto it is hidden by something else
 cover_height(0.12).         % a container whose centre rises more than this above the object's
                             % centre no longer covers it (it was lifted)
 grip_reach(0.06).           % a carrier (a hand) closes over an object within 6 cm of where it
@@ -106,8 +112,10 @@ occluder_candidate(A, O):t+1 :=
 % - A has been hidden under nothing (behind something, or left on the table when its container
 %   was lifted away, or no occluder was near when it vanished): only an occluder that is
 %   lowered over it, i.e. covers it now and did not in the previous frame (a box that was
-%   still too high when the mug under it vanished; a container put back over an object).  A
-%   container sliding on the table does not slide over what stands there.
+%   still too high when the mug under it vanished; a container put back over an object), or
+%   one coming down onto it (below; a cup held over a ball hides it from the camera before it
+%   is put down on it).  A container sliding on the table does not slide over what stands
+%   there.
 lowered_over(O, A):t+1 :=
     occluder_candidate(A, O):t+1, pos(A):t ~= (_, _, Z), cover_height(H),
     (   pos(O):t ~= (_, _, ZO)
@@ -117,20 +125,39 @@ lowered_over(O, A):t+1 :=
 % A hand that has just come to close over A (the carriers' rules below).
 lowered_over(O, A):t+1 := hand_known, grasp_candidate(A, O):t+1.
 
-% Each particle picks uniformly among the choices (the paper's sample_occluder, plus
-% `behind`).  (In these bodies and in pos/1's, the goals every particle agrees on, such as
+% - A vanished just now as an occluder came down onto it (its centre sank by more than
+%   lowering_speed since the previous frame and is within lowered_reach of A in the table
+%   plane: a container put over it, a hand closing on it): under it, or `behind` with
+%   behind_when_covered (the others share the rest).  An occluder passing by, or standing
+%   beside A, leaves `behind` as likely as each candidate.
+coming_down_on(O, A):t+1 :=
+    occluder_candidate(A, O):t+1, pos(A):t ~= (X, Y, _),
+    pos(O):t ~= (_, _, Z0), pos(O):t+1 ~= (XO, YO, Z1), lowering_speed(V), Z1 < Z0 - V,
+    lowered_reach(R), D is sqrt((X-XO)**2 + (Y-YO)**2), D < R.
+
+% Each particle picks among the choices (the paper's sample_occluder, plus `behind`),
+% uniformly but for an occluder coming down onto A.  (In these bodies and in pos/1's, the goals every particle agrees on, such as
 % seen(A):t, come before those a particle holds on its own, such as occluded_by(A, _):t:
 % the same answers, fewer proofs per particle.)
 pick_occluder(A):t+1 ~ uniform(Os) :=
     hidden(A):t+1, lost_anywhere(A):t, \+ occluded_by(A, _):t,
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
-pick_occluder(A):t+1 ~ uniform(Os) :=
+pick_occluder(A):t+1 ~ finite(Ds) :=
     hidden(A):t+1, seen(A):t, \+ occluded_by(A, _):t,
+    findall_forward(O, coming_down_on(O, A):t+1, Os0), sort(Os0, Os1), Os1 \== [],
+    behind_or_under(Os1, Ds).
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, seen(A):t, \+ occluded_by(A, _):t, \+ coming_down_on(_, A):t+1,
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \== [],
     Os = [behind | Os1].
 pick_occluder(A):t+1 ~ uniform(Os) :=
     hidden(A):t+1, \+ seen(A):t, \+ lost_anywhere(A):t, \+ occluded_by(A, _):t,
     findall_forward(O, lowered_over(O, A):t+1, Os0), sort(Os0, Os), Os \== [].
+pick_occluder(A):t+1 ~ finite(Ds) :=
+    hidden(A):t+1, \+ seen(A):t, \+ lost_anywhere(A):t, \+ occluded_by(A, _):t,
+    \+ lowered_over(_, A):t+1,
+    findall_forward(O, coming_down_on(O, A):t+1, Os0), sort(Os0, Os), Os \== [],
+    behind_or_under(Os, Ds).
 
 occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
 % The occlusion lasts while the object is hidden and its occluder is perceived and still
@@ -309,7 +336,18 @@ observation(pos(A)):t+1 ~ val(_) :=
     object(A), \+ pos(A):t ~= _.
 
 prior_var(A, P):t+1 := object(A), seen(A):t, motion_var(P).
-prior_var(A, P):t+1 := object(A), \+ seen(A):t, reappear_var(P).
+prior_var(A, P):t+1 := object(A), \+ seen(A):t, \+ lost_anywhere(A):t, reappear_var(P).
+% An object lost while the camera saw nothing, and not under anything since, may have been moved
+% anywhere on the table (two look-alike containers swapped): where it shows up again says little
+% about which particle was right, so that the hypotheses of which one is which (the identity
+% hypotheses the runner keeps in the particles) survive until something decides them.
+prior_var(A, P):t+1 := object(A), \+ seen(A):t, lost_anywhere(A):t, lost_var(P).
 predictive_var(A, V):t+1 := prior_var(A, P):t+1, obs_var(R), V is P + R.
 
 diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V]).
+
+% The choices of pick_occluder/1 when occluders Os come down onto the object: `behind` with
+% behind_when_covered, each of Os with an equal share of the rest.
+behind_or_under(Os, [W:behind | Ws]) :-
+    behind_when_covered(W), length(Os, K), WO is (1 - W) / K,
+    findall(WO:O, member(O, Os), Ws).

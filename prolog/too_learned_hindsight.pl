@@ -35,6 +35,8 @@
 obs_var(0.0001).            % measurement noise of a perceived position: (1 cm)^2
 motion_var(0.0004).         % how far a perceived object moves in one frame: (2 cm)^2
 reappear_var(0.0025).       % where a hidden object shows up again, around its belief: (5 cm)^2
+lost_var(0.04).             % where an object lost while the camera saw nothing shows up again:
+                            % (20 cm)^2 around its belief (it may have been moved anywhere)
 follow_var(0.000004).       % jitter of a hidden object that follows its occluder: (2 mm)^2
 wander_var(0.0001).         % how far a hidden object under nothing may move in a frame: (1 cm)^2
 coast_keep(0.9).            % fraction of its velocity a hidden object under nothing keeps per frame
@@ -478,7 +480,12 @@ observation(pos(A)):t+1 ~ val(_) :=
     object(A), \+ pos(A):t ~= _.
 
 prior_var(A, P):t+1 := object(A), seen(A):t, motion_var(P).
-prior_var(A, P):t+1 := object(A), \+ seen(A):t, reappear_var(P).
+prior_var(A, P):t+1 := object(A), \+ seen(A):t, \+ lost_anywhere(A):t, reappear_var(P).
+% An object lost while the camera saw nothing, and not under anything since, may have been moved
+% anywhere on the table (two look-alike containers swapped): where it shows up again says little
+% about which particle was right, so that the hypotheses of which one is which (the identity
+% hypotheses the runner keeps in the particles) survive until something decides them.
+prior_var(A, P):t+1 := object(A), \+ seen(A):t, lost_anywhere(A):t, lost_var(P).
 predictive_var(A, V):t+1 := prior_var(A, P):t+1, obs_var(R), V is P + R.
 
 diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V]).

@@ -4,7 +4,8 @@
 
     The world file (written by `anchoring run`) holds plain facts in module user: anchors
     (anchor/5), their attributes (attribute/3) and the particle set of the filter
-    (particle/2, particle_fact/2); see python/probanchor/app/world_file.py.  Both files
+    (particle/2, particle_fact/2), and which frame it is after (world_frame(Frame, Time));
+    see python/probanchor/app/world_file.py.  Both files
     given to swipl are loaded, so the facts can also be asked directly
     (?- anchor(A, S, C, Seen, T).).
     Examples:
@@ -35,7 +36,7 @@
 :- use_module(library(apply)).
 
 :- dynamic user:anchor/5, user:attribute/3, user:particle/2, user:particle_fact/2,
-   user:identity/3.
+   user:identity/3, user:world_frame/2.
 
 %!  load_world(+File) is det.
 %
@@ -46,6 +47,7 @@ load_world(File) :-
     retractall(user:particle(_, _)),
     retractall(user:particle_fact(_, _)),
     retractall(user:identity(_, _, _)),
+    retractall(user:world_frame(_, _)),
     load_files(user:File, [if(true)]).
 
 %!  anchors(-Atoms) is det.
@@ -139,6 +141,9 @@ ambiguous(Percept, Dist) :-
 banner :-
     anchors(As),
     length(As, N),
-    format("World model: ~d anchors ~w.~n", [N, As]),
+    (   user:world_frame(F, T)        % which frame the world model is after
+    ->  format("World model after frame ~d (~3f s): ~d anchors ~w.~n", [F, T, N, As])
+    ;   format("World model: ~d anchors ~w.~n", [N, As])
+    ),
     format("Try: prob(occluded_by(ball_1, mug_1), P).  occluders(ball_1, D).  \
 where(ball_1, Mean, Spread).~n").

@@ -1,5 +1,6 @@
 """Identity governed by belief: the mass of a hidden anchor's particles near a percept decides
-between look-alikes, gates re-acquisition, and says when the beliefs cannot tell."""
+between look-alikes, weighs re-acquisition against a new object (anchoring.likelihood), and
+says when the beliefs cannot tell."""
 
 from __future__ import annotations
 
@@ -7,6 +8,7 @@ import numpy as np
 import pytest
 
 from anchoring import AnchorManager
+from anchoring.likelihood import AssociationModel
 from anchoring.similarity import augment, position_evidence
 from test_anchoring_manager import percept
 
@@ -107,29 +109,48 @@ def test_beliefs_that_cannot_tell_two_look_alikes_apart_are_reported():
     assert r.symbols == {0: "ball-1"} and r.ambiguous == []
 
 
-def hidden_under_box(**options) -> AnchorManager:
-    """ball-1 seen, then hidden: every particle under a box at A."""
+def hidden_under_box(occluded: bool = True, **options) -> AnchorManager:
+    """ball-1 seen, then hidden: every particle at A, under an occluder there (``occluded``)
+    or under nothing."""
     m = AnchorManager(**options)
     for k in range(3):
         m.process(k / 15, [percept(k / 15, A), box(k / 15)])
     m.process(0.2, [box(0.2)])
-    m.set_position_particles("ball-1", cloud(np.random.default_rng(3), A, 1000), np.ones(1000))
+    m.set_position_particles("ball-1", cloud(np.random.default_rng(3), A, 1000), np.ones(1000),
+                             np.full(1000, occluded))
     return m
 
 
 def test_a_look_alike_far_from_the_belief_is_a_new_object():
-    """A second identical ball put down 33 cm from where every particle of ball-1 is: by
-    appearance alone it would be ball-1 (the only red ball left over)."""
+    """A second identical ball put down 33 cm from where every particle of ball-1 is, under an
+    occluder: by appearance alone it would be ball-1 (the only red ball left over)."""
     elsewhere = A + [-0.3, 0.15, 0.0]
     r = hidden_under_box().process(1.0, [percept(1.0, elsewhere), box(1.0)])
     assert r.acquired == ["ball-2"]
-    ungated = hidden_under_box(belief_gate=0).process(1.0, [percept(1.0, elsewhere), box(1.0)])
+    # with no rival hypotheses (no new object, no clutter), nothing else explains it
+    no_rivals = AssociationModel(new_odds=0.0, clutter_odds=0.0)
+    ungated = hidden_under_box(association=no_rivals).process(
+        1.0, [percept(1.0, elsewhere), box(1.0)])
     assert ungated.symbols[0] == "ball-1" and ungated.assignments[0].score == 0.0
     # where the belief is, it is ball-1 again
     assert hidden_under_box().process(1.0, [percept(1.0, A), box(1.0)]).symbols[0] == "ball-1"
 
 
-def test_after_the_camera_was_covered_the_belief_does_not_gate():
+def test_a_one_of_a_kind_object_whose_belief_was_wrong_is_reacquired():
+    """ball-1's particles have it under nothing, where the table is in plain view (nothing
+    perceived within 15 cm): carried off unseen, it is ball-1 wherever it shows up; the same
+    belief beside a box (which may stand in front of it) keeps it there."""
+    elsewhere = A + [-0.3, 0.15, 0.0]
+    r = hidden_under_box(occluded=False).process(1.0, [percept(1.0, elsewhere), box(1.0)])
+    assert r.symbols[0] == "ball-1" and r.acquired == []
+    m = hidden_under_box(occluded=False)
+    r = m.process(1.0, [percept(1.0, elsewhere), box(1.0),
+                        percept(1.0, A + [0.05, 0.05, 0.03], "box", hue=3,
+                                size=(0.12, 0.12, 0.12))])
+    assert "ball-1" not in r.symbols.values()
+
+
+def test_after_the_camera_was_covered_the_belief_does_not_decide():
     """While the camera saw nothing, the ball may have been moved anywhere: its belief (where
     it was) does not stop re-identification by appearance."""
     m = hidden_under_box()
@@ -141,7 +162,7 @@ def test_after_the_camera_was_covered_the_belief_does_not_gate():
 
 
 def test_anchoring_alone_is_unchanged():
-    """Deterministic positions (no reasoning): the gate and the mass do not apply."""
+    """Deterministic positions (no reasoning): the likelihoods and the mass do not apply."""
     m = AnchorManager()
     for k in range(3):
         m.process(k / 15, [percept(k / 15, A)])
@@ -157,13 +178,14 @@ def test_options_are_checked(bad):
 
 
 def test_options_survive_save_and_load(tmp_path):
-    m = hidden_under_box(position_match="max", belief_radius=0.03, belief_gate=0.05,
+    association = AssociationModel(new_odds=2.0, appearance_scale=3.0)
+    m = hidden_under_box(position_match="max", belief_radius=0.03, association=association,
                          ambiguity_ratio=0.4)
     m.process(0.5, [])
     m.save(tmp_path / "w.json")
     back = AnchorManager.load(tmp_path / "w.json")
-    assert (back.position_match, back.belief_radius, back.belief_gate, back.ambiguity_ratio,
-            back.blind_time) == ("max", 0.03, 0.05, 0.4, 0.5)
+    assert (back.position_match, back.belief_radius, back.association, back.ambiguity_ratio,
+            back.blind_time) == ("max", 0.03, association, 0.4, 0.5)
 
 
 def test_look_alikes_lost_while_the_camera_saw_nothing_are_reported_ambiguous():

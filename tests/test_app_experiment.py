@@ -54,7 +54,7 @@ def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypat
                  "particles": particles, "threads": threads, "engine": engine,
                  "summary": {"objects": [{"id": "ball_1", "symbols": ["ball-1"],
                                           "identity_kept": kept}],
-                             "id_switches": 0, "idf1": 1.0}}
+                             "id_switches": 0, "idf1": 1.0, "hota": 1.0}}
                 for m in methods]
 
     monkeypatch.setattr(experiment, "run_unit", fake_unit)
@@ -111,3 +111,13 @@ def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypat
     options.threads = 2
     experiment.run_experiment(options)
     assert methods_run == [("transitive", s, ["reasoning"]) for s in range(3)]
+
+    # lines recorded before HOTA was (no "hota" in the summary) are run again
+    lines = experiment.read_summaries(log)
+    log.write_text("".join(json.dumps({**line, "summary": {k: v for k, v in
+                                                           line["summary"].items()
+                                                           if k != "hota"}}) + "\n"
+                           for line in lines))
+    methods_run.clear()
+    experiment.run_experiment(options)
+    assert methods_run == [("transitive", s, ["reasoning", "no-reasoning"]) for s in range(3)]

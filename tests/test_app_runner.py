@@ -59,7 +59,7 @@ def test_reidentification_by_appearance_is_anchorings_own_and_can_be_switched_of
     assert kept[False]["identity_kept"] is False and len(kept[False]["symbols"]) >= 2
 
 
-def test_outputs_summary_pictures_gif_and_world(reasoning_run) -> None:
+def test_outputs_summary_video_and_world(reasoning_run) -> None:
     out = reasoning_run.out
     summary = json.loads((out / "summary.json").read_text())
     for key in ("frames", "objects", "id_switches", "idf1", "ms_per_frame"):
@@ -67,8 +67,10 @@ def test_outputs_summary_pictures_gif_and_world(reasoning_run) -> None:
     assert set(summary["ms_per_frame"]) >= {"perception", "anchoring", "filter", "total"}
     assert summary["frames"] == len(reasoning_run.records)
     assert (summary["particles"], summary["threads"]) == (60, 2)  # the filter's, as run
-    assert reasoning_run.gif is not None and reasoning_run.gif.stat().st_size > 0
-    assert len(list((out / "frames").glob("*.png"))) == len(reasoning_run.pictures) > 0
+    # the video decodes: one picture every 4 frames, none as PNG unless asked for
+    assert reasoning_run.video == out / "run.mp4"
+    assert len(decoded_frames(reasoning_run.video)) == (summary["frames"] + 3) // 4
+    assert reasoning_run.pictures == [] and not (out / "frames").exists()
     # the world file answers questions in swipl through prolog/world.pl
     objects = {o["id"]: o for o in summary["objects"]}
     ball = objects["ball_1"]["symbols"][0].replace("-", "_")  # its anchor's atom
@@ -84,6 +86,47 @@ def test_outputs_summary_pictures_gif_and_world(reasoning_run) -> None:
     p_known, p_hidden = (float(v) for v in result.stdout.split())
     assert p_known == pytest.approx(1.0)  # every particle knows where the ball is
     assert p_hidden == pytest.approx(0.0)  # and none has it under the mug: it is seen at the end
+
+
+def decoded_frames(video: Path) -> list:
+    import av
+
+    with av.open(str(video)) as container:
+        return [f.to_ndarray(format="rgb24") for f in container.decode(video=0)]
+
+
+def folder_bytes(folder: Path) -> int:
+    return sum(p.stat().st_size for p in folder.rglob("*") if p.is_file())
+
+
+def test_run_from_the_command_line_to_a_pipe(scenario: Path, tmp_path: Path) -> None:
+    """Output to a pipe (CI, a log file): progress as a few whole lines, never carriage-return
+    redraws; a run's folder small enough that the 331-frame shell game stays within 10 MB;
+    --frames adds the PNGs."""
+    out = tmp_path / "out"
+    result = subprocess.run(
+        [str(Path(sys.executable).parent / "anchoring"), "run", str(scenario), "--particles",
+         "30", "--out", str(out), "--frames", "--every", "2"],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert result.returncode == 0, result.stderr
+    summary = json.loads((out / "summary.json").read_text())
+    frames = summary["frames"]
+    progress = [line for line in result.stderr.splitlines() if "frames" in line]
+    assert "\r" not in result.stderr
+    assert 2 <= len(progress) <= 12, result.stderr  # start, every tenth, end
+    assert progress[-1].startswith(f"{scenario.stem}: {frames}/{frames} frames (100 %)")
+    assert "run.mp4" in result.stdout
+    pictures = sorted((out / "frames").glob("frame_*.png"))
+    assert len(pictures) == (frames + 1) // 2
+    video = decoded_frames(out / "run.mp4")
+    assert len(video) == len(pictures) and video[0].shape == (240, 320, 3)
+    # Without the PNGs, a frame costs so little that the shell game's 331 frames (drawn at
+    # every frame) stay within 10 MB: the bound per frame, with the video counted twice
+    # (this run draws every other frame).
+    without_png = folder_bytes(out) - folder_bytes(out / "frames")
+    video_bytes = (out / "run.mp4").stat().st_size
+    assert (without_png + video_bytes) / frames <= 10e6 / 331
 
 
 def test_a_theory_with_an_error_stops_the_run_before_the_first_frame(

@@ -4,6 +4,7 @@ file and the cause."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -14,7 +15,15 @@ from rosbags.rosbag2 import Writer as Writer2
 
 from probanchor.app.runner import RunOptions, run
 from probanchor.bags import BagError, BagTopics, bag_topics, read_bag, write_bag
-from probanchor.bags.messages import CAMERA_INFO, IMAGE, TF, MessageFactory, typestore_for
+from probanchor.bags.messages import (
+    CAMERA_INFO,
+    IMAGE,
+    STRING,
+    TF,
+    MessageFactory,
+    typestore_for,
+)
+from probanchor.bags.read import TRUTH_TOPIC
 from probanchor.cli.anchoring_cli import main as anchoring
 from probanchor.perception import CameraIntrinsics
 from probanchor.tabletop import Simulation, load_scenario
@@ -179,3 +188,107 @@ def test_writing_never_overwrites(tmp_path: Path, frames: list) -> None:
     with pytest.raises(BagError, match="exists already"):
         write_bag(path, frames[:2])
     assert path.stat().st_size == size and len(list(read_bag(path))) == 1
+
+
+def _stamped_bag(path: Path, frames: list, stamps: list[int], truths: list[str] | None = None,
+                 sizes: dict[int, tuple[int, int]] | None = None) -> Path:
+    """A bag whose i-th colour image has header stamp ``stamps[i]`` (its depth 3 ms later),
+    each recorded 0.1 s after the one before; ``truths``: the ground-truth message of each
+    frame; ``sizes``: frame -> the depth image's (width, height)."""
+    make = MessageFactory(typestore_for(False))
+    messages: list[tuple[str, str, int, object]] = []
+    for i, (frame, stamp) in enumerate(zip(frames, stamps, strict=True)):
+        logged = 1_700_000_000 * 10**9 + i * 100_000_000
+        if i == 0:
+            messages.append(("/camera/color/camera_info", CAMERA_INFO, logged,
+                             make.camera_info(stamp, "cam", K)))
+        if truths is not None:
+            messages.append((TRUTH_TOPIC, STRING, logged, make.string(truths[i])))
+        messages.append(("/camera/color/image_raw", IMAGE, logged,
+                         make.image(stamp, "cam", frame.rgb, "rgb8")))
+        depth = np.asarray(frame.depth, dtype="<f4")
+        if sizes and i in sizes:
+            depth = depth[: sizes[i][1], : sizes[i][0]]
+        messages.append(("/camera/depth/image_raw", IMAGE, logged + 1,
+                         make.image(stamp + 3_000_000, "cam", depth, "32FC1")))
+    return _write(path, messages)
+
+
+def test_frames_with_bad_stamps_are_skipped_and_named(tmp_path: Path, frames: list) -> None:
+    base = 1_700_000_000 * 10**9
+    good = [base + i * 100_000_000 for i in range(8)]
+    stamps = list(good)
+    stamps[2] = 0                                       # a stamp the driver never set
+    stamps[4] = 2_145_916_800 * 10**9                   # 2038
+    stamps[6] = good[4]                                 # before frame 5's: out of order
+    path = _stamped_bag(tmp_path / "stamps.mcap", frames[:8], stamps)
+    topics = BagTopics(camera_pose=np.eye(4))
+    back = list(read_bag(path, topics))
+    times = [round(f.time, 6) for f in back]
+    assert times == [0.0, 0.1, 0.3, 0.5, 0.7]           # frames 0, 1, 3, 5, 7 of the bag
+    assert [f.index for f in back] == [0, 1, 2, 3, 4]
+    assert len(topics.skipped) == 3
+    assert all(str(path) in m and "/camera/color/image_raw" in m for m in topics.skipped)
+    zero, future, early = topics.skipped
+    assert "after frame 1: its stamp is zero" in zero
+    assert "after frame 2:" in future and "ahead of the time the bag recorded it" in future
+    assert "after frame 3:" in early and "out of order or repeated" in early
+    run_output = run(RunOptions(bag=path, bag_topics=BagTopics(camera_pose=np.eye(4)),
+                                reasoning=False, progress=False))
+    assert run_output.summary["skipped_frames"] == 3 and len(run_output.records) == 5
+    assert [r.time for r in run_output.records] == pytest.approx([0.0, 0.1, 0.3, 0.5, 0.7])
+
+
+def test_an_image_size_that_changes_stops_the_run_after_the_frame_before(
+        tmp_path: Path, frames: list) -> None:
+    base = 1_700_000_000 * 10**9
+    path = _stamped_bag(tmp_path / "resized.mcap", frames[:10],
+                        [base + i * 100_000_000 for i in range(10)], sizes={8: (160, 120)})
+    out = tmp_path / "out"
+    with pytest.raises(BagError, match=r"resized.*\.mcap: frame 8 \(/camera/color/image_raw "
+                                       r"at 0\.800 s\): colour image is 320x240 but depth"):
+        run(RunOptions(bag=path, bag_topics=BagTopics(camera_pose=np.eye(4)), reasoning=False,
+                       progress=False, out=out))
+    assert len((out / "records.jsonl").read_text().splitlines()) == 8   # frames 0-7 kept
+    assert "stopped" in (out / "summary.json").read_text()
+
+
+def test_a_ground_truth_that_is_not_json_names_file_topic_and_frame(tmp_path: Path,
+                                                                   frames: list) -> None:
+    base = 1_700_000_000 * 10**9
+    stamps = [base + i * 100_000_000 for i in range(6)]
+    truths = [json.dumps({"stamp_ns": s, "frame": i, "truth": frames[i].truth,
+                          "body_names": {}}) for i, s in enumerate(stamps)]
+    truths[4] = "{'not': json"
+    path = _stamped_bag(tmp_path / "truth.mcap", frames[:6], stamps, truths=truths)
+    out = tmp_path / "out"
+    with pytest.raises(BagError, match=r"truth.*\.mcap: frame 4 \(/anchoring/ground_truth, "
+                                       r"recorded at \d+ ns\): the ground truth is not a JSON "
+                                       r"object with stamp_ns: JSONDecodeError"):
+        run(RunOptions(bag=path, bag_topics=BagTopics(camera_pose=np.eye(4)), reasoning=False,
+                       progress=False, out=out))
+    records = (out / "records.jsonl").read_text().splitlines()
+    assert len(records) == 4 and json.loads(records[3])["frame"] == 3  # frame 3 kept
+
+
+def test_a_bag_run_resumes_from_its_store_alone_with_its_topics_and_bytes(
+        tmp_path: Path, frames: list) -> None:
+    from probanchor.app.store import StoreError
+
+    base = 1_700_000_000 * 10**9
+    path = _stamped_bag(tmp_path / "kept.mcap", frames[:4],
+                        [base + i * 100_000_000 for i in range(4)])
+    db = tmp_path / "world.db"
+    topics = BagTopics(camera_pose=np.eye(4), max_lead=5.0)
+    first = run(RunOptions(bag=path, bag_topics=topics, reasoning=False, progress=False,
+                           store=db))
+    again = run(RunOptions(resume=db, progress=False))  # the stored topics and pose adopted
+    assert len(again.records) == len(first.records) == 4
+    with pytest.raises(StoreError, match=r"not this run's store: it has bag_topics .*"
+                                         r"\"max_lead\": 5\.0"):
+        run(RunOptions(resume=db, bag=path, bag_topics=BagTopics(camera_pose=np.eye(4)),
+                       progress=False))
+    with open(path, "ab") as data:  # the recording changed since
+        data.write(b"\0")
+    with pytest.raises(StoreError, match=r"a store from another bag: .*kept.*\.mcap changed"):
+        run(RunOptions(resume=db, progress=False))

@@ -1,4 +1,5 @@
-"""The baseline trackers (SORT, ByteTrack, OC-SORT) on small synthetic percept streams."""
+"""The box trackers (SORT, ByteTrack, OC-SORT) on small synthetic percept streams (the Stone
+Soup trackers: test_stonesoup.py)."""
 
 from __future__ import annotations
 
@@ -6,7 +7,12 @@ import numpy as np
 import pytest
 
 from probanchor.evaluation import evaluate
-from probanchor.evaluation.baselines import BASELINES, BaselineError, display_name, run_baseline
+from probanchor.evaluation.baselines import (
+    BOX_TRACKERS,
+    BaselineError,
+    display_name,
+    run_baseline,
+)
 from probanchor.percepts import Percept, PerceptFrame, write_percepts
 
 FPS = 15.0
@@ -48,7 +54,7 @@ def stream(ball_back_at, hidden=range(10, 30), frames=40, seed=0):
     return out
 
 
-@pytest.mark.parametrize("method", BASELINES)
+@pytest.mark.parametrize("method", BOX_TRACKERS)
 def test_baseline_keeps_a_static_object_through_an_occlusion(method):
     # The ball is hidden for 20 frames (1.3 s) and comes back where it was: with the generous
     # buffer every tracker gives it its old id.
@@ -71,7 +77,7 @@ def test_baseline_keeps_a_static_object_through_an_occlusion(method):
     assert not {o.id: o for o in short.objects}["ball_1"].identity_kept
 
 
-@pytest.mark.parametrize("method", BASELINES)
+@pytest.mark.parametrize("method", BOX_TRACKERS)
 def test_baseline_loses_an_object_moved_while_hidden(method):
     # The box carried the ball 0.3 m: in 2-D the boxes do not overlap any more, so the
     # trackers start a new track where our anchoring would re-acquire ball-1.
@@ -108,7 +114,8 @@ def test_baselines_command_prints_the_table(tmp_path, capsys):
     path = tmp_path / "moved.jsonl"
     write_percepts(path, stream(ball_back_at=(0.15, -0.1, 0.03)))
     out_dir = tmp_path / "out"
-    assert main(["baselines", str(path), "--out", str(out_dir)]) == 0
+    assert main(["baselines", str(path), "--out", str(out_dir), "--methods",
+                 "sort,bytetrack,ocsort"]) == 0
     text = capsys.readouterr().out
     rows = [line for line in text.splitlines() if line.startswith("| moved |")]
     assert [r.split("|")[2].strip() for r in rows] == ["SORT", "ByteTrack", "OC-SORT"]

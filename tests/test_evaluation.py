@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from probanchor.evaluation import (
+    HOTA_FIELDS,
     SUMMARY_FIELDS,
     FrameTimings,
     Hypothesis,
@@ -170,18 +171,23 @@ def test_summary_has_exactly_the_issue_fields(tmp_path):
     summary = write_summary(path, run)
     on_disk = json.loads(path.read_text())
     assert on_disk == summary == read_summary(path)
-    assert tuple(on_disk) == SUMMARY_FIELDS
+    assert tuple(on_disk) == SUMMARY_FIELDS + HOTA_FIELDS
     assert on_disk["frames"] == 6
     assert on_disk["objects"] == [
-        {"id": "ball", "symbols": ["ball-1"], "identity_kept": True},
-        {"id": "mug", "symbols": ["mug-1"], "identity_kept": True},
+        {"id": "ball", "symbols": ["ball-1"], "identity_kept": True,
+         "identity_kept_at_end": True},
+        {"id": "mug", "symbols": ["mug-1"], "identity_kept": True,
+         "identity_kept_at_end": True},
     ]
+    assert on_disk["revisions"] == []
     assert on_disk["id_switches"] == 0 and on_disk["idf1"] == pytest.approx(1.0)
     # perception 2..7 -> mean 4.5; totals 7,8,9,10,11 and 20 -> mean 65/6.
     assert on_disk["ms_per_frame"] == {
         "perception": 4.5, "anchoring": 1.0, "filter": 4.0, "total": round(65 / 6, 3)
     }
     assert on_disk["rejected_percepts"] == 2
+    # HOTA of this run, by hand in tests/test_hota.py
+    assert on_disk["hota"] == pytest.approx((18 + math.sqrt(0.6 * 7 / 9)) / 19, abs=1e-6)
     with pytest.raises(ValueError, match="replace"):
         make_summary(run, extra={"idf1": 1})
     assert make_summary(run, extra={"seed": 3})["seed"] == 3
@@ -267,7 +273,11 @@ def test_results_table_groups_runs_by_scenario_and_method(tmp_path):
     rows = [
         ("shell_game", "reasoning", summary_of([True, True, True], 0, 1.0)),
         ("shell_game", "reasoning", {**summary_of([True, False, True], 2, 0.8),
-                                     "ambiguous_reacquisitions": 3}),
+                                     "ambiguous_reacquisitions": 3,
+                                     "beliefs": {"hidden_frames": 30, "within": 0.5,
+                                                 "occluder_frames": 20,
+                                                 "true_occluder_probability": 0.4,
+                                                 "threshold": 0.1}}),
         ("shell_game", "SORT", switch_run()),  # records are evaluated on the spot
         ("transitive", "reasoning", summary_of([], 0, None)),
     ]
@@ -283,9 +293,21 @@ def test_results_table_groups_runs_by_scenario_and_method(tmp_path):
     text = results_table(rows)
     lines = text.splitlines()
     assert lines[0].startswith("| scenario | method | runs | identity kept (objects)")
-    assert lines[2] == ("| shell_game | reasoning | 2 | 5/6 (83 %) | 1/2 (50 %) | 1.00 | 0.900 "
-                        "| 1/2 |")
-    assert lines[4] == "| transitive | reasoning | 1 | - | 0/1 (0 %) | 0.00 | - | 0/1 |"
+    assert lines[0].endswith("| IDF1 | HOTA | DetA | AssA | LocA | ambiguous (runs) "
+                             "| belief within 10 cm | P(true occluder) |")
+    # summaries written before HOTA have none: "-"
+    assert lines[2] == ("| shell_game | reasoning | 2 | 5/6 (83 %) | 1/2 (50 %) | 1/2 (50 %) "
+                        "| 1.00 | 0.900 | - | - | - | - | 1/2 | 50 % | 0.40 |")
+    assert lines[4] == ("| transitive | reasoning | 1 | - | 0/1 (0 %) | 0/1 (0 %) | 0.00 | - "
+                        "| - | - | - | - | 0/1 | - | - |")
+    # records evaluated on the spot have HOTA (the switch run's, by hand in test_hota.py)
+    assert lines[3] == ("| shell_game | SORT | 1 | 0/2 (0 %) | 0/1 (0 %) | 0/1 (0 %) | 2.00 "
+                        "| 0.500 | 0.577 | 1.000 | 0.333 | 1.000 | 0/1 | - | - |")
+    # identity kept at the end: an object whose answers were revised counts there
+    revised = summary_of([True, False, True], 2, 0.8)
+    revised["objects"][1]["identity_kept_at_end"] = True
+    (row,) = aggregate([("s", "m", revised), ("s", "m", summary_of([True], 0, 1.0))])
+    assert (row.runs_kept, row.runs_kept_at_end) == (1, 2)
 
     # From saved summaries: names from the summary's own fields, else from the folders.
     a = tmp_path / "shell_game" / "SORT" / "summary.json"

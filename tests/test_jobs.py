@@ -116,7 +116,7 @@ def test_an_evaluation_with_a_failed_unit_keeps_the_finished_ones(tmp_path, monk
                  "particles": particles, "threads": threads, "engine": engine,
                  "summary": {"objects": [{"id": "ball_1", "symbols": ["ball-1"],
                                           "identity_kept": True}],
-                             "id_switches": 0, "idf1": 1.0}} for m in methods]
+                             "id_switches": 0, "idf1": 1.0, "hota": 1.0}} for m in methods]
 
     monkeypatch.setattr(experiment, "run_unit", unit)
     options = experiment.ExperimentOptions(out=tmp_path, seeds=3, games=0, particles=50,

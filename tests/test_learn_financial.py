@@ -3,7 +3,9 @@
 FinancialData.pl (DreaML's input for PKDD'99 Financial, 13 targets) is split by district; every
 target is learned on the training part and scored on the test part, and so are the baselines of
 ``probanchor.ddclearn.baselines`` on the same root features (bench/learn_financial.py prints the
-table). The first tests check the feature table and the baselines on a small hand-made data set. """
+table): on every target the learned program is at or above the best baseline but for the noise
+of the test groundings. The first tests check the feature table and the baselines on a small
+hand-made data set. """
 
 from __future__ import annotations
 
@@ -29,10 +31,6 @@ from probanchor.ddclearn.baselines import (  # noqa: E402
 
 FINANCIAL = learn_financial.FINANCIAL
 TARGETS = 13
-#: "Within a small margin of the best baseline": nats per grounding.
-MARGIN = 0.05
-#: Of the 13 targets, at least this many are within MARGIN of the best baseline (or better).
-CLOSE_TO_BEST = 9
 
 SMALL = """
 type(y(e)). type(a(e)). type(v(e)).
@@ -137,15 +135,13 @@ def test_never_worse_than_knowing_nothing(rows: list[dict]) -> None:
     assert not worse, worse
 
 
-def test_close_to_the_best_baseline_for_most_targets(rows: list[dict]) -> None:
-    gaps = {}
-    for r in rows:
-        best = learn_financial.best_baseline(r)
-        gaps[r["target"]] = (best, r[best]["mean_log_likelihood"]
-                             - r["learned"]["mean_log_likelihood"])
-    close = [t for t, (_, gap) in gaps.items() if gap <= MARGIN]
-    report = {t: f"{b} better by {g:.3f}" for t, (b, g) in gaps.items() if g > MARGIN}
-    assert len(close) >= CLOSE_TO_BEST, report
+def test_at_or_above_the_best_baseline_but_for_noise(rows: list[dict]) -> None:
+    """On every target, the learned program's held-out mean log-likelihood is at least the best
+    baseline's but for the noise of the test groundings (two standard errors of the paired
+    difference, one nat over all of them: learn_financial.level)."""
+    behind = {r["target"]: f"{r['best']} better by {-r['gap']:.4f} (se {r['gap_se']:.4f})"
+              for r in rows if not learn_financial.level(r)}
+    assert not behind, behind
 
 
 def test_linear_baseline_recovers_a_known_gaussian_model() -> None:

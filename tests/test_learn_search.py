@@ -1,5 +1,8 @@
 """The tree search on small data sets whose answer is known: thresholds, counts, several
-classes, uncertain facts, a relational literal found by lookahead, and the search's settings."""
+classes, uncertain facts, a relational literal found by lookahead, and the search's settings.
+
+The trees are grown without a root model (``root_model="never"``): on one feature the root
+model's regression is the tree's model in another form (tests/test_learn_root_model.py)."""
 
 from __future__ import annotations
 
@@ -17,6 +20,9 @@ def write(path: Path, lines: list[str]) -> Path:
     return path
 
 
+TREE = SearchOptions(root_model="never")
+
+
 def leaves(result):
     return result.targets[0].leaves
 
@@ -30,7 +36,7 @@ def test_thresholds_give_one_branch_per_interval(tmp_path: Path) -> None:
         d = rng.uniform(0, 0.3)
         b = int(d >= 0.1) + int(d >= 0.2)
         lines += [f"d({i}) ~= {d:.4f}.", f"y({i}) ~= {str(rng.random() < p[b]).lower()}."]
-    result = learn([write(tmp_path / "t.pl", lines)])
+    result = learn([write(tmp_path / "t.pl", lines)], options=TREE)
     ls = leaves(result)
     bodies = [leaf.clause.split(":=")[1] for leaf in ls]
     assert "D < 0.1" in bodies[0]
@@ -50,7 +56,7 @@ def test_a_count_target_gets_poisson_leaves(tmp_path: Path) -> None:
     ns = rng.poisson(np.exp(0.7 * xs - 0.2))
     lines += [f"x({i}) ~= {x:.5f}." for i, x in enumerate(xs)]
     lines += [f"n({i}) ~= {n}." for i, n in enumerate(ns)]
-    result = learn([write(tmp_path / "c.pl", lines)])
+    result = learn([write(tmp_path / "c.pl", lines)], options=TREE)
     leaf = leaves(result)[0]
     assert leaf.leaf.family == "poisson_log_linear"
     w, b = leaf.leaf.weights
@@ -70,7 +76,7 @@ def test_three_classes_and_a_regressor_give_softmax(tmp_path: Path) -> None:
     lines += [f"x({i}) ~= {x:.5f}." for i, x in enumerate(xs)]
     lines += [f"c({i}) ~= {c}." for i, c in enumerate(cs)]
     path = write(tmp_path / "s.pl", lines)
-    result = learn([path])
+    result = learn([path], options=TREE)
     leaf = leaves(result)[0]
     assert leaf.leaf.family == "softmax"
     rows = np.array(leaf.leaf.weight_rows)

@@ -156,3 +156,34 @@ def test_a_run_resumed_from_its_store_alone_takes_the_stored_options(whole,
     assert resumed.summary["particles"] == PARTICLES
     assert [o["symbols"] for o in resumed.summary["objects"]] == \
         [o["symbols"] for o in output.summary["objects"]]
+
+
+def test_a_run_resumed_after_an_ambiguity_revises_as_an_uninterrupted_run(tmp_path: Path
+                                                                          ) -> None:
+    """scenarios/identity_revealed.yaml killed after the mugs were re-acquired ambiguously
+    (frame 128) and resumed: the identity hypotheses are replayed into the particles, and the
+    run revises the mugs' symbols at the same frame as an uninterrupted one."""
+    scenario = ROOT / "scenarios" / "identity_revealed.yaml"
+    whole = run(RunOptions(scenario=scenario, particles=200, seed=0, progress=False,
+                           store=tmp_path / "whole.db"))
+    assert whole.summary["revisions"], "the scene should revise the mugs' symbols"
+    db = tmp_path / "world.db"
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
+    child = subprocess.Popen(
+        [sys.executable, "-m", "probanchor.cli.anchoring_cli", "run", str(scenario),
+         "--particles", "200", "--quiet", "--store", str(db)],
+        env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 600  # a bound on waiting, not a measurement
+        while _frames(db) < 131 and child.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.01)
+        child.kill()
+    finally:
+        child.wait()
+    done = _frames(db)
+    assert 131 <= done < len(whole.records), "the run ended before it was killed"
+    resumed = run(RunOptions(scenario=scenario, particles=200, seed=0, progress=False,
+                             resume=db))
+    assert resumed.summary["revisions"] == whole.summary["revisions"]
+    assert _without_timings(resumed.records) == _without_timings(whole.records)
+    assert _particles(db) == _particles(tmp_path / "whole.db")

@@ -1,4 +1,4 @@
-"""Projection, drawing of anchors and particles, PNG, GIF and the top-down plot."""
+"""Projection, drawing of anchors and particles, PNG, GIF, video and the top-down plot."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ import pytest
 from probanchor.visualise import (
     AnchorView,
     CameraView,
+    VideoWriter,
     anchor_colour,
     draw_anchors,
     draw_particles,
@@ -16,6 +17,7 @@ from probanchor.visualise import (
     render_topdown,
     save_png,
     write_gif,
+    write_video,
 )
 
 INTR = (100.0, 120.0, 160.0, 120.0)  # fx, fy, cx, cy for 320x240
@@ -120,6 +122,57 @@ def test_png_and_gif(tmp_path):
         write_gif(tmp_path / "bad.gif", [frames[0], frames[0][:100]])
     with pytest.raises(ValueError, match="no frames"):
         write_gif(tmp_path / "empty.gif", [])
+
+
+def decode(path):
+    import av
+
+    with av.open(str(path)) as container:
+        frames = list(container.decode(video=0))
+        return [f.to_ndarray(format="rgb24") for f in frames], [float(f.time) for f in frames]
+
+
+@pytest.mark.parametrize("suffix", [".mp4", ".webm"])
+def test_video_decodes_to_the_frames_at_their_times(tmp_path, suffix):
+    cam = CameraView.make(INTR, looking_down())
+    # more frames than the encoders' look-ahead: packets come out while frames still go in
+    frames = [draw_anchors(grey(), cam, [AnchorView("ball-1", np.array([-0.2 + 0.004 * k, 0, 0]),
+                                                    perceived=True)]) for k in range(100)]
+    path = tmp_path / f"run{suffix}"
+    with VideoWriter(path) as video:
+        for k, f in enumerate(frames):
+            video.add(f, time=10.0 + k / 5)  # 5 frames per second, from 10 s on
+    images, times = decode(path)
+    assert len(images) == 100 and images[0].shape == (240, 320, 3)
+    assert times[0] == pytest.approx(0.0) and times[-1] == pytest.approx(99 / 5, abs=0.002)
+    # lossy, but close: the mean error per pixel is small
+    assert np.abs(images[7].astype(int) - frames[7]).mean() < 4
+    assert path.stat().st_size < 100_000
+    # from PNG files, an odd size padded to even
+    png = save_png(tmp_path / "odd.png", frames[0][:239, :319])
+    assert write_video(tmp_path / "odd.mp4", [png, png, png], fps=10) == 3
+    images, times = decode(tmp_path / "odd.mp4")
+    assert images[0].shape == (240, 320, 3) and times[1] == pytest.approx(0.1)
+
+
+def test_video_rejects_bad_input(tmp_path):
+    with pytest.raises(ValueError, match=r"\.mp4 or \.webm"):
+        VideoWriter(tmp_path / "run.avi")
+    with pytest.raises(ValueError, match="positive"):
+        VideoWriter(tmp_path / "run.mp4", fps=0)
+    with pytest.raises(ValueError, match="no frames"):
+        write_video(tmp_path / "none.mp4", [])
+    video = VideoWriter(tmp_path / "run.mp4")
+    with pytest.raises(ValueError, match="not an RGB uint8"):
+        video.add(grey().astype(float))
+    video.add(grey(), time=1.0)
+    with pytest.raises(ValueError, match="320x240"):
+        video.add(grey()[:100])
+    with pytest.raises(ValueError, match="before the previous"):
+        video.add(grey(), time=0.5)
+    assert video.close() == tmp_path / "run.mp4" and video.frames == 1
+    assert VideoWriter(tmp_path / "empty.mp4").close() is None  # nothing added: no file
+    assert not (tmp_path / "empty.mp4").exists()
 
 
 def test_topdown_plot_shows_every_mode(tmp_path):

@@ -45,6 +45,9 @@ class Anchor:
     confirmed: bool = False
     observations: int = 1
     history_size: int = field(default=10, repr=False)
+    # while tracked: per position particle, whether the reasoning has the object under an
+    # occluder there (anchoring.likelihood); None while perceived or when not told
+    occluded: np.ndarray | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         # window sums over the history, for the mean size and colour (re-acquire hot path)
@@ -98,14 +101,23 @@ class Anchor:
         self.category_count += 1
         self.last_seen = t
         self.observations += 1
+        self.occluded = None
 
     def set_position_particles(
-        self, positions: np.ndarray, weights: np.ndarray | None = None, time: float | None = None
+        self, positions: np.ndarray, weights: np.ndarray | None = None, time: float | None = None,
+        occluded: np.ndarray | None = None,
     ) -> None:
-        """Track: the position becomes the reasoning's weighted particles (N, 3)."""
+        """Track: the position becomes the reasoning's weighted particles (N, 3);
+        ``occluded`` (N,): whether each particle has the object under an occluder."""
         positions = np.asarray(positions, dtype=float)
         if positions.ndim != 2 or positions.shape[1] != 3:
             raise ValueError(f"{self.symbol}: positions must be (N, 3), got {positions.shape}")
+        if occluded is not None:
+            occluded = np.asarray(occluded, dtype=bool).reshape(-1)
+            if occluded.shape[0] != positions.shape[0]:
+                raise ValueError(f"{self.symbol}: {occluded.shape[0]} occluded flags for "
+                                 f"{positions.shape[0]} particles")
+        self.occluded = occluded
         t = self.position.time if time is None else time
         self.position = Attribute.probabilistic(positions, weights, t)
         self.position.augmented_support()  # the matching form, prepared once per update
@@ -142,6 +154,7 @@ class Anchor:
             "colour_histogram": self.colour.to_json(),
             "history_size": self.history_size,
             "history": [p.to_json() for p in self.history],
+            "occluded": None if self.occluded is None else self.occluded.astype(int).tolist(),
         }
 
     @classmethod
@@ -164,6 +177,8 @@ class Anchor:
             confirmed=bool(record.get("confirmed", False)),
             observations=int(record.get("observations", 1)),
             history_size=history_size,
+            occluded=(None if record.get("occluded") is None
+                      else np.asarray(record["occluded"], dtype=bool)),
         )
 
 

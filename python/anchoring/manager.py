@@ -9,11 +9,11 @@ Per frame (:meth:`AnchorManager.process`):
 3. every (anchor, percept) pair gets its similarity vector and the learned matcher's score;
    pairs where the percept is a merged view of two objects are refused
    (:func:`anchoring.views.merged_views`);
-4. an anchor whose position is a belief (the reasoning's particles) may be re-acquired only
-   where that belief has a mass of at least ``belief_gate`` near the percept
-   (:func:`anchoring.similarity.position_evidence`), unless it has not been perceived since a
-   frame with no percept at all (the camera was covered: its belief no longer says where it
-   is);
+4. an anchor whose position is a belief (the reasoning's particles) is re-acquired only where
+   that is more probable than the percept being a new object or clutter: how the anchor looks
+   (the matching function's appearance decision, calibrated) times where its belief puts it,
+   with the part of the belief that has the object under nothing (moved unseen, or lost while
+   the camera saw nothing) spread over the whole table (:mod:`anchoring.likelihood`);
 5. percepts and anchors are assigned jointly, one to one, by the Hungarian method
    (``scipy.optimize.linear_sum_assignment``): as many pairs as possible among those the
    matcher accepts (decision > 0), and among such assignments the one with the largest total
@@ -24,7 +24,7 @@ Per frame (:meth:`AnchorManager.process`):
    tied; ``"max"`` takes the best particle's similarity, as the paper's Algorithm 1;
 6. what is left unmatched may still be re-identified by appearance, when it is the only
    look-alike of an anchor not perceived for a while (:mod:`anchoring.reidentify`; ``score`` 0);
-   the belief gate of step 4 holds there too;
+   the likelihood test of step 4 holds there too;
 7. matched percepts re-acquire their anchor, unmatched percepts acquire a new anchor, and the
    anchors that were not perceived are *tracked* (their position is whatever the reasoning
    later supplies through :meth:`AnchorManager.set_position_particles`, else the last value);
@@ -32,7 +32,9 @@ Per frame (:meth:`AnchorManager.process`):
    ``ambiguity_ratio`` times its mass near the percept is reported as ambiguous, with each
    candidate's probability (its share of the mass), in ``result.ambiguous``; so is one by an
    anchor not perceived since the camera last saw nothing while a look-alike is in the same
-   case (they may have been exchanged unseen: equal probabilities);
+   case (they may have been exchanged unseen: equal probabilities); each ambiguity also carries
+   the appearance log likelihood ratio of the percept against every candidate, for the
+   identity hypotheses the reasoning keeps (:mod:`anchoring.identity`);
 8. except that an unmatched percept that is a plausible *partial or merged view* of anchors
    not perceived this frame is *withheld* (no symbol, reported in ``result.withheld``; for at
    most ``withhold_seconds`` in a row per anchor; :mod:`anchoring.views`).
@@ -40,11 +42,13 @@ Per frame (:meth:`AnchorManager.process`):
 Hands (skin percepts and the anchors acquired from them) are matched apart from the rest, by
 their grip points (:mod:`anchoring.hands`; ``hands=None`` matches them as any other object).
 
-Symbols are ``<category>-<k>``: the k-th anchor acquired with that best category. A symbol never
-changes during the anchor's life, even when its category estimate changes later (the anchor's
-``category`` / ``best_category`` give the current estimate); so the reasoner's atoms stay
-stable. When a glitch is dropped and it holds the newest number of its category, the number is
-given back, so a one-frame false detection leaves no gap.
+Symbols are ``<category>-<k>``: the k-th anchor acquired with that best category. A symbol
+does not change when the anchor's category estimate changes later (the anchor's ``category`` /
+``best_category`` give the current estimate), so the reasoner's atoms stay stable; only a
+revision (:meth:`AnchorManager.relabel`, later evidence showing two look-alikes had each
+other's symbols, :mod:`anchoring.identity`) makes anchors exchange their symbols. When a
+glitch is dropped and it holds the newest number of its category, the number is given back,
+so a one-frame false detection leaves no gap.
 """
 
 from __future__ import annotations
@@ -70,6 +74,13 @@ from anchoring.hands import (
     is_hand_percept,
     match_hands,
     views_under_hands,
+)
+from anchoring.likelihood import (
+    AssociationModel,
+    appearance_log_ratio,
+    belief_ratio,
+    reacquire_probability,
+    unexplained_mass,
 )
 from anchoring.matcher import Matcher, load_default_matcher
 from anchoring.reidentify import looks_alike, unique_lookalikes
@@ -98,10 +109,13 @@ class Assignment:
 class Ambiguity:
     """Percept ``percept_index`` could be any of several look-alike anchors: ``candidates``
     maps each symbol to its probability (its share of the beliefs' mass near the percept, or
-    an equal share after the camera saw nothing), the one given first."""
+    an equal share after the camera saw nothing), the one given first; ``appearance`` maps each
+    candidate to the log likelihood ratio of how it looks against the percept
+    (:func:`anchoring.likelihood.appearance_log_ratio`)."""
 
     percept_index: int
     candidates: dict[str, float]
+    appearance: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass
@@ -177,7 +191,7 @@ class AnchorManager:
         reid_similarity: tuple[float, float, float] = (0.5, 0.9, 0.7),
         position_match: Literal["mass", "max"] = "mass",
         belief_radius: float = BELIEF_RADIUS,
-        belief_gate: float = 0.01,
+        association: AssociationModel | None = None,
         ambiguity_ratio: float = 0.5,
         hands: HandRules | None = DEFAULT_HAND_RULES,
     ) -> None:
@@ -194,8 +208,9 @@ class AnchorManager:
         self.reid_seconds = float(reid_seconds)
         self.reid_similarity = tuple(float(v) for v in reid_similarity)
         # anchors whose position is a belief (anchoring.similarity.position_evidence): the
-        # assignment's position term, the kernel's standard deviation (metres), the least mass
-        # near a percept for re-acquiring (<= 0: no gate), the mass ratio that is ambiguous
+        # assignment's position term, the kernel's standard deviation (metres), the likelihoods
+        # of re-acquiring against a new object (anchoring.likelihood), the mass ratio that is
+        # ambiguous
         if position_match not in ("mass", "max"):
             raise ValueError(f"position_match must be 'mass' or 'max', not {position_match!r}")
         if belief_radius <= 0:
@@ -204,7 +219,8 @@ class AnchorManager:
             raise ValueError(f"ambiguity_ratio must be in (0, 1], not {ambiguity_ratio!r}")
         self.position_match: Literal["mass", "max"] = position_match
         self.belief_radius = float(belief_radius)
-        self.belief_gate = float(belief_gate)
+        self.association = (association if association is not None
+                            else AssociationModel.for_matcher(self.matcher))
         self.ambiguity_ratio = float(ambiguity_ratio)
         self.hands = hands  # hands matched by their grip points (anchoring.hands); None: off
         self.blind_time: float | None = None  # the last frame with no valid percept
@@ -233,14 +249,33 @@ class AnchorManager:
 
     # --- track: feedback from the reasoning ----------------------------------------------
     def set_position_particles(
-        self, symbol: str, positions: np.ndarray, weights: np.ndarray | None = None
+        self, symbol: str, positions: np.ndarray, weights: np.ndarray | None = None,
+        occluded: np.ndarray | None = None,
     ) -> None:
         """The anchor's position becomes the reasoning's weighted particles ((N, 3), (N,)).
 
         Matching then uses the maximum position similarity over the particles of positive
-        weight; the next re-acquire replaces them by the percept's position.
+        weight; the next re-acquire replaces them by the percept's position. ``occluded`` (N,)
+        says in which particles the reasoning has the object under an occluder (step 4).
         """
-        self.get(symbol).set_position_particles(positions, weights, self.time)
+        self.get(symbol).set_position_particles(positions, weights, self.time, occluded)
+
+    def relabel(self, mapping: dict[str, str]) -> None:
+        """Revise identities: the anchor now named ``old`` is named ``mapping[old]`` (a
+        permutation of existing symbols; later evidence showed the anchors had been given each
+        other's symbols). Nothing else of the anchors changes."""
+        olds, news = set(mapping), set(mapping.values())
+        if olds != news:
+            raise ValueError(f"not a permutation of symbols: {mapping!r}")
+        missing = [s for s in olds if s not in self._anchors]
+        if missing:
+            raise KeyError(f"no anchor {missing[0]!r}")
+        moved = {new: self._anchors[old] for old, new in mapping.items()}
+        for new, anchor in moved.items():
+            anchor.symbol = new
+            anchor.symbol_category = new.rsplit("-", 1)[0]
+        self._anchors = {s: moved.get(s, a) for s, a in self._anchors.items()}
+        self._withholding = {mapping.get(s, s): t for s, t in self._withholding.items()}
 
     # --- one frame ----------------------------------------------------------------------
     def process(self, time: float, percepts: Sequence[Percept]) -> FrameResult:
@@ -284,6 +319,7 @@ class AnchorManager:
         refuse = np.zeros((len(anchors), len(frame)), bool)
         scores = np.zeros((len(anchors), len(frame)))
         believed = np.array([a.position.is_probabilistic for a in anchors], bool)
+        log_appearance = np.zeros((len(anchors), len(frame)))
         # not perceived since the camera last saw nothing: the belief says where it was only
         lost_blind = np.array([self.blind_time is not None and a.last_seen < self.blind_time
                                for a in anchors], bool)
@@ -291,7 +327,14 @@ class AnchorManager:
             scores = np.asarray(self.matcher.decision(features), dtype=float)
             refuse, merged = merged_views(anchors, frame, time,
                                           self.merge_ratio, self.merge_seconds)
-            refuse |= self._outside_belief(believed & ~lost_blind, mass)
+            log_appearance = appearance_log_ratio(self.matcher, features, self.association)
+            unexplained = np.array(
+                [1.0 if lost else unexplained_mass(a, frame, self.association)
+                 for a, lost in zip(anchors, lost_blind, strict=True)])
+            refuse |= believed[:, None] & (reacquire_probability(
+                log_appearance, belief_ratio(mass, unexplained, self.association,
+                                             self.belief_radius),
+                self.association) < 0.5)
             accept = (scores > 0) & ~refuse
             if accept.any():
                 # the matcher decides which pairs may match; the assignment takes as many
@@ -326,7 +369,7 @@ class AnchorManager:
                 [percepts[i] for i in skin], min_colour=self.view_colour))
         result.ambiguous = self._ambiguities(
             anchors, believed, lost_blind & np.array([a.confirmed for a in anchors], bool),
-            features, mass,
+            features, mass, log_appearance,
             {j: k for j, k in matched_anchor.items() if j not in views}, valid)
         perceived: set[str] = set()
         for j, i in enumerate(valid):
@@ -376,16 +419,9 @@ class AnchorManager:
         for j, k in found.pieces.items():
             result.withheld.append(Withheld(skin[j], [symbols[k]]))
 
-    def _outside_belief(self, informed: np.ndarray, mass: np.ndarray) -> np.ndarray:
-        """(A, P) pairs refused because an ``informed`` anchor's belief puts less than
-        ``belief_gate`` of its mass near the percept (step 4 of the module docstring)."""
-        if self.belief_gate <= 0:
-            return np.zeros(mass.shape, bool)
-        return informed[:, None] & (mass < self.belief_gate)
-
     def _ambiguities(self, anchors: list[Anchor], believed: np.ndarray, lost_blind: np.ndarray,
-                     features: np.ndarray, mass: np.ndarray, matched_anchor: dict[int, int],
-                     valid: list[int]) -> list[Ambiguity]:
+                     features: np.ndarray, mass: np.ndarray, log_appearance: np.ndarray,
+                     matched_anchor: dict[int, int], valid: list[int]) -> list[Ambiguity]:
         """Re-acquisitions that nothing the robot saw tells from a look-alike's (step 7): by
         the beliefs' masses within ``ambiguity_ratio``; or, for an anchor not perceived since
         the camera last saw nothing, any look-alike in the same case (the two may have been
@@ -409,7 +445,9 @@ class AnchorManager:
                 candidates = {anchors[k].symbol: float(share[0])}
                 candidates.update((anchors[o].symbol, float(p))
                                   for o, p in zip(others, share[1:], strict=True))
-                out.append(Ambiguity(valid[j], candidates))
+                appearance = {anchors[o].symbol: float(log_appearance[o, j])
+                              for o in (k, *others)}
+                out.append(Ambiguity(valid[j], candidates, appearance))
         return out
 
     # --- persistence ----------------------------------------------------------------------
@@ -428,7 +466,7 @@ class AnchorManager:
             "reid_similarity": list(self.reid_similarity),
             "position_match": self.position_match,
             "belief_radius": self.belief_radius,
-            "belief_gate": self.belief_gate,
+            "association": self.association.to_json(),
             "ambiguity_ratio": self.ambiguity_ratio,
             "hands": None if self.hands is None else vars(self.hands),
             "blind_time": self.blind_time,
@@ -490,7 +528,8 @@ class AnchorManager:
                 reid_similarity=tuple(record.get("reid_similarity", (0.5, 0.9, 0.7))),
                 position_match=record.get("position_match", "mass"),
                 belief_radius=float(record.get("belief_radius", BELIEF_RADIUS)),
-                belief_gate=float(record.get("belief_gate", 0.01)),
+                association=(AssociationModel.from_json(record["association"])
+                             if "association" in record else None),
                 ambiguity_ratio=float(record.get("ambiguity_ratio", 0.5)),
                 hands=_hand_rules(record.get("hands", {})),
             )

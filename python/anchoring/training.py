@@ -177,3 +177,28 @@ def scores(model: RbfSvm, pairs: PairSet) -> dict[str, float]:
         "same_recall": float((pred[same] == 1).mean()) if same.any() else float("nan"),
         "different_recall": float((pred[~same] == 0).mean()) if (~same).any() else float("nan"),
     }
+
+
+def appearance_calibration(model: RbfSvm, pairs: PairSet) -> dict[str, float]:
+    """Platt scaling of the appearance decision into a log likelihood ratio.
+
+    The appearance decision is the matching function on a pair's similarities with position
+    and time taken as agreeing (:func:`anchoring.likelihood.appearance_log_ratio` with the
+    identity calibration). A logistic regression of the same-object label on it gives
+    ``logit P(same | d) = a d + b``; dividing out the pairs' prior odds (Bayes' rule) leaves
+    the likelihood ratio ``log p(d | same) / p(d | different) = a d + b - logit(prior)``, which
+    is what :class:`anchoring.likelihood.AssociationModel` multiplies the belief by. Returns
+    ``{"scale": a, "offset": b - logit(prior), "pairs": n}``.
+    """
+    from sklearn.linear_model import LogisticRegression
+
+    from anchoring.likelihood import AssociationModel, appearance_log_ratio
+
+    if len(pairs) == 0 or pairs.y.min() == pairs.y.max():
+        raise ValueError("appearance calibration needs pairs of both labels")
+    d = appearance_log_ratio(model, pairs.x, AssociationModel())
+    fit = LogisticRegression(C=100.0).fit(d.reshape(-1, 1), pairs.y)
+    prior = float(pairs.y.mean())
+    return {"scale": float(fit.coef_[0, 0]),
+            "offset": float(fit.intercept_[0] - np.log(prior / (1.0 - prior))),
+            "pairs": len(pairs)}

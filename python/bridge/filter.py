@@ -35,6 +35,11 @@ applies to, any other Prolog error in a step) raises :class:`FilterError` naming
 item and the cause; if the engine had already advanced, the step is undone, so the filter stays
 usable with everything it held.
 
+Renaming and reweighting: ``rename`` renames constants inside chosen particles (their worlds go
+on as if the names had always been so: data association per particle), ``reweight`` multiplies
+the weights by factors the caller computed (an importance correction), and ``particle_data``
+holds arrays of N rows that follow the particles through every resampling.
+
 Threads: a filter may be made, stepped, queried and closed in any thread (its particles live in
 a Prolog engine of their own that the calling thread runs for each call); calls on one filter
 are taken one at a time. Its program is compiled into a module of its own: loading the file
@@ -50,7 +55,7 @@ import os
 import threading
 import time as _time
 import warnings
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import wraps
 from pathlib import Path
@@ -61,6 +66,7 @@ import numpy as np
 
 from bridge import prolog
 from bridge.engines import ENGINES, Engine
+from bridge.particle_data import ParticleData
 from bridge.resampling import RESAMPLERS, Resampling, effective_sample_size, resample_indices
 from bridge.terms import Compound, Text, item_text, to_term
 from bridge.threads import DEFAULT_THREADS
@@ -68,6 +74,9 @@ from bridge.threads import DEFAULT_THREADS
 logger = logging.getLogger(__name__)
 
 _TEMPLATE_VAR = "DdcBridgeValue__"
+# The widest row the batched engine's column library holds (MAX_K in prolog/c/ddc_columns.c):
+# samples() lends it a buffer of this many floats per particle.
+_MAX_ROW_WIDTH = 16
 
 
 class FilterError(RuntimeError):
@@ -173,6 +182,11 @@ def _locked(method: Callable[Concatenate[Filter, _P], _R]) -> Callable[Concatena
     return call
 
 
+def _a(name: str) -> str:
+    """``a list``, ``an int``."""
+    return f"{'an' if name[:1] in 'aeiou' else 'a'} {name}"
+
+
 def _as_term_text(value: Any) -> str:
     return item_text(value) if isinstance(value, str) else to_term(value)
 
@@ -246,6 +260,9 @@ class Filter:
         self.step_seconds: list[float] = []  #: wall time of every step
         self.step_prolog_seconds: list[float] = []  #: of which in the Prolog step call
         self.last_step: StepResult | None = None
+        #: name -> array with first dimension N, resampled with the particles (see
+        #: :class:`bridge.particle_data.ParticleData`)
+        self.particle_data = ParticleData(self.particles)
         self._key: str | None = None
         #: one call on the filter at a time (a step is several Prolog calls)
         self._lock = threading.RLock()
@@ -362,6 +379,7 @@ class Filter:
         if resampled:
             indices = resample_indices(self.weights, self.resampling, self._rng)
             _call("bridge_resample(K, I)", {"K": key, "I": indices.tolist()})
+            self.particle_data.resample(indices)
             self._log_weights = np.full(self.particles, -math.log(self.particles))
             self.resample_count += 1
         return self._finish(
@@ -369,11 +387,121 @@ class Filter:
             started,
         )
 
+    # -- renaming and reweighting -------------------------------------------------------------
+    @_locked
+    def rename(
+        self,
+        mapping: Mapping[str, str],
+        particles: np.ndarray | Sequence[int] | None = None,
+    ) -> None:
+        """In the given particles, the constants ``old`` of ``mapping`` are named ``mapping[old]``.
+
+        ``mapping`` maps names (atoms) to names and must be a permutation of its keys
+        (``{"mug_1": "mug_2", "mug_2": "mug_1"}``; a name mapped to itself is allowed).
+        ``particles``: 0-based indices (repeats ignored), a boolean mask of N, or None for every
+        particle. In each of them every value it holds (of t, of t-1 for the next step's ``:t``
+        reads, and untimed) has each old name replaced by its new one, in the variable's
+        arguments (``pos(mug_1)``) and in the value (``mug_1``); the next step goes on as if the
+        names had always been so in those particles. The program and the step's facts are not
+        renamed; the other particles and the weights are unchanged (see ``filter_rename/3`` in
+        ``prolog/ddc_filter.pl``, and "Renaming constants in particles" in docs/filter.md).
+        A bad mapping or index raises :class:`FilterError` naming it; the filter is unchanged.
+        """
+        key = self._handle()
+        if not isinstance(mapping, Mapping):
+            raise FilterError(f"rename: the mapping must map old names to new names, "
+                              f"got {mapping!r}")
+        olds, news = list(mapping.keys()), list(mapping.values())
+        for name in olds + news:
+            if not isinstance(name, str):
+                raise FilterError(f"rename: names are strings, got {name!r}")
+        if len(set(news)) != len(news) or set(news) != set(olds):
+            raise FilterError(f"rename: the new names {sorted(news)} are not a permutation of "
+                              f"the old names {sorted(olds)}")
+        indices = self._particle_indices("rename", particles)
+        if not olds or indices.size == 0:
+            return
+        result = _call("bridge_rename(K, O, N, I, Err)",
+                       {"K": key, "O": olds, "N": news, "I": (indices + 1).tolist()})
+        if result["Err"]:
+            raise FilterError(f"rename: {result['Err']}")
+
+    def _particle_indices(
+        self, what: str, particles: np.ndarray | Sequence[int] | None
+    ) -> np.ndarray:
+        """0-based particle indices (int64) of ``particles``: indices, a boolean mask of N, or
+        None for all; a FilterError names a bad one."""
+        if particles is None:
+            return np.arange(self.particles, dtype=np.int64)
+        array = np.asarray(particles)
+        if array.dtype == bool:
+            if array.shape != (self.particles,):
+                raise FilterError(f"{what}: a particle mask must have shape "
+                                  f"({self.particles},), got {array.shape}")
+            return np.flatnonzero(array).astype(np.int64)
+        if array.size == 0:
+            return np.empty(0, dtype=np.int64)
+        if array.ndim != 1 or array.dtype.kind not in "iu":
+            raise FilterError(f"{what}: particles must be a 1-D sequence of integer indices, "
+                              f"got {particles!r}")
+        outside = array[(array < 0) | (array >= self.particles)]
+        if outside.size:
+            raise FilterError(f"{what}: particle index {int(outside[0])} is outside "
+                              f"0..{self.particles - 1}")
+        return array.astype(np.int64)
+
+    @_locked
+    def reweight(self, log_factors: np.ndarray) -> None:
+        """Multiply each particle's weight by ``exp(log_factors[i])`` and renormalise.
+
+        For an importance correction a caller computes itself (prior / proposal of a choice it
+        made per particle, e.g. the hypothesis behind a :meth:`rename`). ``log_factors``: shape
+        (N,), each finite or -inf, not all -inf. The log of the weighted mean factor is added to
+        :attr:`log_likelihood` (0 in expectation for a prior / proposal ratio). The ESS
+        (:attr:`ess`) sees the new weights at once; whether to resample is decided only in
+        :meth:`step`, after the step's own weighting, so a reweighted filter is resampled (if
+        its ESS is then below the threshold) at the next step. A bad array, or factors that
+        leave no particle with weight, raise :class:`FilterError` and change nothing.
+        """
+        self._handle()
+        try:
+            factors = np.asarray(log_factors, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise FilterError(f"reweight: log factors must be numbers: {exc}") from None
+        if factors.shape != (self.particles,):
+            raise FilterError(f"reweight: log factors must have shape ({self.particles},), "
+                              f"got {factors.shape}")
+        bad = np.flatnonzero(np.isnan(factors) | np.isposinf(factors))
+        if bad.size:
+            raise FilterError(f"reweight: log factor {int(bad[0])} is {factors[bad[0]]}; "
+                              "each must be finite or -inf")
+        if np.isneginf(factors).all():
+            raise FilterError("reweight: every log factor is -inf")
+        combined = self._log_weights + factors
+        increment = _logsumexp(combined)
+        if not math.isfinite(increment):
+            raise FilterError("reweight: the factors give weight 0 to every particle that "
+                              "has weight")
+        self._log_weights = combined - increment
+        self.log_likelihood += increment
+
     def _texts(self, kind: str, items: Iterable[Any]) -> list[str]:
+        """The Prolog texts of a step's observations or actions: one term (Prolog text, a
+        ``Compound`` or ``Text``) or a list of them; anything else is a FilterError naming the
+        item (a number or a list is no fact, a dict's keys are not meant as facts)."""
         if isinstance(items, str | Compound | Text):
             items = [items]
+        if isinstance(items, Mapping | set | frozenset | bytes | bytearray) or not isinstance(
+                items, Iterable):
+            raise FilterError(f"{kind}s: {items!r} is {_a(type(items).__name__)}; give a list of "
+                              "terms (Prolog text such as 'observed(ball_1)', or bridge.terms "
+                              "values such as terms.observation(...))")
         texts = []
         for i, item in enumerate(items, start=1):
+            if not isinstance(item, str | Compound | Text):
+                raise FilterError(f"{kind} {i} ({item!r}): {_a(type(item).__name__)} is not a "
+                                  "term; give Prolog text or a bridge.terms value (fact, "
+                                  "observation, action)")
             try:
                 texts.append(_as_term_text(item))
             except (TypeError, ValueError) as exc:
@@ -432,14 +560,17 @@ class Filter:
         """Per particle, ``template`` at the first solution of ``goal`` (None: no solution)."""
         return list(self._query("bridge_values(K, P, V, Err)", template, goal)["V"])
 
-    def _query(self, call: str, template: Any, goal: Any) -> dict[str, Any]:
+    def _query(self, call: str, template: Any, goal: Any,
+               extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """One bridge query over the particles: ``template`` at the first solution of
-        ``goal`` (bound to ``P`` as a pair), the filter as ``K``; ``Err`` raised."""
+        ``goal`` (bound to ``P`` as a pair), the filter as ``K``, ``extra`` bindings too;
+        ``Err`` raised."""
         template_text = _as_term_text(template)
         goal_text = _as_term_text(goal)
         result = _call(
             call,
-            {"K": self._handle(), "P": f"ddc_bridge_pair(({template_text}),({goal_text}))"},
+            {"K": self._handle(), "P": f"ddc_bridge_pair(({template_text}),({goal_text}))",
+             **(extra or {})},
         )
         if result["Err"]:
             raise FilterError(f"query {template_text!r} for {goal_text!r}: {result['Err']}")
@@ -484,12 +615,19 @@ class Filter:
         """(values, weights): N rows of values (float, NaN where undefined, when numeric)."""
         # numbers or k-tuples of numbers come flattened from Prolog (no per-particle Python
         # work); other values as values() gives them
-        result = self._query("bridge_numeric_rows(K, P, W, F, V, Err)",
-                             *self._template_goal(term, goal))
+        # (the floats copied into `buffer` by the column library where it is loaded: no
+        # conversion of each float by janus; else a list.  The buffer's address and size are
+        # _-named: janus gives back no such binding.)
+        buffer = np.empty(self.particles * _MAX_ROW_WIDTH, dtype=float)
+        result = self._query("bridge_rows_into(K, P, _A, _C, W, F, V, Err)",
+                             *self._template_goal(term, goal),
+                             extra={"_A": buffer.ctypes.data, "_C": buffer.size})
         width = int(result["W"])
         if width == 0:
             return _as_array(result["V"]), self.weights
-        flat = np.asarray(result["F"], dtype=float)
+        floats = result["F"]
+        flat = (buffer[:floats].copy() if isinstance(floats, int)
+                else np.asarray(floats, dtype=float))
         return (flat if width == 1 else flat.reshape(self.particles, width)), self.weights
 
     @_locked

@@ -116,6 +116,14 @@ class LearningData:
         Most partial worlds one grounding may split into.
     targets : bool, default=True
         False for data that a program is scored on: no target need be declared or have facts.
+    bias : sequence of path, optional
+        With ``targets=False``, when no data file has a declaration (test facts only): the
+        files whose declarations say how the facts are read (a training file; its facts are
+        not read), in their dialect.
+    program : path, optional
+        With ``targets=False``, when no data file has a declaration and no ``bias`` is given:
+        the learned program whose record (``learned_from/4``) gives the dialect and the
+        declarations of the data it was learned from.
     """
 
     def __init__(
@@ -126,17 +134,24 @@ class LearningData:
         samples: int = 20,
         max_worlds: int = 4096,
         targets: bool = True,
+        bias: Sequence[str | Path] | None = None,
+        program: str | Path | None = None,
     ) -> None:
         paths = [str(Path(f).resolve()) for f in files]
-        for p in paths:
+        biases = [str(Path(f).resolve()) for f in (bias or [])]
+        programs = [] if program is None else [str(Path(program).resolve())]
+        for p in paths + biases + programs:
             if not Path(p).is_file():
                 raise DDCError(f"{p}: no such file")
         options = f"[samples({int(samples)}), max_worlds({int(max_worlds)})"
         if not targets:
             options += ", targets(false)"
         options += f", seed({int(seed)})]" if seed is not None else "]"
-        result = _call("term_string(_O, OT), ddc_learn:learn_load(Fs, _O, M)",
-                       {"Fs": paths, "OT": options})
+        result = _call("term_string(_O0, OT), "
+                       "findall(program(_P), member(_P, Ps), _O1), "
+                       "append([_O0, [bias_files(Bs)], _O1], _O), "
+                       "ddc_learn:learn_load(Fs, _O, M)",
+                       {"Fs": paths, "OT": options, "Bs": biases, "Ps": programs})
         self.module: str = str(result["M"])
         self.files = tuple(paths)
 
@@ -194,6 +209,16 @@ class LearningData:
             _call("forall(member(_N, Ns), ddc_learn:learn_forget(M, _N))",
                   {"M": self.module, "Ns": [int(n) for n in nodes]})
 
+    def subset(self, node: int, rows: Sequence[int]) -> int:
+        """A new node with ``node``'s path and its rows at the indices ``rows`` (from 0)."""
+        result = _call("ddc_learn:learn_subset(M, N, Is, S)",
+                       {"M": self.module, "N": int(node), "Is": [int(i) for i in rows]})
+        return int(result["S"])
+
+    def forget_rows(self, node: int) -> None:
+        """Drop a node's rows but keep its path (a split node that may become a leaf)."""
+        _call("ddc_learn:learn_forget_rows(M, N)", {"M": self.module, "N": int(node)})
+
     # -- clauses
     def leaf_clause(self, node: int, model: str, regressors: Sequence[int]) -> dict[str, str]:
         """The clause of a leaf: ``clause`` (DC text), ``distribution`` and ``model`` texts.
@@ -205,6 +230,27 @@ class LearningData:
                        {"M": self.module, "N": node, "MT": model,
                         "Rs": [int(r) for r in regressors]})
         return {k: str(v) for k, v in dict(result["D"]).items()}
+
+    def set_root_model(self, predicate: str, model: str) -> None:
+        """Set a target's root model (``learn_root_model/3``), read by the leaves' clauses.
+
+        ``model`` is the Prolog text of ``root_model(Features, Rows)``: a leaf regressor ``-1-J``
+        is then the J-th score of that model (:mod:`probanchor.ddclearn.root_model`).
+        """
+        _call("ddc_learn:learn_root_model(M, P, T)",
+              {"M": self.module, "P": predicate, "T": model})
+
+    def record(self, files: Sequence[str | Path], predicates: Sequence[str]) -> str:
+        """The record a learned program keeps of its data (``learn_data_record/4``).
+
+        The DC text of ``learned_from(Dialect, Files, Targets, Declarations)``: the data's
+        dialect, ``files`` as given, the targets of the internal names ``predicates`` and the
+        declarations that say how the facts are read.
+        """
+        result = _call("ddc_learn_data:learn_data_record(M, Fs, Ps, T)",
+                       {"M": self.module, "Fs": [str(f) for f in files],
+                        "Ps": list(predicates)})
+        return str(result["T"])
 
     def background(self, leaves: Sequence[tuple[int, str, Sequence[int]]]) -> list[str]:
         """The background clauses (DC text) that the leaves' clauses need."""
@@ -225,14 +271,19 @@ class LearningData:
                         "Ls": [[int(n), m, [int(r) for r in rs], c] for n, m, rs, c in leaves]})
         return str(result["T"][0]) if result["T"] else None
 
-    def program_scores(self, program: str | Path,
-                       predicates: Sequence[str] = ()) -> list[dict[str, Any]]:
-        """Held-out scores of a DC program's clauses on this data (``learn_program_scores/5``)."""
+    def program_scores(self, program: str | Path, predicates: Sequence[str] = (),
+                       examples: bool = False) -> list[dict[str, Any]]:
+        """Held-out scores of a DC program's clauses on this data (``learn_program_scores/5``).
+
+        With ``examples`` each target's dict has ``examples``: per grounding (in the order of
+        the target's groundings) its weight and log-likelihood.
+        """
         path = Path(program).resolve()
         if not path.is_file():
             raise DDCError(f"{path}: no such file")
-        result = _call("ddc_learn:learn_program_scores(M, F, Ts, [], Ss)",
-                       {"M": self.module, "F": str(path), "Ts": list(predicates)})
+        result = _call("ddc_learn:learn_program_scores(M, F, Ts, [examples(E)], Ss)",
+                       {"M": self.module, "F": str(path), "Ts": list(predicates),
+                        "E": "true" if examples else "false"})
         return [dict(s) for s in result["Ss"]]
 
     def free(self) -> None:

@@ -131,6 +131,41 @@ test(numeric_rows_flatten_numbers_and_tuples) :-
     assertion(W3 == 0), assertion(Err \== ""),
     bridge_free(Key).
 
+%   (Rows that cannot be copied into the caller's memory, here none, come as a list.)
+test(rows_into_memory_or_as_a_list) :-
+    new_filter(4, Key),
+    bridge_rows_into(Key, "ddc_bridge_pair(P, position:t ~= P)", 0, 0, W, Fs, Vs, ""),
+    assertion(W == 2),
+    assertion(Fs == [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
+    assertion(Vs == []),
+    bridge_rows_into(Key, "ddc_bridge_pair(V, maze(0,1):t ~= V)", 0, 0, W2, Fs2, _, ""),
+    assertion(W2 == 0), assertion(Fs2 == []),
+    bridge_rows_into(Key, "ddc_bridge_pair(V, maze(0,1):t ~= V)", x, 0, W3, _, _, Err),
+    assertion(W3 == 0), assertion(Err \== ""),
+    bridge_free(Key).
+
+test(rename_swaps_names_in_the_particles_given_and_reports_bad_renamings) :-
+    new_filter(4, Key),
+    step_null(Key, _),
+    Pair = "ddc_bridge_pair(V, maze(0,1):t ~= V)",
+    bridge_values(Key, Pair, Vs0, ""),
+    bridge_rename(Key, ["wall", "free"], ["free", "wall"], [2, 4], ""),
+    bridge_values(Key, Pair, Vs1, ""),
+    forall(nth1(I, Vs0, V0),
+           (   nth1(I, Vs1, V1),
+               (   I mod 2 =:= 0
+               ->  assertion(( member(V0-V1, [wall-free, free-wall]) -> true ))
+               ;   assertion(V1 == V0)
+               )
+           )),
+    bridge_rename(Key, ["wall"], ["free"], [1], Err),
+    assertion(sub_string(Err, _, _, _, "permutation")),
+    bridge_rename(Key, ["wall", "free"], ["free", "wall"], [5], Err2),
+    assertion(sub_string(Err2, _, _, _, "5")),
+    bridge_values(Key, Pair, Vs2, ""),
+    assertion(Vs2 == Vs1),
+    bridge_free(Key).
+
 test(frames_come_as_texts_that_read_back_as_the_terms_read) :-
     tmp_file_stream(text, Frames, Out),
     format(Out, '~w~n', ['{"observations": ["observation(p) ~= (0.1, -1, 1.0e-300, 12345678901234567890)", "observation(q) ~= \\"s\\"", "seen(\'A b\', [x|y], {z}, - (1), a- -1, (:-), \'=..\')"], "actions": ["action(move(b, (0.1,0,0)))"]}']),

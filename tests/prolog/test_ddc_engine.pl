@@ -298,9 +298,9 @@ test(pit_world_four_steps) :-
 %   both engines implement all of it.
 test(both_engines_implement_the_engine_interface) :-
     forall(( member(M, [ddc_particles, ddc_filter_batched]),
-             member(N/A, [ engine_step/4, engine_undo/1, engine_resample/2, engine_holds/3,
-                           engine_values/4, engine_rows/5, engine_time/2, engine_size/2,
-                           engine_statistics/2, engine_free/1 ]) ),
+             member(N/A, [ engine_step/4, engine_undo/1, engine_resample/2, engine_rename/3,
+                           engine_holds/3, engine_values/4, engine_rows/5, engine_time/2,
+                           engine_size/2, engine_statistics/2, engine_free/1 ]) ),
            ( functor(H, N, A), assertion(predicate_property(M:H, defined)) )).
 
 %   Compiled program clauses call the world runtime by its module, and read

@@ -325,15 +325,17 @@ test(a_test_value_the_program_does_not_know) :-
 test(learner_api, Exports == [ learn_background/3, learn_background_for/3, learn_candidates/3,
                               learn_check/1, learn_clause/5, learn_clause_text/3,
                               learn_evaluate/4, learn_evaluate_rows/5, learn_forget/2,
-                              learn_free/1, learn_groundings/3, learn_leaf_text/5,
-                              learn_load/3, learn_program_scores/5, learn_root/4,
-                              learn_split/4, learn_targets/2, learn_tree_text/3 ]) :-
+                              learn_forget_rows/2, learn_free/1, learn_groundings/3,
+                              learn_leaf_text/5, learn_load/3, learn_program_scores/5,
+                              learn_root/4, learn_root_model/3, learn_split/4, learn_subset/4,
+                              learn_targets/2, learn_tree_text/3 ]) :-
     module_property(ddc_learn, exports(E)), msort(E, Exports).
 
 test(data_api, Exports == [ data_read_terms/3, dc_goal/4, dc_term/3, dist_points/3,
                            example_weight/3, fact_where/3, internal_key/3, learn_data_free/1,
-                           learn_data_load/3, learn_data_pred/4, learn_data_targets/2,
-                           learn_data_warnings/2, message_text/2, pick/3 ]) :-
+                           learn_data_load/3, learn_data_pred/4, learn_data_record/4,
+                           learn_data_targets/2, learn_data_warnings/2, message_text/2,
+                           pick/3 ]) :-
     module_property(ddc_learn_data, exports(E)), msort(E, Exports).
 
 test(data_operators) :-

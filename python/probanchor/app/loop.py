@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from anchoring import AnchorManager, FrameResult, reasoning_position
+from anchoring.identity import AmbiguousPercept, Revision
 from bridge.engines import Engine
 from probanchor.app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS, AnchorState, OcclusionReasoner
 from probanchor.app.sources import PendingFrame, SourceFrame
@@ -48,6 +49,9 @@ class LoopConfig:
     # anchor left over (AnchorManager.reid_seconds); False switches that off, so that only
     # the matcher (and, with reasoning, the particles of hidden anchors) re-acquires.
     reidentify: bool = True
+    # Identities of look-alikes kept as hypotheses in the particles and revised by later
+    # evidence (anchoring.identity); False decides them once, by the most probable assignment.
+    identity: bool = True
 
 
 @dataclass
@@ -60,6 +64,12 @@ class FrameStep:
     timings: FrameTimings
     rejected: int
     states: list[AnchorState] = field(default_factory=list)  # what the filter was given
+    # the identity layer's input of the frame (ambiguous percepts) and what it revised
+    ambiguous: list[AmbiguousPercept] = field(default_factory=list)
+    evidence: list[str] = field(default_factory=list)
+    revisions: list[Revision] = field(default_factory=list)
+    # hidden anchor -> its belief's occluder symbols and their probabilities
+    occluders: dict[str, dict[str, float]] = field(default_factory=dict)
 
 
 @dataclass
@@ -72,6 +82,10 @@ class FrameOutcome:
     hidden_beliefs: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
     # the anchors' states the filter stepped on (empty without reasoning): a store replays them
     states: list[AnchorState] = field(default_factory=list)
+    # the identity layer's input of the frame and the revisions it made (a store replays them)
+    ambiguous: list[AmbiguousPercept] = field(default_factory=list)
+    evidence: list[str] = field(default_factory=list)
+    revisions: list[Revision] = field(default_factory=list)
 
 
 class AnchoringLoop:
@@ -90,8 +104,12 @@ class AnchoringLoop:
         self.rejected_percepts = 0
         # the anchors the reasoning was told about in the last frame
         self.reasoned_anchors = 0
-        # every ambiguous re-acquisition of the run: (frame, percept index, symbol -> P)
+        # every ambiguous re-acquisition of the run: (frame, percept index, symbol -> P as
+        # reported then); identity_answers() gives them as the particles answer them now
         self.ambiguities: list[tuple[int, int, dict[str, float]]] = []
+        # every revision of the run, in order
+        self.revisions: list[Revision] = []
+        self._tracked: set[str] = set()  # the anchors not perceived in the previous frame
 
     def close(self) -> None:
         if self.reasoner is not None:
@@ -116,6 +134,10 @@ class AnchoringLoop:
         filter_ms = 0.0
         hidden: dict[str, tuple[np.ndarray, np.ndarray]] = {}
         states: list[AnchorState] = []
+        ambiguous: list[AmbiguousPercept] = []
+        evidence: list[str] = []
+        revisions: list[Revision] = []
+        occluders: dict[str, dict[str, float]] = {}
         if self.reasoner is not None:
             started = time.perf_counter()
             # (a hand's position is its grip point: what it holds is there)
@@ -131,22 +153,64 @@ class AnchoringLoop:
                             else None)
                 for anchor in confirmed
             ]
-            self.reasoner.step(states)
+            given = result.symbols
+            ambiguous = [AmbiguousPercept(frame.frame, a.percept_index, given[a.percept_index],
+                                          tuple(a.candidates), dict(a.appearance),
+                                          np.asarray(frame.percepts[a.percept_index].position,
+                                                     dtype=float))
+                         for a in result.ambiguous]
+            # seen again after being hidden: what may decide an earlier ambiguity
+            evidence = sorted(s for s in result.reacquired if s in self._tracked)
+            revisions = self.reasoner.reason(
+                states, ambiguous if self.config.identity else [], frame.frame, evidence)
+            for revision in revisions:
+                self.revise(result, revision)
             self.reasoned_anchors = len(states)
-            reasoned = {anchor.symbol for anchor in confirmed}
+            reasoned = {anchor.symbol for anchor in self.manager.anchors if anchor.confirmed}
+            others = sorted(reasoned)
             for symbol in result.tracked:
                 if symbol not in reasoned:
                     continue
-                belief = self.reasoner.belief(symbol)
+                belief = self.reasoner.belief(symbol, others)
                 if belief is not None:
                     self.manager.set_position_particles(symbol, belief.positions,
-                                                        belief.weights)
+                                                        belief.weights, belief.occluded)
                     hidden[symbol] = (belief.positions, belief.weights)
+                    occluders[symbol] = belief.occluders()
             filter_ms = (time.perf_counter() - started) * 1000
+        self._tracked = set(result.tracked)
         return FrameStep(source, result, hidden,
                          FrameTimings(perception=source.perception_ms, anchoring=anchoring_ms,
                                       filter=filter_ms),
-                         rejected, states)
+                         rejected, states, ambiguous, evidence, revisions, occluders)
+
+    def revise(self, result: FrameResult, revision: Revision) -> None:
+        """Later evidence decided an earlier ambiguity otherwise: the anchors are renamed
+        (:meth:`anchoring.AnchorManager.relabel`), and so is this frame's result, so that its
+        record already gives the revised symbols."""
+        mapping = revision.mapping
+        self.manager.relabel(mapping)
+        for assignment in result.assignments:
+            assignment.symbol = mapping.get(assignment.symbol, assignment.symbol)
+        result.tracked = [mapping.get(s, s) for s in result.tracked]
+        for ambiguity in result.ambiguous:
+            ambiguity.candidates = {mapping.get(s, s): p for s, p in ambiguity.candidates.items()}
+            ambiguity.appearance = {mapping.get(s, s): v for s, v in ambiguity.appearance.items()}
+        self.revisions.append(revision)
+        logger.info("frame %d: identities revised %s (probability %.3f, was %.3f; evidence %s)",
+                    revision.frame, revision.mapping, revision.probability, revision.before,
+                    ", ".join(revision.evidence) or "none")
+
+    def identity_answers(self) -> list[tuple[int, int, dict[str, float]]]:
+        """Every ambiguous re-acquisition of the run, (frame, percept index, symbol -> P), the
+        probabilities as the particles answer them now (after every revision); as reported
+        at the time without reasoning."""
+        if self.reasoner is None:
+            return list(self.ambiguities)
+        identity = self.reasoner.identity
+        answered = {(a.frame, a.percept_index): identity.percept_probabilities(k)
+                    for k, a in enumerate(identity.percepts)}
+        return [(f, i, answered.get((f, i), c)) for f, i, c in self.ambiguities]
 
     def finish(self, step: FrameStep) -> FrameOutcome:
         """The frame's tracking record (hypotheses and matches for the evaluation), from the
@@ -156,17 +220,22 @@ class AnchoringLoop:
                                 for a in result.ambiguous)
         record = record_for_frame(
             frame,
-            self.hypotheses(result),
+            self.hypotheses(result, step.occluders),
             [(frame.percepts[a.percept_index], a.symbol) for a in result.assignments],
             step.timings,
             rejected_percepts=step.rejected,
             ambiguous={result.symbols[a.percept_index]: a.candidates
                        for a in result.ambiguous},
         )
-        return FrameOutcome(step.source, result, record, step.hidden, step.states)
+        record.revised = [r.to_json() for r in step.revisions]
+        return FrameOutcome(step.source, result, record, step.hidden, step.states,
+                            step.ambiguous, step.evidence, step.revisions)
 
-    def hypotheses(self, result: FrameResult) -> dict[str, Hypothesis]:
+    def hypotheses(self, result: FrameResult,
+                   occluders: dict[str, dict[str, float]] | None = None
+                   ) -> dict[str, Hypothesis]:
         perceived = {a.symbol for a in result.assignments}
+        occluders = occluders or {}
         out: dict[str, Hypothesis] = {}
         for anchor in self.manager.anchors:
             attribute = anchor.position
@@ -175,7 +244,8 @@ class AnchoringLoop:
             else:
                 position = np.asarray(attribute.mean(), dtype=float)
             out[anchor.symbol] = Hypothesis(position=position,
-                                            perceived=anchor.symbol in perceived)
+                                            perceived=anchor.symbol in perceived,
+                                            occluders=occluders.get(anchor.symbol))
         return out
 
 
@@ -221,6 +291,9 @@ def run_frames(frames: Iterable[PendingFrame], loop: AnchoringLoop,
                 lead_ms = 0.0
             else:                                   # total: the sum of the parts
                 following = upcoming() if upcoming is not None else None
+                # recorded, not left None: the last frame's stage with overlap is its own work
+                step.timings.total = ((time.perf_counter() - started) * 1000 + lead_ms
+                                      if overlap else step.timings.total_ms())
             outcome = loop.finish(step)
             records.append(outcome.record)
             if on_frame is not None:

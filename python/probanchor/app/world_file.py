@@ -8,7 +8,8 @@ The file holds plain facts:
 - ``particle(I, Weight)`` and ``particle_fact(I, Fact)``: the particle set of the filter, each
   particle's facts being ``pos(Atom, (X,Y,Z))`` and ``occluded_by(Atom, Occluder)``;
 - ``identity(percept(Frame, Index), Atom, P)``: for each re-acquisition the run reported
-  ambiguous, the probability of each candidate anchor.
+  ambiguous, the probability of each candidate anchor;
+- ``world_frame(Frame, Time)``: the frame the world model is after, and its time (s).
 """
 
 from __future__ import annotations
@@ -29,16 +30,25 @@ def _fmt(x: float) -> str:
     return repr(float(round(x, 5)))
 
 
+def frame_fact(frame: int, time: float) -> str:
+    """``world_frame(Frame, Time).``: which frame a world model is after."""
+    return f"world_frame({int(frame)}, {float(time)!r})."
+
+
 def world_facts(loop: AnchoringLoop, perceived: set[str],
-                particles: tuple[np.ndarray, list[tuple[int, str]]] | None = None
-                ) -> list[str]:
-    """The world file's lines; ``particles``: :func:`particle_rows` when already at hand."""
+                particles: tuple[np.ndarray, list[tuple[int, str]]] | None = None,
+                frame: tuple[int, float] | None = None) -> list[str]:
+    """The world file's lines; ``particles``: :func:`particle_rows` when already at hand;
+    ``frame``: the (frame, time) the world model is after, for ``world_frame/2``."""
     lines = [
         "% World state written by `anchoring run`; load with: swipl prolog/world.pl THIS_FILE",
-        ":- dynamic anchor/5, attribute/3, particle/2, particle_fact/2, identity/3.",
+        ":- dynamic anchor/5, attribute/3, particle/2, particle_fact/2, identity/3, "
+        "world_frame/2.",
         # each anchor's facts stand together (its anchor/5, then its attributes)
         ":- discontiguous anchor/5, attribute/3.",
     ]
+    if frame is not None:
+        lines.append(frame_fact(*frame))
     for anchor in loop.manager.anchors:
         atom = symbol_atom(anchor.symbol)
         mean = np.asarray(anchor.position.mean(), dtype=float)
@@ -55,7 +65,7 @@ def world_facts(loop: AnchoringLoop, perceived: set[str],
         categories = sorted(anchor.category.items(), key=lambda kv: -kv[1])
         pairs = ", ".join(f"{_fmt(p)}-{category_atom(c)}" for c, p in categories)
         lines.append(f"attribute({atom}, category, [{pairs}]).")
-    for frame, index, candidates in loop.ambiguities:
+    for frame, index, candidates in loop.identity_answers():
         lines.extend(f"identity(percept({frame}, {index}), {symbol_atom(symbol)}, {_fmt(p)})."
                      for symbol, p in candidates.items())
     if loop.reasoner is not None:
@@ -126,5 +136,32 @@ def anchor_particle_facts(atom: str, positions: Sequence[Any], occluders: Sequen
     return facts
 
 
-def write_world(path: Path, loop: AnchoringLoop, perceived: set[str]) -> None:
-    path.write_text("\n".join(world_facts(loop, perceived)) + "\n", encoding="utf-8")
+def write_world(path: Path, loop: AnchoringLoop, perceived: set[str],
+                frame: tuple[int, float] | None = None) -> str | None:
+    """Write the world file; the anchors' facts are written even when the filter's particles
+    cannot be read (a filter that ran out of memory or stack).
+
+    Parameters
+    ----------
+    path:
+        The file to write.
+    loop:
+        The run's loop after its last frame.
+    perceived:
+        The symbols perceived in the last frame.
+    frame:
+        The last frame and its time, for ``world_frame/2``.
+
+    Returns
+    -------
+    None, or why the particles are missing from the file (also said in the file).
+    """
+    try:
+        lines = world_facts(loop, perceived, frame=frame)
+        missing = None
+    except Exception as exc:  # the particles could not be read: keep the anchors
+        missing = f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"
+        lines = world_facts(loop, perceived, particles=(np.ones(0), []), frame=frame)
+        lines.insert(1, f"% the particles could not be read from the filter: {missing}")
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return missing

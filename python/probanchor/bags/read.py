@@ -64,7 +64,11 @@ class BagTopics:
     world_frame: str = "world"
     camera_pose: np.ndarray | None = None  # 4x4 world-from-camera: no tf needed
     max_skew: float = 0.02  # seconds between the stamps of a colour and a depth image
-    skipped: list[str] = field(default_factory=list)  # images without a partner, filled in
+    # seconds a colour image's stamp may be ahead of the time the bag recorded it (a camera
+    # cannot stamp an image after it was recorded, but two machines' clocks may differ)
+    max_lead: float = 60.0
+    # images without a partner and frames with a bad stamp, skipped (filled in)
+    skipped: list[str] = field(default_factory=list)
 
 
 def bag_topics(path: str | Path) -> dict[str, str]:
@@ -174,8 +178,13 @@ def read_bag(path: str | Path, topics: BagTopics | None = None) -> Iterator[RGBD
 
     Returns
     -------
-    The frames in time order; a :class:`BagError` naming the file (and the frame) for a
-    missing topic, an unknown encoding, images of different sizes or a pose not in the bag.
+    The frames in time order; a :class:`BagError` naming the file (and the frame and topic)
+    for a missing topic, an unknown encoding, images of different sizes, a pose not in the
+    bag or a ground-truth message that cannot be read. A frame whose colour image has a bad
+    stamp is skipped and said in ``topics.skipped``, as a percept stream skips a line whose
+    time is bad: a zero stamp, one that is not after the previous frame's (out of order or
+    repeated), or one more than ``topics.max_lead`` seconds ahead of the time the bag
+    recorded the image (a clock far off: a stamp in 2038).
     """
     path = Path(path)
     topics = topics or BagTopics()
@@ -221,15 +230,36 @@ def _frames(path: Path, reader: AnyReader, colour: str, depth: str,
     depths: deque[tuple[int, Any]] = deque()
     truths: dict[int, dict[str, Any]] = {}
     labels: dict[int, Any] = {}
-    ready: deque[tuple[int, tuple[int, Any], tuple[int, Any]]] = deque()  # log time, pair
+    ready: deque[tuple[int, tuple[tuple[int, Any], tuple[int, Any]]]] = deque()  # logged, pair
     skew = int(topics.max_skew * 1e9)
+    lead = int(topics.max_lead * 1e9)
     first: int | None = None
+    last: int | None = None  # the stamp of the last frame given
     index = 0
 
-    def emit(pair: tuple[tuple[int, Any], tuple[int, Any]]) -> RGBDFrame:
-        nonlocal first, index
+    def bad_stamp(stamp: int, logged: int) -> str | None:
+        if stamp == 0:
+            return "its stamp is zero (not set by the driver?)"
+        if last is not None and stamp <= last:
+            return (f"its stamp is {(stamp - last) / 1e9:+.3f} s from the previous frame's "
+                    "(out of order or repeated)")
+        if stamp - logged > lead:
+            return (f"its stamp is {(stamp - logged) / 1e9:.3f} s ahead of the time the bag "
+                    f"recorded it (more than {topics.max_lead:g} s: a clock far off)")
+        return None
+
+    def emit(logged: int, pair: tuple[tuple[int, Any], tuple[int, Any]]) -> RGBDFrame | None:
+        nonlocal first, last, index
         (stamp, cmsg), (_, dmsg) = pair
+        bad = bad_stamp(stamp, logged)
+        if bad is not None:
+            topics.skipped.append(f"{path}: {colour} image at stamp {stamp} ns, after frame "
+                                  f"{index - 1}: {bad}")
+            truths.pop(stamp, None)
+            labels.pop(stamp, None)
+            return None
         first = stamp if first is None else first
+        last = stamp
         where = f"{path}: frame {index} ({colour} at {(stamp - first) / 1e9:.3f} s)"
         try:
             rgb, dep = colour_image(cmsg), depth_image(dmsg)
@@ -258,12 +288,18 @@ def _frames(path: Path, reader: AnyReader, colour: str, depth: str,
 
     for connection, logged, raw in reader.messages(connections=wanted):
         while ready and ready[0][0] < logged:  # its ground truth, logged with it, is in
-            _, c, d = ready.popleft()
-            yield emit((c, d))
+            frame = emit(*ready.popleft())
+            if frame is not None:
+                yield frame
         msg = reader.deserialize(raw, connection.msgtype)
         if connection.topic == TRUTH_TOPIC and connection.msgtype == STRING:
-            record = json.loads(msg.data)
-            truths[int(record["stamp_ns"])] = record
+            try:
+                record = json.loads(msg.data)
+                truths[int(record["stamp_ns"])] = record
+            except (ValueError, KeyError, TypeError, AttributeError) as exc:
+                raise BagError(f"{path}: frame {index + len(ready)} ({TRUTH_TOPIC}, recorded "
+                               f"at {logged} ns): the ground truth is not a JSON object with "
+                               f"stamp_ns: {type(exc).__name__}: {exc}") from None
             continue
         if connection.topic == SEGMENTATION_TOPIC:
             labels[stamp_ns(msg.header)] = msg
@@ -272,17 +308,18 @@ def _frames(path: Path, reader: AnyReader, colour: str, depth: str,
         while colours and depths:
             (tc, _), (td, _) = colours[0], depths[0]
             if abs(tc - td) <= skew:
-                ready.append((logged, colours.popleft(), depths.popleft()))
+                ready.append((logged, (colours.popleft(), depths.popleft())))
             elif tc < td:
                 colours.popleft()
-                topics.skipped.append(f"{colour} at stamp {tc}: no depth image within "
+                topics.skipped.append(f"{path}: {colour} at stamp {tc}: no depth image within "
                                       f"{topics.max_skew} s")
             else:
                 depths.popleft()
-                topics.skipped.append(f"{depth} at stamp {td}: no colour image within "
+                topics.skipped.append(f"{path}: {depth} at stamp {td}: no colour image within "
                                       f"{topics.max_skew} s")
     while ready:
-        _, c, d = ready.popleft()
-        yield emit((c, d))
-    topics.skipped.extend(f"{colour} at stamp {t}: no depth image" for t, _ in colours)
-    topics.skipped.extend(f"{depth} at stamp {t}: no colour image" for t, _ in depths)
+        frame = emit(*ready.popleft())
+        if frame is not None:
+            yield frame
+    topics.skipped.extend(f"{path}: {colour} at stamp {t}: no depth image" for t, _ in colours)
+    topics.skipped.extend(f"{path}: {depth} at stamp {t}: no colour image" for t, _ in depths)

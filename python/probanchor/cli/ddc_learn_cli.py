@@ -2,8 +2,9 @@
 
     ddc learn DATA.pl [MORE.pl ...] --out LEARNED.pl [--target NAME]... [--json] [--seed S]
               [--plot TREE.png|TREE.svg] [--min-leaf N] [--max-depth D] [--min-gain G]
-              [--smoothing A] [--l2 L] [--no-lookahead] [--form clauses|tree] [--quiet]
-    ddc evaluate LEARNED.pl TEST.pl [MORE.pl ...] [--target NAME]... [--json]
+              [--smoothing A] [--l2 L] [--no-lookahead] [--root-model auto|always|never]
+              [--form clauses|tree] [--quiet]
+    ddc evaluate LEARNED.pl TEST.pl [MORE.pl ...] [--target NAME]... [--bias TRAIN.pl] [--json]
     ddc split DATA.pl [MORE.pl ...] --train TRAIN.pl --test TEST.pl [--fraction F] [--seed S]
               [--unit TYPE] [--json]
     ddc cross-validate DATA.pl [MORE.pl ...] --out DIR [--folds K] [--seed S] [--unit TYPE]
@@ -17,11 +18,13 @@ nested if-then-else goals (``--form tree``: the same program, faster in the filt
 target the clauses, groundings, seconds and training log-likelihood (``--json``: one JSON object
 keyed by target). ``ddc evaluate`` scores a DC program on held-out facts: per target the number of
 test groundings, the mean log-likelihood per grounding (natural log) and the accuracy (discrete)
-or RMSE (continuous). ``ddc split`` writes a training and a test file whose test facts form
-worlds of their own (docs/learning.md, "Held-out data"). ``ddc cross-validate`` splits the data
-into K folds of separate worlds and, one fold per job (local processes or Ray, docs/cluster.md),
-learns on the other folds and scores the held-out one: per fold and over all folds, the columns of
-``ddc evaluate``.
+or RMSE (continuous); test files of facts only (DreaML's held-out files) are read in the dialect
+and with the declarations of the data the program was learned from, or of ``--bias`` files.
+``ddc split`` writes a training and a test file whose test facts form worlds of their own
+(docs/learning.md, "Held-out data"). ``ddc cross-validate`` splits the data into K folds of
+separate worlds and, one fold per job (local processes or Ray, docs/cluster.md), learns on the
+other folds and scores the held-out one: per fold and over all folds, the columns of ``ddc
+evaluate``.
 """
 
 from __future__ import annotations
@@ -80,6 +83,10 @@ def add_learn_commands(sub: Any, positive_int: Any) -> None:
     ev.add_argument("data", nargs="+", help="test data: facts in the training data's format")
     ev.add_argument("--target", action="append", default=[], metavar="NAME",
                     help="a target to score (repeatable; default: every one with facts)")
+    ev.add_argument("--bias", action="append", default=[], type=Path, metavar="TRAIN.pl",
+                    help="test files of facts only: read them with this file's declarations "
+                         "(repeatable; default: those of the data the program was learned "
+                         "from, which a learned program records)")
     ev.add_argument("--json", action="store_true", help="print one JSON object")
     ev.set_defaults(func=run_evaluate)
 
@@ -110,6 +117,9 @@ def _add_search_options(parser: argparse.ArgumentParser) -> None:
                         help="L2 penalty on standardised regression weights (default 0.01)")
     parser.add_argument("--no-lookahead", action="store_true",
                         help="score literals that introduce variables by themselves")
+    parser.add_argument("--root-model", choices=["auto", "always", "never"], default="auto",
+                        help="whether the tree reads a regression over every root feature "
+                             "(default auto: when held-out examples say it predicts better)")
 
 
 def _search_options(args: argparse.Namespace) -> Any:
@@ -120,6 +130,7 @@ def _search_options(args: argparse.Namespace) -> Any:
     try:
         return SearchOptions(min_leaf=args.min_leaf, max_depth=args.max_depth,
                              min_gain=args.min_gain, lookahead=not args.no_lookahead,
+                             root_model=args.root_model,
                              leaf=LeafOptions(smoothing=args.smoothing, l2=args.l2))
     except ValueError as exc:
         raise CliError(str(exc)) from None
@@ -161,7 +172,10 @@ def run_evaluate(args: argparse.Namespace) -> int:
 
     if not args.program.is_file():
         raise CliError(f"{args.program}: no such file")
-    scores = evaluate(args.program, args.data, args.target or None)
+    for b in args.bias:
+        if not b.is_file():
+            raise CliError(f"--bias {b}: no such file")
+    scores = evaluate(args.program, args.data, args.target or None, bias=args.bias or None)
     if args.json:
         print(json.dumps({k: _jsonable(v) for k, v in scores.items()}))
         return 0

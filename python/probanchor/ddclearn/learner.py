@@ -18,6 +18,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal
 
+import numpy as np
+from threadpoolctl import threadpool_limits
+
 from bridge.learning import LearningData
 from bridge.program import DDCError
 from probanchor.ddclearn.files import write_atomically
@@ -52,6 +55,9 @@ class LearnResult:
     options: SearchOptions
     seed: int | None
     command: str | None = None
+    #: The program's record of its data: the DC text of ``learned_from(Dialect, Files,
+    #: Targets, Declarations)`` (``bridge.learning.LearningData.record``).
+    record: str | None = None
     _program: str | None = field(default=None, repr=False)
 
     @property
@@ -151,6 +157,9 @@ def learn(
     """
     options = options or SearchOptions()
     data = LearningData(files, seed=seed, samples=samples)
+    # the fits are small: BLAS threads only wait for each other (up to 5 times slower on a
+    # shared two-core machine)
+    limits = threadpool_limits(limits=1, user_api="blas")
     try:
         declared = data.targets()
         chosen = _select(declared, targets)
@@ -180,11 +189,13 @@ def learn(
                     bar.update(1)
         leaves = [(r.node, r.model_term, r.regressors) for t in results for r in t.leaves]
         background = data.background(leaves)
+        record = data.record([Path(f).name for f in files], [t.predicate for t in results])
     finally:
+        limits.restore_original_limits()
         data.free()
     return LearnResult(files=[str(Path(f)) for f in files], targets=results,
                        background=background, warnings=warnings, options=options, seed=seed,
-                       command=command)
+                       command=command, record=record)
 
 
 def _select(declared: list[dict], wanted: Sequence[str] | None) -> list[dict]:
@@ -214,6 +225,22 @@ def leaf_comment(leaf: LeafRecord) -> str:
     return f"{what}{ll}, {leaf.leaf.family}"
 
 
+def root_model_note(t: TargetResult) -> list[str]:
+    """What the program says of a target's root model: whether its leaves read one, why."""
+    c, m = t.choice, t.root_model
+    if c is None and m is None:
+        return []
+    held = ("" if c is None or not c.rows else
+            f" (held out, {c.rows} groundings: {c.gain:+.4g} nats with it, standard error "
+            f"{c.se:.3g})")
+    if m is not None:
+        return [f"Its leaves read a root model: a regression over {len(m.features)} features "
+                f"(Score{'' if m.n_scores == 1 else ', Score1, ...'}){held}."]
+    if c is not None and c.gain == 0:
+        return ["No root model: the tree grown with it read none of its scores."]
+    return [f"No root model: the tree alone predicts better{held}."]
+
+
 def _program_text(r: LearnResult, tree: bool = False) -> str:
     o = r.options
     if tree:
@@ -234,9 +261,18 @@ def _program_text(r: LearnResult, tree: bool = False) -> str:
         lines.append(f"% Command: {r.command}")
     lines.append("% Data: " + ", ".join(Path(f).name for f in r.files))
     lines.append(f"% Search: min_leaf {o.min_leaf:g}, max_depth {o.max_depth}, min_gain "
-                 f"{o.min_gain:g}, lookahead {str(o.lookahead).lower()}; leaves: smoothing "
-                 f"{o.leaf.smoothing:g}, l2 {o.leaf.l2:g}; seed {r.seed}.")
+                 f"{o.min_gain:g}, lookahead {str(o.lookahead).lower()}, root model "
+                 f"{o.root_model}; leaves: smoothing {o.leaf.smoothing:g}, l2 {o.leaf.l2:g}; "
+                 f"seed {r.seed}.")
     lines.append("")
+    if r.record:
+        lines += [
+            "% What the program was learned from: the data's dialect, files and targets, and the",
+            "% declarations that say how their facts are read (`ddc evaluate` reads test files",
+            "% without declarations by them).",
+            r.record,
+            "",
+        ]
     if r.background:
         lines.append("% Background knowledge from the data that the learned clauses call.")
         lines.extend(r.background)
@@ -245,6 +281,7 @@ def _program_text(r: LearnResult, tree: bool = False) -> str:
         lines.append(f"% {t.name}: {t.clauses} clauses, {t.groundings} groundings, training "
                      f"log-likelihood {t.log_likelihood:.6g} (mean {t.mean_log_likelihood:.6g} "
                      f"per grounding), {t.n_params} parameters.")
+        lines.extend(f"% {line}" for line in root_model_note(t))
         if tree and t.tree_clause is not None:
             lines.append(t.tree_clause)
         else:
@@ -259,6 +296,8 @@ def evaluate(
     program: str | Path,
     files: Sequence[str | Path],
     targets: Sequence[str] | None = None,
+    bias: Sequence[str | Path] | None = None,
+    examples: bool = False,
 ) -> dict[str, dict[str, Any]]:
     """Held-out scores of a DC program's clauses on test data.
 
@@ -275,6 +314,17 @@ def evaluate(
         Test data, in the same format as training data (bias lines are read too).
     targets : sequence of str, optional
         Which targets (default: every random variable the program defines that has facts).
+    bias : sequence of path, optional
+        When no test file has a declaration (facts only, as DreaML's held-out files): the
+        files whose declarations say how the facts are read (the training file; its facts are
+        not read). Without it such facts are read in the dialect and with the declarations of
+        the data the program was learned from (its ``learned_from/4`` record), or, for a
+        program without one, in the project's own dialect.
+    examples : bool, default=False
+        Also give each grounding's weight and log-likelihood (``example_weight``,
+        ``example_log_likelihood``: arrays in the order of the target's groundings in the
+        data, the order of :func:`probanchor.ddclearn.baselines.feature_table`'s rows for data
+        without uncertain facts).
 
     Returns
     -------
@@ -282,14 +332,14 @@ def evaluate(
         Keyed by target: ``n``, ``weight``, ``log_likelihood``, ``mean_log_likelihood``,
         ``uncovered`` and ``accuracy`` (discrete) or ``rmse`` (continuous).
     """
-    data = LearningData(files, targets=False)
+    data = LearningData(files, targets=False, bias=bias, program=program)
     try:
         preds: list[str] = []
         if targets:
             known = {target_key(str(t["name"])): str(t["predicate"]) for t in data.targets()}
             for w in targets:
                 preds.append(known.get(w, w.replace(":t+1", "_t1").replace(":t", "_t")))
-        scores = data.program_scores(program, preds)
+        scores = data.program_scores(program, preds, examples=examples)
     finally:
         data.free()
     out: dict[str, dict[str, Any]] = {}
@@ -306,5 +356,9 @@ def evaluate(
             entry["accuracy"] = acc
         if not math.isnan(rmse):
             entry["rmse"] = rmse
+        if examples:
+            per = np.asarray(s["examples"], dtype=float).reshape(-1, 2)
+            entry["example_weight"] = per[:, 0]
+            entry["example_log_likelihood"] = per[:, 1]
         out[target_key(str(s["target"]))] = entry
     return out

@@ -34,7 +34,7 @@ from scipy.special import gammaln, log_expit, logsumexp, xlogy
 if TYPE_CHECKING:  # scikit-learn takes seconds to import: only the fits that need it load it
     from sklearn.linear_model import LogisticRegression, PoissonRegressor
 
-__all__ = ["FAMILIES", "Kind", "Leaf", "LeafOptions", "fit_leaf"]
+__all__ = ["FAMILIES", "Kind", "Leaf", "LeafOptions", "fit_leaf", "fit_offset_leaf"]
 
 Kind = Literal["discrete", "continuous", "count"]
 
@@ -328,8 +328,9 @@ def fit_leaf(
     log_n: float,
     n_classes: int | None = None,
     options: LeafOptions = LeafOptions(),  # noqa: B008 - frozen, hence safe as a default
+    offsets: int = 0,
 ) -> Leaf:
-    """Fit the leaf model of one node and choose between with and without regressors by BIC.
+    """Fit the leaf model of one node and choose among its models by BIC.
 
     Parameters
     ----------
@@ -349,27 +350,210 @@ def fit_leaf(
         Size K of the domain; required for a discrete head, must be None otherwise.
     options : LeafOptions
         Smoothing, penalty and variance floor.
+    offsets : int, default=0
+        The first ``offsets`` columns of ``X`` are a root model's scores, which a model takes
+        as an offset (:func:`fit_offset_leaf`), never as regressors.
 
     Returns
     -------
     Leaf
-        The model without regressors or, when m > 0 and it scores a strictly larger
-        ``bic(log_n)``, the model with all m regressors.
+        Of the model without regressors, the model with the regressors (the columns after the
+        offsets, when there are some; its weights on the offsets are 0) and, with
+        ``offsets``, the model on the offsets and the regressors (:func:`fit_offset_leaf`), the
+        one with the largest ``bic(log_n)``, the first of them on a tie.
 
     Raises
     ------
     ValueError
         On mismatched lengths, negative or non-finite weights, total weight 0, non-finite ``y``
-        or ``X``, bad class indices or counts, or a missing / superfluous ``n_classes``.
+        or ``X``, bad class indices or counts, or a missing / superfluous ``n_classes``, or a
+        number of offsets that does not fit the head.
     """
     y_arr, w_arr, X_arr, K = _validate(kind, y, w, X, n_classes, log_n)
-    plain = _fit_without_regressors(kind, y_arr, w_arr, K, options)
-    if X_arr.shape[1] == 0:
-        return plain
-    regression = _fit_with_regressors(kind, y_arr, w_arr, X_arr, K, options)
-    if regression is not None and regression.bic(log_n) > plain.bic(log_n):
-        return regression
-    return plain
+    best = _fit_without_regressors(kind, y_arr, w_arr, K, options)
+    if offsets:
+        _check_offsets(kind, K, offsets, X_arr.shape[1])
+        with_offset = _fit_offset(kind, y_arr, w_arr, X_arr, offsets, K, options)
+        if with_offset is not None and with_offset.bic(log_n) > best.bic(log_n):
+            best = with_offset
+    if X_arr.shape[1] > offsets:
+        regression = _fit_with_regressors(kind, y_arr, w_arr, X_arr[:, offsets:], K, options)
+        if regression is not None and regression.bic(log_n) > best.bic(log_n):
+            best = _padded(regression, offsets)
+    return best
+
+
+def _check_offsets(kind: str, K: int | None, offsets: int, m: int) -> None:
+    want = max(int(K or 0) - 1, 1) if kind == "discrete" else 1
+    if offsets != want or m < offsets:
+        raise ValueError(f"a {kind} head with {K} classes has {want} offsets in X, got "
+                         f"{offsets} (of {m} columns)")
+
+
+def _padded(leaf: Leaf, q: int) -> Leaf:
+    """A regression leaf with ``q`` leading columns of weight 0 (the scores it does not read)."""
+    if q == 0:
+        return leaf
+    if leaf.weight_rows is not None:
+        return replace(leaf, weight_rows=tuple((0.0,) * q + tuple(r) for r in leaf.weight_rows))
+    assert leaf.weights is not None
+    return replace(leaf, weights=(0.0,) * q + tuple(leaf.weights))
+
+
+def fit_offset_leaf(
+    kind: Kind,
+    y: ArrayLike,
+    w: ArrayLike,
+    X: ArrayLike,
+    *,
+    offsets: int,
+    n_classes: int | None = None,
+    options: LeafOptions = LeafOptions(),  # noqa: B008 - frozen, hence safe as a default
+) -> Leaf | None:
+    """Fit a leaf whose linear predictors are a root model's scores plus a regression.
+
+    The first ``offsets`` columns of ``X`` are a root model's scores
+    (:mod:`probanchor.ddclearn.root_model`): a Boolean, continuous or count target's one linear
+    predictor (the logit of its second class, its mean, its log rate), a K-class target's K - 1
+    logits of classes 1..K-1 against class 0. They enter the model as an *offset*, with
+    coefficient 1 (-1 in a ``logistic`` leaf, which gives the first class's probability), not
+    fitted; the other columns are regressors as in :func:`fit_leaf`'s regression, and the
+    intercepts are fitted (continuous: weighted least squares of ``y - score``; discrete and
+    count: the penalised likelihood of :func:`fit_leaf`'s regressions, by L-BFGS).
+
+    Parameters are those of :func:`fit_leaf` (no ``log_n``), and ``offsets``: 1 for a Boolean,
+    continuous or count head, K - 1 for K > 2 classes.
+
+    Returns
+    -------
+    Leaf or None
+        A regression leaf with one weight per column of ``X`` (the family of :func:`fit_leaf`'s
+        regressions), or None for a discrete head with fewer than 2 classes in the rows.
+    """
+    y_arr, w_arr, X_arr, K = _validate(kind, y, w, X, n_classes, 0.0)
+    _check_offsets(kind, K, offsets, X_arr.shape[1])
+    return _fit_offset(kind, y_arr, w_arr, X_arr, offsets, K, options)
+
+
+def _fit_offset(
+    kind: str,
+    y: np.ndarray,
+    w: np.ndarray,
+    X: np.ndarray,
+    q: int,
+    K: int | None,
+    options: LeafOptions,
+) -> Leaf | None:
+    """The model whose linear predictors are the ``q`` scores plus a regression on the rest.
+
+    Continuous: weighted least squares of ``y - score`` on the other columns. Discrete and
+    count: the penalised negative log-likelihood (``l2 / 2 ||beta||^2`` on the standardised
+    coefficients, the intercepts free; discrete: one pseudo-row per class at the columns' mean
+    and offset 0, of weight ``smoothing``) minimised by L-BFGS. None when a discrete head has
+    fewer than 2 classes.
+    """
+    S, P = X[:, :q], X[:, q:]
+    std = _Standardiser.fit(P, w)
+    m = P.shape[1]
+    common = {"weight": float(w.sum()), "rows": int(len(y)), "uses_regressors": True}
+    if kind == "continuous":
+        r = y - S[:, 0]
+        if std.keep.any():
+            path, var = _fit_wls(r, w, P, std, options.variance_floor)
+        else:
+            b = float(w @ r / w.sum())
+            var = max(float(w @ (r - b) ** 2 / w.sum()), options.variance_floor)
+            path = (0.0,) * m + (b,)
+        weights = (1.0, *path)
+        leaf = Leaf("linear_gaussian", None, weights=weights, variance=var,
+                    n_params=int(std.keep.sum()) + 2, **common)
+        return _with_log_likelihood(leaf, y, w, X)
+    Z = std.transform(P)
+    k_kept = Z.shape[1]
+    if kind == "discrete":
+        assert K is not None
+        if (np.bincount(y.astype(np.intp), weights=w, minlength=K) > 0).sum() < 2:
+            return None
+        off = np.zeros((len(y), K))
+        off[:, 1:] = S if K > 2 else S[:, :1]
+        coef, icpt = _offset_softmax(y.astype(np.intp), w, Z, off, K, options)
+        full, b = std.back(coef, icpt)          # (K-1, m), (K-1,)
+        if K == 2:
+            # P(class 0) = sigmoid(-(score + c.x + d))
+            weights = (-1.0, *(-full[0]).tolist(), float(-b[0]))
+            leaf = Leaf("logistic", K, weights=weights, n_params=k_kept + 1, **common)
+        else:
+            rows = [(0.0,) * (q + m + 1)]
+            for k in range(1, K):
+                unit = [0.0] * q
+                unit[k - 1] = 1.0
+                rows.append((*unit, *full[k - 1].tolist(), float(b[k - 1])))
+            leaf = Leaf("softmax", K, weight_rows=tuple(rows),
+                        n_params=(K - 1) * (k_kept + 1), **common)
+        return _with_log_likelihood(leaf, y, w, X)
+    coef, icpt = _offset_poisson(y, w, Z, S[:, 0], options)
+    full, b = std.back(coef, icpt)
+    weights = (1.0, *full[0].tolist(), float(b[0]))
+    leaf = Leaf("poisson_log_linear", None, weights=weights, n_params=k_kept + 1, **common)
+    return _with_log_likelihood(leaf, y, w, X)
+
+
+def _offset_softmax(y: np.ndarray, w: np.ndarray, Z: np.ndarray, off: np.ndarray, K: int,
+                    options: LeafOptions) -> tuple[np.ndarray, np.ndarray]:
+    """Rows 1..K-1 of a softmax ``eta = off + [0 | Z C^T + d]``: C (K-1, m) and d (K-1,).
+
+    Minimises ``-sum_i w_i log softmax(eta_i)[y_i] + l2 / 2 ||C||^2`` over the rows and one
+    pseudo-row per class (z = 0, offset 0, weight ``smoothing``).
+    """
+    from scipy.optimize import minimize
+
+    a = options.smoothing
+    if a > 0:
+        Z = np.vstack([Z, np.zeros((K, Z.shape[1]))])
+        off = np.vstack([off, np.zeros((K, K))])
+        y = np.concatenate([y, np.arange(K)])
+        w = np.concatenate([w, np.full(K, a)])
+    n, m = Z.shape
+    A = np.column_stack([Z, np.ones(n)])
+    Y = np.zeros((n, K))
+    Y[np.arange(n), y] = 1.0
+    pen = np.ones(m + 1) * options.l2
+    pen[-1] = 0.0
+
+    def f(theta: np.ndarray) -> tuple[float, np.ndarray]:
+        B = theta.reshape(K - 1, m + 1)
+        eta = off.copy()
+        eta[:, 1:] += A @ B.T
+        lp = eta - logsumexp(eta, axis=1, keepdims=True)
+        loss = -float(w @ lp[np.arange(n), y]) + 0.5 * float((pen * B**2).sum())
+        G = (w[:, None] * (np.exp(lp) - Y))[:, 1:].T @ A + pen * B
+        return loss, G.ravel()
+
+    res = minimize(f, np.zeros((K - 1) * (m + 1)), jac=True, method="L-BFGS-B",
+                   options={"maxiter": _MAX_ITER, "gtol": 1e-8})
+    B = res.x.reshape(K - 1, m + 1)
+    return B[:, :m], B[:, m]
+
+
+def _offset_poisson(y: np.ndarray, w: np.ndarray, Z: np.ndarray, o: np.ndarray,
+                    options: LeafOptions) -> tuple[np.ndarray, np.ndarray]:
+    """``log r = o + c.z + d``: minimises ``sum_i w_i (r_i - y_i log r_i) + l2 / 2 ||c||^2``."""
+    from scipy.optimize import minimize
+
+    n, m = Z.shape
+    A = np.column_stack([Z, np.ones(n)])
+    pen = np.ones(m + 1) * options.l2
+    pen[-1] = 0.0
+
+    def f(theta: np.ndarray) -> tuple[float, np.ndarray]:
+        eta = o + A @ theta
+        r = np.exp(np.minimum(eta, 700.0))
+        loss = float(w @ (r - y * eta)) + 0.5 * float(pen @ theta**2)
+        return loss, A.T @ (w * (r - y)) + pen * theta
+
+    res = minimize(f, np.zeros(m + 1), jac=True, method="L-BFGS-B",
+                   options={"maxiter": _MAX_ITER, "gtol": 1e-8})
+    return res.x[None, :m], res.x[m:]
 
 
 def _fit_without_regressors(

@@ -22,6 +22,13 @@ DreaML), and when it is chosen that follow-up needs only a gain of at least 0.
 Every branch of a split becomes a clause, so the clauses of a tree cover every grounding and
 are mutually exclusive (DC's requirement); DreaML instead dropped small branches and appended a
 catch-all clause that relies on first-match semantics.
+
+A target may have a *root model* (:mod:`probanchor.ddclearn.root_model`): a regression over every
+feature the bias allows at the root. When the tree reads it, every node starts with its scores as
+regressors, which the leaves take as an offset (``leaves.fit_offset_leaf``). Whether the tree
+reads it is decided on held-out blocks of examples (:meth:`_TargetSearch.choose`): a tree is
+grown on the other blocks without and with it, both score the block (:meth:`_TargetSearch.replay`
+takes other rows down a grown tree), and the one with the higher held-out log-likelihood wins.
 """
 
 from __future__ import annotations
@@ -29,15 +36,26 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from bridge.learning import Child, LearningData, Outcome
+from bridge.learning import Child, LearningData, Outcome, Root
 from probanchor.ddclearn.leaves import Leaf, LeafOptions, fit_leaf
+from probanchor.ddclearn.root_model import (
+    RootFeatures,
+    RootModel,
+    block_of,
+    fit_root_model,
+    root_features,
+)
 from probanchor.ddclearn.tree import Branch, Tree, TreeNode
 
 __all__ = ["LeafRecord", "SearchOptions", "TargetResult", "learn_target"]
+
+
+#: The values of ``SearchOptions.root_model``.
+ROOT_MODEL_USES: tuple[str, ...] = ("auto", "always", "never")
 
 
 @dataclass(frozen=True)
@@ -55,6 +73,14 @@ class SearchOptions:
         A split is added when its gain (BIC units, ``2 log L - k ln N``) exceeds this.
     lookahead : bool, default=True
         Score a literal that introduces new variables by the best literal that could follow it.
+    root_model : {"auto", "always", "never"}, default="auto"
+        Whether the tree reads the target's root model (:mod:`probanchor.ddclearn.root_model`:
+        a regression over every feature the bias allows at the root) whose scores every node
+        then starts with (an offset of its leaves' models). ``"auto"``: when the root model
+        predicts better than no features in cross-validation and the tree grown with it
+        predicts held-out examples better than the tree grown without it, by more than one
+        standard error (``HOLDOUT``-fold cross-validation of the search); ``"always"``: when
+        the root model predicts better than no features; ``"never"``: the tree alone.
     leaf : LeafOptions
         The leaf models' settings (smoothing, L2 penalty, variance floor).
     """
@@ -63,6 +89,7 @@ class SearchOptions:
     max_depth: int = 8
     min_gain: float = 0.0
     lookahead: bool = True
+    root_model: str = "auto"
     leaf: LeafOptions = field(default_factory=LeafOptions)
 
     def __post_init__(self) -> None:
@@ -72,6 +99,9 @@ class SearchOptions:
             raise ValueError(f"max_depth must be an integer >= 0, got {self.max_depth!r}")
         if not math.isfinite(self.min_gain):
             raise ValueError(f"min_gain must be finite, got {self.min_gain!r}")
+        if self.root_model not in ROOT_MODEL_USES:
+            raise ValueError(f"root_model must be one of {ROOT_MODEL_USES}, got "
+                             f"{self.root_model!r}")
 
 
 @dataclass
@@ -110,6 +140,10 @@ class TargetResult:
     #: The whole tree as one clause of nested if-then-else goals (the tree form), or None if
     #: its leaves' distributions are not of one family.
     tree_clause: str | None = None
+    #: The root model whose scores the leaves read (None: no leaf reads one).
+    root_model: RootModel | None = None
+    #: How the use of a root model was decided (None: no root model was fitted).
+    choice: RootChoice | None = None
 
     @property
     def clauses(self) -> int:
@@ -143,6 +177,70 @@ class _Node:
 
 
 @dataclass
+class _Grown:
+    """A node of a grown tree, before its leaves' models are chosen and written."""
+
+    nd: _Node
+    leaf: Leaf
+    steps: list[int]
+    candidate: dict | None = None
+    branches: list[tuple[str, _Grown]] = field(default_factory=list)
+    inherited: bool = False
+
+
+def _nodes(g: _Grown) -> list[int]:
+    """The Prolog nodes of a grown tree."""
+    return [g.nd.node] + [n for _, c in g.branches for n in _nodes(c)]
+
+
+def _n_params(g: _Grown) -> int:
+    """The parameters of a grown tree's own leaves (an inherited leaf adds none)."""
+    if g.inherited:
+        return 0
+    if not g.branches:
+        return g.leaf.n_params
+    return sum(_n_params(c) for _, c in g.branches)
+
+
+def _reads_scores(g: _Grown) -> bool:
+    """Whether a leaf of a grown tree gives a root model's score a weight."""
+    if not g.branches:
+        return g.leaf.uses_regressors and any(s < 0 for s in _clause_columns(g.leaf, g.steps)[1])
+    return any(_reads_scores(c) for _, c in g.branches)
+
+
+def _scores(X: np.ndarray, model: RootModel) -> np.ndarray:
+    """The root model's scores of feature rows X (its fit on every training row)."""
+    W = np.asarray(model.rows, dtype=float)
+    return X @ W[:, :-1].T + W[:, -1]
+
+
+#: Folds of the examples for the decision to use a root model (each held out in turn).
+HOLDOUT: int = 3
+#: Standard errors of the held-out difference that decide without the remaining folds.
+DECISIVE: float = 4.0
+
+
+@dataclass(frozen=True)
+class RootChoice:
+    """The held-out comparison of the trees with and without the root model.
+
+    ``offsets``: the root model is used; ``gain``: the held-out log-likelihood of the tree with
+    it minus the tree's without it (nats, summed over ``rows`` held-out rows); ``se``: the
+    standard error of that difference; ``params_tree``, ``params_root_model``: the trees'
+    numbers of parameters (mean over the held-out blocks; the second counts the root model's
+    when a leaf reads it).
+    """
+
+    offsets: bool
+    gain: float
+    se: float
+    rows: int
+    params_tree: float = 0.0
+    params_root_model: float = 0.0
+
+
+@dataclass
 class _Split:
     candidate: dict
     gain: float
@@ -171,11 +269,13 @@ class _TargetSearch:
         self.cache: dict[int, _RootCache] = {}
         self.step = 0
         self.log_n = 0.0
+        #: The leading regressors of every node that are the root model's scores.
+        self.offsets = 0
 
     # -- leaves
     def fit(self, y: np.ndarray, w: np.ndarray, X: np.ndarray) -> Leaf:
         return fit_leaf(self.kind, y, w, X, log_n=self.log_n, n_classes=self.n_classes,  # type: ignore[arg-type]
-                        options=self.options.leaf)
+                        options=self.options.leaf, offsets=self.offsets)
 
     def node_leaf(self, nd: _Node) -> Leaf:
         if nd.leaf is None:
@@ -300,43 +400,74 @@ class _TargetSearch:
         return _Node(node=ch.node, root_row=nd.root_row[ch.row], y=nd.y[ch.row],
                      w=nd.w[ch.row] * ch.factor, X=X, reg_steps=steps, depth=nd.depth + 1)
 
-    def grow(self, nd: _Node, leaves: list[LeafRecord], relaxed: bool = False) -> TreeNode:
+    def grow(self, nd: _Node, relaxed: bool = False) -> _Grown:
+        """Grow the tree below ``nd``: each node's best split while it gains (module docstring)."""
         self.tick()
         leaf = self.node_leaf(nd)
+        steps = nd.reg_steps[:nd.leaf_cols] if leaf.uses_regressors else []
         split = None
         if nd.depth < self.options.max_depth and nd.weight >= 2 * self.options.min_leaf:
             split = self.best_split(nd, lookahead=True)
         accept = split is not None and (split.gain > self.options.min_gain
                                         or (relaxed and split.gain >= 0))
         if not accept:
-            return self.make_leaf(nd, leaf, leaves, inherited=False)
+            return _Grown(nd, leaf, steps)
         assert split is not None
         cand = split.candidate
         children = self.data.split(nd.node, cand["id"])
-        step = nd.depth
-        tree = TreeNode(rows=len(nd.y), weight=nd.weight, test=_test_text(cand))
+        g = _Grown(nd, leaf, steps, candidate=cand)
         for ch in children:
-            c_nd = self.child(nd, ch, cand, step)
-            label = str(cand["labels"][ch.branch])
+            c_nd = self.child(nd, ch, cand, nd.depth)
             if c_nd.weight < self.options.min_leaf:
                 c_nd.leaf, c_nd.leaf_cols = leaf, nd.leaf_cols
                 c_nd.reg_steps = c_nd.reg_steps[:nd.leaf_cols] if leaf.uses_regressors else []
-                sub = self.make_leaf(c_nd, leaf, leaves, inherited=True,
-                                     steps=nd.reg_steps[:nd.leaf_cols])
+                sub = _Grown(c_nd, leaf, steps, inherited=True)
             else:
-                sub = self.grow(c_nd, leaves, relaxed=split.lookahead and ch.branch == 0)
-            tree.branches.append(Branch(label=label, child=sub))
-        self.data.forget([nd.node])
+                sub = self.grow(c_nd, relaxed=split.lookahead and ch.branch == 0)
+            g.branches.append((str(cand["labels"][ch.branch]), sub))
+        self.data.forget_rows(nd.node)
+        return g
+
+    def finish(self, g: _Grown, leaves: list[LeafRecord]) -> TreeNode:
+        """The tree's nodes, its leaves' clauses written (in ``leaves``, left to right)."""
+        if g.inherited or not g.branches:
+            return self.make_leaf(g.nd, g.leaf, g.steps, leaves, inherited=g.inherited)
+        assert g.candidate is not None
+        tree = TreeNode(rows=len(g.nd.y), weight=g.nd.weight, test=_test_text(g.candidate))
+        for label, c in g.branches:
+            tree.branches.append(Branch(label=label, child=self.finish(c, leaves)))
+        self.data.forget([g.nd.node])
         return tree
 
-    def make_leaf(self, nd: _Node, leaf: Leaf, leaves: list[LeafRecord], inherited: bool,
-                  steps: list[int] | None = None) -> TreeNode:
-        if steps is None:
-            steps = nd.reg_steps[:nd.leaf_cols] if leaf.uses_regressors else []
+    def replay(self, g: _Grown, nd: _Node) -> np.ndarray:
+        """Each row of ``nd`` (other data) scored by the tree ``g``: weighted log-likelihood.
+
+        The rows take the tree's splits (the same candidates, their branches' values as
+        regressors) down to a leaf, whose model gives their log-likelihood. The nodes made on
+        the way are forgotten.
+        """
+        if len(nd.y) == 0:
+            return np.zeros(0)
+        if g.inherited or not g.branches:
+            return nd.w * g.leaf.log_prob(nd.y, nd.X[:, :len(g.steps)])
+        assert g.candidate is not None
+        out = np.zeros(len(nd.y))
+        children = self.data.split(nd.node, g.candidate["id"])
+        try:
+            for ch, (_, sub) in zip(children, g.branches, strict=True):
+                c_nd = self.child(nd, ch, g.candidate, nd.depth)
+                out += np.bincount(ch.row, weights=self.replay(sub, c_nd), minlength=len(nd.y))
+        finally:
+            self.data.forget([ch.node for ch in children])
+        return out
+
+    def make_leaf(self, nd: _Node, leaf: Leaf, steps: list[int], leaves: list[LeafRecord],
+                  inherited: bool) -> TreeNode:
         cols = len(steps)
         ll = leaf.log_likelihood
         if inherited:
             ll = float(np.dot(nd.w, leaf.log_prob(nd.y, nd.X[:, :cols]))) if len(nd.y) else 0.0
+        leaf, steps = _clause_columns(leaf, steps)
         term = model_term(leaf, self.domain)
         texts = self.data.leaf_clause(nd.node, term, steps)
         rec = LeafRecord(node=nd.node, leaf=leaf, regressors=steps, rows=len(nd.y),
@@ -356,17 +487,122 @@ class _TargetSearch:
         nd = _Node(node=root.node, root_row=np.arange(n_rows), y=root.y, w=root.weight,
                    X=np.zeros((n_rows, 0)), reg_steps=[], depth=0)
         cands = self.data.candidates(root.node)
-        self.fill_cache(nd, [c for c in cands if _true(c["root"])])
+        roots = [c for c in cands if _true(c["root"])]
+        self.fill_cache(nd, roots)
+        model, choice = None, None
+        if self.options.root_model != "never" and roots:
+            feats = root_features(roots, [self.cache[c["id"]].branch for c in roots],
+                                  [self.cache[c["id"]].x for c in roots], root.weight)
+            model = self.root_model(feats, root, np.ones(n_rows, dtype=bool))
+            if model is not None and self.options.root_model == "auto":
+                choice = self.choose(root, feats)
+                if not choice.offsets:
+                    model = None
+        if model is not None:
+            self.offsets = model.n_scores
+            nd.X = model.scores
+            nd.reg_steps = [-1 - j for j in range(model.n_scores)]
+            self.data.set_root_model(str(self.target["predicate"]), model.term())
         leaves: list[LeafRecord] = []
-        tree_root = self.grow(nd, leaves)
+        tree_root = self.finish(self.grow(nd), leaves)
         ll = sum(r.log_likelihood for r in leaves)
         own = {id(r.leaf): r.leaf.n_params for r in leaves}
+        if model is not None and any(s < 0 for r in leaves for s in r.regressors):
+            own[0] = model.n_scores * (len(model.features) + 1)
+        else:
+            model = None
         return TargetResult(
             name=str(self.target["name"]), predicate=str(self.target["predicate"]),
             kind=self.kind, domain=self.domain, tree=Tree(str(self.target["name"]), tree_root),
             leaves=leaves, groundings=n_rows, examples=int(len(np.unique(root.example))),
             weight=total, log_likelihood=ll, n_params=int(sum(own.values())),
-            seconds=time.perf_counter() - start)
+            seconds=time.perf_counter() - start, root_model=model, choice=choice)
+
+    def root_model(self, feats: RootFeatures, root: Root, rows: np.ndarray) -> RootModel | None:
+        """The root model fitted on some root rows (a mask), or None (see fit_root_model)."""
+        y = root.y.astype(np.int64) if self.kind == "discrete" else root.y.astype(float)
+        return fit_root_model(self.kind, y[rows], root.weight[rows].astype(float),
+                              root.example[rows], RootFeatures(feats.X[rows], feats.features),
+                              n_classes=self.n_classes, smoothing=self.options.leaf.smoothing)
+
+    def choose(self, root: Root, feats: RootFeatures) -> RootChoice:
+        """Whether the tree should read the root model's scores: decided on held-out examples.
+
+        The examples are cut into ``HOLDOUT`` blocks of consecutive examples, in the order of
+        the data (:func:`probanchor.ddclearn.root_model.block_of`); for each block, the tree is
+        grown on the other blocks twice, without the root model and with it (its scores those
+        of the root model fitted on those examples, cross-fitted), and both trees score the
+        block's rows. Data are written world by world (an episode's frames, a district's loans,
+        one interpretation after another): a block holds worlds the trees have not seen, as
+        held-out data do, where examples drawn at random would share their worlds (and what a
+        tree learned of them) with the training rows. The tree with the higher held-out
+        log-likelihood, summed over the rows, wins (the tree alone on a tie: then the other
+        reads no score). Even so the blocks of one world share entities (a university's courses,
+        whose attributes a tree can learn by heart): on a new world the root model's advantage
+        was larger than in these blocks, on every generated university tried, so a small
+        advantage is not discounted. Once the difference is larger than ``DECISIVE`` standard
+        errors either way, the remaining blocks are not needed (a large data set usually
+        decides on one).
+        """
+        fold = block_of(root.example, HOLDOUT)
+        saved = self.log_n
+        plain = np.zeros(len(root.y))
+        with_model = np.zeros(len(root.y))
+        scored = np.zeros(len(root.y), dtype=bool)
+        gain, se = 0.0, 0.0
+        k_plain: list[int] = []
+        k_model: list[int] = []
+        try:
+            for k in range(HOLDOUT):
+                test = fold == k
+                train = ~test
+                tr_rows, te_rows = np.flatnonzero(train), np.flatnonzero(test)
+                model = self.root_model(feats, root, train)
+                if model is None:
+                    return RootChoice(False, 0.0, 0.0, 0, 0.0, 0.0)
+                self.log_n = math.log(max(float(root.weight[train].sum()), 1.0))
+                plain[te_rows], kp = self.held_out(root, tr_rows, te_rows, None)
+                with_model[te_rows], km = self.held_out(
+                    root, tr_rows, te_rows, (model, _scores(feats.X[te_rows], model)))
+                k_plain.append(kp)
+                k_model.append(km)
+                scored |= test
+                d = (with_model - plain)[scored & (root.weight > 0)]
+                gain = float(d.sum())
+                se = math.sqrt(len(d) * float(np.var(d))) if len(d) else 0.0
+                if abs(gain) > DECISIVE * se:
+                    break
+        finally:
+            self.log_n = saved
+            self.offsets = 0
+        return RootChoice(gain > 0, gain, se, int((scored & (root.weight > 0)).sum()),
+                          float(np.mean(k_plain)), float(np.mean(k_model)))
+
+    def held_out(self, root: Root, tr_rows: np.ndarray, te_rows: np.ndarray,
+                 model: tuple[RootModel, np.ndarray] | None) -> tuple[np.ndarray, int]:
+        """A tree grown on the training rows, scored on the test rows (weighted per row), and
+        its number of parameters (with the root model's when a leaf reads its scores)."""
+        tr_node = self.data.subset(root.node, tr_rows.tolist())
+        te_node = self.data.subset(root.node, te_rows.tolist())
+
+        def node(n: int, rows: np.ndarray, X: np.ndarray) -> _Node:
+            return _Node(node=n, root_row=rows, y=root.y[rows], w=root.weight[rows], X=X,
+                         reg_steps=[-1 - j for j in range(X.shape[1])], depth=0)
+
+        if model is None:
+            self.offsets = 0
+            tr_X, te_X = np.zeros((len(tr_rows), 0)), np.zeros((len(te_rows), 0))
+        else:
+            self.offsets = model[0].n_scores
+            tr_X, te_X = model[0].scores, model[1]
+        g = self.grow(node(tr_node, tr_rows, tr_X))
+        try:
+            k = _n_params(g)
+            if model is not None and _reads_scores(g):
+                k += model[0].n_scores * (len(model[0].features) + 1)
+            return self.replay(g, node(te_node, te_rows, te_X)), k
+        finally:
+            self.data.forget([te_node, *_nodes(g)])
 
 
 def learn_target(data: LearningData, target: dict, options: SearchOptions | None = None,
@@ -400,6 +636,26 @@ def _concat(a: Outcome, b: Outcome) -> Outcome:
     return Outcome(row=np.concatenate([a.row, b.row]), branch=np.concatenate([a.branch, b.branch]),
                    factor=np.concatenate([a.factor, b.factor]), x=np.concatenate([a.x, b.x]),
                    pure=np.concatenate([a.pure, b.pure]))
+
+
+def _clause_columns(leaf: Leaf, steps: list[int]) -> tuple[Leaf, list[int]]:
+    """A leaf and its regressors without the root model's scores it gives weight 0.
+
+    A regression leaf on the path's values only, in a tree that reads a root model, has
+    weight 0 on the scores (:func:`probanchor.ddclearn.leaves.fit_leaf`): its clause need not
+    compute them.
+    """
+    if not leaf.uses_regressors or not any(s < 0 for s in steps):
+        return leaf, steps
+    rows = ([list(r) for r in leaf.weight_rows] if leaf.weight_rows is not None
+            else [list(leaf.weights or ())])
+    keep = [j for j, s in enumerate(steps) if s >= 0 or any(r[j] != 0.0 for r in rows)]
+    if len(keep) == len(steps):
+        return leaf, steps
+    cut = [tuple([r[j] for j in keep] + [r[-1]]) for r in rows]
+    if leaf.weight_rows is not None:
+        return replace(leaf, weight_rows=tuple(cut)), [steps[j] for j in keep]
+    return replace(leaf, weights=cut[0]), [steps[j] for j in keep]
 
 
 def _test_text(cand: dict) -> str:

@@ -1,10 +1,11 @@
-"""Evaluation of a run: tracking records, identity report, py-motmetrics figures, the run
-summary (``summary.json``), baseline trackers and the results table.
+"""Evaluation of a run: tracking records, identity report, py-motmetrics figures, HOTA
+(TrackEval), the run summary (``summary.json``), baseline trackers and the results table.
 
 A runner fills one :class:`TrackingRecord` per frame; everything else is computed from a list
 of records. See docs/evaluation.md.
 """
 
+from probanchor.evaluation.hota import HOTA_FIELDS, HotaMetrics, hota_metrics
 from probanchor.evaluation.metrics import (
     DEFAULT_THRESHOLD_M,
     Evaluation,
@@ -38,9 +39,11 @@ from probanchor.evaluation.table import (
 
 __all__ = [
     "DEFAULT_THRESHOLD_M",
+    "HOTA_FIELDS",
     "SUMMARY_FIELDS",
     "Evaluation",
     "FrameTimings",
+    "HotaMetrics",
     "Hypothesis",
     "MotMetrics",
     "ObjectIdentity",
@@ -51,6 +54,7 @@ __all__ = [
     "aggregate",
     "evaluate",
     "format_table",
+    "hota_metrics",
     "identity_report",
     "make_summary",
     "mot_metrics",

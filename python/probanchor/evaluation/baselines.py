@@ -1,5 +1,9 @@
 """Published multi-object trackers run on the same percepts, for comparison.
 
+:data:`BASELINES` are the 2-D box trackers below (:data:`BOX_TRACKERS`) and the probabilistic
+3-D trackers of Stone Soup (``stonesoup-jpda``, ``stonesoup-mht``:
+:mod:`probanchor.evaluation.stonesoup_trackers`); :func:`run_baseline` runs any of them.
+
 SORT, ByteTrack and OC-SORT from Roboflow's ``trackers`` package (2.6.1). They track 2-D boxes: each
 percept's mask bounding box ``Percept.bbox`` is a detection, with confidence 1 by default (our
 segments are not scored; pass ``confidence`` to use e.g. the best category probability). A track id
@@ -34,10 +38,13 @@ from typing import Any
 import numpy as np
 
 from probanchor.evaluation.record import FrameTimings, Hypothesis, TrackingRecord, record_for_frame
+from probanchor.evaluation.stonesoup_trackers import NAMES as _STONESOUP_NAMES
+from probanchor.evaluation.stonesoup_trackers import STONESOUP, run_stonesoup
 from probanchor.percepts import Percept, PerceptFrame
 
-BASELINES = ("sort", "bytetrack", "ocsort")
-_NAMES = {"sort": "SORT", "bytetrack": "ByteTrack", "ocsort": "OC-SORT"}
+BOX_TRACKERS = ("sort", "bytetrack", "ocsort")
+BASELINES = (*BOX_TRACKERS, *STONESOUP)
+_NAMES = {"sort": "SORT", "bytetrack": "ByteTrack", "ocsort": "OC-SORT", **_STONESOUP_NAMES}
 
 
 class BaselineError(ValueError):
@@ -50,7 +57,7 @@ def display_name(method: str) -> str:
 
 
 def make_tracker(method: str, lost_seconds: float = 60.0, frame_rate: float = 30.0, **kwargs: Any):
-    """A fresh tracker of ``method`` (one of :data:`BASELINES`) with generous buffers.
+    """A fresh tracker of ``method`` (one of :data:`BOX_TRACKERS`) with generous buffers.
 
     ``kwargs`` go to the tracker's constructor and override the settings described above.
     """
@@ -62,7 +69,7 @@ def make_tracker(method: str, lost_seconds: float = 60.0, frame_rate: float = 30
         ) from exc
     classes = {"sort": SORTTracker, "bytetrack": ByteTrackTracker, "ocsort": OCSORTTracker}
     if method not in classes:
-        raise BaselineError(f"unknown baseline {method!r}; known: {', '.join(BASELINES)}")
+        raise BaselineError(f"unknown box tracker {method!r}; known: {', '.join(BOX_TRACKERS)}")
     # The trackers express the buffer in frames at 30 FPS, whatever the stream's rate.
     settings: dict[str, Any] = {
         "lost_track_buffer": max(1, int(round(30.0 * lost_seconds))),
@@ -96,10 +103,19 @@ def run_baseline(
 ) -> list[TrackingRecord]:
     """Run one baseline tracker over a percept stream; one record per frame.
 
-    ``ignore`` lists ground-truth ids left out of the evaluation (e.g. the hand). Percepts whose
-    bbox is empty are not given to the tracker; a stream with no usable bbox at all raises
-    :class:`BaselineError` (the trackers need 2-D boxes).
+    ``ignore`` lists ground-truth ids left out of the evaluation (e.g. the hand). For the box
+    trackers, percepts whose bbox is empty are not given to the tracker; a stream with no usable
+    bbox at all raises :class:`BaselineError` (the trackers need 2-D boxes). A Stone Soup
+    tracker (:data:`STONESOUP`) takes the 3-D positions and no ``hold_lost``, ``confidence`` or
+    tracker arguments (it coasts on its own motion model; its settings are
+    ``stonesoup_trackers.TUNED``).
     """
+    if method not in BASELINES:
+        raise BaselineError(f"unknown baseline {method!r}; known: {', '.join(BASELINES)}")
+    if method in STONESOUP:
+        if tracker_kwargs:
+            raise BaselineError(f"{method}: unknown arguments {sorted(tracker_kwargs)}")
+        return run_stonesoup(method, frames, lost_seconds=lost_seconds, ignore=ignore)
     import supervision as sv
 
     frames = list(frames)

@@ -12,12 +12,20 @@ Two views of identity:
   object never perceived is not reported (nothing could anchor it); one perceived but never
   given a symbol is reported with ``symbols == []`` and is not kept.
 
+  *At the end*: the same report on the records as the run answers them at its end
+  (:func:`~probanchor.evaluation.record.revised_records`: identities revised by later
+  evidence rename the answers of the frames since the ambiguity), beside *every frame*, the
+  report on the answers as given.
+
 - **CLEAR-MOT / identity metrics** (py-motmetrics, matching by position). Per frame the
   ground truth is every object in ``record.truth``, visible *and hidden*, at its true position;
   the hypotheses are every anchor's point estimate. A ground-truth object and a hypothesis can
   be matched when they are at most ``threshold`` metres apart (Euclidean, 3-D). So an anchor
   that keeps a hidden object's position near the truth is credited, one that loses it is not.
   ``id_switches`` is motmetrics' ``num_switches``; ``idf1`` its IDF1 (global ID matching).
+
+- **HOTA** (TrackEval, the same ground truth and hypotheses, similarity falling linearly from 1
+  at the truth to 0 at ``threshold``): HOTA, DetA, AssA, LocA (:mod:`probanchor.evaluation.hota`).
 """
 
 from __future__ import annotations
@@ -28,8 +36,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from probanchor.evaluation.beliefs import BeliefAccuracy, belief_accuracy
+from probanchor.evaluation.hota import HotaMetrics, hota_metrics
 from probanchor.evaluation.motmetrics_compat import mm
-from probanchor.evaluation.record import TrackingRecord
+from probanchor.evaluation.record import TrackingRecord, revised_records
 
 DEFAULT_THRESHOLD_M = 0.1
 
@@ -65,6 +75,10 @@ class Evaluation:
     frames: int
     objects: list[ObjectIdentity] = field(default_factory=list)
     mot: MotMetrics | None = None
+    #: the identity report on the answers as revised by the end of the run
+    objects_at_end: list[ObjectIdentity] = field(default_factory=list)
+    beliefs: BeliefAccuracy | None = None
+    hota: HotaMetrics | None = None
 
     @property
     def objects_kept(self) -> int:
@@ -72,8 +86,15 @@ class Evaluation:
 
     @property
     def all_kept(self) -> bool:
-        """True when every reported object kept its identity (a run that "keeps identity")."""
+        """True when every reported object kept its identity in every frame's answer."""
         return bool(self.objects) and all(o.identity_kept for o in self.objects)
+
+    @property
+    def all_kept_at_end(self) -> bool:
+        """True when every reported object has its own symbol in the answers as revised by
+        the end of the run (falls back on :attr:`all_kept` when not computed)."""
+        objects = self.objects_at_end or self.objects
+        return bool(objects) and all(o.identity_kept for o in objects)
 
 
 def identity_report(records: Iterable[TrackingRecord]) -> list[ObjectIdentity]:
@@ -166,6 +187,9 @@ def mot_metrics(
 def evaluate(
     records: Sequence[TrackingRecord], threshold: float = DEFAULT_THRESHOLD_M
 ) -> Evaluation:
-    """The identity report and the motmetrics figures of one run."""
+    """The identity report (every frame and at the end), the motmetrics figures, HOTA and
+    the belief accuracy of one run."""
     records = list(records)
-    return Evaluation(len(records), identity_report(records), mot_metrics(records, threshold))
+    return Evaluation(len(records), identity_report(records), mot_metrics(records, threshold),
+                      identity_report(revised_records(records)),
+                      belief_accuracy(records, threshold), hota_metrics(records, threshold))

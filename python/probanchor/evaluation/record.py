@@ -10,9 +10,10 @@ Records can be saved as JSON Lines (one record per line) and read back.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -53,11 +54,14 @@ class Hypothesis:
 
     ``position`` is a point estimate in metres: the perceived position when ``perceived``, else
     e.g. :func:`point_estimate` of the anchor's particles. A position with NaN means "no
-    estimate" and the hypothesis is ignored by the metrics.
+    estimate" and the hypothesis is ignored by the metrics. ``occluders``: for a hidden anchor
+    whose belief the reasoning gave, the probability of each occluder symbol (the rest of the
+    mass: under nothing); None when not known.
     """
 
     position: np.ndarray
     perceived: bool
+    occluders: dict[str, float] | None = None
 
     def __post_init__(self) -> None:
         self.position = _vec3(self.position, "hypothesis")
@@ -97,6 +101,10 @@ class TrackingRecord:
     - ``ambiguous``: re-acquisitions the beliefs could not tell from a look-alike's: the symbol
       given -> each candidate symbol's probability (``{"ball-2": {"ball-2": 0.52, "ball-1":
       0.48}}``).
+    - ``revised``: the identity revisions made in this frame (``anchoring.identity.Revision``
+      as JSON: ``frame``, ``mapping`` old -> new symbol, ``since`` per old symbol, ``probability``,
+      ``before``, ``evidence``): this frame's symbols are already the new ones; the answers of
+      the frames from ``since`` to this one are revised by :func:`revised_records`.
     """
 
     frame: int
@@ -107,6 +115,7 @@ class TrackingRecord:
     timings: FrameTimings = field(default_factory=FrameTimings)
     rejected_percepts: int = 0
     ambiguous: dict[str, dict[str, float]] = field(default_factory=dict)
+    revised: list[dict[str, Any]] = field(default_factory=list)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -117,9 +126,7 @@ class TrackingRecord:
                 for k, v in self.truth.items()
             },
             "hypotheses": {
-                k: {"position": [None if math.isnan(x) else x for x in v.position.tolist()],
-                    "perceived": v.perceived}
-                for k, v in self.hypotheses.items()
+                k: _hypothesis_json(v) for k, v in self.hypotheses.items()
             },
             "assignments": dict(self.assignments),
             "timings": {
@@ -130,6 +137,7 @@ class TrackingRecord:
             },
             "rejected_percepts": self.rejected_percepts,
             "ambiguous": {k: dict(v) for k, v in self.ambiguous.items()},
+            "revised": [dict(r) for r in self.revised],
         }
 
     @classmethod
@@ -138,7 +146,10 @@ class TrackingRecord:
             hyps = {}
             for k, v in data.get("hypotheses", {}).items():
                 pos = [math.nan if x is None else x for x in v["position"]]
-                hyps[str(k)] = Hypothesis(pos, bool(v["perceived"]))
+                occ = v.get("occluders")
+                hyps[str(k)] = Hypothesis(pos, bool(v["perceived"]),
+                                          None if occ is None
+                                          else {str(s): float(p) for s, p in occ.items()})
             t = data.get("timings", {})
             return cls(
                 frame=int(data["frame"]),
@@ -155,11 +166,54 @@ class TrackingRecord:
                 rejected_percepts=int(data.get("rejected_percepts", 0)),
                 ambiguous={str(k): {str(s): float(p) for s, p in v.items()}
                            for k, v in data.get("ambiguous", {}).items()},
+                revised=[dict(r) for r in data.get("revised", [])],
             )
         except KeyError as exc:
             raise RecordError(f"missing field {exc.args[0]!r}") from exc
         except (TypeError, ValueError, AttributeError) as exc:
             raise RecordError(str(exc)) from exc
+
+
+def _hypothesis_json(h: Hypothesis) -> dict[str, Any]:
+    out: dict[str, Any] = {"position": [None if math.isnan(x) else x for x in h.position.tolist()],
+                           "perceived": h.perceived}
+    if h.occluders is not None:
+        out["occluders"] = {s: round(float(p), 6) for s, p in h.occluders.items()}
+    return out
+
+
+def revised_records(records: Sequence[TrackingRecord]) -> list[TrackingRecord]:
+    """The records with every frame's answers as the run answers them at its end: each
+    revision (``TrackingRecord.revised``, made at frame ``r``) renames, in the frames from its
+    ``since`` up to ``r``, the symbols it revised (its ``mapping``); revisions apply in the
+    order they were made. Records without revisions are returned as they are (copies of the
+    records that change)."""
+    revisions = sorted((r for rec in records for r in rec.revised), key=lambda r: int(r["frame"]))
+    if not revisions:
+        return list(records)
+    out: list[TrackingRecord] = []
+    for rec in records:
+        renames = [r for r in revisions
+                   if any(int(s) <= rec.frame < int(r["frame"]) for s in r["since"].values())]
+        if not renames:
+            out.append(rec)
+            continue
+
+        def rename(symbol: str, frame: int = rec.frame, renames: list = renames) -> str:
+            for r in renames:
+                since = r["since"].get(symbol)
+                if since is not None and int(since) <= frame < int(r["frame"]):
+                    symbol = str(r["mapping"][symbol])
+            return symbol
+
+        out.append(dataclasses.replace(
+            rec,
+            assignments={oid: rename(sym) for oid, sym in rec.assignments.items()},
+            hypotheses={rename(sym): h for sym, h in rec.hypotheses.items()},
+            ambiguous={rename(sym): {rename(c): p for c, p in cands.items()}
+                       for sym, cands in rec.ambiguous.items()},
+        ))
+    return out
 
 
 def truth_from_dict(

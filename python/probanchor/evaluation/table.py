@@ -8,12 +8,21 @@ the same scenario and method (e.g. 20 seeds, or 50 generated games under one sce
 line of the table:
 
 - identity kept, objects: objects that kept their identity / objects, over all the runs;
-- identity kept, runs: runs in which every object kept its identity / runs;
+- identity kept, runs: runs in which every object kept its identity in every frame's answer /
+  runs;
+- at the end, runs: runs in which every object has its own symbol in the answers as revised by
+  the end of the run (``identity_kept_at_end``) / runs;
 - ID switches: mean per run (motmetrics);
 - IDF1: mean over the runs that define it;
+- HOTA, DetA, AssA, LocA: means over the runs that define them (``summary.json``'s ``hota``,
+  ``deta``, ``assa``, ``loca``; ``-`` for runs summarised before they existed);
 - ambiguous: runs that reported at least one ambiguous re-acquisition (``summary.json``'s
   ``ambiguous_reacquisitions``: a hidden object seen again that nothing observed tells from a
-  look-alike's) / runs.
+  look-alike's) / runs;
+- belief within 10 cm: over all the runs' frames in which an object is hidden, the fraction in
+  which its anchor's point estimate is within the threshold of it; P(true occluder): the mean
+  probability the belief gave to the object that truly hides it
+  (:mod:`probanchor.evaluation.beliefs`; "-" when not known, e.g. trackers).
 """
 
 from __future__ import annotations
@@ -25,6 +34,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TextIO
 
+from probanchor.evaluation.hota import HOTA_FIELDS, hota_fields
 from probanchor.evaluation.metrics import DEFAULT_THRESHOLD_M, Evaluation
 from probanchor.evaluation.record import TrackingRecord
 from probanchor.evaluation.summary import make_summary, read_summary
@@ -43,6 +53,10 @@ class TableRow:
     id_switches_mean: float
     idf1_mean: float | None
     runs_ambiguous: int = 0
+    runs_kept_at_end: int = 0
+    belief_within: float | None = None
+    true_occluder: float | None = None
+    hota: dict[str, float | None] | None = None  # HOTA_FIELDS -> mean over the runs (_hota_means)
 
 
 def _as_summary(run: Run, threshold: float) -> dict[str, Any]:
@@ -52,13 +66,28 @@ def _as_summary(run: Run, threshold: float) -> dict[str, Any]:
         return run
     if isinstance(run, Evaluation):
         assert run.mot is not None
+        at_end = {o.id: o.identity_kept for o in run.objects_at_end}
         return {
-            "objects": [{"id": o.id, "identity_kept": o.identity_kept} for o in run.objects],
+            "objects": [{"id": o.id, "identity_kept": o.identity_kept,
+                         "identity_kept_at_end": at_end.get(o.id, o.identity_kept)}
+                        for o in run.objects],
+            "beliefs": None if run.beliefs is None else run.beliefs.to_json(),
             "id_switches": run.mot.id_switches,
             "idf1": run.mot.idf1,
             "ambiguous_reacquisitions": 0,
+            **(hota_fields(run.hota) if run.hota is not None else {}),
         }
     return make_summary(list(run), threshold=threshold)
+
+
+def _mean_defined(values: Sequence[Any]) -> float | None:
+    finite = [float(v) for v in values if v is not None and math.isfinite(float(v))]
+    return sum(finite) / len(finite) if finite else None
+
+
+def _hota_means(summaries: Sequence[dict[str, Any]]) -> dict[str, float | None]:
+    """HOTA, DetA, AssA, LocA: each the mean over the runs that define it."""
+    return {k: _mean_defined([s.get(k) for s in summaries]) for k in HOTA_FIELDS}
 
 
 def aggregate(
@@ -76,6 +105,12 @@ def aggregate(
             bool(s["objects"]) and all(o["identity_kept"] for o in s["objects"])
             for s in summaries
         )
+        runs_kept_at_end = sum(
+            bool(s["objects"]) and all(o.get("identity_kept_at_end", o["identity_kept"])
+                                       for o in s["objects"])
+            for s in summaries
+        )
+        within, occluder = _belief_means(summaries)
         idf1s = [
             float(s["idf1"])
             for s in summaries
@@ -93,28 +128,68 @@ def aggregate(
                 idf1_mean=sum(idf1s) / len(idf1s) if idf1s else None,
                 runs_ambiguous=sum(int(s.get("ambiguous_reacquisitions", 0)) > 0
                                    for s in summaries),
+                runs_kept_at_end=runs_kept_at_end,
+                belief_within=within,
+                true_occluder=occluder,
+                hota=_hota_means(summaries),
             )
         )
     return table
+
+
+def _belief_means(summaries: Sequence[dict[str, Any]]) -> tuple[float | None, float | None]:
+    """Pooled over the runs' hidden frames: the fraction within the threshold, the mean
+    probability of the true occluder (None where no run says)."""
+    hidden = within = 0.0
+    frames = mass = 0.0
+    any_occluder = False
+    for s in summaries:
+        b = s.get("beliefs") or {}
+        if b.get("within") is not None and b.get("hidden_frames"):
+            hidden += b["hidden_frames"]
+            within += b["within"] * b["hidden_frames"]
+        if b.get("true_occluder_probability") is not None and b.get("occluder_frames"):
+            any_occluder = True
+            frames += b["occluder_frames"]
+            mass += b["true_occluder_probability"] * b["occluder_frames"]
+    return (within / hidden if hidden else None,
+            mass / frames if any_occluder and frames else None)
 
 
 def _fraction(k: int, n: int) -> str:
     return f"{k}/{n} ({100.0 * k / n:.0f} %)" if n else "-"
 
 
+def _number(x: float | None) -> str:
+    return "-" if x is None else f"{x:.3f}"
+
+
+def _hota_header() -> tuple[str, str]:
+    return " HOTA | DetA | AssA | LocA |", "---:|---:|---:|---:|"
+
+
+def _hota_cells(row: TableRow) -> str:
+    means = row.hota or {}
+    return "".join(f" {_number(means.get(k))} |" for k in HOTA_FIELDS)
+
+
 def format_table(table: Sequence[TableRow]) -> str:
     """Markdown for rows made by :func:`aggregate`."""
+    hota_names, hota_rule = _hota_header()
     lines = [
         "| scenario | method | runs | identity kept (objects) | identity kept (runs) "
-        "| ID switches per run | IDF1 | ambiguous (runs) |",
-        "|---|---|---:|---:|---:|---:|---:|---:|",
+        "| at the end (runs) | ID switches per run | IDF1 |" + hota_names
+        + " ambiguous (runs) | belief within 10 cm | P(true occluder) |",
+        "|---|---|---:|---:|---:|---:|---:|---:|" + hota_rule + "---:|---:|---:|",
     ]
     for r in table:
-        idf1 = "-" if r.idf1_mean is None else f"{r.idf1_mean:.3f}"
+        within = "-" if r.belief_within is None else f"{100 * r.belief_within:.0f} %"
+        occluder = "-" if r.true_occluder is None else f"{r.true_occluder:.2f}"
         lines.append(
             f"| {r.scenario} | {r.method} | {r.runs} | {_fraction(r.objects_kept, r.objects)} "
-            f"| {_fraction(r.runs_kept, r.runs)} | {r.id_switches_mean:.2f} | {idf1} "
-            f"| {r.runs_ambiguous}/{r.runs} |"
+            f"| {_fraction(r.runs_kept, r.runs)} | {_fraction(r.runs_kept_at_end, r.runs)} "
+            f"| {r.id_switches_mean:.2f} | {_number(r.idf1_mean)} |" + _hota_cells(r)
+            + f" {r.runs_ambiguous}/{r.runs} | {within} | {occluder} |"
         )
     return "\n".join(lines) + "\n"
 

@@ -6,7 +6,7 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
-from tqdm import tqdm
+from probanchor.progress import progress
 
 Backend = Literal["local", "ray"]
 BACKENDS = ("local", "ray")
@@ -129,12 +129,13 @@ def _has_host_and_port(rest: str) -> bool:
 
 
 class Tally:
-    """One progress bar over all jobs: finished of total, running and failed."""
+    """One progress display over all jobs: finished of total, running and failed (a bar on a
+    terminal, a few plain lines elsewhere: :func:`probanchor.progress.progress`)."""
 
     def __init__(self, total: int, desc: str, show: bool) -> None:
         self.failed = 0
-        self._bar = tqdm(total=total, desc=desc, unit="job", disable=not show,
-                         dynamic_ncols=True, leave=True)
+        self._bar = progress(total, desc=desc, unit="job", show=show, dynamic_ncols=True,
+                             leave=True)
         self._running = 0
 
     def running(self, count: int) -> None:

@@ -2,8 +2,13 @@
 
 from __future__ import annotations
 
+import ctypes
 import multiprocessing
 import os
+import signal
+import sys
+import threading
+import time
 from collections import deque
 from collections.abc import Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
@@ -37,6 +42,43 @@ def one_thread_per_worker() -> Iterator[None]:
         for name, value in saved.items():
             if value is None:
                 os.environ.pop(name, None)
+
+
+#: prctl(2)'s option that sends a signal to this process when its parent ends (Linux).
+_PR_SET_PDEATHSIG = 1
+
+
+def die_with_parent(parent: int) -> None:
+    """A worker's initializer: the worker ends when the process that started it ends.
+
+    A pool's workers wait on a pipe for their next job, and each holds that pipe's writing end
+    too: a parent killed (SIGKILL, the out-of-memory killer) would leave them, re-parented to
+    init, waiting for good. On Linux the kernel sends the worker SIGKILL when its parent ends
+    (``prctl(PR_SET_PDEATHSIG)``; the parent's thread that started the worker, which is the
+    thread that submits jobs, must live as long as the pool: :func:`run_local` keeps both in
+    the caller's thread); elsewhere a thread of the worker looks for its parent every second.
+
+    Parameters
+    ----------
+    parent : int
+        The process id of the pool's process.
+    """
+    if sys.platform.startswith("linux"):
+        try:
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        except (OSError, AttributeError):  # no prctl: the watching thread below instead
+            threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
+    else:
+        threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
+    if os.getppid() != parent:  # the parent ended before the signal was asked for
+        os._exit(1)
+
+
+def _watch_parent(parent: int) -> None:
+    while os.getppid() == parent:
+        time.sleep(1.0)
+    os._exit(1)
 
 
 def run_local(jobs: Sequence[Job], workers: int, retries: int,
@@ -81,7 +123,8 @@ def _run_pool(jobs: Sequence[Job], workers: int, retries: int,
     queue = deque(range(len(jobs)))
     tries = [0] * len(jobs)
     while queue:
-        pool = ProcessPoolExecutor(max_workers=workers, mp_context=context)
+        pool = ProcessPoolExecutor(max_workers=workers, mp_context=context,
+                                   initializer=die_with_parent, initargs=(os.getpid(),))
         under_way: dict[Future, int] = {}
         broken = False
         try:

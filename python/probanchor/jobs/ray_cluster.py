@@ -6,7 +6,8 @@ Ray for itself (``ray.init(num_cpus=workers)``) and stops it at the end; ``auto`
 --address=...`` on its machines), whose nodes need the project installed and the output folder
 at the same path (a shared file system): the jobs read scenario files and cached percept
 streams there, and results come back through Ray's object store. A process that already called
-``ray.init`` keeps its Ray as it is.
+``ray.init`` keeps its Ray as it is. A local Ray started here ends with the run even when the
+run is killed (:mod:`probanchor.jobs.watchdog`).
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from probanchor.jobs.core import Cluster, ClusterError, Job, Outcome, Tally, cause
+from probanchor.jobs.watchdog import Watchdog
 
 
 def _ray() -> Any:
@@ -68,6 +70,9 @@ def run_on_ray(jobs: Sequence[Job], cluster: Cluster, retries: int,
     """
     ray = _ray()
     started = _start(ray, cluster)
+    # a local Ray is a tree of processes under this one: should this process be killed, a
+    # watchdog ends them (ray.shutdown() below is never reached then)
+    watchdog = Watchdog() if started and cluster.address is None else None
     under_way: dict[Any, int] = {}
     try:
         capacity = max(1, int(ray.cluster_resources().get("CPU", 1)))
@@ -99,3 +104,5 @@ def run_on_ray(jobs: Sequence[Job], cluster: Cluster, retries: int,
             ray.cancel(ref, force=True)
         if started:
             ray.shutdown()
+        if watchdog is not None:
+            watchdog.stop()

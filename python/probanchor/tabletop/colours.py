@@ -16,6 +16,8 @@ NAMED_COLOURS: dict[str, tuple[float, float, float]] = {
     "gray": (0.45, 0.45, 0.45),
     "black": (0.08, 0.08, 0.08),
 }
+#: Other spellings a scenario may use for a named colour.
+COLOUR_ALIASES: dict[str, str] = {"grey": "gray"}
 
 SKIN_RGB: tuple[float, float, float] = (0.87, 0.67, 0.55)
 TABLE_RGB: tuple[float, float, float] = (0.62, 0.64, 0.68)

@@ -16,7 +16,7 @@ from typing import Any
 
 import yaml
 
-from probanchor.tabletop.colours import NAMED_COLOURS, TABLE_RGB
+from probanchor.tabletop.colours import COLOUR_ALIASES, NAMED_COLOURS, TABLE_RGB
 from probanchor.tabletop.errors import ScenarioError
 
 # category -> default shape. A scenario may give another shape explicitly.
@@ -357,6 +357,7 @@ def _colour(r: _Reader, key: str = "colour") -> tuple[tuple[float, float, float]
         raise r.fail(f"missing '{key}' (a name or [r, g, b] in 0..1)")
     value = r.node[key]
     if isinstance(value, str):
+        value = COLOUR_ALIASES.get(value, value)
         if value not in NAMED_COLOURS:
             raise r.fail(f"unknown colour '{value}' (known: {', '.join(NAMED_COLOURS)})", key)
         return NAMED_COLOURS[value], value

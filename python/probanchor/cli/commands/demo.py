@@ -8,14 +8,16 @@ from typing import Any
 
 
 def register(sub: Any) -> None:
-    parser = sub.add_parser("demo", help="run the shell game and say where the pictures are",
+    parser = sub.add_parser("demo", help="run the shell game and say where its video is",
                             description=__doc__)
     parser.add_argument("--out", type=Path, default=Path("out") / "demo",
                         help="output directory (default out/demo)")
     parser.add_argument("--particles", type=int, default=200,
                         help="particles of the filter (default 200)")
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+    parser.add_argument("--frames", action="store_true",
+                        help="also a PNG per frame (OUT/frames/)")
+    parser.add_argument("--quiet", action="store_true", help="no progress")
     parser.set_defaults(func=main)
 
 
@@ -25,8 +27,10 @@ def main(args: argparse.Namespace) -> int:
 
     scenario = scenario_file("shell_game")
     output = run(RunOptions(scenario=scenario, particles=args.particles, seed=args.seed,
-                            out=args.out, picture_every=1, progress=not args.quiet))
+                            out=args.out, picture_every=1, frames=args.frames,
+                            progress=not args.quiet))
     print(format_summary(output.summary))
-    print(f"\nPictures: {args.out}/frames/*.png, animation: {output.gif}")
+    print(f"\nVideo: {output.video}"
+          + (f"; pictures: {args.out}/frames/*.png" if output.pictures else ""))
     print(f"Ask the world model: anchoring shell {args.out}")
     return 0

@@ -25,10 +25,14 @@ def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> N
     parser.add_argument("--resample-threshold", type=float, default=0.9,
                         help="resample when ESS < this fraction of the particles (default 0.9)")
     parser.add_argument("--out", type=Path, default=None,
-                        help="write summary.json, per-frame PNGs, run.gif and world.pl here")
+                        help="write summary.json, records.jsonl, world.pl and the video run.mp4 "
+                             "(each anchor drawn over the camera image) here")
+    parser.add_argument("--frames", action="store_true",
+                        help="with --out: also a PNG per picture (DIR/frames/)")
     parser.add_argument("--every", type=int, default=1,
-                        help="write a picture every N frames (default 1)")
-    parser.add_argument("--quiet", action="store_true", help="no progress bar")
+                        help="draw a picture every N frames (default 1)")
+    parser.add_argument("--quiet", action="store_true",
+                        help="no progress (a bar on a terminal, a few lines elsewhere)")
     parser.add_argument("--sequential", action="store_true",
                         help="perceive each frame only after the previous one is processed "
                              "(by default the next frame is perceived while the current one "
@@ -55,6 +59,9 @@ def add_bag_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--max-skew", type=float, default=0.02,
                        help="seconds between the stamps of a colour and its depth image "
                             "(default 0.02)")
+    group.add_argument("--max-lead", type=float, default=60.0,
+                       help="seconds a colour image's stamp may be ahead of the time the bag "
+                            "recorded it; a frame stamped further ahead is skipped (default 60)")
 
 
 def _pose(text: str) -> Any:
@@ -72,7 +79,8 @@ def bag_topics(args: argparse.Namespace) -> Any:
 
     return BagTopics(colour=args.colour_topic, depth=args.depth_topic,
                      camera_info=args.info_topic, world_frame=args.world_frame,
-                     camera_pose=args.camera_pose, max_skew=args.max_skew)
+                     camera_pose=args.camera_pose, max_skew=args.max_skew,
+                     max_lead=args.max_lead)
 
 
 def register(sub: Any) -> None:
@@ -88,6 +96,10 @@ def register(sub: Any) -> None:
     add_bag_options(parser)
     parser.add_argument("--no-reasoning", action="store_true",
                         help="anchoring alone: hidden anchors keep their last position")
+    parser.add_argument("--no-identity", action="store_true",
+                        help="decide look-alikes' identities once, by the most probable "
+                             "assignment, instead of keeping them as hypotheses in the "
+                             "particles and revising them (docs/anchoring.md)")
     parser.add_argument("--no-reid", action="store_true",
                         help="anchoring does not re-identify a percept by appearance alone "
                              "(a unique look-alike of an anchor left over)")
@@ -101,6 +113,10 @@ def register(sub: Any) -> None:
     parser.add_argument("--resume", type=Path, default=None, metavar="WORLD.db",
                         help="continue the run kept in this store after a restart (the same "
                              "source and options; the source may be left out)")
+    parser.add_argument("--serve", type=int, default=None, metavar="PORT",
+                        help="answer Prolog queries on the live world model while the run goes "
+                             "on, on http://127.0.0.1:PORT (0: any free port, printed): "
+                             "anchoring shell --connect PORT, or GET /query?q=QUERY")
     parser.add_argument("--rerun-spawn", action="store_true",
                         help="open the Rerun viewer and stream the run to it")
     add_run_options(parser)
@@ -115,15 +131,18 @@ def main(args: argparse.Namespace) -> int:
         bag_topics=bag_topics(args) if args.bag is not None else None,
         particles=args.particles,
         theory=args.theory, seed=args.seed, reasoning=not args.no_reasoning,
-        resample_threshold=args.resample_threshold, reidentify=not args.no_reid, out=args.out,
+        resample_threshold=args.resample_threshold, reidentify=not args.no_reid,
+        identity=not args.no_identity, out=args.out,
         threads=args.threads, engine=args.engine, overlap=not args.sequential,
-        picture_every=args.every, progress=not args.quiet, rerun=args.rerun,
-        rerun_spawn=args.rerun_spawn, store=args.store, resume=args.resume,
+        picture_every=args.every, frames=args.frames, progress=not args.quiet, rerun=args.rerun,
+        rerun_spawn=args.rerun_spawn, store=args.store, resume=args.resume, serve=args.serve,
     ))
     print(format_summary(output.summary))
     if output.out is not None:
-        print(f"wrote {output.out}/summary.json, world.pl"
-              + (f", {len(output.pictures)} pictures and {output.gif}" if output.gif else ""))
+        print(f"wrote {output.out}/summary.json, records.jsonl, world.pl"
+              + (f", {output.video}" if output.video else "")
+              + (f" and {len(output.pictures)} pictures in {output.out}/frames"
+                 if output.pictures else ""))
     if args.store or args.resume:
         print(f"world model in {args.store or args.resume}")
     if args.rerun is not None:

@@ -60,6 +60,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--show-report", type=Path, default=None, metavar="REPORT",
                    help="print the figures of a saved report (.report.json) as a Markdown "
                         "table and exit")
+    p.add_argument("--calibrate", type=Path, default=None, metavar="MODEL",
+                   help="only fit the appearance calibration of MODEL (its likelihood ratio "
+                        "for the association, docs/anchoring.md) on the streams and scenes "
+                        "given, and write it into MODEL's file")
     p.add_argument("--debug", action="store_true")
     p.set_defaults(func=run)
 
@@ -167,6 +171,8 @@ def run(args: argparse.Namespace) -> int:
     if args.out is None:
         args.out = DEFAULT_MODEL
     rng = np.random.default_rng(args.seed)
+    if args.calibrate is not None:
+        return _calibrate_only(args)
     streams = _streams(args)
     pairs = [training.labelled_pairs(frames, group=g) for g, (_, frames) in enumerate(streams)]
     order = rng.permutation(len(streams))
@@ -257,6 +263,8 @@ def run(args: argparse.Namespace) -> int:
                       f"{report['original']['held_out_stale_accepted']:.4f}")
     else:
         print(f"(original model {args.original} not found: no comparison)")
+    # the appearance decision's likelihood ratio, fitted on the held-out streams' pairs
+    model.info["appearance_calibration"] = training.appearance_calibration(model, test)
     model.info.update({"held_out": held, "streams": len(streams)})
     args.out.parent.mkdir(parents=True, exist_ok=True)
     model.save(args.out)
@@ -266,6 +274,26 @@ def run(args: argparse.Namespace) -> int:
     if args.evaluate:
         report["evaluate"] = _evaluate(args, model)
         report_path.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
+    return 0
+
+
+def _calibrate_only(args: argparse.Namespace) -> int:
+    """--calibrate MODEL: the appearance calibration of an existing model, on the pairs of
+    the streams and scenes given (none of them used to train it, preferably)."""
+    from anchoring import training
+    from anchoring.matcher import RbfSvm
+
+    model = RbfSvm.load(args.calibrate)
+    args.streams = list(args.streams)
+    streams = _streams(args)
+    pairs = training.PairSet.concat(training.labelled_pairs(frames, group=g)
+                                    for g, (_, frames) in enumerate(streams))
+    calibration = training.appearance_calibration(model, pairs)
+    model.info["appearance_calibration"] = calibration
+    model.save(args.calibrate)
+    print(f"appearance calibration of {args.calibrate} on {calibration['pairs']} pairs from "
+          f"{len(streams)} streams: log LR = {calibration['scale']:.3f} d "
+          f"{calibration['offset']:+.3f}")
     return 0
 
 

@@ -1,0 +1,77 @@
+"""Filter.samples reads a variable's values as rows of floats: with the batched engine's column
+library, straight from its columns into a numpy array (no conversion of each float), else from
+a list of floats; both give the rows that Filter.values gives, NaN where a particle has none."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from bridge import Filter
+
+PROGRAM = """
+s:0 ~ uniform([a, b]).
+s:t+1 ~ val(S) := s:t ~= S.
+x:0 ~ gaussian(0.0, 1.0).
+x:t+1 ~ gaussian(X, 0.1) := x:t ~= X.
+p:t ~ val((X, 1.5, 0.25)) := s:t ~= a, x:t ~= X.
+q:t ~ val((1, 2)) := true.
+"""
+
+
+def rows_of_values(values: list) -> np.ndarray:
+    width = len(next(v for v in values if v is not None)) if any(
+        isinstance(v, tuple) for v in values) else 1
+    out = np.full((len(values), width), np.nan)
+    for i, v in enumerate(values):
+        if v is not None:
+            out[i] = v if isinstance(v, tuple) else [v]
+    return out if width > 1 else out[:, 0]
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+@pytest.mark.parametrize("engine", ["batched", "per_particle"])
+def test_samples_are_the_values_as_rows(tmp_path: Path, threads: int, engine: str) -> None:
+    program = tmp_path / "rows.pl"
+    program.write_text(PROGRAM)
+    with Filter(program, particles=50, seed=4, threads=threads, engine=engine) as f:
+        for _ in range(3):
+            f.step([])
+            for term in ("p:t", "x:t", "q:t"):
+                rows, weights = f.samples(term)
+                expected = rows_of_values(f.values("V", f"{term} ~= V"))
+                assert rows.shape == expected.shape and weights.shape == (50,)
+                assert np.array_equal(rows, expected, equal_nan=True), term
+                rows[0] = 7.0  # (the caller's own array)
+            undefined = np.isnan(f.samples("p:t")[0]).all(axis=1)
+            assert 0 < undefined.sum() < 50  # (some particles hold s = b: no p there)
+            pairs, _ = f.samples("(X, Y)", "p:t ~= (X, Y, _)")
+            assert np.array_equal(pairs, f.samples("p:t")[0][:, :2], equal_nan=True)
+
+
+def test_the_column_library_copies_the_rows_into_the_array(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from bridge import filter as bridge_filter
+    from bridge import prolog as bridge_prolog
+
+    program = tmp_path / "rows.pl"
+    program.write_text(PROGRAM)
+    replies = []
+    call = bridge_filter._call
+
+    def recording(goal: str, bindings: dict) -> dict:
+        result = call(goal, bindings)
+        if goal.startswith("bridge_rows_into("):
+            replies.append(result["F"])
+        return result
+
+    monkeypatch.setattr(bridge_filter, "_call", recording)
+    with Filter(program, particles=50, seed=4, threads=2, engine="batched") as f:
+        f.step([])
+        backend = bridge_prolog.query_once("ddc_batch_col:col_backend(B)")["B"]
+        f.samples("p:t")
+        f.samples("q:t")  # (integers: a list of floats)
+    assert replies[1] == [1.0, 2.0] * 50
+    assert replies[0] == 150 if backend == "foreign" else isinstance(replies[0], list)
