@@ -50,9 +50,12 @@ def test_a_hand_carries_the_ball_it_closes_over_and_puts_it_down(theory: str) ->
             step(reasoner, grip, seen)
             if not seen and not vanished:
                 vanished = True
-                # under the hand, or behind it (it stays where it was), one half each
+                # under the hand, or behind it (it stays where it was): the hand-written theory
+                # sees the hand come down onto it (behind with behind_when_covered, 0.1); the
+                # learned rules choose among the two alike
                 carried_at_vanish = reasoner.probability("occluded_by(ball_1, skin_1):t")
-                assert within_binomial(carried_at_vanish, 0.5, n), carried_at_vanish
+                expected = 0.9 if theory == "hand" else 0.5
+                assert within_binomial(carried_at_vanish, expected, n), carried_at_vanish
             if grip == (PUT[0], BALL[1], 0.22) and k < len(path) - 7:
                 # carried 40 cm, 18 cm above the table: the carried particles are in the hand
                 belief = reasoner.belief("ball-1")
