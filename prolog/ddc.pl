@@ -68,8 +68,8 @@
           ]).
 
 
-:- use_module(ddc_read, [resolve_file/2, dist_sugar/2]).
-:- use_module(ddc_programs, [load_program/2, set_current_program/1, current_program_/1]).
+:- use_module('ddc/lang/ddc_read', [resolve_file/2, dist_sugar/2]).
+:- use_module('ddc/lang/ddc_programs', [load_program/2, set_current_program/1, current_program_/1]).
 :- use_module(ddc_query).
 :- use_module(ddc_filter, [ filter_new/4, filter_new/5, filter_step/4, filter_undo/1,
                             filter_resample/2, filter_rename/3, filter_holds/3, filter_values/4,
@@ -79,7 +79,7 @@
 %   (filter_call/2, dist_sugar/2 and eval_dist/2 are imported for the
 %   callers that reach them as ddc:...: bench/filter_step.py and
 %   ddc_learn_facts.pl.)
-:- reexport(ddc_models).       % logistic/3, linear/3, softmax/3, mean_list/2, ...
+:- reexport('ddc/lang/ddc_models').       % logistic/3, linear/3, softmax/3, mean_list/2, ...
 
 /** <module> Dynamic Distributional Clauses
 

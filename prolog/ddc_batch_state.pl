@@ -12,7 +12,7 @@
             with_state/2                % +State, :Goal
           ]).
 
-:- use_module(ddc_records).
+:- use_module('ddc/lang/ddc_records').
 :- use_module(ddc_batch_tables).
 :- use_module(ddc_batch_col, [ps_all/2]).
 :- use_module(ddc_batch_eval).

@@ -49,7 +49,7 @@
 :- use_module(library(pairs)).
 :- use_module(library(readutil)).
 :- use_module(library(http/json)).
-:- use_module(ddc_nesting).
+:- use_module('ddc/lang/ddc_nesting').
 :- use_module(ddc_pool, [with_random_stream/3]).
 
 :- meta_predicate belief_run(+, +, 1).

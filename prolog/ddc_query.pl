@@ -27,14 +27,14 @@
 :- use_module(library(option)).
 :- use_module(library(error)).
 :- use_module(library(pairs)).
-:- use_module(ddc_records).
+:- use_module('ddc/lang/ddc_records').
 :- use_module(ddc_store).
-:- use_module(ddc_nesting).
-:- use_module(ddc_body).
+:- use_module('ddc/lang/ddc_nesting').
+:- use_module('ddc/lang/ddc_body').
 :- use_module(ddc_world).
-:- use_module(ddc_programs).
+:- use_module('ddc/lang/ddc_programs').
 
-:- use_module(ddc_ops).
+:- use_module('ddc/lang/ddc_ops').
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).

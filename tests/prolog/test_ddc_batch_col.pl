@@ -13,7 +13,7 @@
 :- use_module('../../prolog/ddc').
 :- use_module('../../prolog/ddc_batch_col').
 :- use_module('../../prolog/ddc_batch_columns').
-:- use_module('../../prolog/ddc_ops').
+:- use_module('../../prolog/ddc/lang/ddc_ops').
 :- use_module('../../prolog/ddc_batch_rv').
 :- use_module(library(aggregate)).
 

@@ -1,7 +1,7 @@
 /*  plunit tests of the structure learner's Prolog side (prolog/ddc_learn.pl,
     prolog/ddc_learn_data.pl and the modules they re-export,
     prolog/ddc_learn_*.pl) and of the statistical models of learned clauses
-    (prolog/ddc_models.pl).
+    (prolog/ddc/lang/ddc_models.pl).
 */
 :- use_module('../../prolog/ddc').
 :- use_module('../../prolog/ddc_learn').

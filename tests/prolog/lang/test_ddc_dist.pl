@@ -1,10 +1,10 @@
-/*  plunit tests of prolog/ddc_dist.pl: sample moments against the analytic
+/*  plunit tests of prolog/ddc/lang/ddc_dist.pl: sample moments against the analytic
     ones (fixed seeds, tolerance 5 standard errors of the sample size),
     densities against hand-computed values, normalisation, parameter
     errors and their messages, reproducibility, determinism.
 */
 
-:- use_module('../../prolog/ddc_dist').
+:- use_module('../../../prolog/ddc/lang/ddc_dist').
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
