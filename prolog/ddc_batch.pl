@@ -81,7 +81,7 @@
 :- use_module(ddc_batch_rv, [weigh_branch/5]).
 :- use_module(ddc_batch_eval).
 :- use_module(ddc_batch_state).
-:- use_module(ddc_pool, [group_seeds/2, group_sizes/3, pool_run/3, with_random_stream/3,
+:- use_module('ddc/runtime/ddc_pool', [group_seeds/2, group_sizes/3, pool_run/3, with_random_stream/3,
                           overlap_checked_particles/1]).
 :- use_module('ddc/lang/ddc_ops').
 

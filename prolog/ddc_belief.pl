@@ -50,7 +50,7 @@
 :- use_module(library(readutil)).
 :- use_module(library(http/json)).
 :- use_module('ddc/lang/ddc_nesting').
-:- use_module(ddc_pool, [with_random_stream/3]).
+:- use_module('ddc/runtime/ddc_pool', [with_random_stream/3]).
 
 :- meta_predicate belief_run(+, +, 1).
 

@@ -57,13 +57,13 @@
 :- use_module(library(pairs)).
 :- use_module(library(ordsets)).
 :- use_module('ddc/lang/ddc_records').
-:- use_module(ddc_store).
+:- use_module('ddc/runtime/ddc_store').
 :- use_module('ddc/lang/ddc_body').
-:- use_module(ddc_world).
+:- use_module('ddc/runtime/ddc_world').
 :- use_module('ddc/lang/ddc_programs', [optimised/1]).
-:- use_module(ddc_pool).
-:- use_module(ddc_rows).
-:- use_module(ddc_rename, [rename_term/3, rename_arguments/3]).
+:- use_module('ddc/runtime/ddc_pool').
+:- use_module('ddc/runtime/ddc_rows').
+:- use_module('ddc/runtime/ddc_rename', [rename_term/3, rename_arguments/3]).
 
 :- use_module('ddc/lang/ddc_ops').
 

@@ -21,7 +21,7 @@
 :- use_module(ddc_dist).
 :- use_module(ddc_read).
 :- use_module(ddc_body).
-:- use_module('../../ddc_world', [needs_eval/1, eval_dist/2, world_time_goal/3]).
+:- use_module('../runtime/ddc_world', [needs_eval/1, eval_dist/2, world_time_goal/3]).
 
 :- use_module(ddc_ops).
 

@@ -46,8 +46,8 @@
 :- use_module(library(apply)).
 :- use_module(library(error)).
 :- use_module(library(pairs)).
-:- use_module('ddc/lang/ddc_records').
-:- use_module('ddc/lang/ddc_dist').
+:- use_module('../lang/ddc_records').
+:- use_module('../lang/ddc_dist').
 :- use_module(ddc_store).
 
 %   Arithmetic compiled to virtual-machine instructions (local to this

@@ -36,7 +36,7 @@ Time) -> ix(Xs) (record ix, field keys).
 
 :- use_module(library(aggregate)).
 :- use_module(library(lists)).
-:- use_module('ddc/lang/ddc_records').
+:- use_module('../lang/ddc_records').
 
 :- record_type store(count, data, indexed).
 :- record_type ix(keys).

@@ -27,14 +27,14 @@
 :- use_module(library(option)).
 :- use_module(library(error)).
 :- use_module(library(pairs)).
-:- use_module('ddc/lang/ddc_records').
+:- use_module('../lang/ddc_records').
 :- use_module(ddc_store).
-:- use_module('ddc/lang/ddc_nesting').
-:- use_module('ddc/lang/ddc_body').
+:- use_module('../lang/ddc_nesting').
+:- use_module('../lang/ddc_body').
 :- use_module(ddc_world).
-:- use_module('ddc/lang/ddc_programs').
+:- use_module('../lang/ddc_programs').
 
-:- use_module('ddc/lang/ddc_ops').
+:- use_module('../lang/ddc_ops').
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).

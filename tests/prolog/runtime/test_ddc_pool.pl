@@ -5,7 +5,7 @@
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module('../../prolog/ddc_pool').
+:- use_module('../../../prolog/ddc/runtime/ddc_pool').
 
 :- begin_tests(ddc_pool).
 
