@@ -20,7 +20,7 @@ SWI-Prolog can cost, and prints the engine's ratio to it.
 The engine steps the particles in ``--threads`` Prolog threads (default 2, as
 ``bridge.Filter``); the floor is one thread's. ``--engine`` picks it as ``bridge.Filter`` does:
 ``auto`` (the default: the batched engine, prolog/ddc_batch.pl, for this model),
-``batched`` or ``per_particle`` (prolog/ddc_filter.pl, one particle at a time).
+``batched`` or ``per_particle`` (prolog/ddc/filter/ddc_filter.pl, one particle at a time).
 
 ``--calls K`` (with one configuration) also steps it once more in one thread under SWI-Prolog's
 profiler and prints the K most-called predicates per particle and step; with the per-particle

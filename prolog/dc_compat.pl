@@ -55,7 +55,7 @@
           ]).
 
 :- reexport(ddc, [ddc_load/1, ddc_load/2, ddc_program/1, query/5, query/8]).
-:- use_module(ddc_belief).
+:- use_module('ddc/filter/ddc_belief').
 :- use_module(dc_compat_load).
 :- use_module('ddc/lang/ddc_programs', [program_file_/2]).
 :- use_module(library(lists)).

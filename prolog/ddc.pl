@@ -71,7 +71,7 @@
 :- use_module('ddc/lang/ddc_read', [resolve_file/2, dist_sugar/2]).
 :- use_module('ddc/lang/ddc_programs', [load_program/2, set_current_program/1, current_program_/1]).
 :- use_module('ddc/runtime/ddc_query').
-:- use_module(ddc_filter, [ filter_new/4, filter_new/5, filter_step/4, filter_undo/1,
+:- use_module('ddc/filter/ddc_filter', [ filter_new/4, filter_new/5, filter_step/4, filter_undo/1,
                             filter_resample/2, filter_rename/3, filter_holds/3, filter_values/4,
                             filter_rows/6, filter_time/2, filter_engine/2, filter_size/2,
                             filter_statistics/2, filter_free/1, filter_call/2 ]).

@@ -99,13 +99,13 @@ def _logsumexp(values: np.ndarray) -> float:
 
 
 # --------------------------------------------------------------------------------------------
-# The Prolog side of the bridge: prolog/ddc_bridge.pl, loaded once, parses the texts, turns
+# The Prolog side of the bridge: prolog/ddc/filter/ddc_bridge.pl, loaded once, parses the texts, turns
 # errors into messages and particle values into janus-friendly data.
 
 #: The engine file loaded before the first filter is made (tests may point it elsewhere).
 ENGINE: Path = prolog.PROLOG_DIR / "ddc.pl"
 #: The bridge's Prolog helper module (its predicates are called module-qualified).
-HELPER: Path = prolog.PROLOG_DIR / "ddc_bridge.pl"
+HELPER: Path = prolog.PROLOG_DIR / "ddc/filter/ddc_bridge.pl"
 _HELPER_MODULE = "ddc_bridge"
 
 _helper_lock = threading.Lock()
@@ -130,7 +130,7 @@ def _ensure_engine() -> None:
 
 
 def call_helper(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
-    """Run ``goal``, a call of prolog/ddc_bridge.pl, once (the engine and the helper are loaded
+    """Run ``goal``, a call of prolog/ddc/filter/ddc_bridge.pl, once (the engine and the helper are loaded
     first); a Prolog error or failure is a :class:`FilterError`."""
     _ensure_engine()
     return _call(goal, bindings)
@@ -404,7 +404,7 @@ class Filter:
         arguments (``pos(mug_1)``) and in the value (``mug_1``); the next step goes on as if the
         names had always been so in those particles. The program and the step's facts are not
         renamed; the other particles and the weights are unchanged (see ``filter_rename/3`` in
-        ``prolog/ddc_filter.pl``, and "Renaming constants in particles" in docs/filter.md).
+        ``prolog/ddc/filter/ddc_filter.pl``, and "Renaming constants in particles" in docs/filter.md).
         A bad mapping or index raises :class:`FilterError` naming it; the filter is unchanged.
         """
         key = self._handle()

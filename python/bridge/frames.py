@@ -1,8 +1,8 @@
 """Frame files (the observations and actions of ``ddc filter``, JSON Lines) read by the engine.
 
-The format has one reader, ``read_frame_file/2`` in ``prolog/ddc_belief.pl`` (swipl users
+The format has one reader, ``read_frame_file/2`` in ``prolog/ddc/filter/ddc_belief.pl`` (swipl users
 filter with it through ``belief_run/2``); this module asks it, through the bridge's helper
-(``bridge_frames/3`` in ``prolog/ddc_bridge.pl``), and hands the frames to Python as term
+(``bridge_frames/3`` in ``prolog/ddc/filter/ddc_bridge.pl``), and hands the frames to Python as term
 texts that :meth:`bridge.Filter.step` takes as they are. The format: docs/filter.md.
 
 Example::

@@ -1,5 +1,5 @@
 /*  plunit tests of filters used from several threads and of reloads
-    while a filter is live (prolog/ddc_filter.pl, filter_new/5: "Threads
+    while a filter is live (prolog/ddc/filter/ddc_filter.pl, filter_new/5: "Threads
     and reloads"): a filter's particles live in an engine of their own that
     any thread may run, its program in a module of its own that no load
     replaces.  Every run is compared with the same filter made and stepped

@@ -5,7 +5,7 @@
 :- use_module(library(lists)).
 :- use_module('../../../prolog/ddc/lang/ddc_records').
 :- use_module('../../../prolog/ddc').
-:- use_module('../../../prolog/ddc_belief').
+:- use_module('../../../prolog/ddc/filter/ddc_belief').
 :- use_module('../../../prolog/ddc_learn').
 :- use_module('../../../prolog/ddc_learn_data').
 

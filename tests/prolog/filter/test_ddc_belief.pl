@@ -1,10 +1,10 @@
-/*  plunit tests of prolog/ddc_belief.pl: the weighted belief of a filter
+/*  plunit tests of prolog/ddc/filter/ddc_belief.pl: the weighted belief of a filter
     for swipl users (the same rules as bridge.Filter, kept in Prolog).
 
     Probabilistic tests use fixed seeds; their tolerances are a few
     standard errors of a sample of the effective size the belief reports.
 */
-:- use_module('../../prolog/ddc_belief').
+:- use_module('../../../prolog/ddc/filter/ddc_belief').
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).

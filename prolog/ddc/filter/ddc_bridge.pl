@@ -29,12 +29,12 @@
 :- use_module(library(apply)).
 :- use_module(library(error)).
 :- use_module(library(pairs)).
-:- use_module(ddc, [ filter_new/5, filter_step/4, filter_undo/1, filter_resample/2,
+:- use_module(.., [ filter_new/5, filter_step/4, filter_undo/1, filter_resample/2,
                      filter_rename/3, filter_time/2, filter_engine/2, filter_free/1,
                      filter_holds/3, filter_values/4, filter_rows/6 ]).
 :- use_module(ddc_filter, [filter_packed_rows/6]).
-:- use_module(ddc_batch_col, [col_floats_into/4, col_floats_list/2]).
-:- use_module('ddc/lang/ddc_nesting', [check_text_nesting/2]).
+:- use_module('../../ddc_batch_col', [col_floats_into/4, col_floats_list/2]).
+:- use_module('../lang/ddc_nesting', [check_text_nesting/2]).
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
 :- use_module(library(lists), [nth1/3]).
 :- use_module(ddc_observation_types, [observation_type_error/4]).

@@ -7,7 +7,7 @@
     module keeps them in Prolog, with the same rules as bridge.Filter, so
     that a program can be filtered and its belief queried from swipl:
 
-        swipl prolog/ddc_belief.pl
+        swipl prolog/ddc/filter/ddc_belief.pl
         ?- belief_new('prolog/examples/filter/pit_world.pl',
                       [particles(2000), seed(5)], B),
            belief_run(B, 'prolog/examples/filter/pit_world.jsonl'),
@@ -40,7 +40,7 @@
             read_frame_file/2,           % +File, -Frames
             resample_indices/4           % +Scheme, +Weights, +Uniforms, -Indices
           ]).
-:- reexport(ddc).
+:- reexport(..).
 
 :- use_module(library(apply)).
 :- use_module(library(lists)).
@@ -49,8 +49,8 @@
 :- use_module(library(pairs)).
 :- use_module(library(readutil)).
 :- use_module(library(http/json)).
-:- use_module('ddc/lang/ddc_nesting').
-:- use_module('ddc/runtime/ddc_pool', [with_random_stream/3]).
+:- use_module('../lang/ddc_nesting').
+:- use_module('../runtime/ddc_pool', [with_random_stream/3]).
 
 :- meta_predicate belief_run(+, +, 1).
 

@@ -56,16 +56,16 @@
 :- use_module(library(aggregate)).
 :- use_module(library(pairs)).
 :- use_module(library(ordsets)).
-:- use_module('ddc/lang/ddc_records').
-:- use_module('ddc/runtime/ddc_store').
-:- use_module('ddc/lang/ddc_body').
-:- use_module('ddc/runtime/ddc_world').
-:- use_module('ddc/lang/ddc_programs', [optimised/1]).
-:- use_module('ddc/runtime/ddc_pool').
-:- use_module('ddc/runtime/ddc_rows').
-:- use_module('ddc/runtime/ddc_rename', [rename_term/3, rename_arguments/3]).
+:- use_module('../lang/ddc_records').
+:- use_module('../runtime/ddc_store').
+:- use_module('../lang/ddc_body').
+:- use_module('../runtime/ddc_world').
+:- use_module('../lang/ddc_programs', [optimised/1]).
+:- use_module('../runtime/ddc_pool').
+:- use_module('../runtime/ddc_rows').
+:- use_module('../runtime/ddc_rename', [rename_term/3, rename_arguments/3]).
 
-:- use_module('ddc/lang/ddc_ops').
+:- use_module('../lang/ddc_ops').
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).

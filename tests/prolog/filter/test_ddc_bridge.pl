@@ -1,10 +1,10 @@
-/*  plunit tests of prolog/ddc_bridge.pl: the predicates bridge.Filter calls
+/*  plunit tests of prolog/ddc/filter/ddc_bridge.pl: the predicates bridge.Filter calls
     through janus, here called directly on the wumpus example (25 cells, one
     agent; prolog/examples/filter/wumpus.pl).
 */
-:- use_module('../../prolog/ddc').
-:- use_module('../../prolog/ddc_bridge').
-:- use_module('../../prolog/ddc_belief', [read_frame_file/2]).
+:- use_module('../../../prolog/ddc').
+:- use_module('../../../prolog/ddc/filter/ddc_bridge').
+:- use_module('../../../prolog/ddc/filter/ddc_belief', [read_frame_file/2]).
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).

@@ -80,16 +80,16 @@
 :- use_module(library(error)).
 :- use_module(library(pairs)).
 :- use_module(library(terms), [mapsubterms/3]).
-:- use_module('ddc/lang/ddc_records').
-:- use_module('ddc/lang/ddc_read', [resolve_file/2]).
-:- use_module('ddc/lang/ddc_programs', [load_program/2, unload_program/1, program_items/2]).
-:- use_module(ddc_batch, [batch_check_program/2]).
-:- use_module('ddc/runtime/ddc_rows', [values_rows/4]).
+:- use_module('../lang/ddc_records').
+:- use_module('../lang/ddc_read', [resolve_file/2]).
+:- use_module('../lang/ddc_programs', [load_program/2, unload_program/1, program_items/2]).
+:- use_module('../../ddc_batch', [batch_check_program/2]).
+:- use_module('../runtime/ddc_rows', [values_rows/4]).
 :- use_module(ddc_particles, [particles_new/7]).
 :- use_module(ddc_filter_batched, [batched_init/6]).
-:- use_module('ddc/runtime/ddc_rename', [renaming_moves/2]).
+:- use_module('../runtime/ddc_rename', [renaming_moves/2]).
 
-:- use_module('ddc/lang/ddc_ops').
+:- use_module('../lang/ddc_ops').
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl).

@@ -1,8 +1,8 @@
-/*  plunit tests of filter_rename/3 (prolog/ddc_filter.pl): constants
+/*  plunit tests of filter_rename/3 (prolog/ddc/filter/ddc_filter.pl): constants
     renamed inside chosen particles, in both engines.  Probabilistic checks
     use fixed seeds and tolerances of 5 standard errors.
 */
-:- use_module('../../prolog/ddc').
+:- use_module('../../../prolog/ddc').
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).

@@ -14,7 +14,7 @@
 
 :- use_module(library(apply)).
 :- use_module(library(lists)).
-:- use_module('ddc/lang/ddc_programs', [program_items/2]).
+:- use_module('../lang/ddc_programs', [program_items/2]).
 
 /** <module> The types of observation values a program weighs
 
