@@ -116,7 +116,7 @@ swipl_home=$("$swipl_bin" --dump-runtime-variables | sed -n 's/^PLBASE="\(.*\)";
 log "SWI-Prolog: $swipl_bin (home $swipl_home)"
 
 # ---------------------------------------------------------------- 2b. the column library
-# The batched filter's columns in C (prolog/c/ddc_columns.c, loaded by prolog/ddc_batch_col.pl),
+# The batched filter's columns in C (prolog/ddc/batch/c/ddc_columns.c, loaded by prolog/ddc/batch/ddc_batch_col.pl),
 # compiled by the swipl-ld of that SWI-Prolog (Debian's swi-prolog-core ships it too), again
 # when the source or the SWI-Prolog changes. Without it the engine runs its columns in Prolog.
 columns_src="$here/prolog/c/ddc_columns.c"

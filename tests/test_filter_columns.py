@@ -1,4 +1,4 @@
-"""The batched filter's columns in C (prolog/c/ddc_columns.c) against its columns in Prolog.
+"""The batched filter's columns in C (prolog/ddc/batch/c/ddc_columns.c) against its columns in Prolog.
 
 The compiled library draws from a random stream of its own, so the two give other particles
 from the same seed: they are compared in distribution, on the bench's model of occlusion
@@ -75,7 +75,7 @@ def run_model(columns: str | None, first_seed: int) -> dict:
 def col_backend() -> str:
     out = subprocess.run(
         [swipl_executable(), "-q", "-g",
-         "use_module('prolog/ddc_batch_col'), col_backend(B), write(B)", "-t", "halt"],
+         "use_module('prolog/ddc/batch/ddc_batch_col'), col_backend(B), write(B)", "-t", "halt"],
         cwd=ROOT, capture_output=True, text=True, timeout=60,
         env={k: v for k, v in os.environ.items() if k != "DDC_COLUMNS"})
     return out.stdout.strip()

@@ -74,7 +74,7 @@ from bridge.threads import DEFAULT_THREADS
 logger = logging.getLogger(__name__)
 
 _TEMPLATE_VAR = "DdcBridgeValue__"
-# The widest row the batched engine's column library holds (MAX_K in prolog/c/ddc_columns.c):
+# The widest row the batched engine's column library holds (MAX_K in prolog/ddc/batch/c/ddc_columns.c):
 # samples() lends it a buffer of this many floats per particle.
 _MAX_ROW_WIDTH = 16
 
@@ -218,7 +218,7 @@ class Filter:
         child hangs in its first Prolog call).
 
         ``engine``: ``"per_particle"`` proves each particle's clauses one particle at a time;
-        ``"batched"`` evaluates each clause once for a batch of particles (``prolog/ddc_batch.pl``;
+        ``"batched"`` evaluates each clause once for a batch of particles (``prolog/ddc/batch/ddc_batch.pl``;
         a program outside its fragment raises :class:`FilterError` naming the clause);
         ``"auto"`` takes the batched engine when the program is in its fragment. The two give
         other particles from the same seed (the draws come in another order); the batched one

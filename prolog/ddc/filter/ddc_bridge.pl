@@ -33,7 +33,7 @@
                      filter_rename/3, filter_time/2, filter_engine/2, filter_free/1,
                      filter_holds/3, filter_values/4, filter_rows/6 ]).
 :- use_module(ddc_filter, [filter_packed_rows/6]).
-:- use_module('../../ddc_batch_col', [col_floats_into/4, col_floats_list/2]).
+:- use_module('../batch/ddc_batch_col', [col_floats_into/4, col_floats_list/2]).
 :- use_module('../lang/ddc_nesting', [check_text_nesting/2]).
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
 :- use_module(library(lists), [nth1/3]).

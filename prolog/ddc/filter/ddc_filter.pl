@@ -83,7 +83,7 @@
 :- use_module('../lang/ddc_records').
 :- use_module('../lang/ddc_read', [resolve_file/2]).
 :- use_module('../lang/ddc_programs', [load_program/2, unload_program/1, program_items/2]).
-:- use_module('../../ddc_batch', [batch_check_program/2]).
+:- use_module('../batch/ddc_batch', [batch_check_program/2]).
 :- use_module('../runtime/ddc_rows', [values_rows/4]).
 :- use_module(ddc_particles, [particles_new/7]).
 :- use_module(ddc_filter_batched, [batched_init/6]).

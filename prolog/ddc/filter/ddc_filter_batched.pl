@@ -13,10 +13,10 @@
 :- use_module(library(apply)).
 :- use_module('../lang/ddc_records').
 :- use_module('../lang/ddc_body', [info_derived_timed/2, info_rvs_untimed/2, info_rvs_timed/2]).
-:- use_module('../../ddc_batch').
-:- use_module('../../ddc_batch_col', [col_backend/1]).
-:- use_module('../../ddc_batch_state').
-:- use_module('../../ddc_batch_tables').
+:- use_module('../batch/ddc_batch').
+:- use_module('../batch/ddc_batch_col', [col_backend/1]).
+:- use_module('../batch/ddc_batch_state').
+:- use_module('../batch/ddc_batch_tables').
 
 :- use_module('../lang/ddc_ops').
 

@@ -26,15 +26,15 @@
 :- use_module(library(pairs)).
 :- use_module(library(ordsets)).
 :- use_module(library(error)).
-:- use_module('ddc/lang/ddc_records').
-:- use_module('ddc/lang/ddc_models', []).
-:- use_module('ddc/lang/ddc_errors', [engine_error/1]).
+:- use_module('../lang/ddc_records').
+:- use_module('../lang/ddc_models', []).
+:- use_module('../lang/ddc_errors', [engine_error/1]).
 :- use_module(ddc_batch_program, [timed_read/3, origin_line/2, origin_id/2, origin_rivals/2]).
 :- use_module(ddc_batch_tables).
 :- use_module(ddc_batch_col).
 :- use_module(ddc_batch_columns).
 :- use_module(ddc_batch_rv, [assign/3, set_each/3]).
-:- use_module('ddc/lang/ddc_ops').
+:- use_module('../lang/ddc_ops').
 
 :- set_prolog_flag(optimise, true).
 

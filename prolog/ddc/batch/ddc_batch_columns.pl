@@ -32,8 +32,8 @@
 :- use_module(library(pairs)).
 :- use_module(ddc_batch_tables, [tuple_shape/2]).
 :- use_module(ddc_batch_col).
-:- use_module('ddc/lang/ddc_body', [conj_from_list/2]).
-:- use_module('ddc/lang/ddc_programs', [optimised/1]).
+:- use_module('../lang/ddc_body', [conj_from_list/2]).
+:- use_module('../lang/ddc_programs', [optimised/1]).
 
 :- set_prolog_flag(optimise, true).
 

@@ -14,7 +14,7 @@
           ]).
 
 :- use_module(library(apply)).
-:- use_module('ddc/lang/ddc_dist').
+:- use_module('../lang/ddc_dist').
 :- use_module(ddc_batch_col).
 :- use_module(ddc_batch_columns,
               [plan/3, bind/2, has_column/1, compiled_instance/4, vm_finite/4]).

@@ -1,18 +1,18 @@
-/*  plunit tests of the batched particle filter (prolog/ddc_batch.pl and its
+/*  plunit tests of the batched particle filter (prolog/ddc/batch/ddc_batch.pl and its
     modules prolog/ddc_batch_*.pl), reached through ddc.pl's filter_*
     predicates with engine(batched) or auto, and of its tables
-    (prolog/ddc_batch_tables.pl) directly.  The
+    (prolog/ddc/batch/ddc_batch_tables.pl) directly.  The
     conformance answers (wumpus, pit world, Kalman, follow the occluder) are
     checked for both engines in tests/test_filter.py; these tests are about
     what the batched engine does on its own: its fragment, its evaluation of
     each goal kind over batches, its groups of threads, its state.
 */
-:- use_module('../../prolog/ddc').
+:- use_module('../../../prolog/ddc').
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module('../../prolog/ddc_batch_tables').
-:- use_module('../../prolog/ddc_batch_col').
+:- use_module('../../../prolog/ddc/batch/ddc_batch_tables').
+:- use_module('../../../prolog/ddc/batch/ddc_batch_col').
 
 program(Lines, File) :-
     tmp_file_stream(text, File, S),

@@ -5,7 +5,7 @@
     particle, read and written by particle index.  Two representations,
     chosen once, when this module is loaded:
 
-      foreign  the compiled library prolog/c/ddc_columns.c (built by
+      foreign  the compiled library prolog/ddc/batch/c/ddc_columns.c (built by
                scripts/setup.sh next to its source): a column is a blob of
                C arrays (number tuples as floats, atoms, lists of ground
                items, other terms recorded), and the loops the engine runs
@@ -97,7 +97,7 @@ cell (docs/batched-filter.md, "Columns in C").
 */
 
 %   The interface version the Prolog side expects of the library
-%   (DDC_COLUMNS_VERSION in prolog/c/ddc_columns.c).
+%   (DDC_COLUMNS_VERSION in prolog/ddc/batch/c/ddc_columns.c).
 columns_version(2).
 
 %!  ps_all(+N, -Ps) is det.

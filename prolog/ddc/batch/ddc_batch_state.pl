@@ -12,11 +12,11 @@
             with_state/2                % +State, :Goal
           ]).
 
-:- use_module('ddc/lang/ddc_records').
+:- use_module('../lang/ddc_records').
 :- use_module(ddc_batch_tables).
 :- use_module(ddc_batch_col, [ps_all/2]).
 :- use_module(ddc_batch_eval).
-:- use_module('ddc/runtime/ddc_pool', [with_random_stream/3]).
+:- use_module('../runtime/ddc_pool', [with_random_stream/3]).
 
 :- set_prolog_flag(optimise, true).
 

@@ -26,11 +26,11 @@
 
 :- use_module(library(apply)).
 :- use_module(library(lists)).
-:- use_module('ddc/lang/ddc_records').
+:- use_module('../lang/ddc_records').
 :- use_module(ddc_batch_col).
 :- reexport(ddc_batch_col, [col_new/3 as new_column, col_uncomputed/3 as uncomputed,
                             col_defined_at/3 as defined_at]).
-:- use_module('ddc/runtime/ddc_rename', [rename_term/3, rename_arguments/3]).
+:- use_module('../runtime/ddc_rename', [rename_term/3, rename_arguments/3]).
 
 :- set_prolog_flag(optimise, true).
 

@@ -1,20 +1,20 @@
-/*  Tests of the batched filter's columns (prolog/ddc_batch_col.pl) and of
+/*  Tests of the batched filter's columns (prolog/ddc/batch/ddc_batch_col.pl) and of
     the engine's loops over them: the same answers from the compiled
     column library and from the Prolog terms (DDC_COLUMNS=prolog runs this
     file with the library not loaded; tests/test_plunit.py runs it both
     ways).
 
-        swipl -g run_tests -t halt tests/prolog/test_ddc_batch_col.pl
+        swipl -g run_tests -t halt tests/prolog/batch/test_ddc_batch_col.pl
 */
 
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module('../../prolog/ddc').
-:- use_module('../../prolog/ddc_batch_col').
-:- use_module('../../prolog/ddc_batch_columns').
-:- use_module('../../prolog/ddc/lang/ddc_ops').
-:- use_module('../../prolog/ddc_batch_rv').
+:- use_module('../../../prolog/ddc').
+:- use_module('../../../prolog/ddc/batch/ddc_batch_col').
+:- use_module('../../../prolog/ddc/batch/ddc_batch_columns').
+:- use_module('../../../prolog/ddc/lang/ddc_ops').
+:- use_module('../../../prolog/ddc/batch/ddc_batch_rv').
 :- use_module(library(aggregate)).
 
 :- begin_tests(ddc_batch_col).

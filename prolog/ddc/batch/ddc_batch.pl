@@ -73,7 +73,7 @@
 :- use_module(library(apply)).
 :- use_module(library(lists)).
 :- use_module(library(pairs)).
-:- use_module('ddc/lang/ddc_records').
+:- use_module('../lang/ddc_records').
 :- use_module(ddc_batch_program).
 :- use_module(ddc_batch_tables).
 :- use_module(ddc_batch_col).
@@ -81,9 +81,9 @@
 :- use_module(ddc_batch_rv, [weigh_branch/5]).
 :- use_module(ddc_batch_eval).
 :- use_module(ddc_batch_state).
-:- use_module('ddc/runtime/ddc_pool', [group_seeds/2, group_sizes/3, pool_run/3, with_random_stream/3,
+:- use_module('../runtime/ddc_pool', [group_seeds/2, group_sizes/3, pool_run/3, with_random_stream/3,
                           overlap_checked_particles/1]).
-:- use_module('ddc/lang/ddc_ops').
+:- use_module('../lang/ddc_ops').
 
 :- set_prolog_flag(optimise, true).
 

@@ -1,11 +1,11 @@
 /*  ddc_columns.c -- the batched filter's columns as arrays, and their loops.
 
-    Part of the batched particle filter (prolog/ddc_batch.pl): the values of
+    Part of the batched particle filter (prolog/ddc/batch/ddc_batch.pl): the values of
     a random variable at a time, one per particle, held in C memory as a
     blob (an atom whose data is a column struct), and the loops over a
     batch of particles that the engine runs most (what is drawn and what
     not, a column's status, draws and densities of a gaussian, resampling).
-    prolog/ddc_batch_col.pl loads it (use_foreign_library/1) and falls back
+    prolog/ddc/batch/ddc_batch_col.pl loads it (use_foreign_library/1) and falls back
     on plain Prolog terms c(V1, ..., VN) when it is not built; the set-up
     builds it (scripts/setup.sh, with the swipl-ld of the SWI-Prolog it
     installs).

@@ -15,9 +15,9 @@
 :- use_module(library(apply)).
 :- use_module(library(lists)).
 :- use_module(library(assoc)).
-:- use_module('ddc/lang/ddc_records').
-:- use_module('ddc/lang/ddc_body', [conj_from_list/2]).
-:- use_module('ddc/lang/ddc_ops').
+:- use_module('../lang/ddc_records').
+:- use_module('../lang/ddc_body', [conj_from_list/2]).
+:- use_module('../lang/ddc_ops').
 
 :- set_prolog_flag(optimise, true).
 
