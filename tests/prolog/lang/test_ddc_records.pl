@@ -6,8 +6,8 @@
 :- use_module('../../../prolog/ddc/lang/ddc_records').
 :- use_module('../../../prolog/ddc').
 :- use_module('../../../prolog/ddc/filter/ddc_belief').
-:- use_module('../../../prolog/ddc_learn').
-:- use_module('../../../prolog/ddc_learn_data').
+:- use_module('../../../prolog/ddc/learn').
+:- use_module('../../../prolog/ddc/learn/ddc_learn_data').
 
 % load_text(+Module, +Text): a module file declaring what Text says,
 % written and loaded (again, when the module was loaded from it before).

@@ -10,7 +10,7 @@
 :- use_module(library(apply)).
 :- use_module(library(assoc)).
 :- use_module(library(option)).
-:- use_module('ddc/lang/ddc_dist').
+:- use_module('../lang/ddc_dist').
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_text, [term_text/3]).
 :- use_module(ddc_learn_worlds, [world_alternatives/6]).

@@ -15,12 +15,12 @@
 :- use_module(library(apply)).
 :- use_module(library(assoc)).
 :- use_module(library(error)).
-:- use_module('ddc/lang/ddc_dist').
-:- use_module(ddc, []).          % ddc:eval_dist/2: a distribution's parameters evaluated
+:- use_module('../lang/ddc_dist').
+:- use_module(.., []).          % ddc:eval_dist/2: a distribution's parameters evaluated
 :- use_module(ddc_learn_syntax, [dc_goal/4]).
 :- use_module(ddc_learn_bias, [bias_term/2]).
 
-:- use_module('ddc/lang/ddc_ops').
+:- use_module('../lang/ddc_ops').
 :- op(700, xfx, ::).
 
 /** <module> Facts and background clauses of learning data

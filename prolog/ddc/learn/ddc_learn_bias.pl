@@ -13,7 +13,7 @@
 :- use_module(library(apply)).
 :- use_module(library(error)).
 
-:- use_module('ddc/lang/ddc_ops').
+:- use_module('../lang/ddc_ops').
 :- op(700, xfx, ::).
 
 /** <module> Declarative bias of learning data

@@ -17,7 +17,7 @@
 :- use_module(library(pairs)).
 :- use_module(ddc_learn_data).
 :- use_module(ddc_learn_records).
-:- use_module('ddc/lang/ddc_body', [conj_from_list/2]).
+:- use_module('../lang/ddc_body', [conj_from_list/2]).
 :- use_module(ddc_learn_text, [clause_names/3, learn_clause_text/3, new_var/4, print_conj/1,
                                print_literal/1, print_dc_term/1, term_text/3]).
 :- use_module(ddc_learn_candidates, [agg_call/4, branch_count/2, fresh_values/2,

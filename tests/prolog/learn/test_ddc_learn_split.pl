@@ -1,10 +1,10 @@
-/*  plunit tests of the data splitter (prolog/ddc_learn_split.pl): items
+/*  plunit tests of the data splitter (prolog/ddc/learn/ddc_learn_split.pl): items
     written back as the readers read them, units (connected worlds, or
     the constants of a type with their nearest neighbours), the test
     fraction, seeds, and errors that leave no file behind.
 */
-:- use_module('../../prolog/ddc_learn_split').
-:- use_module('../../prolog/ddc_learn_data').
+:- use_module('../../../prolog/ddc/learn/ddc_learn_split').
+:- use_module('../../../prolog/ddc/learn/ddc_learn_data').
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).

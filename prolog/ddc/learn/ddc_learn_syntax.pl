@@ -12,9 +12,9 @@
 
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module('ddc/lang/ddc_models').
+:- use_module('../lang/ddc_models').
 
-:- use_module('ddc/lang/ddc_ops').
+:- use_module('../lang/ddc_ops').
 
 /** <module> DC syntax of learning data, internally
 

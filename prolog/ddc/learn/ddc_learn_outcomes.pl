@@ -12,7 +12,7 @@
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
-:- use_module('ddc/lang/ddc_models').                % the aggregates' mean_list/2, mode_list/2, ...
+:- use_module('../lang/ddc_models').                % the aggregates' mean_list/2, mode_list/2, ...
 :- use_module(ddc_learn_records).
 :- use_module(ddc_learn_worlds, [world_alternatives/6, in_world/2]).
 :- use_module(ddc_learn_candidates, [agg_call/4, candidate_id/3, fresh_values/2]).

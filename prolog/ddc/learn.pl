@@ -49,19 +49,19 @@
 :- use_module(library(apply)).
 :- use_module(library(error)).
 :- use_module(library(option)).
-:- use_module(ddc_learn_data).
-:- use_module(ddc_learn_text, [clause_names/3, term_text/3]).
-:- use_module(ddc_learn_candidates, [allowed_by_rank/4, literal_preds/2]).
-:- use_module(ddc_learn_nodes, [head_vars/5]).
-:- reexport(ddc_learn_nodes, [learn_root/4, learn_split/4, learn_forget/2, learn_forget_rows/2,
+:- use_module('learn/ddc_learn_data').
+:- use_module('learn/ddc_learn_text', [clause_names/3, term_text/3]).
+:- use_module('learn/ddc_learn_candidates', [allowed_by_rank/4, literal_preds/2]).
+:- use_module('learn/ddc_learn_nodes', [head_vars/5]).
+:- reexport('learn/ddc_learn_nodes', [learn_root/4, learn_split/4, learn_forget/2, learn_forget_rows/2,
                               learn_subset/4, learn_groundings/3]).
-:- reexport(ddc_learn_candidates, [learn_candidates/3]).
-:- reexport(ddc_learn_outcomes, [learn_evaluate/4, learn_evaluate_rows/5]).
-:- reexport(ddc_learn_clauses, [learn_clause/5, learn_leaf_text/5, learn_background_for/3,
+:- reexport('learn/ddc_learn_candidates', [learn_candidates/3]).
+:- reexport('learn/ddc_learn_outcomes', [learn_evaluate/4, learn_evaluate_rows/5]).
+:- reexport('learn/ddc_learn_clauses', [learn_clause/5, learn_leaf_text/5, learn_background_for/3,
                                 learn_tree_text/3, learn_root_model/3]).
-:- reexport(ddc_learn_background, [learn_background/3]).
-:- reexport(ddc_learn_text, [learn_clause_text/3]).
-:- reexport(ddc_learn_scores, [learn_program_scores/5]).
+:- reexport('learn/ddc_learn_background', [learn_background/3]).
+:- reexport('learn/ddc_learn_text', [learn_clause_text/3]).
+:- reexport('learn/ddc_learn_scores', [learn_program_scores/5]).
 
 :- set_prolog_flag(optimise, true).
 

@@ -1,11 +1,11 @@
-/*  plunit tests of the structure learner's Prolog side (prolog/ddc_learn.pl,
-    prolog/ddc_learn_data.pl and the modules they re-export,
+/*  plunit tests of the structure learner's Prolog side (prolog/ddc/learn.pl,
+    prolog/ddc/learn/ddc_learn_data.pl and the modules they re-export,
     prolog/ddc_learn_*.pl) and of the statistical models of learned clauses
     (prolog/ddc/lang/ddc_models.pl).
 */
-:- use_module('../../prolog/ddc').
-:- use_module('../../prolog/ddc_learn').
-:- use_module('../../prolog/ddc_learn_data').
+:- use_module('../../../prolog/ddc').
+:- use_module('../../../prolog/ddc/learn').
+:- use_module('../../../prolog/ddc/learn/ddc_learn_data').
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).

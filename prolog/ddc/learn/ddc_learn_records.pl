@@ -9,7 +9,7 @@
             % R_fields/1; calls are compiled inline to arg/3.
           ]).
 
-:- use_module('ddc/lang/ddc_records').
+:- use_module('../lang/ddc_records').
 
 /** <module> Records of the structure learner
 

@@ -41,15 +41,15 @@
 :- use_module(library(error)).
 :- use_module(library(option)).
 :- use_module(library(pairs)).
-:- use_module('ddc/lang/ddc_dist').
-:- use_module('ddc/lang/ddc_models').
+:- use_module('../lang/ddc_dist').
+:- use_module('../lang/ddc_models').
 :- use_module(ddc_learn_syntax, [time_rename_items/3]).
 :- use_module(ddc_learn_bias, [bias_items/2, bias_term/2, finish_preds/2, given_weight/3]).
 :- use_module(ddc_learn_facts, [load_item/2, prob_table/2]).
 :- reexport(ddc_learn_syntax, [dc_goal/4, internal_key/3, dc_term/3]).
 :- reexport(ddc_learn_facts, [pick/3, fact_where/3, dist_points/3]).
 :- reexport(ddc_learn_messages, [message_text/2]).
-:- reexport('ddc/lang/ddc_ops').                   % data_read_terms/3 reads with them; the learner's
+:- reexport('../lang/ddc_ops').                   % data_read_terms/3 reads with them; the learner's
                                         % modules read and write DC terms with them
 
 /** <module> Learning data for the DC structure learner
