@@ -22,7 +22,7 @@
 :- use_module(library(aggregate)).
 :- use_module(library(modules)).
 :- use_module(ddc_nesting).
-:- use_module('../../dc_compat_load').   % the original DC's option directives and arithmetic
+:- use_module('../compat/dc_compat_load').   % the original DC's option directives and arithmetic
 
 :- use_module(ddc_ops).
 

@@ -1,11 +1,11 @@
 /*  plunit tests of the original DC system's directives and arithmetic
-    (prolog/dc_compat_load.pl, as ddc_load/1 uses them) and of the
-    original's entry points (prolog/dc_compat.pl).  Fixed seeds; tolerances
+    (prolog/ddc/compat/dc_compat_load.pl, as ddc_load/1 uses them) and of the
+    original's entry points (prolog/ddc/compat/dc_compat.pl).  Fixed seeds; tolerances
     of 3 standard errors.
 */
-:- use_module('../../prolog/dc_compat').
-:- use_module('../../prolog/dc_compat_load').
-:- use_module('../../prolog/ddc', [query/3]).
+:- use_module('../../../prolog/ddc/compat/dc_compat').
+:- use_module('../../../prolog/ddc/compat/dc_compat_load').
+:- use_module('../../../prolog/ddc', [query/3]).
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 

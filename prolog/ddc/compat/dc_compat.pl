@@ -2,7 +2,7 @@
     points (DC and its particle filter DCPF, written for YAP), over this
     engine, so that programs written for the original run unmodified:
 
-        swipl prolog/dc_compat.pl OLD_PROGRAM.pl
+        swipl prolog/ddc/compat/dc_compat.pl OLD_PROGRAM.pl
         ?- test_balls2(1000).
 
     The program's own header (use_module of '../distributionalclause.pl',
@@ -54,10 +54,10 @@
             op(1150, xfx, pr)
           ]).
 
-:- reexport(ddc, [ddc_load/1, ddc_load/2, ddc_program/1, query/5, query/8]).
-:- use_module('ddc/filter/ddc_belief').
+:- reexport(.., [ddc_load/1, ddc_load/2, ddc_program/1, query/5, query/8]).
+:- use_module('../filter/ddc_belief').
 :- use_module(dc_compat_load).
-:- use_module('ddc/lang/ddc_programs', [program_file_/2]).
+:- use_module('../lang/ddc_programs', [program_file_/2]).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(error)).
