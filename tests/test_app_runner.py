@@ -71,7 +71,7 @@ def test_outputs_summary_video_and_world(reasoning_run) -> None:
     assert reasoning_run.video == out / "run.mp4"
     assert len(decoded_frames(reasoning_run.video)) == (summary["frames"] + 3) // 4
     assert reasoning_run.pictures == [] and not (out / "frames").exists()
-    # the world file answers questions in swipl through prolog/world.pl
+    # the world file answers questions in swipl through prolog/shell/world.pl
     objects = {o["id"]: o for o in summary["objects"]}
     ball = objects["ball_1"]["symbols"][0].replace("-", "_")  # its anchor's atom
     goal = (f"anchors(As), memberchk({ball}, As), prob(pos({ball}, _), P), "

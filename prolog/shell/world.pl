@@ -1,6 +1,6 @@
 /*  world.pl -- ask a saved world model questions by hand.
 
-    Usage:  swipl prolog/world.pl OUT/world.pl      (or: anchoring shell OUT)
+    Usage:  swipl prolog/shell/world.pl OUT/world.pl      (or: anchoring shell OUT)
 
     The world file (written by `anchoring run`) holds plain facts in module user: anchors
     (anchor/5), their attributes (attribute/3) and the particle set of the filter

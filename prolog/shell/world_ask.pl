@@ -26,7 +26,7 @@
 
 /** <module> A query on a world model, answered as JSON
 
-A query is Prolog text, read as the world-model shell (prolog/world.pl) reads it at its
+A query is Prolog text, read as the world-model shell (prolog/shell/world.pl) reads it at its
 prompt: `hidden_under(Obj, Occ, P)`, `prob(occluded_by(ball_1, mug_1), P)`,
 `anchor(A, S, C, Seen, T)`.  Its answer is a JSON object:
 

@@ -1,4 +1,4 @@
-:- use_module('../../prolog/world').
+:- use_module('../../../prolog/shell/world').
 :- use_module(library(plunit)).
 
 world_file(File) :-
