@@ -29,8 +29,8 @@ engine also the lookups in the value tables (``store_get``) per particle, step a
 ``--scaling`` runs the three configurations of the targets in one run and prints, beside the
 ratio to numpy of each, the scaling: the time at 10 N over the time at N (linear: 10) and at
 3 M over M (linear: 3), each with its ratio to linear.  The last column names the batched
-engine's columns (``foreign``: the compiled library, prolog/ddc/batch/c/ddc_columns.c; ``prolog``: terms,
-as with ``DDC_COLUMNS=prolog``).
+engine's columns (``foreign``: the compiled library, prolog/ddc/batch/c/ddc_columns.c; ``prolog``:
+terms, as with ``DDC_COLUMNS=prolog``).
 
 Targets: N = 1000, M = 10 in at most 33 ms per step (30 Hz); within 2x of numpy there, within
 3x at N = 10000 and at M = 30; time linear in N and in M within 1.2x.

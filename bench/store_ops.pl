@@ -14,7 +14,7 @@
     subtracted from each.  Best of 5 repetitions of 900,000 operations.
 */
 
-:- use_module('../prolog/ddc_store').
+:- use_module('../prolog/ddc/runtime/ddc_store').
 :- set_prolog_flag(optimise, true).
 :- initialization(main, main).
 

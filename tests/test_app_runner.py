@@ -78,7 +78,7 @@ def test_outputs_summary_video_and_world(reasoning_run) -> None:
             f"prob(occluded_by({ball}, _), Q), format('~w ~w~n', [P, Q]), halt")
     result = subprocess.run(
         [swipl_executable(), "-q", "-g", goal, "-t", "halt(1)",
-         str(ROOT / "prolog" / "world.pl"), str(out / "world.pl")],
+         str(ROOT / "prolog" / "shell" / "world.pl"), str(out / "world.pl")],
         capture_output=True, text=True, timeout=60,
     )
     assert result.returncode == 0, result.stderr

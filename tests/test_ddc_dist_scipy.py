@@ -1,4 +1,5 @@
-"""prolog/ddc/lang/ddc_dist.pl against scipy.stats: log densities at chosen points, samplers by KS tests.
+"""prolog/ddc/lang/ddc_dist.pl against scipy.stats: log densities at chosen points, samplers by KS
+tests.
 
 The Prolog module is reached through janus (python/bridge). Distribution terms are passed as
 text and parsed in Prolog; values are numbers or lists (the module accepts a list wherever a

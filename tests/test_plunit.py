@@ -1,4 +1,5 @@
-"""Every plunit file under tests/prolog (a folder per subsystem, as prolog/ddc/ has) runs as one pytest test; a failing plunit test fails it."""
+"""Every plunit file under tests/prolog (a folder per subsystem, as prolog/ddc/ has) runs as one
+pytest test; a failing plunit test fails it."""
 
 from __future__ import annotations
 

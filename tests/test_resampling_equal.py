@@ -1,6 +1,6 @@
 """The resampling rules are stated twice, in python/bridge/resampling.py (bridge.Filter's) and in
-prolog/ddc/filter/ddc_belief.pl's resample_indices/4 (the swipl belief's): given the same weights and the
-same uniforms, both pick the same ancestors, for every scheme, bit for bit."""
+prolog/ddc/filter/ddc_belief.pl's resample_indices/4 (the swipl belief's): given the same weights
+and the same uniforms, both pick the same ancestors, for every scheme, bit for bit."""
 
 from __future__ import annotations
 

@@ -74,8 +74,8 @@ from bridge.threads import DEFAULT_THREADS
 logger = logging.getLogger(__name__)
 
 _TEMPLATE_VAR = "DdcBridgeValue__"
-# The widest row the batched engine's column library holds (MAX_K in prolog/ddc/batch/c/ddc_columns.c):
-# samples() lends it a buffer of this many floats per particle.
+# The widest row the batched engine's column library holds (MAX_K in
+# prolog/ddc/batch/c/ddc_columns.c): samples() lends it a buffer of this many floats per particle.
 _MAX_ROW_WIDTH = 16
 
 
@@ -99,8 +99,8 @@ def _logsumexp(values: np.ndarray) -> float:
 
 
 # --------------------------------------------------------------------------------------------
-# The Prolog side of the bridge: prolog/ddc/filter/ddc_bridge.pl, loaded once, parses the texts, turns
-# errors into messages and particle values into janus-friendly data.
+# The Prolog side of the bridge: prolog/ddc/filter/ddc_bridge.pl, loaded once, parses the texts,
+# turns errors into messages and particle values into janus-friendly data.
 
 #: The engine file loaded before the first filter is made (tests may point it elsewhere).
 ENGINE: Path = prolog.PROLOG_DIR / "ddc.pl"
@@ -130,8 +130,8 @@ def _ensure_engine() -> None:
 
 
 def call_helper(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
-    """Run ``goal``, a call of prolog/ddc/filter/ddc_bridge.pl, once (the engine and the helper are loaded
-    first); a Prolog error or failure is a :class:`FilterError`."""
+    """Run ``goal``, a call of prolog/ddc/filter/ddc_bridge.pl, once (the engine and the helper are
+    loaded first); a Prolog error or failure is a :class:`FilterError`."""
     _ensure_engine()
     return _call(goal, bindings)
 
@@ -218,12 +218,12 @@ class Filter:
         child hangs in its first Prolog call).
 
         ``engine``: ``"per_particle"`` proves each particle's clauses one particle at a time;
-        ``"batched"`` evaluates each clause once for a batch of particles (``prolog/ddc/batch/ddc_batch.pl``;
-        a program outside its fragment raises :class:`FilterError` naming the clause);
-        ``"auto"`` takes the batched engine when the program is in its fragment. The two give
-        other particles from the same seed (the draws come in another order); the batched one
-        ignores ``share``. After construction ``engine`` is the one that steps the particles
-        (auto resolved)."""
+        ``"batched"`` evaluates each clause once for a batch of particles
+        (``prolog/ddc/batch/ddc_batch.pl``; a program outside its fragment raises
+        :class:`FilterError` naming the clause); ``"auto"`` takes the batched engine when the
+        program is in its fragment. The two give other particles from the same seed (the draws
+        come in another order); the batched one ignores ``share``. After construction ``engine``
+        is the one that steps the particles (auto resolved)."""
         for name, value in (("particles", particles), ("threads", threads)):
             # an integer, not a bool, float or string that int() would quietly convert
             if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
@@ -404,8 +404,9 @@ class Filter:
         arguments (``pos(mug_1)``) and in the value (``mug_1``); the next step goes on as if the
         names had always been so in those particles. The program and the step's facts are not
         renamed; the other particles and the weights are unchanged (see ``filter_rename/3`` in
-        ``prolog/ddc/filter/ddc_filter.pl``, and "Renaming constants in particles" in docs/filter.md).
-        A bad mapping or index raises :class:`FilterError` naming it; the filter is unchanged.
+        ``prolog/ddc/filter/ddc_filter.pl``, and "Renaming constants in particles" in
+        docs/filter.md). A bad mapping or index raises :class:`FilterError` naming it; the filter
+        is unchanged.
         """
         key = self._handle()
         if not isinstance(mapping, Mapping):

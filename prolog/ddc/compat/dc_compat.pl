@@ -54,7 +54,7 @@
             op(1150, xfx, pr)
           ]).
 
-:- reexport(.., [ddc_load/1, ddc_load/2, ddc_program/1, query/5, query/8]).
+:- reexport('../../ddc.pl', [ddc_load/1, ddc_load/2, ddc_program/1, query/5, query/8]).
 :- use_module('../filter/ddc_belief').
 :- use_module(dc_compat_load).
 :- use_module('../lang/ddc_programs', [program_file_/2]).

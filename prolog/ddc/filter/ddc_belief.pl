@@ -40,7 +40,7 @@
             read_frame_file/2,           % +File, -Frames
             resample_indices/4           % +Scheme, +Weights, +Uniforms, -Indices
           ]).
-:- reexport(..).
+:- reexport('../../ddc.pl').
 
 :- use_module(library(apply)).
 :- use_module(library(lists)).

@@ -29,7 +29,7 @@
 :- use_module(library(apply)).
 :- use_module(library(error)).
 :- use_module(library(pairs)).
-:- use_module(.., [ filter_new/5, filter_step/4, filter_undo/1, filter_resample/2,
+:- use_module('../../ddc.pl', [ filter_new/5, filter_step/4, filter_undo/1, filter_resample/2,
                      filter_rename/3, filter_time/2, filter_engine/2, filter_free/1,
                      filter_holds/3, filter_values/4, filter_rows/6 ]).
 :- use_module(ddc_filter, [filter_packed_rows/6]).

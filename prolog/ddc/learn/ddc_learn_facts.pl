@@ -16,7 +16,7 @@
 :- use_module(library(assoc)).
 :- use_module(library(error)).
 :- use_module('../lang/ddc_dist').
-:- use_module(.., []).          % ddc:eval_dist/2: a distribution's parameters evaluated
+:- use_module('../../ddc.pl', []).          % ddc:eval_dist/2: a distribution's parameters evaluated
 :- use_module(ddc_learn_syntax, [dc_goal/4]).
 :- use_module(ddc_learn_bias, [bias_term/2]).
 

@@ -83,8 +83,8 @@ class PrologAnswers:
 
     def _start(self) -> subprocess.Popen[str]:
         if self._process is None or self._process.poll() is not None:
-            goal = (f"consult({prolog_string(str(prolog_file('world.pl')))}), "
-                    f"consult({prolog_string(str(prolog_file('world_ask.pl')))})")
+            goal = (f"consult({prolog_string(str(prolog_file('shell', 'world.pl')))}), "
+                    f"consult({prolog_string(str(prolog_file('shell', 'world_ask.pl')))})")
             self._process = subprocess.Popen(
                 [swipl_path(), "-q", "--no-signals", "-g", goal, "-g", "world_ask:serve",
                  "-t", "halt"],

@@ -107,7 +107,7 @@ test(old_programs_logfinite_weight_and_internal_reads_rewritten) :-
 tutorial :-
     source_file(tutorial, This),
     file_directory_name(This, Dir),
-    atomic_list_concat([Dir, '/../../prolog/examples/dc/tutorial.pl'], F0),
+    atomic_list_concat([Dir, '/../../../prolog/examples/dc/tutorial.pl'], F0),
     absolute_file_name(F0, F),
     ddc_load(F).
 

@@ -12,7 +12,7 @@
 example(Name, Path) :-
     module_property(ddc_belief, file(F)),
     file_directory_name(F, Dir),
-    atomic_list_concat([Dir, '/examples/filter/', Name], Path).
+    atomic_list_concat([Dir, '/../../examples/filter/', Name], Path).
 
 %   k standard errors of a proportion p estimated from an effective sample
 %   of size E (p(1-p) at least 1e-4, as the Python tests).

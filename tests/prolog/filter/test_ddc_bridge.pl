@@ -12,7 +12,7 @@
 wumpus(Path) :-
     module_property(ddc_bridge, file(F)),
     file_directory_name(F, Dir),
-    atomic_list_concat([Dir, '/examples/filter/wumpus.pl'], Path).
+    atomic_list_concat([Dir, '/../../examples/filter/wumpus.pl'], Path).
 
 %   new_filter(+N, -Key): a wumpus filter of N particles (seed 3, one thread).
 new_filter(N, Key) :-

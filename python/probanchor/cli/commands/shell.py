@@ -61,7 +61,7 @@ def main(args: argparse.Namespace) -> int:
 
     swipl = swipl_path()
     if args.query is not None:
-        goal = (f"consult({prolog_string(str(prolog_file('world_ask.pl')))}), "
+        goal = (f"consult({prolog_string(str(prolog_file('shell', 'world_ask.pl')))}), "
                 f"world_ask:print_answers({prolog_string(args.query.strip().removesuffix('.'))}"
                 ", [])")
         done = subprocess.run([swipl, "-q", "-g", goal, "-t", "halt",
