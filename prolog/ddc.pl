@@ -4,24 +4,31 @@
     (distributional clauses, derived atoms, time-indexed terms), compiled
     into Prolog, with likelihood-weighted backward sampling for static
     queries and the particle filter over time.  This is the module users
-    load; the work is done by modules of one job each, re-exported here:
+    load (`swipl -p library=prolog`, then `use_module(library(ddc))`; or by
+    path); the work is done by modules of one job each, a folder per
+    subsystem below prolog/ddc/ (module names keep their ddc_ prefix):
 
-      ddc_read.pl       reading program files (syntax, directives, items)
-      ddc_compile.pl    compiling a program's items into clauses
-      ddc_body.pl       compiling clause bodies, queries and evidence
-      ddc_programs.pl   the programs loaded into modules (ddc_load/1,2)
-      ddc_world.pl      the world runtime that compiled clauses call
-      ddc_query.pl      static queries (query/2..8, expectation/5, ...)
-      ddc_errors.pl     errors at run time, and their messages
-      ddc_filter.pl     the filter API (filter_*), over one engine interface
-      ddc_particles.pl  the per-particle engine
-      ddc_filter_batched.pl  the batched engine (ddc_batch.pl) behind it
-      ddc_pool.pl       both engines' group split, seeds and worker threads
-      ddc_rows.pl       a filter's values as rows of floats
-      ddc_rename.pl     constants renamed in a particle's values (filter_rename/3)
-      ddc_store.pl      a world's store; ddc_dist.pl the distributions;
-      ddc_records.pl    records with named fields
-      ddc_ops.pl        the operators of the DC language (~, ~=, :=, <-, pr)
+      lang/     the language: ddc_ops.pl (the operators ~, ~=, :=, <-, pr),
+                ddc_records.pl (records with named fields), ddc_read.pl
+                (reading program files), ddc_compile.pl and ddc_body.pl
+                (compiling items and clause bodies), ddc_programs.pl (the
+                programs loaded into modules, ddc_load/1,2), ddc_dist.pl
+                (distributions), ddc_models.pl (models of learned clauses),
+                ddc_errors.pl (errors at run time), ddc_nesting.pl
+      runtime/  possible worlds: ddc_world.pl (the runtime compiled clauses
+                call), ddc_store.pl (a world's store), ddc_query.pl (static
+                queries, query/2..8, expectation/5, ...), ddc_pool.pl (group
+                split, seeds and worker threads), ddc_rows.pl (values as rows
+                of floats), ddc_rename.pl (constants renamed in values)
+      filter/   the filter API (ddc_filter.pl, filter_*) over one engine
+                interface; ddc_particles.pl the per-particle engine,
+                ddc_filter_batched.pl the batched one (batch/) behind it;
+                ddc_belief.pl the weighted belief for swipl users;
+                ddc_bridge.pl the Python side's calls
+      batch/    the batched engine (ddc_batch*.pl) and its column library
+                in C (c/ddc_columns.c)
+      learn/    the structure learner (library(ddc/learn), prolog/ddc/learn.pl)
+      compat/   the original DC/DCPF's programs and entry points
 
     Each of these modules sets the flag optimise, which is local to its
     file: arithmetic is compiled to virtual-machine instructions instead

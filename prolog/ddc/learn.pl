@@ -1,5 +1,6 @@
-/*  ddc_learn.pl -- the Prolog side of the DC structure learner: groundings,
-    candidate literals, partial possible worlds, learned clauses.
+/*  ddc/learn.pl (module ddc_learn, library(ddc/learn)) -- the Prolog side of
+    the DC structure learner: groundings, candidate literals, partial
+    possible worlds, learned clauses.
 
     The search itself (which literal to add, the leaves' statistical
     models, the score) runs in Python (python/probanchor/ddclearn/); it asks this
@@ -9,7 +10,8 @@
     same predicates can be called by hand from swipl.
 
     This module loads a data set and checks its targets; the rest of its
-    API lives in modules of one job each, re-exported here:
+    API lives in modules of one job each (in prolog/ddc/learn/), re-exported
+    here:
 
       ddc_learn_nodes.pl       the tree's nodes: root, splits, groundings
       ddc_learn_candidates.pl  the literals the bias allows at a node
