@@ -1,23 +1,23 @@
-/*  world.pl -- ask a saved world model questions by hand.
+/** <module> Ask a saved world model questions by hand
 
-    Usage:  swipl prolog/shell/world.pl OUT/world.pl      (or: anchoring shell OUT)
+Usage:  swipl prolog/shell/world.pl OUT/world.pl      (or: anchoring shell OUT)
 
-    The world file (written by `anchoring run`) holds plain facts in module user: anchors
-    (anchor/5), their attributes (attribute/3) and the particle set of the filter
-    (particle/2, particle_fact/2), and which frame it is after (world_frame(Frame, Time));
-    see python/probanchor/app/world_file.py.  Both files
-    given to swipl are loaded, so the facts can also be asked directly
-    (?- anchor(A, S, C, Seen, T).).
-    Examples:
+The world file (written by `anchoring run`) holds plain facts in module user: anchors
+(anchor/5), their attributes (attribute/3) and the particle set of the filter
+(particle/2, particle_fact/2), and which frame it is after (world_frame(Frame, Time));
+see python/probanchor/app/world_file.py.  Both files
+given to swipl are loaded, so the facts can also be asked directly
+(?- anchor(A, S, C, Seen, T).).
+Examples:
 
-        ?- anchors(As).
-        ?- where(ball_1, Mean, Spread).
-        ?- prob(occluded_by(ball_1, mug_1), P).
-        ?- occluders(ball_1, Dist).
-        ?- hidden_under(Obj, Occ, P).
-        ?- prob((pos(ball_1, (X,_,_)), X > 0.1), P).
-        ?- prob(identity(percept(141, 0), ball_1), P).
-        ?- ambiguous(Percept, Dist).
+    ?- anchors(As).
+    ?- where(ball_1, Mean, Spread).
+    ?- prob(occluded_by(ball_1, mug_1), P).
+    ?- occluders(ball_1, Dist).
+    ?- hidden_under(Obj, Occ, P).
+    ?- prob((pos(ball_1, (X,_,_)), X > 0.1), P).
+    ?- prob(identity(percept(141, 0), ball_1), P).
+    ?- ambiguous(Percept, Dist).
 */
 
 :- module(world,

@@ -1,56 +1,56 @@
-/*  ddc_filter.pl -- the particle filter API of the DDC engine.
+/** <module> The particle filter API of the DDC engine
 
-    Part of the DDC engine (ddc.pl is the module users load, and re-exports
-    this module's API).  Python owns the weights and the resampling
-    choices; Prolog owns the particles: N worlds, each holding the values
-    of time t (and the untimed ones), kept in a global variable named by
-    the filter handle, of a Prolog engine of the filter's own that any
-    thread may run (filter_new/5: "Threads and reloads").
+Part of the DDC engine (ddc.pl is the module users load, and re-exports
+this module's API).  Python owns the weights and the resampling
+choices; Prolog owns the particles: N worlds, each holding the values
+of time t (and the untimed ones), kept in a global variable named by
+the filter handle, of a Prolog engine of the filter's own that any
+thread may run (filter_new/5: "Threads and reloads").
 
-    API:
+API:
 
-      filter_new(+ProgramFile, +N, +Seed, -Filter)
-      filter_new(+ProgramFile, +N, +Seed, +Options, -Filter)
-      filter_step(+Filter, +Observations, +Actions, -LogWeights)
-      filter_undo(+Filter)
-      filter_resample(+Filter, +Indices)
-      filter_rename(+Filter, +Renaming, +Particles)
-      filter_holds(+Filter, +Goal, -Flags)
-      filter_values(+Filter, +Template, +Goal, -Values)
-      filter_rows(+Filter, +Template, +Goal, -Width, -Floats, -Values)
-      filter_time(+Filter, -T)
-      filter_engine(+Filter, -Engine)
-      filter_size(+Filter, -N)
-      filter_statistics(+Filter, -Stats)
-      filter_free(+Filter)
+  filter_new(+ProgramFile, +N, +Seed, -Filter)
+  filter_new(+ProgramFile, +N, +Seed, +Options, -Filter)
+  filter_step(+Filter, +Observations, +Actions, -LogWeights)
+  filter_undo(+Filter)
+  filter_resample(+Filter, +Indices)
+  filter_rename(+Filter, +Renaming, +Particles)
+  filter_holds(+Filter, +Goal, -Flags)
+  filter_values(+Filter, +Template, +Goal, -Values)
+  filter_rows(+Filter, +Template, +Goal, -Width, -Floats, -Values)
+  filter_time(+Filter, -T)
+  filter_engine(+Filter, -Engine)
+  filter_size(+Filter, -N)
+  filter_statistics(+Filter, -Stats)
+  filter_free(+Filter)
 
-    Engines.  A filter holds its engine and the engine's state, a record
-    filter_handle(Engine, Module, State): Engine is per_particle
-    (ddc_particles.pl, one particle at a time) or batched
-    (ddc_filter_batched.pl over ddc_batch.pl, each clause evaluated once
-    for a batch of particles), Module the module implementing it.  Each
-    engine module defines the same interface, called as Module:Goal on
-    the engine's State (updated in place):
+Engines.  A filter holds its engine and the engine's state, a record
+filter_handle(Engine, Module, State): Engine is per_particle
+(ddc_particles.pl, one particle at a time) or batched
+(ddc_filter_batched.pl over ddc_batch.pl, each clause evaluated once
+for a batch of particles), Module the module implementing it.  Each
+engine module defines the same interface, called as Module:Goal on
+the engine's State (updated in place):
 
-      engine_step(!State, +WeightedObservations, +Facts, -LogWeights)
-      engine_undo(!State)
-      engine_resample(!State, +Indices)          (checked by the API)
-      engine_rename(!State, +Moves, +Particles)  (checked by the API: Moves
-          the pairs Old-New of a renaming with Old \== New, not empty;
-          Particles a sorted list of 1-based indices without repeats, not
-          empty)
-      engine_holds(!State, +Goal, -Flags)
-      engine_values(!State, +Template, +Goal, -Values)
-      engine_rows(+State, +Template, +Goal, -Width, -Floats)   (semidet:
-          rows read without building the values; else the API makes them
-          from engine_values/4)
-      engine_time(+State, -T)
-      engine_size(+State, -N)
-      engine_statistics(+State, -Stats)
-      engine_free(+State)
+  engine_step(!State, +WeightedObservations, +Facts, -LogWeights)
+  engine_undo(!State)
+  engine_resample(!State, +Indices)          (checked by the API)
+  engine_rename(!State, +Moves, +Particles)  (checked by the API: Moves
+      the pairs Old-New of a renaming with Old \== New, not empty;
+      Particles a sorted list of 1-based indices without repeats, not
+      empty)
+  engine_holds(!State, +Goal, -Flags)
+  engine_values(!State, +Template, +Goal, -Values)
+  engine_rows(+State, +Template, +Goal, -Width, -Floats)   (semidet:
+      rows read without building the values; else the API makes them
+      from engine_values/4)
+  engine_time(+State, -T)
+  engine_size(+State, -N)
+  engine_statistics(+State, -Stats)
+  engine_free(+State)
 
-    The semantics of a step are in ddc_particles.pl's header (the batched
-    engine gives the same distribution, from other draws).
+The semantics of a step are in ddc_particles.pl's header (the batched
+engine gives the same distribution, from other draws).
 */
 
 :- module(ddc_filter,

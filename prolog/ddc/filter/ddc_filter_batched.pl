@@ -1,9 +1,9 @@
-/*  ddc_filter_batched.pl -- the batched engine behind the filter API.
+/** <module> The batched engine behind the filter API
 
-    Part of the DDC engine (ddc.pl is the module users load).  A thin
-    adapter: implements the engine interface of the filter API
-    (ddc_filter.pl, "Engines") over ddc_batch.pl's exports, which
-    evaluate each clause once for a batch of particles.
+Part of the DDC engine (ddc.pl is the module users load).  A thin
+adapter: implements the engine interface of the filter API
+(ddc_filter.pl, "Engines") over ddc_batch.pl's exports, which
+evaluate each clause once for a batch of particles.
 */
 
 :- module(ddc_filter_batched,

@@ -1,46 +1,46 @@
-/*  ddc_particles.pl -- the per-particle engine of the DDC filter.
+/** <module> The per-particle engine of the DDC filter
 
-    Part of the DDC engine (ddc.pl is the module users load).  Steps, queries
-    and resamples the particles of a filter one particle at a time, each a
-    world of the runtime (ddc_world.pl) proved by the program's compiled
-    clauses.  Implements the engine interface of the filter API
-    (ddc_filter.pl, "Engines"); the batched engine is ddc_batch.pl.
+Part of the DDC engine (ddc.pl is the module users load).  Steps, queries
+and resamples the particles of a filter one particle at a time, each a
+world of the runtime (ddc_world.pl) proved by the program's compiled
+clauses.  Implements the engine interface of the filter API
+(ddc_filter.pl, "Engines"); the batched engine is ddc_batch.pl.
 
-    A step t -> t+1 for each particle:
-      1. the facts of t+1 (actions, plain observations such as
-         observed(b1)) replace those of t;
-      2. every observation h ~= v is recorded, once for all particles, as
-         h:t+1 and as the untimed h (the original's bodies read
-         observation(x) ~= V untimed; an untimed h that already has a value
-         keeps it); then each observation weights the particle once, by
-         the density of h's first applicable clause at t+1 (h:t+1 clauses,
-         else h:t clauses, else untimed ones), whose proof sees every
-         observation's value and samples lazily whatever transitions it
-         needs (the original weighted an observation when a proof first
-         read it, and recorded it after);
-      3. the transition clauses (h:t+1 heads) are swept: every ground head
-         their bodies produce (non-ground reads in those bodies see only
-         the values recorded) is sampled, every derived h:t+1 atom is
-         materialised; heads observation(_) are left out (as in the
-         original: observations are not predicted, only weighted);
-      4. time t is no longer derivable (frozen): queries at t+1 may still
-         read h:t; the values of t-1 and the raw observations of t are
-         dropped at the start of the next step.
-    Values the particles agree on are computed once (see "Shared values"
-    in ddc_world.pl).  Step and resample keep the previous particles for
-    one undo.  A step either completes for all particles or changes
-    nothing.
+A step t -> t+1 for each particle:
+  1. the facts of t+1 (actions, plain observations such as
+     observed(b1)) replace those of t;
+  2. every observation h ~= v is recorded, once for all particles, as
+     h:t+1 and as the untimed h (the original's bodies read
+     observation(x) ~= V untimed; an untimed h that already has a value
+     keeps it); then each observation weights the particle once, by
+     the density of h's first applicable clause at t+1 (h:t+1 clauses,
+     else h:t clauses, else untimed ones), whose proof sees every
+     observation's value and samples lazily whatever transitions it
+     needs (the original weighted an observation when a proof first
+     read it, and recorded it after);
+  3. the transition clauses (h:t+1 heads) are swept: every ground head
+     their bodies produce (non-ground reads in those bodies see only
+     the values recorded) is sampled, every derived h:t+1 atom is
+     materialised; heads observation(_) are left out (as in the
+     original: observations are not predicted, only weighted);
+  4. time t is no longer derivable (frozen): queries at t+1 may still
+     read h:t; the values of t-1 and the raw observations of t are
+     dropped at the start of the next step.
+Values the particles agree on are computed once (see "Shared values"
+in ddc_world.pl).  Step and resample keep the previous particles for
+one undo.  A step either completes for all particles or changes
+nothing.
 
-    Threads (filter_new/5 option threads(K)): the first particle is stepped
-    alone (it finds the values every particle shares, and a step in which
-    nothing else is left is settled at once); the others are split into K
-    contiguous groups, the first stepped by the calling thread, each other
-    one by a worker thread (ddc_pool.pl) on a copy of its particles and of
-    the shared values, drawing from a random stream seeded (after the
-    first particle) from the filter's.  The copies come back into the
-    filter's particles and their newly shared values join its own
-    (step_groups/10).  K is part of the seed: the same K gives the same
-    particles on any machine.
+Threads (filter_new/5 option threads(K)): the first particle is stepped
+alone (it finds the values every particle shares, and a step in which
+nothing else is left is settled at once); the others are split into K
+contiguous groups, the first stepped by the calling thread, each other
+one by a worker thread (ddc_pool.pl) on a copy of its particles and of
+the shared values, drawing from a random stream seeded (after the
+first particle) from the filter's.  The copies come back into the
+filter's particles and their newly shared values join its own
+(step_groups/10).  K is part of the seed: the same K gives the same
+particles on any machine.
 */
 
 :- module(ddc_particles,

@@ -1,8 +1,8 @@
-/*  ddc_ops.pl -- the operators of the DC language.
+/** <module> The operators of the DC language
 
-    Part of the DDC engine (ddc.pl is the module users load, and exports
-    them to its users).  The engine's and the learner's modules that read
-    or write DC terms import them from here.
+Part of the DDC engine (ddc.pl is the module users load, and exports
+them to its users).  The engine's and the learner's modules that read
+or write DC terms import them from here.
 */
 
 :- module(ddc_ops,

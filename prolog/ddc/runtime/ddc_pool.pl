@@ -1,16 +1,16 @@
-/*  ddc_pool.pl -- the filters' worker threads and group split.
+/** <module> The filters' worker threads and group split
 
-    Part of the DDC engine (ddc.pl is the module users load).  With
-    threads(K), K > 1, a filter's particles are split into K contiguous
-    groups, each with a random stream of its own seeded from the filter's,
-    and a step runs the groups at the same time: the first in the calling
-    thread, each other one as a job of a worker thread.  Both engines do
-    so (ddc_particles.pl, step_groups/10; ddc_batch.pl, batch_step/4); this
-    module holds what they share, apart from what a group's job does: the
-    split, the seeds, the worker threads (kept for the process, shared by
-    every filter) and the sending and collecting of jobs; a filter's (or
-    a group's) own random stream; and how many of a step's first
-    particles are checked for overlapping clauses.
+Part of the DDC engine (ddc.pl is the module users load).  With
+threads(K), K > 1, a filter's particles are split into K contiguous
+groups, each with a random stream of its own seeded from the filter's,
+and a step runs the groups at the same time: the first in the calling
+thread, each other one as a job of a worker thread.  Both engines do
+so (ddc_particles.pl, step_groups/10; ddc_batch.pl, batch_step/4); this
+module holds what they share, apart from what a group's job does: the
+split, the seeds, the worker threads (kept for the process, shared by
+every filter) and the sending and collecting of jobs; a filter's (or
+a group's) own random stream; and how many of a step's first
+particles are checked for overlapping clauses.
 */
 
 :- module(ddc_pool,

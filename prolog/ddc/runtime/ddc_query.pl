@@ -1,9 +1,9 @@
-/*  ddc_query.pl -- static queries of the DDC engine.
+/** <module> Static queries of the DDC engine
 
-    Part of the DDC engine (ddc.pl is the module users load).  Answers
-    probability, expectation and distribution queries on a loaded
-    program by likelihood weighting over sampled worlds, and samples a
-    single world (ddc_sample_world/4).
+Part of the DDC engine (ddc.pl is the module users load).  Answers
+probability, expectation and distribution queries on a loaded
+program by likelihood weighting over sampled worlds, and samples a
+single world (ddc_sample_world/4).
 */
 
 :- module(ddc_query,
