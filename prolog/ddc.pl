@@ -192,11 +192,24 @@ beats a density).
 
 ## Errors
 
-Every error is `error(ddc(Cause, Where), _)` with Where = File:Line (or
+An error in a program (its text, or a clause that misbehaves when it
+runs) is `error(ddc(Cause, Where), _)` with Where = File:Line (or
 `query`); print_message/2 renders it as `File:Line: cause`.  Causes:
 syntax_error(Msg), distribution(Dist, Why), non_ground_head(H),
 overlapping_clauses(Key, OtherFile:OtherLine), zero_evidence(Evidence),
-no_observation_clause(Obs), unknown_program(M), bad_directive(D).
+no_observation_clause(Obs), bad_directive(D).
+
+A misuse of the API is an ISO error term, its context the predicate and
+what went wrong, `error(Formal, context(Module:Name/Arity, Message))`:
+must_be/2's type_error/2, domain_error/2 and instantiation_error for bad
+arguments; existence_error(ddc_filter, Filter) for a filter that was
+freed or never made; existence_error(ddc_program, M) for a query on a
+module that holds no program (M = current when none is loaded);
+instantiation_error for a step's observation or action that is not
+ground; domain_error(particle_indices(N), Indices) for resampling
+indices that are not N indices in 0..N-1; permission_error(undo,
+ddc_filter, Filter) for a second undo; type_error(number, X) for an
+expectation of a value that is not a number.
 */
 
 %!  ddc_load(+File) is det.

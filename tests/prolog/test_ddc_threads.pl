@@ -116,7 +116,7 @@ test(a_handle_is_valid_in_every_thread) :-
     in_thread_result(snapshot(F, P1, M1), P1-M1, Ps1-Ms1),  % queried in a third,
     Ps1 == Ps, Ms1 == Ms,
     in_thread_result(filter_free(F), true, true),           % freed in a fourth
-    catch(filter_time(F, _), error(ddc(unknown_filter(G), _), _), true),
+    catch(filter_time(F, _), error(existence_error(ddc_filter, G), _), true),
     G == F.
 
 test(one_filter_stepped_from_two_threads_takes_one_step_at_a_time) :-

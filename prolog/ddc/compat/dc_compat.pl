@@ -58,6 +58,7 @@
 :- use_module('../filter/ddc_belief').
 :- use_module(dc_compat_load).
 :- use_module('../lang/ddc_programs', [program_file_/2]).
+:- use_module('../runtime/ddc_query', [no_program_loaded/1]).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(error)).
@@ -265,7 +266,7 @@ test_query(PosEv, NegEv, Q, X, N, P) :-
 %   values (derived atoms as `h ~= true`).  Fails if Query fails in the
 %   world drawn.
 generate_backward(Q, Facts) :-
-    (   ddc_program(M) -> true ; throw(error(ddc(no_program_loaded, query), _)) ),
+    (   ddc_program(M) -> true ; no_program_loaded(dc_compat:generate_backward/2) ),
     ddc:ddc_sample_world(M, Q, [], Entries),
     foldl(world_fact, Entries, Facts, []).
 
@@ -278,7 +279,7 @@ generate_backward(Q, Facts) :-
 %   lists Given's values too, as the original listed every recorded fact.
 generate_backward(Given, Q, Facts) :-
     must_be(list, Given),
-    (   ddc_program(M) -> true ; throw(error(ddc(no_program_loaded, query), _)) ),
+    (   ddc_program(M) -> true ; no_program_loaded(dc_compat:generate_backward/3) ),
     foldl(given_entry, Given, Vs-Fs, []-[]),
     ddc:ddc_sample_world(M, Q, [values(Vs), facts(Fs)], Entries),
     foldl(world_fact, Entries, Facts, []).
@@ -337,7 +338,7 @@ remove_duplicates(L, S) :-
 %   do not read them), so they must be [].
 init_particle(N) :-
     must_be(positive_integer, N),
-    (   ddc_program(M) -> true ; throw(error(ddc(no_program_loaded, query), _)) ),
+    (   ddc_program(M) -> true ; no_program_loaded(dc_compat:init_particle/1) ),
     program_file_(M, File),
     (   current_belief_(B0, _) -> catch(belief_free(B0), _, true) ; true ),
     retractall(current_belief_(_, _)),

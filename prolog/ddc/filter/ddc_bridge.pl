@@ -57,7 +57,7 @@ compound as its quoted text; a particle in which the goal has no solution as @(n
 */
 
 %   filter_of(+Key, -Filter): the engine's filter atom of a Key (a freed one
-%   raises unknown_filter when used).
+%   raises existence_error(ddc_filter, F) when used).
 filter_of(Key, F) :-
     must_be(text, Key),
     atom_string(F, Key).

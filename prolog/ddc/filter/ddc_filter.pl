@@ -33,7 +33,8 @@ engine module defines the same interface, called as Module:Goal on
 the engine's State (updated in place):
 
   engine_step(!State, +WeightedObservations, +Facts, -LogWeights)
-  engine_undo(!State)
+  engine_undo(!State)                        (semidet: fails when there
+      is nothing to undo; the API raises the error)
   engine_resample(!State, +Indices)          (checked by the API)
   engine_rename(!State, +Moves, +Particles)  (checked by the API: Moves
       the pairs Old-New of a renaming with Old \== New, not empty;
@@ -240,7 +241,8 @@ filter_server :-
 %   the calling thread, once no other thread runs it; the first solution's
 %   bindings come back (copied).  Errors name the program's file where
 %   they named the filter's module; an unknown Filter is
-%   error(ddc(unknown_filter(Filter), query), _).  Goal runs in this
+%   error(existence_error(ddc_filter, Filter), context(PI, _)), PI the
+%   predicate indicator of Goal (unknown_filter/2).  Goal runs in this
 %   module.  Not exported by ddc.pl: called as ddc:filter_call/2 (or
 %   ddc_filter:filter_call/2).
 filter_call(F, Goal) :-
@@ -257,8 +259,15 @@ filter_reply(true(Goal), _, Goal, _, _).
 filter_reply(error(E0), _, _, M, File) :-
     mapsubterms(module_file(M, File), E0, E),
     throw(E).
-filter_reply(unknown, F, _, _, _) :-
-    throw(error(ddc(unknown_filter(F), query), _)).
+filter_reply(unknown, F, Goal, _, _) :-
+    (   callable(Goal) -> functor(Goal, Name, Arity), PI = ddc_filter:Name/Arity ; true ),
+    unknown_filter(F, PI).
+
+%   unknown_filter(+Filter, ?PI): the ISO error of an API predicate PI
+%   called on a Filter that is not (or no longer) a filter.
+unknown_filter(F, PI) :-
+    throw(error(existence_error(ddc_filter, F),
+                context(PI, 'freed, or never created'))).
 
 module_file(M, File, X, File) :-
     X == M.
@@ -281,7 +290,7 @@ filter_handle(F, Module, State) :-
 current_handle(F, H) :-
     (   atom(F), nb_current(F, H0), H0 = filter_handle(_, _, _)
     ->  H = H0
-    ;   throw(error(ddc(unknown_filter(F), query), _))
+    ;   unknown_filter(F, _)
     ).
 
 %!  filter_state(+Filter, -State) is det.
@@ -385,7 +394,12 @@ filter_undo(F) :-
     filter_call(F, filter_undo(F)).
 filter_undo(F) :-
     filter_handle(F, E, S),
-    E:engine_undo(S).
+    (   E:engine_undo(S)
+    ->  true
+    ;   throw(error(permission_error(undo, ddc_filter, F),
+                    context(ddc_filter:filter_undo/1,
+                            'no step or resampling to undo: one level is kept')))
+    ).
 
 %!  filter_resample(+Filter, +Indices) is det.
 %
@@ -405,11 +419,19 @@ must_be_indices(Is, N) :-
 must_be_indices(Is, N) :-
     must_be(list(nonneg), Is),
     (   length(Is, N) -> true
-    ;   throw(error(ddc(bad_indices(length_differs_from_particles(N)), query), _))
+    ;   bad_indices(N, Is, 'not one index per particle')
     ),
     (   forall(member(I, Is), I < N) -> true
-    ;   throw(error(ddc(bad_indices(index_out_of_range(N)), query), _))
+    ;   bad_indices(N, Is, 'an index out of range')
     ).
+
+%   bad_indices(+N, +Indices, +Why): the ISO error of resampling indices
+%   that are not N indices in 0..N-1.
+bad_indices(N, Is, Why) :-
+    N1 is N - 1,
+    format(atom(Msg), '~w: ~D indices in 0..~D expected', [Why, N, N1]),
+    throw(error(domain_error(particle_indices(N), Is),
+                context(ddc_filter:filter_resample/2, Msg))).
 
 indices_below(Is, _, _, _) :- var(Is), !, fail.
 indices_below([], _, K, K).
@@ -603,5 +625,9 @@ weighted_observation(O) :-
     nonvar(O), O = (_ ~= _).
 
 must_be_ground_item(X) :-
-    (   ground(X) -> true ; throw(error(ddc(not_ground(X), query), _)) ).
+    (   ground(X)
+    ->  true
+    ;   format(atom(Msg), 'not ground: ~p', [X]),
+        throw(error(instantiation_error, context(ddc_filter:filter_step/4, Msg)))
+    ).
 

@@ -55,7 +55,6 @@ engine_undo(State) :-
     (   S0 \== none
     ->  nb_link_batched_current(State, S0),
         nb_set_batched_previous(State, none)
-    ;   throw(error(ddc(nothing_to_undo, query), _))
     ).
 
 engine_resample(State, Is) :-

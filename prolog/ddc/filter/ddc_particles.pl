@@ -147,7 +147,8 @@ engine_step(State, Weighted, Facts0, LogWs) :-
     commit(State, T1, Ws, Sh, T, Ws0, Sh0, R1).
 
 %   engine_undo(!State): the particles, shared values and time from before
-%   the last step (or resampling); only one level is kept.
+%   the last step (or resampling); only one level is kept.  Fails if there
+%   is none (the filter API raises the error).
 engine_undo(State) :-
     particles_previous(State, Prev),
     (   Prev \== none
@@ -158,7 +159,6 @@ engine_undo(State) :-
         nb_link_particles_worlds(State, Ws0),
         nb_link_particles_shared(State, Sh0),
         nb_set_particles_previous(State, none)
-    ;   throw(error(ddc(nothing_to_undo, query), _))
     ).
 
 %   engine_resample(!State, +Indices): particle i (1-based position in

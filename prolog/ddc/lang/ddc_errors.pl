@@ -121,16 +121,9 @@ cause(fresh_arithmetic) --> !,
     [ 'arithmetic (is/2 or a comparison) reads a variable that nothing before it binds' ].
 cause(unbound_head) --> !, [ 'the clause head is a variable' ].
 cause(unbound_body) --> !, [ 'the directive or clause body is a variable' ].
-cause(unknown_program(M)) --> !, [ 'no DC program ~p is loaded'-[M] ].
-cause(no_program_loaded) --> !, [ 'no DC program is loaded (use ddc_load/1)' ].
 cause(query_never_holds(Q)) --> !, [ 'the query ~p never holds in a sample that counts'-[Q] ].
-cause(not_a_number(X)) --> !, [ 'the expectation needs a number, got ~p'-[X] ].
-cause(unknown_filter(F)) --> !, [ 'no filter ~p (freed, or never created)'-[F] ].
-cause(bad_indices(Why)) --> !, [ 'bad resampling indices: ~w'-[Why] ].
-cause(nothing_to_undo) --> !, [ 'no step to undo' ].
 cause(batched_unsupported(What)) --> !,
     [ 'outside what the batched filter evaluates (use engine per_particle): ~p'-[What] ].
-cause(not_ground(X)) --> !, [ 'not ground: ~p'-[X] ].
 cause(bad_time(E)) --> !, [ 'bad time expression ~p (use t, t+K, t-K or an integer)'-[E] ].
 cause(zero_arity_compound(Z)) --> !,
     { compound_name_arity(Z, Name, 0) },

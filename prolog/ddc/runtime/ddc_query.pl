@@ -18,7 +18,8 @@ single world (ddc_sample_world/4).
             ddc_query_text/6,           % +Module, +QueryText, +EvidenceText, +N, +Seed, -Result
             ddc_expectation_text/7,     % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Result
             ddc_distribution_text/7,    % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Pairs
-            ddc_sample_world/4          % +Module, +Query, +Options, -Facts
+            ddc_sample_world/4,         % +Module, +Query, +Options, -Facts
+            no_program_loaded/1         % +PI
           ]).
 
 :- use_module(library(lists)).
@@ -149,8 +150,16 @@ query_program(Options, M) :-
     ->  M = M0
     ;   current_program_(M0)
     ->  M = M0
-    ;   throw(error(ddc(no_program_loaded, query), _))
+    ;   no_program_loaded(query_program/2)
     ).
+
+%!  no_program_loaded(+PI) is det.
+%
+%   Raises the ISO error of a query (predicate PI) asked when no program
+%   is loaded: existence_error(ddc_program, current).
+no_program_loaded(PI) :-
+    throw(error(existence_error(ddc_program, current),
+                context(PI, 'no DC program is loaded (use ddc_load/1)'))).
 
 %!  ddc_query(+Module, +Evidence, +Query, +Options, -P, -Stats) is det.
 %
@@ -216,7 +225,8 @@ text_goal(Text, G) :-
 %   record over the samples of the smallest evidence dimension.
 ddc_run(M, Ev0, Q, X, Options, Mode, R) :-
     (   program_file_(M, _) -> true
-    ;   throw(error(ddc(unknown_program(M), query), _))
+    ;   throw(error(existence_error(ddc_program, M),
+                    context(_, 'no DC program of that name is loaded')))
     ),
     default_samples(Default),
     option(samples(N), Options, Default),
@@ -314,7 +324,8 @@ sample_y(prob, Q, _, Q).
 sample_y(value, Q, X, Y) :-
     (   Q =:= 0.0 -> Y = 0.0
     ;   number(X) -> Y is Q*X
-    ;   throw(error(ddc(not_a_number(X), query), _))
+    ;   throw(error(type_error(number, X),
+                    context(ddc:expectation/5, 'the expectation needs a number')))
     ).
 
 evidence_goal(V, _) :- var(V), !, instantiation_error(V).
