@@ -147,7 +147,7 @@ want="$(cat pyproject.toml | sha1sum | cut -c1-12) $swipl_bin"
 if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   log "installing the project and its Python dependencies"
   PATH="$(dirname "$swipl_bin"):$PATH" SWI_HOME_DIR="$swipl_home" \
-    "$venv/bin/pip" install -q -e ".[dev,cluster,stonesoup]" 2>&1 | { grep -v "is ignored: it is neither" || true; }
+    "$venv/bin/pip" install -q -e ".[app,dev,cluster,stonesoup]" 2>&1 | { grep -v "is ignored: it is neither" || true; }
   echo "$want" > "$stamp"
 fi
 # Packages whose metadata asks for opencv-python, which would overwrite the cv2 module of our
