@@ -66,6 +66,7 @@ import numpy as np
 
 from bridge import prolog
 from bridge.engines import ENGINES, Engine
+from bridge.errors import EngineError, from_helper, from_prolog
 from bridge.particle_data import ParticleData
 from bridge.resampling import RESAMPLERS, Resampling, effective_sample_size, resample_indices
 from bridge.terms import Compound, Text, item_text, to_term
@@ -79,8 +80,9 @@ _TEMPLATE_VAR = "DdcBridgeValue__"
 _MAX_ROW_WIDTH = 16
 
 
-class FilterError(RuntimeError):
-    """A step or query the filter could not carry out; the filter itself is unchanged."""
+#: A step or query the filter could not carry out (the filter itself is unchanged): the base
+#: class of the engine's errors, :class:`bridge.errors.EngineError`, whose subclasses say why
+FilterError = EngineError
 
 
 class ZeroWeightWarning(RuntimeWarning):
@@ -125,7 +127,7 @@ def _ensure_engine() -> None:
             # (use_module/2 with no imports: the helper's predicates stay out of user)
             janus.query_once("use_module(F, [])", {"F": str(HELPER)})
         except janus.PrologError as error:
-            raise FilterError(f"{engine}: {str(error).strip()}") from None
+            raise from_prolog(error, f"{engine}: ") from None
         _helper_loaded = True
 
 
@@ -143,7 +145,7 @@ def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
     try:
         result = janus.query_once(f"{_HELPER_MODULE}:{goal}", bindings)
     except janus.PrologError as error:
-        raise FilterError(str(error).strip()) from None
+        raise from_prolog(error) from None
     if not result.get("truth", False):
         raise FilterError(f"Prolog goal failed: {goal}")
     return result
@@ -273,9 +275,11 @@ class Filter:
              "Sh": "true" if self.share else "false", "Th": self.threads, "E": engine},
         )
         if result["Err"]:
-            error = str(result["Err"])  # usually "file:line: cause" already
-            raise FilterError(error if str(path) in error or str(self.program_path) in error
-                              else f"{self.program_path}: {error}")
+            error = from_helper(result["Err"])  # usually "file:line: cause" already
+            text = str(error)
+            if str(path) not in text and str(self.program_path) not in text:
+                error = from_helper(result["Err"], f"{self.program_path}: ")
+            raise error
         self._key = str(result["K"])
         #: the engine that steps the particles: "batched" or "per_particle" (``auto`` resolved)
         self.engine = str(result["Used"])
@@ -350,12 +354,12 @@ class Filter:
                 "bridge_step(K, O, A, LW, Err)", {"K": key, "O": obs_texts, "A": act_texts}
             )
         except Exception as exc:  # janus-level failure: treat like an engine error
-            result = {"Err": str(exc), "LW": []}
+            result = {"Err": (getattr(exc, "cause", ""), str(exc)), "LW": []}
         prolog_seconds = _time.perf_counter() - call_started
         frame = self.frames + 1
         if result["Err"]:
             self._restore(time_before)
-            raise FilterError(f"{self.program_path.name}: step {frame}: {result['Err']}")
+            raise from_helper(result["Err"], f"{self.program_path.name}: step {frame}: ")
         step_log_weights = np.asarray(result["LW"], dtype=float)
         if step_log_weights.shape != (self.particles,):
             self._restore(time_before)
@@ -425,7 +429,7 @@ class Filter:
         result = _call("bridge_rename(K, O, N, I, Err)",
                        {"K": key, "O": olds, "N": news, "I": (indices + 1).tolist()})
         if result["Err"]:
-            raise FilterError(f"rename: {result['Err']}")
+            raise from_helper(result["Err"], "rename: ")
 
     def _particle_indices(
         self, what: str, particles: np.ndarray | Sequence[int] | None
@@ -548,7 +552,7 @@ class Filter:
             "bridge_holds(K, G, F, Err)", {"K": self._handle(), "G": _as_term_text(goal)}
         )
         if result["Err"]:
-            raise FilterError(f"query: {result['Err']}")
+            raise from_helper(result["Err"], "query: ")
         return np.asarray(result["F"], dtype=np.int8)
 
     @_locked
@@ -574,7 +578,7 @@ class Filter:
              **(extra or {})},
         )
         if result["Err"]:
-            raise FilterError(f"query {template_text!r} for {goal_text!r}: {result['Err']}")
+            raise from_helper(result["Err"], f"query {template_text!r} for {goal_text!r}: ")
         return result
 
     @staticmethod

@@ -30,6 +30,7 @@ import janus_swi as janus
 import numpy as np
 
 from bridge import prolog
+from bridge.errors import from_prolog
 from bridge.program import DDCError
 
 LEARNER: Path = prolog.PROLOG_DIR / "ddc/learn.pl"
@@ -47,15 +48,10 @@ def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
         with _lock:
             result = janus.query_once(goal, bindings)
     except janus.PrologError as error:
-        raise DDCError(_message(error)) from None
+        raise from_prolog(error) from None
     if not result.get("truth", False):
         raise DDCError(f"the learner failed on {goal}")
     return result
-
-
-def _message(error: janus.PrologError) -> str:
-    """The Prolog error as the user should read it (``file:line: cause``)."""
-    return str(error).strip()
 
 
 @dataclass(frozen=True)

@@ -46,9 +46,10 @@ thread, see filter_new/5).  Inputs arrive as texts (observations, actions, goals
 here with term_string/3 in module ddc; a query's template and goal come as the text of one
 term ddc_bridge_pair(Template, Goal), so that they share variables.
 
-Predicates with an Err argument never raise: Err is "" on success, else a one-line message
-(for a bad input item: `Kind I (Text): cause`, the text cut to 200 characters), and the
-outputs are empty.  The others raise the engine's errors (janus turns them into Python
+Predicates with an Err argument never raise: Err is "" on success, else Cause-Message (a
+tuple in Python), Message one line (for a bad input item: `Kind I (Text): cause`, the text
+cut to 200 characters) and Cause the kind of error it is (guarded/2), and the outputs are
+empty.  The others raise the engine's errors (janus turns them into Python
 exceptions).
 
 Values go to Python as: numbers, atoms and strings as they are; lists item by item; comma
@@ -201,10 +202,19 @@ term_text(Term, Text) :-
 		 *            ERRORS            *
 		 *******************************/
 
-%   guarded(:Goal, -Err): Goal once; Err "" if it succeeded, else the message of the
-%   error it raised.
+%   guarded(:Goal, -Err): Goal once; Err "" if it succeeded, else Cause-Text (a tuple in
+%   Python): Text the message of the error it raised, Cause the name of its formal term
+%   (ddc, existence_error, ...; bad_input for a text that does not parse, is not ground or
+%   is of a type the program does not weigh; other for anything else), from which Python
+%   picks the class of the error (python/bridge/errors.py).
 guarded(Goal, Err) :-
-    catch((Goal, Err = ""), E, (error_text(E, Msg), bridge_error(E, Msg, Err))).
+    catch((Goal, Err = ""), E,
+          ( error_text(E, Msg), bridge_error(E, Msg, Text), error_cause(E, Cause),
+            Err = Cause-Text )).
+
+error_cause(bridge(_, _, _, _), bad_input) :- !.
+error_cause(error(Formal, _), Cause) :- callable(Formal), !, functor(Formal, Cause, _).
+error_cause(_, other).
 
 %   error_text(+Error, -Text): the message SWI-Prolog prints for Error, on one line.
 error_text(bridge(_, _, _, Msg), Msg) :- !.
