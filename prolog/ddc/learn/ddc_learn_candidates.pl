@@ -31,7 +31,7 @@ A candidate is an instance of a mode of the target (its + arguments bound
 to the node's variables, its constants chosen), stored in the data
 module as '$ddcl_cand'(Id, Key, Spec) under one id per distinct instance.
 Spec is a candidate record (ddc_learn_records.pl); its kind decides its
-branches (the table in ddc_learn.pl).
+branches (the table in ddc/learn.pl).
 node_branch_literal/8 writes a branch as the body literal of a learned clause.
 */
 
@@ -272,7 +272,7 @@ candidate_dict(M, Vars, NV, TA, Id, _{id: Id, mode: MId, kind: Kind, branches: N
 
 %!  branch_count(+Spec, -Branches:integer) is det.
 %
-%   The number of outcomes of a candidate (the table in ddc_learn.pl).
+%   The number of outcomes of a candidate (the table in ddc/learn.pl).
 branch_count(Spec, N) :-
     candidate_kind(Spec, Kind),
     kind_branch_count(Kind, Spec, N).

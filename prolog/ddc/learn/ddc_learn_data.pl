@@ -1,7 +1,7 @@
 /*  ddc_learn_data.pl -- the learner's data: facts, background knowledge and
     declarative bias read from DC files into a module of their own.
 
-    The structure learner (ddc_learn.pl) learns distributional clauses from
+    The structure learner (ddc/learn.pl, library(ddc/learn)) learns distributional clauses from
     relational data with discrete and continuous attributes.  This module
     reads that data, checks it against its declarative bias, and answers
     the questions the learner asks of it: which values a random variable

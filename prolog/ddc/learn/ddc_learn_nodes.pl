@@ -36,7 +36,7 @@ Info is a node_info(Target, Vars, Used, Path) record (ddc_learn_records.pl:
 its tree's target(Name, KeyArity, Spec), the node's variables v(Name,
 Type), the candidates used on the path from the root, the path's steps
 step(CandidateId, Branch)), Rows its groundings
-row(Bindings, World) (see ddc_learn.pl).  The root of a target holds one
+row(Bindings, World) (see ddc/learn.pl).  The root of a target holds one
 row per grounding of its head and partial world; a split gives each
 branch of a candidate a child with the rows whose outcome is that
 branch.

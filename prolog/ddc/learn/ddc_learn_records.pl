@@ -18,7 +18,7 @@
     '$ddcl_cand'(Id, Key, Candidate) in the data module).
       - Mode: the id of the mode ('$ddcl_mode'/6) it instantiates;
       - Kind: discrete, numeric, threshold, test, count, agg_numeric or
-        agg_discrete (its branches: the table in ddc_learn.pl);
+        agg_discrete (its branches: the table in ddc/learn.pl);
       - Goal: the literal in the internal form (an aggregate's: its
         condition and literal);
       - Inputs: [P-V]: the literal's variable V takes the node's variable
