@@ -11,6 +11,7 @@ Knows nothing of Prolog or of the simulator. The main entry is :class:`AnchorMan
 from anchoring.anchor import Anchor
 from anchoring.attribute import Attribute, AttributeValueError
 from anchoring.features import pair_features
+from anchoring.hands import HandRules, reasoning_position
 from anchoring.manager import (
     Ambiguity,
     AnchorManager,
@@ -35,6 +36,7 @@ __all__ = [
     "Attribute",
     "AttributeValueError",
     "FrameResult",
+    "HandRules",
     "Matcher",
     "MatcherError",
     "RbfSvm",
@@ -43,4 +45,5 @@ __all__ = [
     "Withheld",
     "load_default_matcher",
     "pair_features",
+    "reasoning_position",
 ]

@@ -39,6 +39,9 @@ Per frame (:meth:`AnchorManager.process`):
    not perceived this frame is *withheld* (no symbol, reported in ``result.withheld``; for at
    most ``withhold_seconds`` in a row per anchor; :mod:`anchoring.views`).
 
+Hands (skin percepts and the anchors acquired from them) are matched apart from the rest, by
+their grip points (:mod:`anchoring.hands`; ``hands=None`` matches them as any other object).
+
 Symbols are ``<category>-<k>``: the k-th anchor acquired with that best category. A symbol
 does not change when the anchor's category estimate changes later (the anchor's ``category`` /
 ``best_category`` give the current estimate), so the reasoner's atoms stay stable; only a
@@ -64,6 +67,14 @@ from scipy.optimize import linear_sum_assignment
 from anchoring.anchor import Anchor
 from anchoring.blas import single_threaded_blas
 from anchoring.features import pair_evidence
+from anchoring.hands import (
+    DEFAULT_HAND_RULES,
+    HandRules,
+    is_hand,
+    is_hand_percept,
+    match_hands,
+    views_under_hands,
+)
 from anchoring.likelihood import (
     AssociationModel,
     appearance_log_ratio,
@@ -182,6 +193,7 @@ class AnchorManager:
         belief_radius: float = BELIEF_RADIUS,
         association: AssociationModel | None = None,
         ambiguity_ratio: float = 0.5,
+        hands: HandRules | None = DEFAULT_HAND_RULES,
     ) -> None:
         self.matcher: Matcher = matcher if matcher is not None else load_default_matcher()
         self.glitch_seconds = float(glitch_seconds)
@@ -210,6 +222,7 @@ class AnchorManager:
         self.association = (association if association is not None
                             else AssociationModel.for_matcher(self.matcher))
         self.ambiguity_ratio = float(ambiguity_ratio)
+        self.hands = hands  # hands matched by their grip points (anchoring.hands); None: off
         self.blind_time: float | None = None  # the last frame with no valid percept
         self._withholding: dict[str, float] = {}  # anchor symbol -> since when it withholds
         self.symbols = SymbolTable()
@@ -290,7 +303,12 @@ class AnchorManager:
                 self.symbols.release(anchor.symbol)
                 result.dropped.append(anchor.symbol)
 
-        anchors = list(self._anchors.values())
+        everyone = list(self._anchors.values())
+        skin: list[int] = []  # valid hand percepts, matched apart (anchoring.hands)
+        if self.hands is not None:
+            skin = [i for i in valid if is_hand_percept(percepts[i])]
+            valid = [i for i in valid if not is_hand_percept(percepts[i])]
+        anchors = [a for a in everyone if self.hands is None or not is_hand(a)]
         frame = [percepts[i] for i in valid]
         features, mass = pair_evidence(anchors, frame, self.belief_radius)
         assert mass is not None
@@ -338,12 +356,17 @@ class AnchorManager:
         for j, k in lookalikes.items():
             matched_anchor[j] = k
             scores[k, j] = 0.0  # re-identified by appearance, not accepted by the matcher
-        if not frame:
+        if not frame and not skin:
             self.blind_time = time
         matched = {anchors[r].symbol for r in matched_anchor.values()}
         views, self._withholding = withheld_views(
             anchors, frame, features, matched_anchor, matched, merged, time,
             self._withholding, self.withhold_seconds, self.view_margin, self.view_colour)
+        if skin and self.withhold_seconds > 0:  # what an arm in front leaves in view
+            views.update(views_under_hands(
+                anchors, frame, features[:, :, 1],
+                [j for j in range(len(frame)) if j not in matched_anchor and j not in views],
+                [percepts[i] for i in skin], min_colour=self.view_colour))
         result.ambiguous = self._ambiguities(
             anchors, believed, lost_blind & np.array([a.confirmed for a in anchors], bool),
             features, mass, log_appearance,
@@ -365,8 +388,36 @@ class AnchorManager:
                 self._anchors[symbol] = Anchor.acquire(symbol, percept, self.history_size)
                 perceived.add(symbol)
                 result.assignments.append(Assignment(i, symbol, "acquire"))
-        result.tracked = [a.symbol for a in anchors if a.symbol not in perceived]
+        if skin:
+            self._match_hands(time, percepts, skin, result, perceived)
+        result.tracked = [a.symbol for a in everyone if a.symbol not in perceived]
         return result
+
+    def _match_hands(self, time: float, percepts: Sequence[Percept], skin: list[int],
+                     result: FrameResult, perceived: set[str]) -> None:
+        """The frame's hand percepts (indices ``skin``) re-acquire or acquire hand anchors, or
+        are withheld as pieces of a hand (:func:`anchoring.hands.match_hands`)."""
+        assert self.hands is not None
+        hands = [a for a in self._anchors.values() if is_hand(a) and a.symbol not in perceived]
+        found = match_hands(hands, [percepts[i] for i in skin], time, self.hands)
+        symbols: dict[int, str] = {}
+        for j, i in enumerate(skin):
+            if j in found.reacquire:
+                anchor = hands[found.reacquire[j]]
+                anchor.reacquire(percepts[i])
+                anchor.confirmed = True
+                result.assignments.append(Assignment(i, anchor.symbol, "reacquire"))
+            elif j in found.new:
+                anchor = Anchor.acquire(self.symbols.issue(percepts[i].best_category),
+                                        percepts[i], self.history_size)
+                self._anchors[anchor.symbol] = anchor
+                result.assignments.append(Assignment(i, anchor.symbol, "acquire"))
+            else:
+                continue
+            symbols[j] = anchor.symbol
+            perceived.add(anchor.symbol)
+        for j, k in found.pieces.items():
+            result.withheld.append(Withheld(skin[j], [symbols[k]]))
 
     def _ambiguities(self, anchors: list[Anchor], believed: np.ndarray, lost_blind: np.ndarray,
                      features: np.ndarray, mass: np.ndarray, log_appearance: np.ndarray,
@@ -417,6 +468,7 @@ class AnchorManager:
             "belief_radius": self.belief_radius,
             "association": self.association.to_json(),
             "ambiguity_ratio": self.ambiguity_ratio,
+            "hands": None if self.hands is None else vars(self.hands),
             "blind_time": self.blind_time,
             "symbol_counters": self.symbols.counters,
             "withholding": dict(self._withholding),
@@ -479,6 +531,7 @@ class AnchorManager:
                 association=(AssociationModel.from_json(record["association"])
                              if "association" in record else None),
                 ambiguity_ratio=float(record.get("ambiguity_ratio", 0.5)),
+                hands=_hand_rules(record.get("hands", {})),
             )
             blind = record.get("blind_time")
             manager.blind_time = None if blind is None else float(blind)
@@ -500,3 +553,8 @@ class AnchorManager:
             raise AnchorManagerError(f"{path}: bad world file: {exc!r}") from exc
         return manager
 
+
+def _hand_rules(record: Any) -> HandRules | None:
+    """The hand rules of a world file (``null``: hands matched as other objects; absent, in
+    files written before hands were matched apart: the default rules)."""
+    return None if record is None else HandRules(**record)

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from anchoring import AnchorManager, FrameResult
+from anchoring import AnchorManager, FrameResult, reasoning_position
 from anchoring.identity import AmbiguousPercept, Revision
 from bridge.engines import Engine
 from probanchor.app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS, AnchorState, OcclusionReasoner
@@ -140,7 +140,8 @@ class AnchoringLoop:
         occluders: dict[str, dict[str, float]] = {}
         if self.reasoner is not None:
             started = time.perf_counter()
-            perceived = {a.symbol: frame.percepts[a.percept_index].position
+            # (a hand's position is its grip point: what it holds is there)
+            perceived = {a.symbol: reasoning_position(frame.percepts[a.percept_index])
                          for a in result.assignments}
             # only confirmed anchors (perceived in two frames) are reasoned about: an anchor
             # seen once may be a spurious percept, and a flood of them would make the theory

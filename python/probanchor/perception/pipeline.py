@@ -6,7 +6,9 @@
 Steps: depth -> world points (camera intrinsics and pose); table plane by a seeded RANSAC on a
 subsample (the same plane on every run); above-table mask; skin segments by an HSV window;
 object segments by connected components cut at depth jumps; per segment position and size
-(3-D box), HSV histogram and colour names, top-3 categories from the shape classifier.
+(3-D box), HSV histogram and colour names, top-3 categories from the shape classifier; the
+skin segments of one arm joined and each given the point where its hand closes
+(:mod:`probanchor.perception.grip`).
 ``truth_id`` is filled from the frame's ground-truth segmentation when the frame carries one
 (for training and evaluation only: no attribute is computed from it).
 """
@@ -24,6 +26,7 @@ from probanchor.perception.camera import check_frame
 from probanchor.perception.classifier import DEFAULT_MODEL, CategoryModel
 from probanchor.perception.colour import DEFAULT_BINS, colour_names, histogram, hue_shift
 from probanchor.perception.features import box_attributes, shape_features
+from probanchor.perception.grip import GripConfig, arms, join_across_arms
 from probanchor.perception.plane import Plane, fit_plane
 from probanchor.perception.pointcloud import Backprojector
 from probanchor.perception.segments import (
@@ -56,6 +59,7 @@ class PipelineConfig:
     truth_fraction: float = 0.5  # share of a segment's pixels that names its truth_id
     fragment_pixels: int = 120  # object segments smaller than this may be fragments ...
     fragment_gap: float = 0.015  # ... merged into a larger one whose box is this close (m)
+    grip: GripConfig = field(default_factory=GripConfig)  # skin: arms and grip points
 
 
 class Pipeline:
@@ -153,6 +157,14 @@ class Pipeline:
                     continue
                 segments.append(Segment(kind, r, c, world[idx], heights[idx], bbox, label))
         segments = merge_fragments(segments, cfg.fragment_pixels * scale, cfg.fragment_gap)
+        skins = [s for s in segments if s.kind == "skin"]
+        if skins:
+            segments = join_across_arms(segments, skin, hsv)
+            kept = arms(skins, (h, w), cfg.workspace, cfg.max_height, cfg.grip)
+            for seg, grip in kept:
+                seg.grip = grip
+            ids = {id(seg) for seg, _ in kept}
+            segments = [s for s in segments if s.kind != "skin" or id(s) in ids]
         self.last_segments = segments
         return segments
 
@@ -191,6 +203,7 @@ class Pipeline:
                 colour_names=colour_names(hist, cfg.bins, cfg.peak_ratio),
                 bbox=seg.bbox,
                 source_id=i,
+                grip=seg.grip,
             )
             if seg.kind == "object":
                 area = len(seg.rows) * pixel * pixel

@@ -25,6 +25,7 @@ class Segment:
     heights: np.ndarray  # (N,) above the table plane
     bbox: tuple[int, int, int, int]  # x0, y0, x1, y1 (inclusive-exclusive)
     label: int = 0
+    grip: np.ndarray | None = None  # skin: where the hand closes (perception.grip)
 
 
 @dataclass

@@ -26,7 +26,10 @@ class Percept:
     ``category`` the top categories with their probabilities (best first), ``bbox`` the 2-D
     mask bounding box in pixels ``(x0, y0, x1, y1)``. ``source_id`` is free for a pipeline's
     own bookkeeping (e.g. a segment index); anchoring does not read it. ``truth_id`` is set only
-    by simulators for evaluation; anchoring never reads it either.
+    by simulators for evaluation; anchoring never reads it either. ``grip`` (optional, metres,
+    world frame) is where a hand closes: set on skin percepts by a pipeline that finds the
+    hand's end of an arm's segment (``position`` is then the centre of hand and forearm
+    together); ``None`` for other percepts and in streams written before it existed.
     """
 
     time: float
@@ -38,9 +41,12 @@ class Percept:
     bbox: tuple[int, int, int, int] = (0, 0, 0, 0)
     source_id: int | None = None
     truth_id: str | None = None
+    grip: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         self.position = np.asarray(self.position, dtype=float).reshape(-1)
+        if self.grip is not None:
+            self.grip = np.asarray(self.grip, dtype=float).reshape(-1)
         self.size = np.asarray(self.size, dtype=float).reshape(-1)
         self.colour_histogram = np.asarray(self.colour_histogram, dtype=float).reshape(-1)
 
@@ -52,7 +58,10 @@ class Percept:
         """Raise :class:`PerceptError` naming the first thing wrong with this percept."""
         if not math.isfinite(self.time):
             raise PerceptError(f"time is {self.time}")
-        for name, arr, n in (("position", self.position, 3), ("size", self.size, 3)):
+        vectors = [("position", self.position, 3), ("size", self.size, 3)]
+        if self.grip is not None:
+            vectors.append(("grip", self.grip, 3))
+        for name, arr, n in vectors:
             if arr.shape != (n,):
                 raise PerceptError(f"{name} has shape {arr.shape}, expected ({n},)")
             if not np.all(np.isfinite(arr)):
@@ -87,6 +96,8 @@ class Percept:
             record["source_id"] = self.source_id
         if self.truth_id is not None:
             record["truth_id"] = self.truth_id
+        if self.grip is not None:
+            record["grip"] = self.grip.tolist()
         return record
 
     @classmethod
@@ -110,6 +121,8 @@ class Percept:
                 bbox=tuple(int(v) for v in record.get("bbox", (0, 0, 0, 0))),  # type: ignore[arg-type]
                 source_id=record.get("source_id"),
                 truth_id=record.get("truth_id"),
+                grip=(None if record.get("grip") is None
+                      else np.asarray(record["grip"], dtype=float)),
             )
         except KeyError as exc:
             raise PerceptError(f"missing field {exc.args[0]!r}") from exc
