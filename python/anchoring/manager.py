@@ -329,7 +329,8 @@ class AnchorManager:
                                           self.merge_ratio, self.merge_seconds)
             log_appearance = appearance_log_ratio(self.matcher, features, self.association)
             unexplained = np.array(
-                [1.0 if lost else unexplained_mass(a, frame, self.association)
+                [max(unexplained_mass(a, frame, self.association),
+                     self.association.blind_doubt if lost else 0.0)
                  for a, lost in zip(anchors, lost_blind, strict=True)])
             refuse |= believed[:, None] & (reacquire_probability(
                 log_appearance, belief_ratio(mass, unexplained, self.association,
