@@ -21,11 +21,11 @@ nothing perceived in this frame within ``cover_radius`` of it in the table plane
 there could stand in front of it: it is not where the particle says), and at least
 ``blind_doubt`` for an anchor lost while the camera saw nothing (what the camera did not see
 may have moved it anywhere, or left it where the belief has it: a ball under a box that stood
-still while the camera was covered is where the box is). Where a particle holds ``a`` under a container or in a
-hand, or behind something in view, the belief is trusted; where the place it names is in
-plain view and empty, ``a`` may have been moved anywhere unseen, and a percept anywhere on
-the table is as likely under "``j`` is ``a``" as under "a new object". The posterior of the
-hypotheses of one percept::
+still while the camera was covered is where the box is). Where a particle holds ``a`` under
+a container or in a hand, or behind something in view, the belief is trusted; where the
+place it names is in plain view and empty, ``a`` may have been moved anywhere unseen, and a
+percept anywhere on the table is as likely under "``j`` is ``a``" as under "a new object".
+The posterior of the hypotheses of one percept::
 
     P(a | j) = LR(j, a) / (sum_b LR(j, b) + lambda_new + lambda_clutter)
     P(new | j) = lambda_new / (...),   P(clutter | j) = lambda_clutter / (...)
