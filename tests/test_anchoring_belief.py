@@ -131,7 +131,7 @@ def test_a_look_alike_far_from_the_belief_is_a_new_object():
     no_rivals = AssociationModel(new_odds=0.0, clutter_odds=0.0)
     ungated = hidden_under_box(association=no_rivals).process(
         1.0, [percept(1.0, elsewhere), box(1.0)])
-    assert ungated.symbols[0] == "ball-1" and ungated.assignments[0].score == 0.0
+    assert ungated.symbols[0] == "ball-1"
     # where the belief is, it is ball-1 again
     assert hidden_under_box().process(1.0, [percept(1.0, A), box(1.0)]).symbols[0] == "ball-1"
 
