@@ -17,12 +17,12 @@ Per frame (:meth:`AnchorManager.process`):
    the camera saw nothing) spread over the whole table (:mod:`anchoring.likelihood`);
 5. percepts and anchors are assigned jointly, one to one, by the Hungarian method
    (``scipy.optimize.linear_sum_assignment``): as many pairs as possible among those the
-   matcher accepts (decision > 0) or step 4 does, and among such assignments the one with the largest total
-   mean similarity (monotone in every attribute; an RBF SVM's decision value is not, and it
-   saturates for clear matches); with ``position_match="mass"`` (the default) the position
-   term of an anchor with a belief is the belief's mass near the percept, so a weak mode
-   counts as little as it weighs and two anchors with a particle each at the percept are not
-   tied; ``"max"`` takes the best particle's similarity, as the paper's Algorithm 1;
+   matcher accepts (decision > 0) or step 4 does, and among such assignments the one with the
+   largest total mean similarity (monotone in every attribute; an RBF SVM's decision value is not,
+   and it saturates for clear matches); with ``position_match="mass"`` (the default) the position
+   term of an anchor with a belief is the belief's mass near the percept, so a weak mode counts as
+   little as it weighs and two anchors with a particle each at the percept are not tied; ``"max"``
+   takes the best particle's similarity, as the paper's Algorithm 1;
 6. what is left unmatched may still be re-identified by appearance, when it is the only
    look-alike of an anchor not perceived for a while (:mod:`anchoring.reidentify`; ``score`` 0);
    the likelihood test of step 4 holds there too;
