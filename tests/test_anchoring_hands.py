@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from anchoring import AnchorManager, HandRules
+from anchoring.features import pair_evidence
 from anchoring.hands import match_hands, reasoning_position
 from probanchor.percepts import Percept
 
@@ -166,6 +167,18 @@ def test_what_an_arm_leaves_in_view_of_a_mug_is_withheld() -> None:
     result = manager.process(4 * DT, [foot, arm])
     assert [(w.percept_index, w.symbols) for w in result.withheld] == [(0, ["mug-1"])]
     assert "mug-1" in result.tracked
+    # deeper in shadow (a white mug's foot): less alike than unrelated colours are, but
+    # named as the mug is
+    dark = np.zeros(BINS)
+    dark[120] = 1.0
+    shadowed = thing(4 * DT, (0.1, -0.02, 0.02), (0.07, 0.06, 0.03), 10, "ball",
+                     (175, 136, 197, 142))
+    shadowed.colour_histogram = dark
+    manager = start()
+    features, _ = pair_evidence([manager.get("mug-1")], [shadowed], 0.05)
+    assert features[0, 0, 1] < 0.5
+    result = manager.process(4 * DT, [shadowed, arm])
+    assert [(w.percept_index, w.symbols) for w in result.withheld] == [(0, ["mug-1"])]
     manager = start()
     result = manager.process(4 * DT, [foot])         # no arm in front: the usual rules
     assert result.symbols == {0: "ball-1"}

@@ -126,7 +126,8 @@ def test_track_with_bimodal_particles_matches_either_mode():
     m = AnchorManager(reid_seconds=0)
     m.process(0.0, [percept(0, modes[0])])
     m.process(0.1, [percept(0.1, modes[0])])
-    m.set_position_particles("ball-1", particles, np.ones(1000))
+    # (under something at either mode: a belief that explains why the ball is unseen)
+    m.set_position_particles("ball-1", particles, np.ones(1000), np.ones(1000, bool))
     r = m.process(2.0, [percept(2.0, modes.mean(0))])
     assert r.acquired == ["ball-2"]
 
@@ -136,7 +137,7 @@ def test_zero_weight_particles_do_not_match():
     m.process(0.0, [percept(0, [0.3, 0.3, 0.03])])
     m.process(0.1, [percept(0.1, [0.3, 0.3, 0.03])])
     far = np.array([[0.3, 0.3, 0.03], [0.9, 0.3, 0.03]])
-    m.set_position_particles("ball-1", far, np.array([1.0, 0.0]))
+    m.set_position_particles("ball-1", far, np.array([1.0, 0.0]), np.ones(2, bool))
     r = m.process(2.0, [percept(2.0, [0.9, 0.3, 0.03])])
     assert r.acquired == ["ball-2"]
 

@@ -203,8 +203,10 @@ def _footprints_overlap(anchor: Anchor, percept: Percept, margin: float) -> bool
 
 
 def _alike(anchor: Anchor, percept: Percept, colour: float, min_colour: float) -> bool:
+    # a named colour in common is enough: in the arm's shadow a white mug's foot is 0.47
+    # similar to it, where unrelated colours are 0.46-0.50 similar to each other
     named = bool(percept.colour_names) and percept.colour_names[0] in anchor.colour_names
-    return colour >= min_colour or (named and colour >= 0.5)
+    return colour >= min_colour or named
 
 
 def views_under_hands(anchors: Sequence[Anchor], frame: Sequence[Percept],
@@ -223,8 +225,7 @@ def views_under_hands(anchors: Sequence[Anchor], frame: Sequence[Percept],
     anchor (at its last perceived position or at a particle; perceived this frame or not: the
     other part of it may be in view too) and whose
     colour is not unlike that anchor's (similarity >= ``min_colour``, or its first colour name
-    one of the anchor's and similarity >= 0.5: the part of a mug below a forearm is in its
-    shadow) is withheld: no symbol,
+    one of the anchor's: the part of a mug below a forearm is in its shadow) is withheld: no symbol,
     reported with those anchors. Heights are left out: the part in view may be any slice of
     the object. Unlike :func:`anchoring.views.withheld_views` there is no time limit: it lasts
     while a hand is in front.

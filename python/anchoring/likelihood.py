@@ -18,12 +18,14 @@ looks and where its belief puts it::
 ``e_a`` is the probability that the belief does not explain why ``a`` is unseen
 (:func:`unexplained_mass`): the mass of the particles that have ``a`` under no occluder with
 nothing perceived in this frame within ``cover_radius`` of it in the table plane (nothing
-there could stand in front of it: it is not where the particle says), and 1 for an anchor
-lost while the camera saw nothing. Where a particle holds ``a`` under a container or in a
-hand, or behind something in view, the belief is trusted; where the place it names is in
-plain view and empty, ``a`` may have been moved anywhere unseen, and a percept anywhere on
-the table is as likely under "``j`` is ``a``" as under "a new object". The posterior of the
-hypotheses of one percept::
+there could stand in front of it: it is not where the particle says), and at least
+``blind_doubt`` for an anchor lost while the camera saw nothing (what the camera did not see
+may have moved it anywhere, or left it where the belief has it: a ball under a box that stood
+still while the camera was covered is where the box is). Where a particle holds ``a`` under
+a container or in a hand, or behind something in view, the belief is trusted; where the
+place it names is in plain view and empty, ``a`` may have been moved anywhere unseen, and a
+percept anywhere on the table is as likely under "``j`` is ``a``" as under "a new object".
+The posterior of the hypotheses of one percept::
 
     P(a | j) = LR(j, a) / (sum_b LR(j, b) + lambda_new + lambda_clutter)
     P(new | j) = lambda_new / (...),   P(clutter | j) = lambda_clutter / (...)
@@ -69,6 +71,10 @@ class AssociationModel:
         ``lambda_new``: prior odds of a new object against a known hidden object reappearing.
     clutter_odds : float
         ``lambda_clutter``: prior odds of a spurious percept against the same.
+    blind_doubt : float
+        The least ``e_a`` of an anchor not perceived since the camera last saw nothing: the
+        probability that it was moved unseen where its belief cannot follow (0.5; 1 ignores
+        such a belief, 0 trusts it as any other).
     appearance_scale, appearance_offset : float
         The Platt calibration of the matching function's appearance decision into a log
         likelihood ratio (``anchoring train-matching`` fits them; 1 and 0 otherwise).
@@ -78,6 +84,7 @@ class AssociationModel:
     table_volume: float = 0.24
     new_odds: float = 1.0
     clutter_odds: float = 1.0
+    blind_doubt: float = 0.5
     appearance_scale: float = 1.0
     appearance_offset: float = 0.0
 
@@ -88,6 +95,8 @@ class AssociationModel:
         for name in ("new_odds", "clutter_odds"):
             if not getattr(self, name) >= 0:
                 raise ValueError(f"{name} must be at least 0, not {getattr(self, name)!r}")
+        if not 0.0 <= self.blind_doubt <= 1.0:
+            raise ValueError(f"blind_doubt must be in [0, 1], not {self.blind_doubt!r}")
         if not math.isfinite(self.appearance_scale) or not math.isfinite(self.appearance_offset):
             raise ValueError("the appearance calibration must be finite")
 

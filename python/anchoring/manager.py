@@ -9,19 +9,20 @@ Per frame (:meth:`AnchorManager.process`):
 3. every (anchor, percept) pair gets its similarity vector and the learned matcher's score;
    pairs where the percept is a merged view of two objects are refused
    (:func:`anchoring.views.merged_views`);
-4. an anchor whose position is a belief (the reasoning's particles) is re-acquired only where
-   that is more probable than the percept being a new object or clutter: how the anchor looks
+4. an anchor whose position is a belief (the reasoning's particles) may be re-acquired where,
+   and only where, that is more probable than the percept being a new object or clutter (the
+   matcher's decision is not asked again: it is one factor of it): how the anchor looks
    (the matching function's appearance decision, calibrated) times where its belief puts it,
    with the part of the belief that has the object under nothing (moved unseen, or lost while
    the camera saw nothing) spread over the whole table (:mod:`anchoring.likelihood`);
 5. percepts and anchors are assigned jointly, one to one, by the Hungarian method
    (``scipy.optimize.linear_sum_assignment``): as many pairs as possible among those the
-   matcher accepts (decision > 0), and among such assignments the one with the largest total
-   mean similarity (monotone in every attribute; an RBF SVM's decision value is not, and it
-   saturates for clear matches); with ``position_match="mass"`` (the default) the position
-   term of an anchor with a belief is the belief's mass near the percept, so a weak mode
-   counts as little as it weighs and two anchors with a particle each at the percept are not
-   tied; ``"max"`` takes the best particle's similarity, as the paper's Algorithm 1;
+   matcher accepts (decision > 0) or step 4 does, and among such assignments the one with the
+   largest total mean similarity (monotone in every attribute; an RBF SVM's decision value is not,
+   and it saturates for clear matches); with ``position_match="mass"`` (the default) the position
+   term of an anchor with a belief is the belief's mass near the percept, so a weak mode counts as
+   little as it weighs and two anchors with a particle each at the percept are not tied; ``"max"``
+   takes the best particle's similarity, as the paper's Algorithm 1;
 6. what is left unmatched may still be re-identified by appearance, when it is the only
    look-alike of an anchor not perceived for a while (:mod:`anchoring.reidentify`; ``score`` 0);
    the likelihood test of step 4 holds there too;
@@ -329,13 +330,17 @@ class AnchorManager:
                                           self.merge_ratio, self.merge_seconds)
             log_appearance = appearance_log_ratio(self.matcher, features, self.association)
             unexplained = np.array(
-                [1.0 if lost else unexplained_mass(a, frame, self.association)
+                [max(unexplained_mass(a, frame, self.association),
+                     self.association.blind_doubt if lost else 0.0)
                  for a, lost in zip(anchors, lost_blind, strict=True)])
-            refuse |= believed[:, None] & (reacquire_probability(
+            likely = reacquire_probability(
                 log_appearance, belief_ratio(mass, unexplained, self.association,
                                              self.belief_radius),
-                self.association) < 0.5)
-            accept = (scores > 0) & ~refuse
+                self.association) >= 0.5
+            # a hidden anchor (its position a belief) is accepted by its likelihood, in which
+            # the matcher's appearance decision is one factor; the others by the matcher
+            refuse |= believed[:, None] & ~likely
+            accept = np.where(believed[:, None], likely, scores > 0) & ~refuse
             if accept.any():
                 # the matcher decides which pairs may match; the assignment takes as many
                 # accepted pairs as possible (1e9 per refused pair) and among those maximises
