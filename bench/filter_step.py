@@ -19,8 +19,8 @@ SWI-Prolog can cost, and prints the engine's ratio to it.
 
 The engine steps the particles in ``--threads`` Prolog threads (default 2, as
 ``bridge.Filter``); the floor is one thread's. ``--engine`` picks it as ``bridge.Filter`` does:
-``auto`` (the default: the batched engine, prolog/ddc_batch.pl, for this model),
-``batched`` or ``per_particle`` (prolog/ddc_filter.pl, one particle at a time).
+``auto`` (the default: the batched engine, prolog/ddc/batch/ddc_batch.pl, for this model),
+``batched`` or ``per_particle`` (prolog/ddc/filter/ddc_filter.pl, one particle at a time).
 
 ``--calls K`` (with one configuration) also steps it once more in one thread under SWI-Prolog's
 profiler and prints the K most-called predicates per particle and step; with the per-particle
@@ -29,8 +29,8 @@ engine also the lookups in the value tables (``store_get``) per particle, step a
 ``--scaling`` runs the three configurations of the targets in one run and prints, beside the
 ratio to numpy of each, the scaling: the time at 10 N over the time at N (linear: 10) and at
 3 M over M (linear: 3), each with its ratio to linear.  The last column names the batched
-engine's columns (``foreign``: the compiled library, prolog/c/ddc_columns.c; ``prolog``: terms,
-as with ``DDC_COLUMNS=prolog``).
+engine's columns (``foreign``: the compiled library, prolog/ddc/batch/c/ddc_columns.c; ``prolog``:
+terms, as with ``DDC_COLUMNS=prolog``).
 
 Targets: N = 1000, M = 10 in at most 33 ms per step (30 Hz); within 2x of numpy there, within
 3x at N = 10000 and at M = 30; time linear in N and in M within 1.2x.
@@ -159,7 +159,7 @@ def time_floor(particles: int, objects: int) -> float | None:
 
 def column_backend() -> str:
     """The batched engine's columns in this process: foreign or prolog."""
-    path = str(bridge_resources.prolog_file("ddc_batch_col.pl"))
+    path = str(bridge_resources.prolog_file("ddc/batch/ddc_batch_col.pl"))
     return str(bridge_prolog.query_once("use_module(P), ddc_batch_col:col_backend(B)",
                                         {"P": path})["B"])
 

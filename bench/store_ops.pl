@@ -1,7 +1,7 @@
 /*  store_ops.pl -- what one read or write of a particle's value costs, by representation.
 
     The filter keeps each particle's values in a hash table of its own
-    (prolog/ddc_store.pl); an engine that evaluated clauses over all
+    (prolog/ddc/runtime/ddc_store.pl); an engine that evaluated clauses over all
     particles at once would keep one column per random variable instead (a
     term with one argument per particle).  This prints nanoseconds per
     operation on this machine for both, in one run:
@@ -14,7 +14,7 @@
     subtracted from each.  Best of 5 repetitions of 900,000 operations.
 */
 
-:- use_module('../prolog/ddc_store').
+:- use_module('../prolog/ddc/runtime/ddc_store').
 :- set_prolog_flag(optimise, true).
 :- initialization(main, main).
 

@@ -4,24 +4,31 @@
     (distributional clauses, derived atoms, time-indexed terms), compiled
     into Prolog, with likelihood-weighted backward sampling for static
     queries and the particle filter over time.  This is the module users
-    load; the work is done by modules of one job each, re-exported here:
+    load (`swipl -p library=prolog`, then `use_module(library(ddc))`; or by
+    path); the work is done by modules of one job each, a folder per
+    subsystem below prolog/ddc/ (module names keep their ddc_ prefix):
 
-      ddc_read.pl       reading program files (syntax, directives, items)
-      ddc_compile.pl    compiling a program's items into clauses
-      ddc_body.pl       compiling clause bodies, queries and evidence
-      ddc_programs.pl   the programs loaded into modules (ddc_load/1,2)
-      ddc_world.pl      the world runtime that compiled clauses call
-      ddc_query.pl      static queries (query/2..8, expectation/5, ...)
-      ddc_errors.pl     errors at run time, and their messages
-      ddc_filter.pl     the filter API (filter_*), over one engine interface
-      ddc_particles.pl  the per-particle engine
-      ddc_filter_batched.pl  the batched engine (ddc_batch.pl) behind it
-      ddc_pool.pl       both engines' group split, seeds and worker threads
-      ddc_rows.pl       a filter's values as rows of floats
-      ddc_rename.pl     constants renamed in a particle's values (filter_rename/3)
-      ddc_store.pl      a world's store; ddc_dist.pl the distributions;
-      ddc_records.pl    records with named fields
-      ddc_ops.pl        the operators of the DC language (~, ~=, :=, <-, pr)
+      lang/     the language: ddc_ops.pl (the operators ~, ~=, :=, <-, pr),
+                ddc_records.pl (records with named fields), ddc_read.pl
+                (reading program files), ddc_compile.pl and ddc_body.pl
+                (compiling items and clause bodies), ddc_programs.pl (the
+                programs loaded into modules, ddc_load/1,2), ddc_dist.pl
+                (distributions), ddc_models.pl (models of learned clauses),
+                ddc_errors.pl (errors at run time), ddc_nesting.pl
+      runtime/  possible worlds: ddc_world.pl (the runtime compiled clauses
+                call), ddc_store.pl (a world's store), ddc_query.pl (static
+                queries, query/2..8, expectation/5, ...), ddc_pool.pl (group
+                split, seeds and worker threads), ddc_rows.pl (values as rows
+                of floats), ddc_rename.pl (constants renamed in values)
+      filter/   the filter API (ddc_filter.pl, filter_*) over one engine
+                interface; ddc_particles.pl the per-particle engine,
+                ddc_filter_batched.pl the batched one (batch/) behind it;
+                ddc_belief.pl the weighted belief for swipl users;
+                ddc_bridge.pl the Python side's calls
+      batch/    the batched engine (ddc_batch*.pl) and its column library
+                in C (c/ddc_columns.c)
+      learn/    the structure learner (library(ddc/learn), prolog/ddc/learn.pl)
+      compat/   the original DC/DCPF's programs and entry points
 
     Each of these modules sets the flag optimise, which is local to its
     file: arithmetic is compiled to virtual-machine instructions instead
@@ -68,18 +75,18 @@
           ]).
 
 
-:- use_module(ddc_read, [resolve_file/2, dist_sugar/2]).
-:- use_module(ddc_programs, [load_program/2, set_current_program/1, current_program_/1]).
-:- use_module(ddc_query).
-:- use_module(ddc_filter, [ filter_new/4, filter_new/5, filter_step/4, filter_undo/1,
+:- use_module('ddc/lang/ddc_read', [resolve_file/2, dist_sugar/2]).
+:- use_module('ddc/lang/ddc_programs', [load_program/2, set_current_program/1, current_program_/1]).
+:- use_module('ddc/runtime/ddc_query').
+:- use_module('ddc/filter/ddc_filter', [ filter_new/4, filter_new/5, filter_step/4, filter_undo/1,
                             filter_resample/2, filter_rename/3, filter_holds/3, filter_values/4,
                             filter_rows/6, filter_time/2, filter_engine/2, filter_size/2,
                             filter_statistics/2, filter_free/1, filter_call/2 ]).
-:- use_module(ddc_world, [eval_dist/2]).
+:- use_module('ddc/runtime/ddc_world', [eval_dist/2]).
 %   (filter_call/2, dist_sugar/2 and eval_dist/2 are imported for the
 %   callers that reach them as ddc:...: bench/filter_step.py and
 %   ddc_learn_facts.pl.)
-:- reexport(ddc_models).       % logistic/3, linear/3, softmax/3, mean_list/2, ...
+:- reexport('ddc/lang/ddc_models').       % logistic/3, linear/3, softmax/3, mean_list/2, ...
 
 /** <module> Dynamic Distributional Clauses
 
@@ -185,11 +192,24 @@ beats a density).
 
 ## Errors
 
-Every error is `error(ddc(Cause, Where), _)` with Where = File:Line (or
+An error in a program (its text, or a clause that misbehaves when it
+runs) is `error(ddc(Cause, Where), _)` with Where = File:Line (or
 `query`); print_message/2 renders it as `File:Line: cause`.  Causes:
 syntax_error(Msg), distribution(Dist, Why), non_ground_head(H),
 overlapping_clauses(Key, OtherFile:OtherLine), zero_evidence(Evidence),
-no_observation_clause(Obs), unknown_program(M), bad_directive(D).
+no_observation_clause(Obs), bad_directive(D).
+
+A misuse of the API is an ISO error term, its context the predicate and
+what went wrong, `error(Formal, context(Module:Name/Arity, Message))`:
+must_be/2's type_error/2, domain_error/2 and instantiation_error for bad
+arguments; existence_error(ddc_filter, Filter) for a filter that was
+freed or never made; existence_error(ddc_program, M) for a query on a
+module that holds no program (M = current when none is loaded);
+instantiation_error for a step's observation or action that is not
+ground; domain_error(particle_indices(N), Indices) for resampling
+indices that are not N indices in 0..N-1; permission_error(undo,
+ddc_filter, Filter) for a second undo; type_error(number, X) for an
+expectation of a value that is not a number.
 */
 
 %!  ddc_load(+File) is det.

@@ -110,6 +110,23 @@ def tree_digest(tree: Path, particles: int, threads: int, engine: str) -> tuple[
     return lines[-1][len(DIGEST_PREFIX):], seconds
 
 
+def build_columns(tree: Path) -> None:
+    """Compile the batched engine's column library of ``tree`` (a fresh checkout has none: it
+    is built by scripts/setup.sh, wherever that revision keeps its source), so that without
+    DDC_COLUMNS both trees run the same backend; a tree that cannot build it runs its columns
+    in Prolog (a warning says so)."""
+    swipl = (Path(sys.executable).parent / "swipl").resolve()  # the SWI-Prolog set up
+    bin_dir = str(swipl.parent) if swipl.exists() else ""
+    env = dict(os.environ, PATH=os.pathsep.join(p for p in (bin_dir, os.environ["PATH"]) if p))
+    for source in sorted((tree / "prolog").rglob("ddc_columns.c")):
+        built = subprocess.run(
+            ["swipl-ld", "-shared", "-cc-options,-O2,-Wall", "-o", "ddc_columns",
+             "ddc_columns.c"],
+            cwd=source.parent, capture_output=True, text=True, check=False, env=env)
+        if built.returncode != 0:
+            print(f"warning: {source} not compiled: {built.stderr[-500:]}", file=sys.stderr)
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--base", default="HEAD",
@@ -131,6 +148,7 @@ def main() -> int:
         subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", str(base),
                         args.base], check=True, capture_output=True)
         try:
+            build_columns(base)
             failures = 0
             print(f"{'particles':>9} {'threads':>7} {'engine':<13} {'base s':>7} {'this s':>7}"
                   f"  digest")

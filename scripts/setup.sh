@@ -116,12 +116,12 @@ swipl_home=$("$swipl_bin" --dump-runtime-variables | sed -n 's/^PLBASE="\(.*\)";
 log "SWI-Prolog: $swipl_bin (home $swipl_home)"
 
 # ---------------------------------------------------------------- 2b. the column library
-# The batched filter's columns in C (prolog/c/ddc_columns.c, loaded by prolog/ddc_batch_col.pl),
+# The batched filter's columns in C (prolog/ddc/batch/c/ddc_columns.c, loaded by prolog/ddc/batch/ddc_batch_col.pl),
 # compiled by the swipl-ld of that SWI-Prolog (Debian's swi-prolog-core ships it too), again
 # when the source or the SWI-Prolog changes. Without it the engine runs its columns in Prolog.
-columns_src="$here/prolog/c/ddc_columns.c"
-columns_so="$here/prolog/c/ddc_columns.so"
-columns_stamp="$here/prolog/c/.ddc_columns.built"
+columns_src="$here/prolog/ddc/batch/c/ddc_columns.c"
+columns_so="$here/prolog/ddc/batch/c/ddc_columns.so"
+columns_stamp="$here/prolog/ddc/batch/c/.ddc_columns.built"
 columns_want="$(sha1sum < "$columns_src" | cut -c1-12) $swipl_bin"
 if [ ! -f "$columns_so" ] || [ "$(cat "$columns_stamp" 2>/dev/null)" != "$columns_want" ]; then
   log "compiling the batched filter's column library ($columns_so)"
@@ -129,10 +129,10 @@ if [ ! -f "$columns_so" ] || [ "$(cat "$columns_stamp" 2>/dev/null)" != "$column
   [ -x "$swipl_ld" ] || swipl_ld=$(command -v swipl-ld || true)
   [ -n "$swipl_ld" ] || { log "no swipl-ld next to $swipl_bin: cannot compile $columns_src"; exit 1; }
   rm -f "$columns_so"
-  (cd "$here/prolog/c" && PATH="$(dirname "$swipl_bin"):$PATH" \
+  (cd "$here/prolog/ddc/batch/c" && PATH="$(dirname "$swipl_bin"):$PATH" \
      "$swipl_ld" -shared -cc-options,-O2,-Wall -o ddc_columns ddc_columns.c) \
     || { log "compiling $columns_src failed (above): the batched filter needs it for its speed"; exit 1; }
-  "$swipl_bin" -q -g "use_module('$here/prolog/ddc_batch_col'), col_backend(foreign)" -t halt \
+  "$swipl_bin" -q -g "use_module('$here/prolog/ddc/batch/ddc_batch_col'), col_backend(foreign)" -t halt \
     || { log "$columns_so was built but does not load in $swipl_bin"; exit 1; }
   echo "$columns_want" > "$columns_stamp"
 fi
@@ -147,7 +147,7 @@ want="$(cat pyproject.toml | sha1sum | cut -c1-12) $swipl_bin"
 if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   log "installing the project and its Python dependencies"
   PATH="$(dirname "$swipl_bin"):$PATH" SWI_HOME_DIR="$swipl_home" \
-    "$venv/bin/pip" install -q -e ".[dev,cluster,stonesoup]" 2>&1 | { grep -v "is ignored: it is neither" || true; }
+    "$venv/bin/pip" install -q -e ".[app,dev,cluster,stonesoup]" 2>&1 | { grep -v "is ignored: it is neither" || true; }
   echo "$want" > "$stamp"
 fi
 # Packages whose metadata asks for opencv-python, which would overwrite the cv2 module of our

@@ -104,3 +104,35 @@ def test_stale_positives_change_only_the_time():
     assert np.all(stale.x[:, :4] == [0.9, 0.95, 0.99, 0.9])
     gap = np.log((2 - stale.x[:, 4]) / stale.x[:, 4])  # inverse of 2 / (1 + e^gap)
     assert gap.min() >= 1.0 - 1e-9 and gap.max() <= 30.0 + 1e-6
+
+
+def test_grid_search_folds_are_whole_streams_and_prefer_few_support_vectors(monkeypatch):
+    from sklearn.model_selection import GridSearchCV
+
+    from probanchor.cli.commands import train_matching
+
+    rng = np.random.default_rng(3)
+    x = rng.uniform(0, 1, (600, 5))
+    y = (x[:, 2] + 0.3 * x[:, 1] > 0.9).astype(int)
+    group = np.repeat(np.arange(6), 100)
+    seen = {}
+    original_fit = GridSearchCV.fit
+
+    def spy(self, *args, **kwargs):
+        seen["cv"] = list(self.cv)
+        return original_fit(self, *args, **kwargs)
+
+    monkeypatch.setattr(GridSearchCV, "fit", spy)
+    c, gamma = train_matching.choose_parameters(training.PairSet(x, y, group), 200,
+                                                np.random.default_rng(0))
+    assert c in train_matching.GRID["C"] and gamma in train_matching.GRID["gamma"]
+    assert len(seen["cv"]) == train_matching.FOLDS
+    for fit, held in seen["cv"]:
+        assert not set(group[fit]) & set(group[held])        # no stream on both sides
+        assert len(fit) <= 200
+    results = {"mean_test_balanced": [0.9, 0.9995, 0.999, 0.95],
+               "mean_test_support_vectors": [10, 80, 40, 5]}
+    assert train_matching._fewest_support_vectors(results) == 2
+    with pytest.raises(ValueError, match="two training streams"):
+        train_matching.choose_parameters(training.PairSet(x, y, np.zeros(600, int)), 200,
+                                         np.random.default_rng(0))

@@ -71,14 +71,14 @@ def test_outputs_summary_video_and_world(reasoning_run) -> None:
     assert reasoning_run.video == out / "run.mp4"
     assert len(decoded_frames(reasoning_run.video)) == (summary["frames"] + 3) // 4
     assert reasoning_run.pictures == [] and not (out / "frames").exists()
-    # the world file answers questions in swipl through prolog/world.pl
+    # the world file answers questions in swipl through prolog/shell/world.pl
     objects = {o["id"]: o for o in summary["objects"]}
     ball = objects["ball_1"]["symbols"][0].replace("-", "_")  # its anchor's atom
     goal = (f"anchors(As), memberchk({ball}, As), prob(pos({ball}, _), P), "
             f"prob(occluded_by({ball}, _), Q), format('~w ~w~n', [P, Q]), halt")
     result = subprocess.run(
         [swipl_executable(), "-q", "-g", goal, "-t", "halt(1)",
-         str(ROOT / "prolog" / "world.pl"), str(out / "world.pl")],
+         str(ROOT / "prolog" / "shell" / "world.pl"), str(out / "world.pl")],
         capture_output=True, text=True, timeout=60,
     )
     assert result.returncode == 0, result.stderr

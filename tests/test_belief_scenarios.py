@@ -84,7 +84,7 @@ def test_the_world_model_answers_the_probability_of_an_identity(tmp_path) -> Non
              " catch(prob(identity(percept(0, 0), ball_1), _), E, true),"
              " format('~w ~w ~w~n', [P1, P0, E]), halt")
     done = subprocess.run([swipl_executable(), "-q", "-g", query, "-t", "halt(1)",
-                           str(ROOT / "prolog" / "world.pl"), str(tmp_path / "world.pl")],
+                           str(ROOT / "prolog" / "shell" / "world.pl"), str(tmp_path / "world.pl")],
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     p1, p0, error = done.stdout.split(maxsplit=2)

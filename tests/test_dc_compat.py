@@ -3,8 +3,8 @@
 The files in ``prolog/examples/dc/`` are written as the original's users wrote them (its header
 ``use_module('../distributionalclause.pl')`` or ``'../dcpf.pl'``, ``set_options/1`` and the other
 option setters, ``:- initialization(...)``, test predicates that call the original's entry
-points). Each is run in ``swipl`` through ``prolog/dc_compat.pl``, its test predicates print
-their answers, and the answers are asserted within 3 standard errors of the exact ones of
+points). Each is run in ``swipl`` through ``prolog/ddc/compat/dc_compat.pl``, its test predicates
+print their answers, and the answers are asserted within 3 standard errors of the exact ones of
 ``../shared/dc-reference.md`` section 4 (fixed seeds). The same files load with ``ddc query``.
 """
 
@@ -22,13 +22,13 @@ from ddc_cli_helpers import ddc
 from plunit_runner import ROOT, swipl_executable
 
 DC = ROOT / "prolog" / "examples" / "dc"
-COMPAT = ROOT / "prolog" / "dc_compat.pl"
+COMPAT = ROOT / "prolog" / "ddc" / "compat" / "dc_compat.pl"
 H10 = sum(1.0 / k for k in range(1, 11))
 
 
 def run_old(program: str | Path, goal: str, seed: int = 1) -> subprocess.CompletedProcess[str]:
-    """``swipl prolog/dc_compat.pl FILE`` (a name in ``prolog/examples/dc`` or a path) with
-    ``goal``; the seed is fixed before FILE is consulted (its initialization/1 goals run then)
+    """``swipl prolog/ddc/compat/dc_compat.pl FILE`` (a name in ``prolog/examples/dc`` or a path)
+    with ``goal``; the seed is fixed before FILE is consulted (its initialization/1 goals run then)
     and the run must succeed."""
     path = str(DC / program).replace("'", "\\'")
     result = subprocess.run(

@@ -1,4 +1,5 @@
-"""prolog/ddc_dist.pl against scipy.stats: log densities at chosen points, samplers by KS tests.
+"""prolog/ddc/lang/ddc_dist.pl against scipy.stats: log densities at chosen points, samplers by KS
+tests.
 
 The Prolog module is reached through janus (python/bridge). Distribution terms are passed as
 text and parsed in Prolog; values are numbers or lists (the module accepts a list wherever a
@@ -16,7 +17,7 @@ from scipy import stats
 
 from bridge import prolog
 
-DIST_FILE = prolog.PROLOG_DIR / "ddc_dist.pl"
+DIST_FILE = prolog.PROLOG_DIR / "ddc/lang/ddc_dist.pl"
 
 
 @pytest.fixture(scope="module", autouse=True)

@@ -21,8 +21,8 @@ PIT_WORLD = EXAMPLES / "pit_world.pl"
 RANDOM_WALK = EXAMPLES / "random_walk.pl"
 OCCLUDER = EXAMPLES / "follow_the_occluder.pl"
 
-#: Both engines answer the conformance tests (prolog/ddc_filter.pl particle by particle,
-#: prolog/ddc_batch.pl clause by clause over batches of particles).
+#: Both engines answer the conformance tests (prolog/ddc/filter/ddc_filter.pl particle by particle,
+#: prolog/ddc/batch/ddc_batch.pl clause by clause over batches of particles).
 ENGINES = pytest.mark.parametrize("engine", ["per_particle", "batched"])
 
 PIT_FRAMES = [("null", "false"), ("up", "true"), ("down", "false"), ("right", "true")]

@@ -1,4 +1,5 @@
-"""The batched filter's columns in C (prolog/c/ddc_columns.c) against its columns in Prolog.
+"""The batched filter's columns in C (prolog/ddc/batch/c/ddc_columns.c) against its columns in
+Prolog.
 
 The compiled library draws from a random stream of its own, so the two give other particles
 from the same seed: they are compared in distribution, on the bench's model of occlusion
@@ -75,19 +76,20 @@ def run_model(columns: str | None, first_seed: int) -> dict:
 def col_backend() -> str:
     out = subprocess.run(
         [swipl_executable(), "-q", "-g",
-         "use_module('prolog/ddc_batch_col'), col_backend(B), write(B)", "-t", "halt"],
+         "use_module('prolog/ddc/batch/ddc_batch_col'), col_backend(B), write(B)", "-t", "halt"],
         cwd=ROOT, capture_output=True, text=True, timeout=60,
         env={k: v for k, v in os.environ.items() if k != "DDC_COLUMNS"})
     return out.stdout.strip()
 
 
 def test_the_column_library_is_built_and_loaded() -> None:
-    assert (ROOT / "prolog" / "c" / "ddc_columns.so").exists(), "run scripts/setup.sh"
+    library = ROOT / "prolog" / "ddc" / "batch" / "c" / "ddc_columns.so"
+    assert library.exists(), "run scripts/setup.sh"
     assert col_backend() == "foreign"
 
 
-@pytest.mark.parametrize("name", ["test_ddc_batch.pl", "test_ddc_batch_col.pl",
-                                  "test_ddc_rename.pl"])
+@pytest.mark.parametrize("name", ["batch/test_ddc_batch.pl", "batch/test_ddc_batch_col.pl",
+                                  "filter/test_ddc_rename.pl"])
 def test_plunit_with_the_columns_in_prolog(name: str, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("DDC_COLUMNS", "prolog")
     result = run_plunit(ROOT / "tests" / "prolog" / name)

@@ -1,8 +1,8 @@
 """Filters and programs used from several Python threads, and reloads while a filter is live.
 
 A filter's particles live in a Prolog engine of their own that any thread may run, and its
-program in a module of its own that no reload replaces (prolog/ddc_filter.pl, "Threads and
-reloads"). Every run here is compared, particle by particle, with the same filter (same
+program in a module of its own that no reload replaces (prolog/ddc/filter/ddc_filter.pl, "Threads
+and reloads"). Every run here is compared, particle by particle, with the same filter (same
 program, seed, engine and Prolog threads) created and stepped on the main thread alone.
 """
 

@@ -38,7 +38,7 @@ def test_prolog_files_are_resources_of_the_bridge() -> None:
     engine = bridge.resources.prolog_dir()
     assert inside(engine, "bridge", "engine")
     assert bridge.prolog.PROLOG_DIR == engine
-    for name in ("ddc.pl", "too.pl", "too_learned.pl", "too_learned_hindsight.pl", "world.pl",
+    for name in ("ddc.pl", "too.pl", "too_learned.pl", "too_learned_hindsight.pl", "shell/world.pl",
                  "examples/filter/wumpus.pl"):
         assert inside(bridge.resources.prolog_file(name), "bridge", "engine"), name
     assert all(inside(path, "bridge", "engine") for path in THEORIES.values())

@@ -1,4 +1,5 @@
-"""Every plunit file under tests/prolog runs as one pytest test; a failing plunit test fails it."""
+"""Every plunit file under tests/prolog (a folder per subsystem, as prolog/ddc/ has) runs as one
+pytest test; a failing plunit test fails it."""
 
 from __future__ import annotations
 
@@ -8,10 +9,11 @@ import pytest
 
 from plunit_runner import ROOT, run_plunit
 
-PLUNIT_FILES = sorted((ROOT / "tests" / "prolog").glob("test_*.pl"))
+PLUNIT_FILES = sorted((ROOT / "tests" / "prolog").rglob("test_*.pl"))
 
 
-@pytest.mark.parametrize("path", PLUNIT_FILES, ids=lambda p: p.name)
+@pytest.mark.parametrize("path", PLUNIT_FILES,
+                         ids=lambda p: str(p.relative_to(ROOT / "tests" / "prolog")))
 def test_plunit_file(path: Path) -> None:
     result = run_plunit(path)
     assert result.returncode == 0, f"plunit failed in {path}:\n{result.stdout}\n{result.stderr}"

@@ -1,6 +1,6 @@
 """The resampling rules are stated twice, in python/bridge/resampling.py (bridge.Filter's) and in
-prolog/ddc_belief.pl's resample_indices/4 (the swipl belief's): given the same weights and the
-same uniforms, both pick the same ancestors, for every scheme, bit for bit."""
+prolog/ddc/filter/ddc_belief.pl's resample_indices/4 (the swipl belief's): given the same weights
+and the same uniforms, both pick the same ancestors, for every scheme, bit for bit."""
 
 from __future__ import annotations
 
@@ -25,7 +25,7 @@ RESAMPLING_PY = Path(__file__).resolve().parents[1] / "python" / "bridge" / "res
 
 @pytest.fixture(scope="module", autouse=True)
 def belief_module() -> None:
-    prolog.ensure_loaded(prolog.PROLOG_DIR / "ddc_belief.pl")
+    prolog.ensure_loaded(prolog.PROLOG_DIR / "ddc/filter/ddc_belief.pl")
 
 
 def prolog_indices(scheme: str, weights: np.ndarray, uniforms: np.ndarray) -> list[int]:

@@ -22,13 +22,15 @@ _LAZY = {
     "StepResult": "bridge.filter",
     "ZeroWeightWarning": "bridge.filter",
     "DDCError": "bridge.program",
+    "EngineError": "bridge.errors",  # the base of the engine's errors; a subclass per cause
+    "errors": "bridge.errors",
     "Program": "bridge.program",
     "QueryResult": "bridge.program",
     "load": "bridge.program",
 }
 
-__all__ = ["DEFAULT_THREADS", "DDCError", "Filter", "FilterError", "Program", "QueryResult",
-           "StepResult", "ZeroWeightWarning", "load", "terms"]
+__all__ = ["DEFAULT_THREADS", "DDCError", "EngineError", "Filter", "FilterError", "Program",
+           "QueryResult", "StepResult", "ZeroWeightWarning", "errors", "load", "terms"]
 
 
 def __getattr__(name: str) -> Any:
@@ -41,6 +43,7 @@ def __getattr__(name: str) -> Any:
 
 
 if TYPE_CHECKING:
-    from bridge import terms
+    from bridge import errors, terms
+    from bridge.errors import EngineError
     from bridge.filter import Filter, FilterError, StepResult, ZeroWeightWarning
     from bridge.program import DDCError, Program, QueryResult, load

@@ -66,6 +66,7 @@ import numpy as np
 
 from bridge import prolog
 from bridge.engines import ENGINES, Engine
+from bridge.errors import EngineError, from_helper, from_prolog
 from bridge.particle_data import ParticleData
 from bridge.resampling import RESAMPLERS, Resampling, effective_sample_size, resample_indices
 from bridge.terms import Compound, Text, item_text, to_term
@@ -74,13 +75,14 @@ from bridge.threads import DEFAULT_THREADS
 logger = logging.getLogger(__name__)
 
 _TEMPLATE_VAR = "DdcBridgeValue__"
-# The widest row the batched engine's column library holds (MAX_K in prolog/c/ddc_columns.c):
-# samples() lends it a buffer of this many floats per particle.
+# The widest row the batched engine's column library holds (MAX_K in
+# prolog/ddc/batch/c/ddc_columns.c): samples() lends it a buffer of this many floats per particle.
 _MAX_ROW_WIDTH = 16
 
 
-class FilterError(RuntimeError):
-    """A step or query the filter could not carry out; the filter itself is unchanged."""
+#: A step or query the filter could not carry out (the filter itself is unchanged): the base
+#: class of the engine's errors, :class:`bridge.errors.EngineError`, whose subclasses say why
+FilterError = EngineError
 
 
 class ZeroWeightWarning(RuntimeWarning):
@@ -99,13 +101,13 @@ def _logsumexp(values: np.ndarray) -> float:
 
 
 # --------------------------------------------------------------------------------------------
-# The Prolog side of the bridge: prolog/ddc_bridge.pl, loaded once, parses the texts, turns
-# errors into messages and particle values into janus-friendly data.
+# The Prolog side of the bridge: prolog/ddc/filter/ddc_bridge.pl, loaded once, parses the texts,
+# turns errors into messages and particle values into janus-friendly data.
 
 #: The engine file loaded before the first filter is made (tests may point it elsewhere).
 ENGINE: Path = prolog.PROLOG_DIR / "ddc.pl"
 #: The bridge's Prolog helper module (its predicates are called module-qualified).
-HELPER: Path = prolog.PROLOG_DIR / "ddc_bridge.pl"
+HELPER: Path = prolog.PROLOG_DIR / "ddc/filter/ddc_bridge.pl"
 _HELPER_MODULE = "ddc_bridge"
 
 _helper_lock = threading.Lock()
@@ -125,13 +127,13 @@ def _ensure_engine() -> None:
             # (use_module/2 with no imports: the helper's predicates stay out of user)
             janus.query_once("use_module(F, [])", {"F": str(HELPER)})
         except janus.PrologError as error:
-            raise FilterError(f"{engine}: {str(error).strip()}") from None
+            raise from_prolog(error, f"{engine}: ") from None
         _helper_loaded = True
 
 
 def call_helper(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
-    """Run ``goal``, a call of prolog/ddc_bridge.pl, once (the engine and the helper are loaded
-    first); a Prolog error or failure is a :class:`FilterError`."""
+    """Run ``goal``, a call of prolog/ddc/filter/ddc_bridge.pl, once (the engine and the helper are
+    loaded first); a Prolog error or failure is a :class:`FilterError`."""
     _ensure_engine()
     return _call(goal, bindings)
 
@@ -143,7 +145,7 @@ def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
     try:
         result = janus.query_once(f"{_HELPER_MODULE}:{goal}", bindings)
     except janus.PrologError as error:
-        raise FilterError(str(error).strip()) from None
+        raise from_prolog(error) from None
     if not result.get("truth", False):
         raise FilterError(f"Prolog goal failed: {goal}")
     return result
@@ -218,12 +220,12 @@ class Filter:
         child hangs in its first Prolog call).
 
         ``engine``: ``"per_particle"`` proves each particle's clauses one particle at a time;
-        ``"batched"`` evaluates each clause once for a batch of particles (``prolog/ddc_batch.pl``;
-        a program outside its fragment raises :class:`FilterError` naming the clause);
-        ``"auto"`` takes the batched engine when the program is in its fragment. The two give
-        other particles from the same seed (the draws come in another order); the batched one
-        ignores ``share``. After construction ``engine`` is the one that steps the particles
-        (auto resolved)."""
+        ``"batched"`` evaluates each clause once for a batch of particles
+        (``prolog/ddc/batch/ddc_batch.pl``; a program outside its fragment raises
+        :class:`FilterError` naming the clause); ``"auto"`` takes the batched engine when the
+        program is in its fragment. The two give other particles from the same seed (the draws
+        come in another order); the batched one ignores ``share``. After construction ``engine``
+        is the one that steps the particles (auto resolved)."""
         for name, value in (("particles", particles), ("threads", threads)):
             # an integer, not a bool, float or string that int() would quietly convert
             if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
@@ -273,9 +275,11 @@ class Filter:
              "Sh": "true" if self.share else "false", "Th": self.threads, "E": engine},
         )
         if result["Err"]:
-            error = str(result["Err"])  # usually "file:line: cause" already
-            raise FilterError(error if str(path) in error or str(self.program_path) in error
-                              else f"{self.program_path}: {error}")
+            error = from_helper(result["Err"])  # usually "file:line: cause" already
+            text = str(error)
+            if str(path) not in text and str(self.program_path) not in text:
+                error = from_helper(result["Err"], f"{self.program_path}: ")
+            raise error
         self._key = str(result["K"])
         #: the engine that steps the particles: "batched" or "per_particle" (``auto`` resolved)
         self.engine = str(result["Used"])
@@ -350,12 +354,12 @@ class Filter:
                 "bridge_step(K, O, A, LW, Err)", {"K": key, "O": obs_texts, "A": act_texts}
             )
         except Exception as exc:  # janus-level failure: treat like an engine error
-            result = {"Err": str(exc), "LW": []}
+            result = {"Err": (getattr(exc, "cause", ""), str(exc)), "LW": []}
         prolog_seconds = _time.perf_counter() - call_started
         frame = self.frames + 1
         if result["Err"]:
             self._restore(time_before)
-            raise FilterError(f"{self.program_path.name}: step {frame}: {result['Err']}")
+            raise from_helper(result["Err"], f"{self.program_path.name}: step {frame}: ")
         step_log_weights = np.asarray(result["LW"], dtype=float)
         if step_log_weights.shape != (self.particles,):
             self._restore(time_before)
@@ -404,8 +408,9 @@ class Filter:
         arguments (``pos(mug_1)``) and in the value (``mug_1``); the next step goes on as if the
         names had always been so in those particles. The program and the step's facts are not
         renamed; the other particles and the weights are unchanged (see ``filter_rename/3`` in
-        ``prolog/ddc_filter.pl``, and "Renaming constants in particles" in docs/filter.md).
-        A bad mapping or index raises :class:`FilterError` naming it; the filter is unchanged.
+        ``prolog/ddc/filter/ddc_filter.pl``, and "Renaming constants in particles" in
+        docs/filter.md). A bad mapping or index raises :class:`FilterError` naming it; the filter
+        is unchanged.
         """
         key = self._handle()
         if not isinstance(mapping, Mapping):
@@ -424,7 +429,7 @@ class Filter:
         result = _call("bridge_rename(K, O, N, I, Err)",
                        {"K": key, "O": olds, "N": news, "I": (indices + 1).tolist()})
         if result["Err"]:
-            raise FilterError(f"rename: {result['Err']}")
+            raise from_helper(result["Err"], "rename: ")
 
     def _particle_indices(
         self, what: str, particles: np.ndarray | Sequence[int] | None
@@ -547,7 +552,7 @@ class Filter:
             "bridge_holds(K, G, F, Err)", {"K": self._handle(), "G": _as_term_text(goal)}
         )
         if result["Err"]:
-            raise FilterError(f"query: {result['Err']}")
+            raise from_helper(result["Err"], "query: ")
         return np.asarray(result["F"], dtype=np.int8)
 
     @_locked
@@ -573,7 +578,7 @@ class Filter:
              **(extra or {})},
         )
         if result["Err"]:
-            raise FilterError(f"query {template_text!r} for {goal_text!r}: {result['Err']}")
+            raise from_helper(result["Err"], f"query {template_text!r} for {goal_text!r}: ")
         return result
 
     @staticmethod

@@ -1,8 +1,8 @@
 """Frame files (the observations and actions of ``ddc filter``, JSON Lines) read by the engine.
 
-The format has one reader, ``read_frame_file/2`` in ``prolog/ddc_belief.pl`` (swipl users
+The format has one reader, ``read_frame_file/2`` in ``prolog/ddc/filter/ddc_belief.pl`` (swipl users
 filter with it through ``belief_run/2``); this module asks it, through the bridge's helper
-(``bridge_frames/3`` in ``prolog/ddc_bridge.pl``), and hands the frames to Python as term
+(``bridge_frames/3`` in ``prolog/ddc/filter/ddc_bridge.pl``), and hands the frames to Python as term
 texts that :meth:`bridge.Filter.step` takes as they are. The format: docs/filter.md.
 
 Example::
@@ -17,12 +17,11 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
+from bridge.errors import FrameFileError, from_helper
 from bridge.filter import FilterError, call_helper
 from bridge.terms import Text
 
-
-class FrameFileError(ValueError):
-    """A frame file that cannot be read; the message is ``file:line: cause``."""
+__all__ = ["Frame", "FrameFileError", "read_frames"]
 
 
 @dataclass(frozen=True)
@@ -40,9 +39,10 @@ def read_frames(path: str | os.PathLike[str]) -> list[Frame]:
     try:
         result = call_helper("bridge_frames(F, Frames, Err)", {"F": os.fspath(path)})
     except FilterError as error:
-        raise FrameFileError(f"{os.fspath(path)}: {error}") from None
+        raise FrameFileError(f"{os.fspath(path)}: {error}", error.cause) from None
     if result["Err"]:
-        raise FrameFileError(str(result["Err"]))
+        error = from_helper(result["Err"])
+        raise FrameFileError(str(error), error.cause)
     return [
         Frame(int(line), [Text(str(t)) for t in observations], [Text(str(t)) for t in actions])
         for line, observations, actions in result["Frames"]

@@ -1,6 +1,6 @@
 """The structure learner's data, seen from Python: the only module of the learner that calls Prolog.
 
-``prolog/ddc_learn.pl`` owns the data (facts, background knowledge, declarative bias), the
+``prolog/ddc/learn.pl`` owns the data (facts, background knowledge, declarative bias), the
 groundings of each node of a tree, the candidate literals and their outcomes in partial possible
 worlds, and the translation of a tree's leaves into DC clauses; the search and the leaf models live
 in :mod:`probanchor.ddclearn`. Every call returns plain Python values (dicts, lists, numpy arrays).
@@ -30,9 +30,10 @@ import janus_swi as janus
 import numpy as np
 
 from bridge import prolog
+from bridge.errors import from_prolog
 from bridge.program import DDCError
 
-LEARNER: Path = prolog.PROLOG_DIR / "ddc_learn.pl"
+LEARNER: Path = prolog.PROLOG_DIR / "ddc/learn.pl"
 
 _lock = threading.Lock()
 
@@ -47,15 +48,10 @@ def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
         with _lock:
             result = janus.query_once(goal, bindings)
     except janus.PrologError as error:
-        raise DDCError(_message(error)) from None
+        raise from_prolog(error) from None
     if not result.get("truth", False):
         raise DDCError(f"the learner failed on {goal}")
     return result
-
-
-def _message(error: janus.PrologError) -> str:
-    """The Prolog error as the user should read it (``file:line: cause``)."""
-    return str(error).strip()
 
 
 @dataclass(frozen=True)
@@ -304,7 +300,7 @@ def _split_call(files: Sequence[str | Path], seed: int,
     for p in paths:
         if not Path(p).is_file():
             raise DDCError(f"{p}: no such file")
-    prolog.ensure_loaded(prolog.PROLOG_DIR / "ddc_learn_split.pl")
+    prolog.ensure_loaded(prolog.PROLOG_DIR / "ddc/learn/ddc_learn_split.pl")
     bindings: dict[str, Any] = {"Fs": paths, "S": int(seed)}
     if unit is None:
         return bindings, "_Us = []"
@@ -328,7 +324,7 @@ def split_files(
     ``seed``, go to the test file until it holds at least ``fraction`` of the facts; a fact whose
     constants fall on both sides is cut (written to neither). Declarations, directives and
     background rules go to both files. See ``learn_split_files/3`` in
-    ``prolog/ddc_learn_split.pl``.
+    ``prolog/ddc/learn/ddc_learn_split.pl``.
 
     Parameters
     ----------
@@ -380,7 +376,7 @@ def fold_files(
     The units are those of :func:`split_files`; shuffled by ``seed``, each goes to the fold
     with the fewest facts so far, so the folds' test files partition the units. Fold ``i``'s
     training file holds every other fold's facts; a fact whose constants fall in two folds is
-    cut in those two. See ``learn_fold_files/3`` in ``prolog/ddc_learn_split.pl``.
+    cut in those two. See ``learn_fold_files/3`` in ``prolog/ddc/learn/ddc_learn_split.pl``.
 
     Parameters
     ----------

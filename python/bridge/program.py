@@ -22,6 +22,7 @@ from pathlib import Path
 import janus_swi as janus
 
 from bridge import prolog
+from bridge.errors import EngineError, from_prolog
 
 ENGINE: Path = prolog.PROLOG_DIR / "ddc.pl"
 DEFAULT_SAMPLES = 10_000
@@ -29,8 +30,9 @@ DEFAULT_SAMPLES = 10_000
 _lock = threading.Lock()
 
 
-class DDCError(RuntimeError):
-    """An error reported by the DDC engine (the message names file:line and the cause)."""
+#: An error reported by the DDC engine (the message names file:line and the cause): the base
+#: class of the engine's errors, :class:`bridge.errors.EngineError`, whose subclasses say why
+DDCError = EngineError
 
 
 @dataclass(frozen=True)
@@ -59,7 +61,7 @@ def _call(goal: str, bindings: dict[str, object]) -> dict[str, object]:
         with _lock:
             result = janus.query_once(goal, bindings)
     except janus.PrologError as error:
-        raise DDCError(str(error).strip()) from None
+        raise from_prolog(error) from None
     if not result.get("truth", False):
         raise DDCError(f"the engine failed on {goal}")
     return result

@@ -11,10 +11,10 @@ Three schemes pick N ancestor indices (0-based, ascending) for N normalised weig
 Each position p picks the first particle whose cumulative weight exceeds p, the last cumulative
 weight counting as exactly 1 (so a position never falls past the end).
 
-The rules are stated twice, here and in ``prolog/ddc_belief.pl`` (``resample_indices/4``, for
-swipl users); ``tests/test_resampling_equal.py`` feeds both the same uniforms and expects the
-same indices. The functions ``*_from_uniforms`` take the uniforms explicitly; those taking a
-numpy ``Generator`` draw them (1, N and R numbers) and call them.
+The rules are stated twice, here and in ``prolog/ddc/filter/ddc_belief.pl``
+(``resample_indices/4``, for swipl users); ``tests/test_resampling_equal.py`` feeds both the same
+uniforms and expects the same indices. The functions ``*_from_uniforms`` take the uniforms
+explicitly; those taking a numpy ``Generator`` draw them (1, N and R numbers) and call them.
 """
 
 from __future__ import annotations
@@ -76,7 +76,7 @@ def residual_from_uniforms(weights: npt.ArrayLike, uniforms: Uniforms) -> np.nda
     """Residual resampling; the R draws are ``uniforms[:R]`` (at most N are needed).
 
     The residuals are normalised by their numpy sum (pairwise summation, which
-    ``prolog/ddc_belief.pl`` reproduces)."""
+    ``prolog/ddc/filter/ddc_belief.pl`` reproduces)."""
     w = np.asarray(weights, dtype=float)
     scaled, copies, remaining = _residual_copies(w)
     return _residual(scaled, copies, _first(uniforms, remaining))

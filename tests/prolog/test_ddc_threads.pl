@@ -1,5 +1,5 @@
 /*  plunit tests of filters used from several threads and of reloads
-    while a filter is live (prolog/ddc_filter.pl, filter_new/5: "Threads
+    while a filter is live (prolog/ddc/filter/ddc_filter.pl, filter_new/5: "Threads
     and reloads"): a filter's particles live in an engine of their own that
     any thread may run, its program in a module of its own that no load
     replaces.  Every run is compared with the same filter made and stepped
@@ -116,7 +116,7 @@ test(a_handle_is_valid_in_every_thread) :-
     in_thread_result(snapshot(F, P1, M1), P1-M1, Ps1-Ms1),  % queried in a third,
     Ps1 == Ps, Ms1 == Ms,
     in_thread_result(filter_free(F), true, true),           % freed in a fourth
-    catch(filter_time(F, _), error(ddc(unknown_filter(G), _), _), true),
+    catch(filter_time(F, _), error(existence_error(ddc_filter, G), _), true),
     G == F.
 
 test(one_filter_stepped_from_two_threads_takes_one_step_at_a_time) :-

@@ -1,7 +1,7 @@
 %%% -*- Mode: Prolog; -*-
 % Examples in the style of the Church tutorial (the original's church-dc.pl),
 % with its test predicates: eval_query/7 and eval_query_distribution/8.
-%   swipl -g "test_all(10000)" -t halt prolog/dc_compat.pl prolog/examples/dc/church.pl
+%   swipl -g "test_all(10000)" -t halt prolog/ddc/compat/dc_compat.pl prolog/examples/dc/church.pl
 
 :- use_module('../distributionalclause.pl').
 :- use_module('../random/sampling.pl').

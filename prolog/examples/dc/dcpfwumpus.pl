@@ -3,7 +3,7 @@
 % original's style: the dcpf header, builtin/1 declarations, h:t beliefs
 % guarded by belief/1, and a test predicate over init_particle/1,
 % step_particle/5 and eval_query_particle/3.
-%   swipl -g "test1(2000)" -t halt prolog/dc_compat.pl prolog/examples/dc/dcpfwumpus.pl
+%   swipl -g "test1(2000)" -t halt prolog/ddc/compat/dc_compat.pl prolog/examples/dc/dcpfwumpus.pl
 
 :- use_module('../dcpf.pl').
 :- use_module('../random/sampling.pl').

@@ -5,7 +5,7 @@
 % may all apply: as in the original, the first one whose body holds counts).  unittest/0 runs
 % four steps over 10,000 particles and prints the joint of three cells
 % against the exact one, and eval_query_particle2/4's marginals.
-%   swipl -g unittest -t halt prolog/dc_compat.pl prolog/examples/dc/dcpfwumpus2.pl
+%   swipl -g unittest -t halt prolog/ddc/compat/dc_compat.pl prolog/examples/dc/dcpfwumpus2.pl
 
 :- use_module('../dcpf.pl').
 :- use_module('../random/sampling.pl').

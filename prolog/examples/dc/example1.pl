@@ -2,7 +2,7 @@
 % The original DC system's example1 (its README's test), in the original's
 % style: query/7, query/8 (averages), test_query/6, and `X is random`.
 % Loading it in swipl runs test(10000), as the original did:
-%   swipl -g halt prolog/dc_compat.pl prolog/examples/dc/example1.pl
+%   swipl -g halt prolog/ddc/compat/dc_compat.pl prolog/examples/dc/example1.pl
 
 :- use_module('../distributionalclause.pl').
 :- use_module('../random/sampling.pl').

@@ -2,7 +2,7 @@
 % A probabilistic graph in the style of the original's exampleproblog.pl:
 % each edge exists with probability 0.5, p/2 is reachability over the edges
 % that exist, path/2 plain Prolog over a fixed graph.
-%   swipl -g "test(10000)" -t halt prolog/dc_compat.pl prolog/examples/dc/exampleproblog.pl
+%   swipl -g "test(10000)" -t halt prolog/ddc/compat/dc_compat.pl prolog/examples/dc/exampleproblog.pl
 
 :- use_module('../distributionalclause.pl').
 :- use_module('../random/sampling.pl').

@@ -6,7 +6,7 @@
 % move(ID,DX,DY) shifts object ID by (DX,DY), so move(1,1,0) from (0,0,0)
 % gives next(object(1)) ~ (1,0,0) with variance varQ*deltaT^2 = 0.0004 per
 % coordinate (standard deviation 0.02).
-%   swipl -g "test_object(2000)" -t halt prolog/dc_compat.pl prolog/examples/dc/generatesamples.pl
+%   swipl -g "test_object(2000)" -t halt prolog/ddc/compat/dc_compat.pl prolog/examples/dc/generatesamples.pl
 
 :- use_module('../distributionalclause.pl').
 :- use_module('../random/sampling.pl').

@@ -4,7 +4,7 @@
 % evidence with the Jacobian of V is A*4.0 (resp. A*10.0), so its answers are
 % the correct 0.611 (gpa 3.0) and 0.374 (gpa 3.9); the original printed
 % 0.385 and 0.193.  gpa 4.0 gives 1.0 in both (a point mass beats a density).
-%   swipl -g "test_gpa(10000)" -t halt prolog/dc_compat.pl prolog/examples/dc/indian_gpa.pl
+%   swipl -g "test_gpa(10000)" -t halt prolog/ddc/compat/dc_compat.pl prolog/examples/dc/indian_gpa.pl
 
 :- use_module('../distributionalclause.pl').
 :- use_module('../random/sampling.pl').

@@ -7,7 +7,7 @@
 % (findall_forward/3 over current(object(A)) ~= O in the body).  Its
 % plotdata/1 writes the "Anchor Object" lines to data.txt through the
 % original's internals (eraseall/1, proof_query_backward_lazy/3).
-%   swipl -g t2 -t halt prolog/dc_compat.pl prolog/examples/dc/minimalexample.pl
+%   swipl -g t2 -t halt prolog/ddc/compat/dc_compat.pl prolog/examples/dc/minimalexample.pl
 %
 % What the tests write (one particle, no randomness left):
 %   t2: anchor2 anchor2         (anchor3 arrives when an object exists: no

@@ -5,7 +5,7 @@
 % motion-model covariance of cov/3, and observation steps whose proposal
 % is the Kalman posterior (logIndepOptimalProposals) and whose weight is
 % the predictive density read back through logfinite([W:_]).
-%   swipl -g "test_tracking(1000)" -t halt prolog/dc_compat.pl prolog/examples/dc/tracking.pl
+%   swipl -g "test_tracking(1000)" -t halt prolog/ddc/compat/dc_compat.pl prolog/examples/dc/tracking.pl
 %
 % Exact answers (cov(1,...) with varQ 0.005, deltaT 0.2: the position
 % variance 0.0002, measurement variance 0.001):

@@ -2,7 +2,7 @@
 % The original DC system's tutorial, written as its users wrote programs:
 % the original header and options, and test predicates that call the
 % original's query/5.  Run:
-%   swipl -g "test_balls2(10000)" -t halt prolog/dc_compat.pl prolog/examples/dc/tutorial.pl
+%   swipl -g "test_balls2(10000)" -t halt prolog/ddc/compat/dc_compat.pl prolog/examples/dc/tutorial.pl
 %   ddc query prolog/examples/dc/tutorial.pl 'drawn(1) ~= X, color(X) ~= black'
 
 :- use_module('../distributionalclause.pl').

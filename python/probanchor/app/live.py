@@ -6,7 +6,7 @@ call a service: ``GET /query?q=hidden_under(Obj, Occ, P)`` (or the query as a PO
 answers for the world model after the run's last whole frame, and says which frame that is;
 ``GET /frame`` gives the last frame done. The run's loop never waits for a query: when one
 comes, the loop hands over the world model's facts at its next frame boundary (the facts of a
-world file, ``prolog/world.pl``), and a SWI-Prolog process of the server's own answers the
+world file, ``prolog/shell/world.pl``), and a SWI-Prolog process of the server's own answers the
 query on them, as ``anchoring shell`` would. The queries of that process are sandboxed
 (``library(sandbox)``: reading the world model and ordinary computation, no files, no
 processes, no changes) and limited in time and answers; it ends with the run (its input is a
@@ -83,8 +83,8 @@ class PrologAnswers:
 
     def _start(self) -> subprocess.Popen[str]:
         if self._process is None or self._process.poll() is not None:
-            goal = (f"consult({prolog_string(str(prolog_file('world.pl')))}), "
-                    f"consult({prolog_string(str(prolog_file('world_ask.pl')))})")
+            goal = (f"consult({prolog_string(str(prolog_file('shell', 'world.pl')))}), "
+                    f"consult({prolog_string(str(prolog_file('shell', 'world_ask.pl')))})")
             self._process = subprocess.Popen(
                 [swipl_path(), "-q", "--no-signals", "-g", goal, "-g", "world_ask:serve",
                  "-t", "halt"],

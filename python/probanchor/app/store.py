@@ -671,12 +671,12 @@ class WorldStore:
 
     def world_text(self) -> str:
         """The world model after the last frame as the Prolog facts of a world file
-        (``prolog/world.pl``): :meth:`world`'s text."""
+        (``prolog/shell/world.pl``): :meth:`world`'s text."""
         return self.world()[2]
 
     def world(self) -> tuple[int, float, str]:
         """The last whole frame, its time and the world model after it as the Prolog facts
-        of a world file (``prolog/world.pl``): ``world_frame(Frame, Time)``, the facts of
+        of a world file (``prolog/shell/world.pl``): ``world_frame(Frame, Time)``, the facts of
         ``state.world`` and the particles' from ``particles`` and ``particle_values``, all
         read in one read transaction (so from one whole frame while a run writes)."""
         with self.reading() as db:

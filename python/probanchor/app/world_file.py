@@ -1,4 +1,4 @@
-"""The final world state as a Prolog file a person can query with ``prolog/world.pl``.
+"""The final world state as a Prolog file a person can query with ``prolog/shell/world.pl``.
 
 The file holds plain facts:
 
@@ -41,7 +41,8 @@ def world_facts(loop: AnchoringLoop, perceived: set[str],
     """The world file's lines; ``particles``: :func:`particle_rows` when already at hand;
     ``frame``: the (frame, time) the world model is after, for ``world_frame/2``."""
     lines = [
-        "% World state written by `anchoring run`; load with: swipl prolog/world.pl THIS_FILE",
+        "% World state written by `anchoring run`; load with: "
+        "swipl prolog/shell/world.pl THIS_FILE",
         ":- dynamic anchor/5, attribute/3, particle/2, particle_fact/2, identity/3, "
         "world_frame/2.",
         # each anchor's facts stand together (its anchor/5, then its attributes)

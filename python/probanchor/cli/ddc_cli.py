@@ -15,7 +15,7 @@ with the optional keys ``observations`` and ``actions`` (lists; missing means em
 ``{"observation": "pos(ball_1)", "value": [0.31, 0.12, 0.05]}`` meaning
 ``observation(pos(ball_1)) ~= (0.31,0.12,0.05)``: a JSON array value becomes a tuple, a string
 an atom, a number a number. Blank lines are skipped. (The format has one reader, in the
-engine: ``read_frame_file/2`` of prolog/ddc_belief.pl, asked through ``bridge.frames``.)
+engine: ``read_frame_file/2`` of prolog/ddc/filter/ddc_belief.pl, asked through ``bridge.frames``.)
 
 It prints one row per step (step 0 is the prior) with the filter's time, the effective sample
 size, whether it resampled, the running log-likelihood and the probability of each ``--query``
@@ -95,7 +95,7 @@ def _json_float(value: Any) -> float | None:
 
 def read_frames(path: Path) -> list[Any]:
     """The frames (``bridge.frames.Frame``) of an observations file, read by the engine's
-    reader of the format (prolog/ddc_belief.pl, the one swipl users run); CliError naming
+    reader of the format (prolog/ddc/filter/ddc_belief.pl, the one swipl users run); CliError naming
     file:line on a bad line."""
     from bridge.frames import FrameFileError
     from bridge.frames import read_frames as read_frame_file

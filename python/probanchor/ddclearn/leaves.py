@@ -16,8 +16,8 @@ kind                    without regressors       with regressors ``x`` (m of the
 the one with the larger BIC score ``2 * log_likelihood - n_params * log_n``.
 
 The weights of the regressions are stored bias last (``[w1, ..., wm, b]``), as the DC built-ins
-``logistic/3`` and ``softmax/3`` of ``prolog/ddc_models.pl`` take them. ``logistic`` gives the
-probability of the FIRST class (index 0) of the domain, ``P(0 | x) = sigmoid(w.x + b)``, the
+``logistic/3`` and ``softmax/3`` of ``prolog/ddc/lang/ddc_models.pl`` take them. ``logistic`` gives
+the probability of the FIRST class (index 0) of the domain, ``P(0 | x) = sigmoid(w.x + b)``, the
 ``P1`` of ``finite([P1:V1, P2:V2]) := ..., logistic(X, W, P1), P2 is 1 - P1``.
 """
 

@@ -61,18 +61,18 @@ def main(args: argparse.Namespace) -> int:
 
     swipl = swipl_path()
     if args.query is not None:
-        goal = (f"consult({prolog_string(str(prolog_file('world_ask.pl')))}), "
+        goal = (f"consult({prolog_string(str(prolog_file('shell', 'world_ask.pl')))}), "
                 f"world_ask:print_answers({prolog_string(args.query.strip().removesuffix('.'))}"
                 ", [])")
         done = subprocess.run([swipl, "-q", "-g", goal, "-t", "halt",
-                               str(prolog_file("world.pl")), str(world)],
+                               str(prolog_file("shell/world.pl")), str(world)],
                               capture_output=True, text=True)
         line = done.stdout.strip().splitlines()[-1] if done.stdout.strip() else ""
         if done.returncode != 0 or not line:
             raise RuntimeError(f"{world}: swipl failed: {done.stderr.strip()}")
         print(line.strip())
         return 1 if "error" in json.loads(line) else 0
-    argv = [swipl, "-g", "world:banner", str(prolog_file("world.pl")), str(world)]
+    argv = [swipl, "-g", "world:banner", str(prolog_file("shell/world.pl")), str(world)]
     os.execv(swipl, argv)
     return 0  # pragma: no cover - execv does not return
 

@@ -2,9 +2,10 @@
 
 Pairs (anchor state, new percept) are labelled same / different object from the streams'
 ``truth_id`` (see ``anchoring.training``). Streams are split into training and held-out
-streams; an RBF SVM is chosen by a small grid search (validated on held-out training streams),
-refitted, scored on the held-out streams, compared with the original ProbAnch model on the same
-similarity vectors, and written as JSON (plus a report JSON with every figure).
+streams; an RBF SVM is chosen by a small grid search (scikit-learn's ``GridSearchCV``, its
+folds whole training streams: ``GroupKFold``), refitted, scored on the held-out streams,
+compared with the original ProbAnch model on the same similarity vectors, and written as JSON
+(plus a report JSON with every figure).
 """
 
 from __future__ import annotations
@@ -15,12 +16,21 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # imported where used: `anchoring --help` imports no numpy, scipy, anchoring
+    import numpy as np
+    from sklearn.svm import SVC
+
+    from anchoring import training
     from anchoring.matcher import RbfSvm
     from probanchor.percepts import PerceptFrame
 
 #: The authors' original model, beside the repository (not shipped; run from the repository)
 ORIGINAL = Path("..") / "shared" / "probanch" / "matching_svm.yml"
-GRID = [(c, g) for c in (1.0, 10.0, 100.0) for g in (0.5, 2.0, 8.0)]
+#: The grid of the SVM's C and gamma searched
+GRID = {"C": [1.0, 10.0, 100.0], "gamma": [0.5, 2.0, 8.0]}
+#: Folds of the grid search (fewer when there are fewer training streams)
+FOLDS = 3
+#: Models within this much of the best validation balanced accuracy count as equally good
+TOLERANCE = 1e-3
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -193,25 +203,7 @@ def run(args: argparse.Namespace) -> int:
     if train.y.min(initial=1) == 1 or train.y.max(initial=0) == 0:
         raise ValueError("training pairs have only one label")
 
-    # model selection: validate on a third of the training streams
-    val_ids = set(train_ids[:: 3])
-    fit_part = training.PairSet.concat([pairs[i] for i in train_ids if i not in val_ids]
-                                       + [looks[i] for i in train_ids if i not in val_ids])
-    val_part = training.PairSet.concat([pairs[i] for i in train_ids if i in val_ids]
-                                       + [looks[i] for i in train_ids if i in val_ids])
-    fit_sub = training.balanced_subsample(fit_part, args.max_pairs, rng)
-    tried = []
-    for c, g in GRID:
-        m = training.fit_svm(fit_sub, c, g)
-        s = training.scores(m, val_part)
-        balanced = (s["same_recall"] + s["different_recall"]) / 2
-        n_sv = int(m.coefficients.size)
-        print(f"  C={c:<6g} gamma={g:<4g} validation balanced accuracy {balanced:.4f}, "
-              f"{n_sv} support vectors")
-        tried.append((balanced, n_sv, c, g))
-    # the fewest support vectors (the cost of a frame) among the models within 0.001 of the best
-    top = max(t[0] for t in tried)
-    _, _, c, g = min((t for t in tried if t[0] >= top - 1e-3), key=lambda t: (t[1], -t[0]))
+    c, g = choose_parameters(train, args.max_pairs, rng)
     model = training.fit_svm(training.balanced_subsample(train, args.max_pairs, rng), c, g)
     held = training.scores(model, test)
     report: dict = {
@@ -275,6 +267,66 @@ def run(args: argparse.Namespace) -> int:
         report["evaluate"] = _evaluate(args, model)
         report_path.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
     return 0
+
+
+def choose_parameters(train: training.PairSet, max_pairs: int,
+                      rng: np.random.Generator) -> tuple[float, float]:
+    """C and gamma of the RBF SVM, by a grid search over :data:`GRID` (``GridSearchCV``).
+
+    The folds are whole streams (``GroupKFold`` on the pairs' ``group``, :data:`FOLDS` of them
+    or one per training stream when there are fewer): each candidate is fitted on a balanced
+    sample of at most ``max_pairs`` pairs of the other folds, as the final model is, and scored
+    by its balanced accuracy on every pair of the held-out fold. Of the candidates within
+    :data:`TOLERANCE` of the best mean score, the one with the fewest support vectors (the cost
+    of a frame) is taken; ties go to the better score, then to the earlier in the grid.
+
+    Raises
+    ------
+    ValueError
+        Fewer than two training streams: no fold to validate on.
+    """
+    import numpy as np
+    from sklearn.model_selection import GridSearchCV, GroupKFold
+    from sklearn.svm import SVC
+
+    from anchoring import training
+
+    streams = np.unique(train.group)
+    if streams.size < 2:
+        raise ValueError("the grid search needs at least two training streams")
+    folds = []
+    for fit, held in GroupKFold(n_splits=min(FOLDS, streams.size)).split(
+            train.x, train.y, train.group):
+        part = training.PairSet(train.x[fit], train.y[fit], fit)   # group: the pair's index
+        folds.append((training.balanced_subsample(part, max_pairs, rng).group, held))
+    search = GridSearchCV(
+        SVC(kernel="rbf", class_weight="balanced"), GRID, cv=folds,
+        scoring={"balanced": "balanced_accuracy", "support_vectors": _support_vectors},
+        refit=_fewest_support_vectors, n_jobs=1)
+    search.fit(train.x, train.y)
+    results = search.cv_results_
+    for k, params in enumerate(results["params"]):
+        print(f"  C={params['C']:<6g} gamma={params['gamma']:<4g} validation balanced "
+              f"accuracy {results['mean_test_balanced'][k]:.4f}, "
+              f"{results['mean_test_support_vectors'][k]:.0f} support vectors")
+    best = results["params"][search.best_index_]
+    return float(best["C"]), float(best["gamma"])
+
+
+def _support_vectors(estimator: SVC, x: np.ndarray, y: np.ndarray) -> float:
+    """A scorer of ``GridSearchCV`` that reports the fitted SVM's number of support vectors."""
+    return float(estimator.n_support_.sum())
+
+
+def _fewest_support_vectors(results: dict) -> int:
+    """``GridSearchCV``'s ``refit`` rule: the index of the candidate with the fewest support
+    vectors among those within :data:`TOLERANCE` of the best mean balanced accuracy."""
+    import numpy as np
+
+    score = np.asarray(results["mean_test_balanced"])
+    vectors = np.asarray(results["mean_test_support_vectors"])
+    good = np.flatnonzero(score >= score.max() - TOLERANCE)
+    return int(min(good, key=lambda k: (vectors[k], -score[k], k)))
 
 
 def _calibrate_only(args: argparse.Namespace) -> int:

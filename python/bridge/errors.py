@@ -1,0 +1,107 @@
+"""The errors of the DDC engine, as Python sees them: one base class, a subclass per cause.
+
+Every error that comes from Prolog (a call through janus, or a message the bridge's Prolog
+helper returns) is an :class:`EngineError`; its class says what kind of thing went wrong, read
+from the Prolog error term's formal part (:attr:`EngineError.cause`):
+
+- :class:`ProgramError`: ``ddc(Cause, File:Line)``, a DC program (its text, or a clause that
+  misbehaved as it ran);
+- :class:`LearningDataError`: ``ddc_learn(Cause, Where)``, learning data;
+- :class:`FrameFileError`: ``ddc_belief(frame(File, Line, Cause))``, a frame file (also a
+  ``ValueError``);
+- :class:`UnknownObjectError`: ``existence_error/2``, a filter freed or never made, a program
+  not loaded;
+- :class:`BadArgumentError`: ``instantiation_error``, ``type_error/2``, ``domain_error/2``,
+  ``syntax_error/1``, ...: what was asked (a text that does not parse or is not ground, a value
+  of the wrong type; also a ``ValueError``);
+- :class:`NotPermittedError`: ``permission_error/3``, e.g. a second undo.
+
+Anything else (a Prolog goal that failed, a resource error) is the base class itself. The
+message is the engine's, one line, naming ``file:line`` where there is one. The names the
+bridge used before, :class:`bridge.DDCError` (static programs, the learner) and
+:class:`bridge.FilterError` (the filter), are the base class. A pure module: it does not
+start Prolog.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class EngineError(RuntimeError):
+    """An error of the DDC engine; :attr:`cause` is the Prolog error's formal name
+    (``"ddc"``, ``"existence_error"``, ...; ``""`` when there is no Prolog error term)."""
+
+    def __init__(self, message: str, cause: str = "") -> None:
+        super().__init__(message)
+        self.cause = cause
+
+
+class ProgramError(EngineError):
+    """An error in a DC program (its text, or one of its clauses as it ran): ``file:line``."""
+
+
+class LearningDataError(EngineError):
+    """An error in learning data (facts, background knowledge, declarative bias)."""
+
+
+class FrameFileError(EngineError, ValueError):
+    """A frame file that cannot be read; the message is ``file:line: cause``."""
+
+
+class UnknownObjectError(EngineError, LookupError):
+    """Something named does not exist: a filter freed or never made, a program, a file."""
+
+
+class BadArgumentError(EngineError, ValueError):
+    """An argument the engine cannot take: a text that does not parse, a term that is not
+    ground, a value of the wrong type or outside its domain."""
+
+
+class NotPermittedError(EngineError):
+    """An operation the engine refuses in the state it is in (e.g. a second undo)."""
+
+
+#: the Prolog error's formal name -> the class of its Python error
+CAUSES: dict[str, type[EngineError]] = {
+    "ddc": ProgramError,
+    "ddc_learn": LearningDataError,
+    "ddc_belief": FrameFileError,
+    "existence_error": UnknownObjectError,
+    "permission_error": NotPermittedError,
+    **dict.fromkeys(("instantiation_error", "uninstantiation_error", "type_error",
+                     "domain_error", "representation_error", "syntax_error", "bad_input"),
+                    BadArgumentError),
+}
+
+
+def error_class(cause: str) -> type[EngineError]:
+    """The class of an error whose Prolog formal name is ``cause`` (the base for others)."""
+    return CAUSES.get(cause, EngineError)
+
+
+def engine_error(cause: str, message: str) -> EngineError:
+    """The error of class :func:`error_class` (``cause``) with ``message``."""
+    return error_class(cause)(message, cause)
+
+
+def from_helper(err: Any, prefix: str = "") -> EngineError:
+    """The error of a reply ``Err`` of the bridge's Prolog helper (``Cause-Text``, which
+    janus gives as a tuple; a plain text counts as cause unknown), its message ``prefix`` and
+    the text."""
+    cause, text = (str(err[0]), str(err[1])) if isinstance(err, tuple) else ("", str(err))
+    return engine_error(cause, prefix + text)
+
+
+def from_prolog(error: Exception, prefix: str = "") -> EngineError:
+    """The error of a ``janus.PrologError`` (its term's formal name read in Prolog), its
+    message ``prefix`` and the engine's message."""
+    cause = ""
+    term = getattr(error, "term", None)
+    if term is not None:
+        import janus_swi as janus
+
+        found = janus.query_once("( E = error(_F, _), callable(_F) -> functor(_F, _N, _), "
+                                 "atom_string(_N, C) ; C = \"\" )", {"E": term})
+        cause = str(found.get("C", "")) if found.get("truth") else ""
+    return engine_error(cause, prefix + str(error).strip())
