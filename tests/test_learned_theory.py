@@ -1,5 +1,5 @@
-"""The learned theory of occlusion: written from too.pl with its hand-written occlusion rules
-replaced, loaded before it replaces anything, run by the filter; and ``anchoring collect`` /
+"""The learned theory of occlusion: the learned rules with the hand-written parts shared with
+too.pl included, loaded before it replaces anything, run by the filter; and ``anchoring collect`` /
 ``anchoring learn-theory`` end to end on a short generated game."""
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ import bridge
 from ddc_cli_helpers import Run
 from probanchor.app.collect import CollectError, CollectOptions, collect
 from probanchor.app.learned_theory import (
-    BEGIN,
-    END,
+    AFTER,
+    BEFORE,
     TheoryError,
     along_distance,
     learn_theory,
@@ -27,6 +27,7 @@ from probanchor.app.reasoning import DEFAULT_THEORY
 from probanchor.app.theories import THEORIES, theory_path
 
 ROOT = Path(__file__).resolve().parents[1]
+PROLOG = DEFAULT_THEORY.parent
 
 LEARNED = """% learned (a header of the learner's)
 
@@ -37,28 +38,36 @@ occluder(A, O):t+1 ~ finite([0.2:true, 0.8:false]) :=
 """
 
 
-def test_the_hand_written_occlusion_rules_are_replaced() -> None:
-    base = DEFAULT_THEORY.read_text()
-    text = theory_text(base, LEARNED, "% header\n")
-    assert BEGIN not in text and END not in text
-    for gone in ("covers(O, A):t+1 :=", "lowered_over(O, A):t+1 :="):
-        assert gone in base and gone not in text
-    for kept in ("occluded_by(A, O):t, hidden(A):t+1, hidden(O):t+1.",   # transitive
-                 "cannot_occlude(ball) := true.",                        # affordances
-                 "pos(A):t+1 ~ gaussian", "lost_anywhere(A):t+1 :=", "carrier(skin) := true."):
-        assert kept in text
+def test_the_theory_includes_the_hand_written_parts(tmp_path: Path) -> None:
+    out = tmp_path / "sub" / "too_learned.pl"
+    text = theory_text(LEARNED, "% header\n", base=PROLOG, out=out)
+    hand = DEFAULT_THEORY.read_text()
+    for name in (*BEFORE, *AFTER):
+        assert f":- include({name.removesuffix('.pl')})." in hand          # too.pl's parts
+    includes = [line for line in text.splitlines() if line.startswith(":- include(")]
+    assert len(includes) == len(BEFORE) + len(AFTER)
+    for line, name in zip(includes, (*BEFORE, *AFTER), strict=True):
+        rel = line.removeprefix(":- include('").removesuffix("').")
+        assert (out.parent / rel).resolve() == (PROLOG / name).resolve()
+    # no text of too.pl or of its parts is repeated: only the learned rules and the glue
+    for gone in ("covers(O, A):t+1 :=", "lowered_over(O, A):t+1 :=", "cannot_occlude(ball)",
+                 "pos(A):t+1 ~ gaussian", "obs_var(", "carrier(skin)"):
+        assert gone not in text
     assert "occluder_candidate(A, O):t+1 :=\n    pair(A, O):t+1" in text
+    assert text.index(includes[-1]) > text.index("occluder(A, O):t+1 ~ finite([0.9:true")
     assert text.index("occluder(A, O):t+1 ~ finite([0.9:true") > text.index("pick_occluder")
 
 
-def test_a_base_without_marked_rules_is_an_error() -> None:
-    with pytest.raises(TheoryError, match="hand-written occlusion rules"):
-        theory_text("x ~ val(1).\n", LEARNED, "")
+def test_a_base_without_the_hand_written_parts_is_an_error(tmp_path: Path) -> None:
+    with pytest.raises(TheoryError, match="too_motion.pl"):
+        (tmp_path / "too_base.pl").write_text("x ~ val(1).\n")
+        (tmp_path / "too_knowledge.pl").write_text("y ~ val(1).\n")
+        theory_text(LEARNED, "", base=tmp_path, out=tmp_path / "t.pl")
 
 
 def test_the_assembled_theory_loads_and_filters(tmp_path: Path) -> None:
     path = tmp_path / "too_learned.pl"
-    path.write_text(theory_text(DEFAULT_THEORY.read_text(), LEARNED, ""))
+    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)", "object(ball_2)", "category(ball_2, ball)"]
@@ -126,10 +135,16 @@ def test_a_failed_learn_theory_keeps_the_previous_file(game_data: Path, tmp_path
     with pytest.raises(bridge.DDCError, match=rf"{bad}:\d+: .*not a number"):
         learn_theory([bad], out)
     assert out.read_text() == "% the previous theory\n"
-    broken_base = tmp_path / "base.pl"
-    broken_base.write_text(DEFAULT_THEORY.read_text().replace(
+    broken_base = tmp_path / "base"
+    broken_base.mkdir()
+    for name in (*BEFORE, *AFTER):
+        (broken_base / name).write_text((PROLOG / name).read_text())
+    base_file = broken_base / "too_base.pl"
+    base_file.write_text(base_file.read_text().replace(
         "diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V]).", "diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V)."))
-    with pytest.raises(TheoryError, match="does not load: .*syntax error"):
+    line = base_file.read_text().splitlines().index("diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V).")
+    # the error names the included file and its line
+    with pytest.raises(TheoryError, match=rf"does not load: {base_file}:{line + 1}: syntax error"):
         learn_theory([game_data], out, base=broken_base)
     assert out.read_text() == "% the previous theory\n"
     assert list(tmp_path.glob(".too_learned.pl.*")) == []

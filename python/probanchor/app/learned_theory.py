@@ -6,20 +6,21 @@ holds) the hidden object A at t+1. Its branch where A was known to be under O at
 rule* (does the occlusion go on?), the other branch the *occluder rule* (may O start hiding A?),
 both with statistical models (a logistic regression on a distance, ...) in their leaves.
 
-The theory written is the hand-written one (``prolog/too.pl``) with its hand-written occlusion
-rules (the parts between ``% -- begin hand-written occlusion rules`` and ``% -- end ...``: what
-may occlude what, which container covers which object, which object may be picked as an
-occluder, how long an occlusion lasts) replaced by the learned clauses and three glue clauses
-that use them as the paper's theory does (section 2.3): a hidden object's candidate occluders
-are the perceived objects O for which a particle draws ``occluder(A, O):t+1 ~= true``; it picks
-one uniformly (or ``behind``, when it has just vanished, as in ``too.pl``); an occlusion goes on
-while the particle draws ``occluder(A, O):t+1 ~= true`` and O is perceived. Everything else of
-``too.pl`` stays: motion and observation models, what blind frames do, the transitive clause
-(section 5.3: added by hand).
+The theory written includes the hand-written parts it shares with ``prolog/too.pl`` rather than
+copying them (``:- include(File).``, relative to the theory written): ``too_base.pl`` (the
+vocabulary and the filter's frame), ``too_knowledge.pl`` (parameters and affordances) and, after
+the learned rules, ``too_motion.pl`` (the transitive clause of section 5.3, the carriers' rules,
+the motion of hidden objects). In place of ``too.pl``'s own occlusion rules it has the learned
+clauses and the glue clauses that use them as the paper's theory does (section 2.3): a hidden
+object's candidate occluders are the perceived objects O for which a particle draws
+``occluder(A, O):t+1 ~= true``; it picks one uniformly (or ``behind``, when it has just vanished,
+as in ``too.pl``); an occlusion goes on while the particle draws ``occluder(A, O):t+1 ~= true``
+and O is perceived.
 """
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -27,17 +28,19 @@ from pathlib import Path
 
 import numpy as np
 
-from probanchor.app.reasoning import DEFAULT_THEORY
+from bridge.resources import prolog_dir
 from probanchor.ddclearn import LearnResult, SearchOptions, learn
 from probanchor.ddclearn.files import write_atomically
 from probanchor.ddclearn.learner import Form
 
-__all__ = ["DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError", "along_distance",
+__all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError", "along_distance",
            "coefficient_table",
            "learn_theory", "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
 
-BEGIN = "% -- begin hand-written occlusion rules"
-END = "% -- end hand-written occlusion rules"
+#: The hand-written parts a learned theory includes before its learned rules (the vocabulary and
+#: the frame; the parameters and affordances) and after them (carriers, motion of hidden objects).
+BEFORE = ("too_base.pl", "too_knowledge.pl")
+AFTER = ("too_motion.pl",)
 
 #: The paper's learned clause, P1 = sigmoid(0.8 - 16.9 d) (section 4).
 PAPER = (-16.9, 0.8)
@@ -74,7 +77,7 @@ occluded_by(A, O):t+1 :=
 
 
 class TheoryError(ValueError):
-    """A theory that cannot be written: the base has no rules to replace, or the result does
+    """A theory that cannot be written: a hand-written part to include is missing, or the result does
     not load (the message names the file, line and cause)."""
 
 
@@ -93,26 +96,33 @@ class LearnedTheory:
         return logistic_leaves(self.result)
 
 
-def theory_text(base: str, learned_program: str, header: str) -> str:
-    """The base theory with its hand-written occlusion rules replaced by the learned ones.
+def theory_text(learned_program: str, header: str, *, base: str | Path,
+                out: str | Path) -> str:
+    """The theory: ``header``, the hand-written parts of ``base`` (a folder) included, the glue
+    clauses and the learned program (the learner's output: background knowledge and clauses).
 
-    ``learned_program`` is the learner's output (background knowledge and clauses); it goes,
-    after the glue clauses, where the last hand-written part was.
+    The includes name the parts relative to the folder of ``out``, the file the theory is
+    written to (the DC reader resolves an include relative to the including file).
+
+    Raises
+    ------
+    TheoryError
+        ``base`` lacks one of the hand-written parts.
     """
-    pattern = re.compile(rf"^{re.escape(BEGIN)}.*?^{re.escape(END)}[^\n]*\n", re.S | re.M)
-    parts = list(pattern.finditer(base))
-    if not parts:
-        raise TheoryError(f"the base theory has no '{BEGIN}' ... '{END}' part to replace")
+    folder = Path(base)
+    missing = [name for name in (*BEFORE, *AFTER) if not (folder / name).is_file()]
+    if missing:
+        raise TheoryError(f"{folder}: no hand-written part {', '.join(missing)} to include")
+    here = Path(out).resolve().parent
+
+    def include(name: str) -> str:
+        rel = os.path.relpath((folder / name).resolve(), here)
+        quoted = rel.replace("\\", "\\\\").replace("'", "\\'")
+        return f":- include('{quoted}').\n"
+
     body = _program_body(learned_program)
-    out: list[str] = []
-    last = 0
-    for i, m in enumerate(parts):
-        out.append(base[last:m.start()])
-        if i == len(parts) - 1:
-            out.append(GLUE + "\n" + body.rstrip() + "\n")
-        last = m.end()
-    out.append(base[last:])
-    return header + "".join(out)
+    return (header + "".join(include(n) for n in BEFORE) + "\n" + GLUE + "\n" + body.rstrip()
+            + "\n\n" + "".join(include(n) for n in AFTER))
 
 
 def _program_body(program: str) -> str:
@@ -128,7 +138,7 @@ def _program_body(program: str) -> str:
 
 
 def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
-                 options: SearchOptions | None = None, base: str | Path = DEFAULT_THEORY,
+                 options: SearchOptions | None = None, base: str | Path | None = None,
                  command: str | None = None, progress: bool = False,
                  form: Form = "tree") -> LearnedTheory:
     """Learn the occlusion rules from ``data`` and write the complete theory to ``out``.
@@ -143,36 +153,37 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     Raises
     ------
     TheoryError
-        The base theory has nothing to replace, or the theory written does not load.
+        A hand-written part is missing from ``base`` (default ``prolog/``), or the theory
+        written does not load.
     bridge.DDCError
         The data has an error (its message names the file and line).
     """
     import bridge
 
     out = Path(out)
-    base_path = Path(base)
+    folder = Path(base) if base is not None else prolog_dir()
     result = learn(data, ["occluder:t+1"], seed=seed, options=options, progress=progress)
     target = result.targets[0]
     names = ", ".join(Path(d).name for d in data)
+    parts = ", ".join((*BEFORE, *AFTER))
     header = [
         f"/*  {out.name} -- the theory of occlusion with rules learned from experience.",
         "",
-        "    Written by `anchoring learn-theory`: the hand-written occlusion rules of",
-        f"    {base_path.name} are replaced by a tree learned (ddc learn) from {names}:",
-        f"    {target.groundings} groundings of occluder(A, O):t+1, {target.clauses} clauses,",
-        f"    training log-likelihood {target.log_likelihood:.6g}; search seed {seed}.",
+        "    Written by `anchoring learn-theory`: a tree learned (ddc learn) from",
+        f"    {names}: {target.groundings} groundings of occluder(A, O):t+1,",
+        f"    {target.clauses} clauses, training log-likelihood {target.log_likelihood:.6g};",
+        f"    search seed {seed}.",
     ]
     if command:
         header.append(f"    Command: {command}")
     header += [
-        f"    Everything else is {base_path.name}'s (motion, observations, blind frames, the",
-        "    transitive clause). Regenerate it rather than edit it; edit",
-        f"    {base_path.name} for the rest.",
+        f"    The hand-written parts are included from {folder.name}/ ({parts}):",
+        "    regenerate this file rather than edit it; edit those for the rest.",
         "*/",
         "",
     ]
-    text = theory_text(base_path.read_text(encoding="utf-8"), result.program_text(form),
-                       "\n".join(header) + "\n")
+    text = theory_text(result.program_text(form), "\n".join(header) + "\n", base=folder,
+                       out=out)
 
     def loads(tmp: Path) -> None:
         try:
