@@ -33,8 +33,8 @@ from probanchor.ddclearn import LearnResult, SearchOptions, learn
 from probanchor.ddclearn.files import write_atomically
 from probanchor.ddclearn.learner import Form
 
-__all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError", "along_distance",
-           "coefficient_table",
+__all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError",
+           "along_distance", "coefficient_table",
            "learn_theory", "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
 
 #: The hand-written parts a learned theory includes before its learned rules (the vocabulary and
@@ -77,8 +77,8 @@ occluded_by(A, O):t+1 :=
 
 
 class TheoryError(ValueError):
-    """A theory that cannot be written: a hand-written part to include is missing, or the result does
-    not load (the message names the file, line and cause)."""
+    """A theory that cannot be written: a hand-written part to include is missing, or the result
+    does not load (the message names the file, line and cause)."""
 
 
 @dataclass
