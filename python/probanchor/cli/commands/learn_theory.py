@@ -8,8 +8,8 @@ on?) as one distributional logic tree for ``occluder(A, O):t+1`` (``ddc learn``)
 complete theory: the learned rules, with the hand-written parts it shares with prolog/too.pl
 included (too_base.pl: the vocabulary and the filter's frame; too_knowledge.pl; too_motion.pl).
 ``--out`` is replaced only once the new theory loads. ``--plots DIR`` draws the tree and
-P(occluder | distance) beside the paper's and the original system's, and writes the table of the learned
-coefficients beside theirs.
+P(occluder | distance) beside the paper's and the original system's, and writes the table of the
+learned coefficients beside theirs.
 """
 
 from __future__ import annotations
