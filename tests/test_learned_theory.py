@@ -23,11 +23,13 @@ from probanchor.app.learned_theory import (
     theory_text,
 )
 from probanchor.app.occlusion_data import LabelOptions
+from probanchor.app.occlusion_reach import OnsetReach, onset_reach
 from probanchor.app.reasoning import DEFAULT_THEORY
 from probanchor.app.theories import THEORIES, theory_path
 
 ROOT = Path(__file__).resolve().parents[1]
 PROLOG = DEFAULT_THEORY.parent
+REACH = OnsetReach(0.15, 0.12, 1)
 
 LEARNED = """% learned (a header of the learner's)
 
@@ -40,7 +42,7 @@ occluder(A, O):t+1 ~ finite([0.2:true, 0.8:false]) :=
 
 def test_the_theory_includes_the_hand_written_parts(tmp_path: Path) -> None:
     out = tmp_path / "sub" / "too_learned.pl"
-    text = theory_text(LEARNED, "% header\n", base=PROLOG, out=out)
+    text = theory_text(LEARNED, "% header\n", base=PROLOG, out=out, reach=REACH)
     hand = DEFAULT_THEORY.read_text()
     for name in (*BEFORE, *AFTER):
         assert f":- include({name.removesuffix('.pl')})." in hand          # too.pl's parts
@@ -62,12 +64,12 @@ def test_a_base_without_the_hand_written_parts_is_an_error(tmp_path: Path) -> No
     with pytest.raises(TheoryError, match="too_motion.pl"):
         (tmp_path / "too_base.pl").write_text("x ~ val(1).\n")
         (tmp_path / "too_knowledge.pl").write_text("y ~ val(1).\n")
-        theory_text(LEARNED, "", base=tmp_path, out=tmp_path / "t.pl")
+        theory_text(LEARNED, "", base=tmp_path, out=tmp_path / "t.pl", reach=REACH)
 
 
 def test_the_assembled_theory_loads_and_filters(tmp_path: Path) -> None:
     path = tmp_path / "too_learned.pl"
-    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path))
+    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)", "object(ball_2)", "category(ball_2, ball)"]
@@ -189,3 +191,51 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
         assert line.split(" | ")[2:4] == [f"{slope:.1f}", f"{bias:.2f}"]
     bad = anchoring("collect", "--out", tmp_path / "x.pl")
     assert bad.returncode == 1 and "nothing to collect" in bad.stderr
+
+
+def test_the_onset_reach_is_fitted_from_the_onsets(tmp_path: Path) -> None:
+    """The farthest onset (labelled covered, not known covered at t, not lost, the ideal
+    particle's state) times the margin; continuations, lost objects, a lost particle's copy
+    (``_c``) and unlabelled pairs do not count."""
+    data = tmp_path / "data.pl"
+    data.write_text("\n".join([
+        "pos(a):t ~= (0.0000, 0.0000, 0.0300).", "pos(o):t+1 ~= (0.0600, 0.0800, 0.0500).",
+        "pair(a, o):t+1.", "occluder(a, o):t+1.",                        # onset at 0.10 m
+        "pos(b):t ~= (0.0000, 0.0000, 0.0300).", "pos(p):t+1 ~= (0.0300, 0.0400, 0.0500).",
+        "pair(b, p):t+1.", "0.7 :: occluder(b, p):t+1.",                 # onset at 0.05 m
+        "pos(c):t ~= (0.0000, 0.0000, 0.0300).", "pos(q):t+1 ~= (0.9000, 0.0000, 0.0500).",
+        "occluded_by(c, q):t.", "pair(c, q):t+1.", "occluder(c, q):t+1.",  # goes on: not one
+        "pos(d):t ~= (0.0000, 0.0000, 0.0300).", "lost_anywhere(d):t.",
+        "pair(d, q):t+1.", "occluder(d, q):t+1.",                        # lost: not one
+        "pos(a_c):t ~= (0.5000, 0.0000, 0.0300).",
+        "pair(a_c, o):t+1.", "occluder(a_c, o):t+1.",                    # a lost copy
+        "pos(e):t ~= (0.0000, 0.0000, 0.0300).",
+        "pair(e, q):t+1.", "0.2 :: occluder(e, q):t+1.",                 # unlikely: not one
+    ]) + "\n")
+    fitted = onset_reach([data])
+    assert fitted.onsets == 2
+    assert fitted.farthest == pytest.approx(0.1)
+    assert fitted.reach == pytest.approx(0.125)
+    empty = tmp_path / "empty.pl"
+    empty.write_text("pair(a, o):t+1.\n")
+    with pytest.raises(ValueError, match="no occlusion onset"):
+        onset_reach([empty])
+
+
+def test_pairs_beyond_the_reach_draw_nothing(tmp_path: Path) -> None:
+    """A mug beyond the onset reach of where a ball vanished is no candidate in any particle;
+    within it, it is one in about 0.2 x 1/2 of them."""
+    path = tmp_path / "too_learned.pl"
+    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path,
+                                reach=OnsetReach(0.1, 0.08, 1)))
+    f = bridge.Filter(path, particles=200, seed=1, threads=1)
+    actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
+               "category(mug_1, mug)", "object(mug_2)", "category(mug_2, mug)"]
+    mugs = ["observed(mug_1)", "observation(pos(mug_1)) ~= (0.05, 0.0, 0.05)",
+            "observed(mug_2)", "observation(pos(mug_2)) ~= (0.0, 0.2, 0.05)"]
+    f.step(["observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)", *mugs],
+           actions=actions)
+    f.step(mugs, actions=actions)
+    assert 0.1 * 0.5 < f.probability("occluded_by(ball_1, mug_1):t") < 0.2
+    assert f.probability("occluded_by(ball_1, mug_2):t") == 0.0
+    f.close()

@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from bridge.resources import prolog_dir
+from probanchor.app.occlusion_reach import MARGIN, OnsetReach, onset_reach
 from probanchor.ddclearn import LearnResult, SearchOptions, learn
 from probanchor.ddclearn.files import write_atomically
 from probanchor.ddclearn.learner import Form
@@ -55,12 +56,24 @@ GLUE = """\
 % experiments keep that knowledge too; the tree gives a ball as occluder a probability of
 % about 1e-4 per frame, and one particle of a hidden ball under the other, identical ball is
 % enough for the matching, which takes the best particle, to swap them);
+% of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
+% while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 (fitted
+% from the data: the farthest onset there, with a margin) of where A was; beyond it the learned
+% tree gives an onset a negligible probability, and a draw for every pair in every particle
+% would cost more than the rest of the theory.
 % O is a candidate occluder of the hidden A when the particle
 % draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
 % when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
 % occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
 pair(A, O):t+1 :=
-    hidden(A):t+1, observed(O), O \\== A, can_be_occluded(A), can_occlude(O).
+    hidden(A):t+1, observed(O), O \\== A, can_be_occluded(A), can_occlude(O),
+    (   occluded_by(A, O):t
+    ->  true
+    ;   lost_anywhere(A):t
+    ->  true
+    ;   pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (X, Y, _), onset_reach(R),
+        (X-XO)**2 + (Y-YO)**2 < R*R
+    ).
 occluder_candidate(A, O):t+1 :=
     pair(A, O):t+1, \\+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
 pick_occluder(A):t+1 ~ uniform(Os) :=
@@ -97,9 +110,10 @@ class LearnedTheory:
 
 
 def theory_text(learned_program: str, header: str, *, base: str | Path,
-                out: str | Path) -> str:
+                out: str | Path, reach: OnsetReach) -> str:
     """The theory: ``header``, the hand-written parts of ``base`` (a folder) included, the glue
-    clauses and the learned program (the learner's output: background knowledge and clauses).
+    clauses, the onset reach fitted from the data and the learned program (the learner's
+    output: background knowledge and clauses).
 
     The includes name the parts relative to the folder of ``out``, the file the theory is
     written to (the DC reader resolves an include relative to the including file).
@@ -121,7 +135,11 @@ def theory_text(learned_program: str, header: str, *, base: str | Path,
         return f":- include('{quoted}').\n"
 
     body = _program_body(learned_program)
-    return (header + "".join(include(n) for n in BEFORE) + "\n" + GLUE + "\n" + body.rstrip()
+    fitted = (f"% The onset reach (m): the farthest of {reach.onsets} onsets in the data, "
+              f"{reach.farthest:.4g} m, times {MARGIN}.\n"
+              f"onset_reach({reach.reach:.4g}).\n")
+    return (header + "".join(include(n) for n in BEFORE) + "\n" + GLUE + fitted + "\n"
+            + body.rstrip()
             + "\n\n" + "".join(include(n) for n in AFTER))
 
 
@@ -182,8 +200,12 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
         "*/",
         "",
     ]
+    try:
+        reach = onset_reach(data)
+    except ValueError as error:
+        raise TheoryError(str(error)) from None
     text = theory_text(result.program_text(form), "\n".join(header) + "\n", base=folder,
-                       out=out)
+                       out=out, reach=reach)
 
     def loads(tmp: Path) -> None:
         try:
