@@ -85,7 +85,14 @@ pick_occluder(A):t+1 ~ uniform(Os) :=
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \\== [].
 occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \\== behind.
 occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+    occluded_by(A, O):t, seen(O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+% An occluder out of view at t (the camera saw nothing, or it was hidden itself) that is
+% perceived again still hides what it hid (as the transitive clause kept it while unseen): the
+% data have no occluder moved while out of view, so the tree's distance from where A was would
+% end the occlusion wherever the occluder was taken unseen (two look-alike containers swapped
+% while the camera was covered); from the next frame on, the tree decides again.
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, hidden(A):t+1, observed(O), \\+ seen(O):t.
 """
 
 
