@@ -239,3 +239,40 @@ def test_pairs_beyond_the_reach_draw_nothing(tmp_path: Path) -> None:
     assert 0.1 * 0.5 < f.probability("occluded_by(ball_1, mug_1):t") < 0.2
     assert f.probability("occluded_by(ball_1, mug_2):t") == 0.0
     f.close()
+
+
+ENDS_AT_ONCE = """% learned (a header of the learner's)
+
+occluder(A, O):t+1 ~ finite([0.0:true, 1.0:false]) :=
+    pair(A, O):t+1, occluded_by(A, O):t.
+occluder(A, O):t+1 ~ finite([1.0:true, 0.0:false]) :=
+    pair(A, O):t+1, \\+ occluded_by(A, O):t.
+"""
+
+
+def test_an_occluder_back_in_view_still_hides_what_it_hid(tmp_path: Path) -> None:
+    """A tree that ends every occlusion: a ball under a mug through a blind frame is still under
+    it in the frame the mug reappears (far away), and the tree decides from the next frame.
+    (An object behind nothing while the camera saw nothing is lost anywhere: any occluder may
+    take it.)"""
+    path = tmp_path / "too_learned.pl"
+    path.write_text(theory_text(ENDS_AT_ONCE, "", base=PROLOG, out=path, reach=REACH))
+    f = bridge.Filter(path, particles=200, seed=1, threads=1)
+    actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
+               "category(mug_1, mug)"]
+    mug = ["observed(mug_1)", "observation(pos(mug_1)) ~= (0.05, 0.0, 0.05)"]
+    far = ["observed(mug_1)", "observation(pos(mug_1)) ~= (0.4, 0.3, 0.05)"]
+    f.step(["observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)", *mug],
+           actions=actions)
+    f.step(mug, actions=actions)                   # vanished: under the mug or behind
+    under = f.probability("occluded_by(ball_1, mug_1):t")
+    assert 0.3 < under < 0.7
+    f.step([], actions=actions)                    # blind: the transitive clause keeps it
+    assert f.probability("occluded_by(ball_1, mug_1):t") == pytest.approx(under, abs=0.15)
+    # back in view, far away: the particles that had it under the mug still do (the tree would
+    # end it), those that had it behind, lost while blind, take the mug as any occluder
+    f.step(far, actions=actions)
+    assert f.probability("occluded_by(ball_1, mug_1):t") == pytest.approx(1.0)
+    f.step(far, actions=actions)                   # the tree decides again: it ends
+    assert f.probability("occluded_by(ball_1, mug_1):t") == 0.0
+    f.close()
