@@ -1,12 +1,12 @@
 /*  too_learned_hindsight.pl -- the theory of occlusion with rules learned from experience.
 
-    Written by `anchoring learn-theory`: the hand-written occlusion rules of
-    too.pl are replaced by a tree learned (ddc learn) from data_hindsight.pl:
-    28680 groundings of occluder(A, O):t+1, 38 clauses,
-    training log-likelihood -9712.18; search seed 0.
+    Written by `anchoring learn-theory`: a tree learned (ddc learn) from
+    data_hindsight.pl: 26103 groundings of occluder(A, O):t+1,
+    28 clauses, training log-likelihood -9359.52;
+    search seed 0.
     Command: anchoring learn-theory out/learn/data_hindsight.pl --seed 0 --out prolog/too_learned_hindsight.pl --plots docs/images
-    The hand-written parts are included from prolog/ (too_base.pl, too_knowledge.pl,
-    too_motion.pl): regenerate this file rather than edit it; edit those for the rest.
+    The hand-written parts are included from prolog/ (too_base.pl, too_knowledge.pl, too_motion.pl):
+    regenerate this file rather than edit it; edit those for the rest.
 */
 
 :- include('too_base.pl').
@@ -19,12 +19,24 @@
 % experiments keep that knowledge too; the tree gives a ball as occluder a probability of
 % about 1e-4 per frame, and one particle of a hidden ball under the other, identical ball is
 % enough for the matching, which takes the best particle, to swap them);
+% of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
+% while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 (fitted
+% from the data: twice the distance within which 90 % of the onsets were) of where A was; beyond it the learned
+% tree gives an onset a negligible probability, and a draw for every pair in every particle
+% would cost more than the rest of the theory.
 % O is a candidate occluder of the hidden A when the particle
 % draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
 % when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
 % occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
 pair(A, O):t+1 :=
-    hidden(A):t+1, observed(O), O \== A, can_be_occluded(A), can_occlude(O).
+    hidden(A):t+1, observed(O), O \== A, can_be_occluded(A), can_occlude(O),
+    (   occluded_by(A, O):t
+    ->  true
+    ;   lost_anywhere(A):t
+    ->  true
+    ;   pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (X, Y, _), onset_reach(R),
+        (X-XO)**2 + (Y-YO)**2 < R*R
+    ).
 occluder_candidate(A, O):t+1 :=
     pair(A, O):t+1, \+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
 pick_occluder(A):t+1 ~ uniform(Os) :=
@@ -36,10 +48,40 @@ pick_occluder(A):t+1 ~ uniform(Os) :=
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
 occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
 occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+    occluded_by(A, O):t, seen(O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+% An occluder out of view at t (the camera saw nothing, or it was hidden itself) that is
+% perceived again still hides what it hid (as the transitive clause kept it while unseen): the
+% data have no occluder moved while out of view, so the tree's distance from where A was would
+% end the occlusion wherever the occluder was taken unseen (two look-alike containers swapped
+% while the camera was covered); from the next frame on, the tree decides again.
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, hidden(A):t+1, observed(O), \+ seen(O):t.
+% The onset reach (m): 90% of the 66 onsets in the data were within 0.09137 m; times 2.0.
+onset_reach(0.1827).
 
 % The learned rules (ddc learn): a distributional logic tree for occluder/2 (each path from its
 % root to a leaf is one clause of the tree), with the background knowledge it reads.
+learned_from(own, ['data_hindsight.pl'],
+    [occluder(_, _):t+1],
+    [ type(occluder(obj, obj):t+1),
+      type(pair(obj, obj):t+1),
+      type(occluded_by(obj, obj):t),
+      type(seen(obj):t),
+      type(lost_anywhere(obj):t),
+      type(distance(obj, obj):t+1),
+      type(distance3(obj, obj):t+1),
+      type(rise(obj, obj):t+1),
+      type(lift(obj):t+1),
+      type(kind(obj):t+1),
+      rv(occluder(_, _):t+1, boolean),
+      rv(distance(_, _):t+1, continuous),
+      rv(distance3(_, _):t+1, continuous),
+      rv(rise(_, _):t+1, continuous),
+      rv(lift(_):t+1, continuous),
+      rv(kind(_):t+1, discrete([ball, box, can, cup, mug, skin])),
+      examples(occluder(A, B):t+1, pair(A, B):t+1)]).
+
+% Background knowledge from the data that the learned clauses call.
 distance(A, O):t+1 ~ val(D) :=
     pos(A):t ~= (X, Y, _),
     pos(O):t+1 ~= (XO, YO, _),
@@ -48,190 +90,136 @@ rise(A, O):t+1 ~ val(H) :=
     pos(A):t ~= (_, _, Z),
     pos(O):t+1 ~= (_, _, ZO),
     H is ZO-Z.
-lift(O):t+1 ~ val(H) :=
-    pos(O):t ~= (_, _, Z0),
-    pos(O):t+1 ~= (_, _, Z1),
-    H is Z1-Z0.
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 38 clauses, 28680 groundings, training log-likelihood -9712.18 (mean -0.128922 per grounding), 67 parameters.
+% occluder(Occluded, Occluder):t+1: 28 clauses, 26103 groundings, training log-likelihood -9359.52 (mean -0.136853 per grounding), 45 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   occluded_by(Occluded, Occluder):t
-        ->  % n = 2403 (weight 8081.35), log-likelihood -28.4281, logistic
-            logistic([Distance], [-74.076, 7.93402], P1),
-            P2 is 1-P1
+        ->  % n = 2246 (weight 7634), log-likelihood -0.999804, finite
+            P1 = 0.999869041,
+            P2 = 0.000130959
         ;   (   kind(Occluded):t+1 ~= ball
             ->  (   kind(Occluder):t+1 ~= ball
                 ->  (   rise(Occluded, Occluder):t+1 ~= Rise
                     ->  (   Rise < 0.0
-                        ->  % n = 593 (weight 2117), log-likelihood -0.999292, finite
-                            P1 = 0.000471921,
-                            P2 = 0.999528079
+                        ->  % n = 539 (weight 1899), log-likelihood -0.999211, finite
+                            P1 = 0.000526039,
+                            P2 = 0.999473961
                         ;   Rise < 0.1
-                        ->  % n = 450 (weight 1478), log-likelihood -3.92495, logistic
-                            logistic([Distance], [-46.2047, 2.3389], P1),
+                        ->  % n = 427 (weight 1435), log-likelihood -3.78558, logistic
+                            logistic([Distance], [-46.3561, 2.40104], P1),
                             P2 is 1-P1
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-36.1381, 0.00167557], P1),
+                            logistic([Distance], [-36.4706, 0.0885668], P1),
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-36.1381, 0.00167557], P1),
+                        logistic([Distance], [-36.4706, 0.0885668], P1),
                         P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= box
                 ->  (   lost_anywhere(Occluded):t
                     ->  (   seen(Occluder):t
-                        ->  % n = 211 (weight 807), log-likelihood -0.998145, finite
-                            P1 = 0.00123609,
-                            P2 = 0.99876391
-                        ;   % n = 15 (weight 31), log-likelihood -4.59763, logistic
-                            logistic([Distance], [-15.1434, 0.709852], P1),
+                        ->  % n = 243 (weight 967), log-likelihood -0.998451, finite
+                            P1 = 0.00103199,
+                            P2 = 0.99896801
+                        ;   % n = 14 (weight 30), log-likelihood -4.5939, logistic
+                            logistic([Distance], [-14.7634, 0.71021], P1),
                             P2 is 1-P1
                         )
-                    ;   % n = 4864 (weight 13240), log-likelihood -1744.81, logistic
-                        logistic([Distance], [-23.6978, 1.44386], P1),
+                    ;   % n = 4844 (weight 13200), log-likelihood -1743.04, logistic
+                        logistic([Distance], [-23.508, 1.43466], P1),
                         P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= can
-                ->  % n = 1194 (weight 4878), log-likelihood -2.80907, logistic
-                    logistic([Distance], [-58.3218, 2.23954], P1),
-                    P2 is 1-P1
+                ->  % n = 1129 (weight 4613), log-likelihood -0.999675, finite
+                    P1 = 0.000216685,
+                    P2 = 0.999783315
                 ;   kind(Occluder):t+1 ~= cup
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise4
-                    ->  (   Rise4 < 0.0
-                        ->  % n = 174 (weight 534), log-likelihood -29.3428, logistic
-                            logistic([Distance], [-55.8819, -1.47057], P1),
-                            P2 is 1-P1
-                        ;   Rise4 < 0.1
-                        ->  % n = 4662 (weight 10898), log-likelihood -3823.28, logistic
-                            logistic([Distance], [-11.9924, 0.962263], P1),
-                            P2 is 1-P1
-                        ;   (   lift(Occluder):t+1 ~= Lift
-                            ->  % n = 221 (weight 253), log-likelihood -36.9343, logistic
-                                logistic([Distance, Lift], [-19.8593, 76.6907, 1.67714], P1),
-                                P2 is 1-P1
-                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Distance], [-17.3878, 1.61301], P1),
-                                P2 is 1-P1
-                            )
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-11.4484, 0.742624], P1),
-                        P2 is 1-P1
-                    )
+                ->  % n = 5007 (weight 11755), log-likelihood -3987.04, logistic
+                    logistic([Distance], [-12.2546, 0.918993], P1),
+                    P2 is 1-P1
                 ;   kind(Occluder):t+1 ~= mug
                 ->  (   lost_anywhere(Occluded):t
                     ->  (   seen(Occluder):t
-                        ->  % n = 227 (weight 863), log-likelihood -0.998265, finite
-                            P1 = 0.00115607,
-                            P2 = 0.99884393
-                        ;   % n = 15 (weight 23), log-likelihood -8.73935, logistic
-                            logistic([Distance], [-13.9312, 1.58054], P1),
+                        ->  % n = 191 (weight 687), log-likelihood -0.997822, finite
+                            P1 = 0.00145138,
+                            P2 = 0.99854862
+                        ;   % n = 14 (weight 22), log-likelihood -6.71177, logistic
+                            logistic([Distance], [-18.0297, 2.53124], P1),
                             P2 is 1-P1
                         )
-                    ;   (   rise(Occluded, Occluder):t+1 ~= Rise8
-                        ->  (   Rise8 < 0.0
-                            ->  % n = 45 (weight 105), log-likelihood -0.985923, finite
-                                P1 = 0.00934579,
-                                P2 = 0.99065421
-                            ;   Rise8 < 0.1
-                            ->  % n = 4631 (weight 10731), log-likelihood -2893.53, logistic
-                                logistic([Distance], [-18.5087, 1.68891], P1),
-                                P2 is 1-P1
-                            ;   % n = 201 (weight 233), log-likelihood -55.7819, logistic
-                                logistic([Distance], [-15.2393, 0.394428], P1),
-                                P2 is 1-P1
-                            )
-                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-18.3173, 1.61318], P1),
-                            P2 is 1-P1
-                        )
+                    ;   % n = 4815 (weight 10887), log-likelihood -2977.3, logistic
+                        logistic([Distance], [-18.4878, 1.64759], P1),
+                        P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= skin
-                ->  % n = 1020 (weight 1392), log-likelihood -228.842, logistic
-                    logistic([Distance], [-11.455, -0.81872], P1),
+                ->  % n = 1064 (weight 1380), log-likelihood -315.543, logistic
+                    logistic([Distance], [-11.0131, -0.335431], P1),
                     P2 is 1-P1
                 ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-17.0031, 0.977971], P1),
+                    logistic([Distance], [-17.1858, 1.0578], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= box
-            ->  (   seen(Occluded):t
-                ->  % n = 301 (weight 300), log-likelihood -10.0772, logistic
-                    logistic([Distance], [-39.5877, 2.64281], P1),
-                    P2 is 1-P1
-                ;   % n = 808 (weight 2491.4), log-likelihood -68.8348, logistic
-                    logistic([Distance], [-35.3112, -0.681842], P1),
-                    P2 is 1-P1
-                )
+            ->  % n = 1035 (weight 2631), log-likelihood -30.014, logistic
+                logistic([Distance], [-34.2758, -1.5906], P1),
+                P2 is 1-P1
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 1538 (weight 3942), log-likelihood -66.789, logistic
-                logistic([Distance], [-84.8809, 5.48788], P1),
+            ->  % n = 1460 (weight 3756), log-likelihood -66.593, logistic
+                logistic([Distance], [-83.8892, 5.43526], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= cup
-            ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
-                ->  (   Rise12 < 0.0
-                    ->  % n = 291 (weight 567), log-likelihood -18.654, logistic
-                        logistic([Distance], [-40.4883, 1.27194], P1),
-                        P2 is 1-P1
-                    ;   Rise12 < 0.1
-                    ->  % n = 811 (weight 1874.26), log-likelihood -156.723, logistic
-                        logistic([Distance], [-27.3944, -0.635822], P1),
-                        P2 is 1-P1
-                    ;   % n = 186 (weight 262), log-likelihood -10.2214, logistic
-                        logistic([Distance], [-106.531, 5.89834], P1),
-                        P2 is 1-P1
-                    )
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-35.7469, 0.185191], P1),
-                    P2 is 1-P1
-                )
+            ->  % n = 877 (weight 1913), log-likelihood -64.7934, logistic
+                logistic([Distance], [-19.1048, -2.17832], P1),
+                P2 is 1-P1
             ;   kind(Occluded):t+1 ~= mug
-            ->  (   rise(Occluded, Occluder):t+1 ~= Rise16
-                ->  (   Rise16 < 0.0
-                    ->  (   lost_anywhere(Occluded):t
-                        ->  % n = 187 (weight 715), log-likelihood -0.997907, finite
-                            P1 = 0.0013947,
-                            P2 = 0.9986053
-                        ;   % n = 769 (weight 2122.63), log-likelihood -127.484, logistic
-                            logistic([Distance], [-22.0013, -1.56282], P1),
-                            P2 is 1-P1
-                        )
-                    ;   Rise16 < 0.1
-                    ->  (   lost_anywhere(Occluded):t
-                        ->  % n = 41 (weight 141), log-likelihood -0.989478, finite
-                            P1 = 0.00699301,
-                            P2 = 0.99300699
-                        ;   % n = 1325 (weight 3169), log-likelihood -245.191, logistic
-                            logistic([Distance], [-53.3228, 2.26704], P1),
-                            P2 is 1-P1
-                        )
-                    ;   % n = 390 (weight 510.365), log-likelihood -103.27, logistic
-                        logistic([Distance], [-14.8417, 0.149202], P1),
-                        P2 is 1-P1
-                    )
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-36.6755, 0.536202], P1),
+            ->  (   kind(Occluder):t+1 ~= ball
+                ->  % n = 226 (weight 722), log-likelihood -0.997927, finite
+                    P1 = 0.00138122,
+                    P2 = 0.99861878
+                ;   kind(Occluder):t+1 ~= box
+                ->  % n = 774 (weight 1598), log-likelihood -22.551, logistic
+                    logistic([Distance], [-109.289, 4.74875], P1),
+                    P2 is 1-P1
+                ;   kind(Occluder):t+1 ~= can
+                ->  % n = 51 (weight 119), log-likelihood -0.987558, finite
+                    P1 = 0.00826446,
+                    P2 = 0.99173554
+                ;   kind(Occluder):t+1 ~= cup
+                ->  % n = 245 (weight 697), log-likelihood -51.9538, logistic
+                    logistic([Distance], [-27.8168, 0.923398], P1),
+                    P2 is 1-P1
+                ;   kind(Occluder):t+1 ~= mug
+                ->  % n = 384 (weight 1008), log-likelihood -7.91792, logistic
+                    logistic([Distance], [-61.8614, 3.53325], P1),
+                    P2 is 1-P1
+                ;   kind(Occluder):t+1 ~= skin
+                ->  % n = 206 (weight 246), log-likelihood -69.7027, logistic
+                    logistic([Distance], [-16.565, 1.69037], P1),
+                    P2 is 1-P1
+                ;   \+ kind(Occluder):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-48.0383, 2.84919], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 1135 (weight 3575), log-likelihood -37.9459, finite
-                P1 = 0.00167738,
-                P2 = 0.99832262
+            ->  % n = 312 (weight 1192), log-likelihood -0.998743, finite
+                P1 = 0.000837521,
+                P2 = 0.999162479
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-18.2921, 0.763818], P1),
+                logistic([Distance], [-18.6373, 1.01157], P1),
                 P2 is 1-P1
             )
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.205644,
-        P2 = 0.794356
+        P1 = 0.217318,
+        P2 = 0.782682
     ).
 
 :- include('too_motion.pl').

@@ -19,6 +19,7 @@ from probanchor.app.learned_theory import (
     TheoryError,
     along_distance,
     learn_theory,
+    never_occluders,
     probability_at,
     theory_text,
 )
@@ -194,9 +195,10 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
 
 
 def test_the_onset_reach_is_fitted_from_the_onsets(tmp_path: Path) -> None:
-    """The farthest onset (labelled covered, not known covered at t, not lost, the ideal
-    particle's state) times the margin; continuations, lost objects, a lost particle's copy
-    (``_c``) and unlabelled pairs do not count."""
+    """The distance within which the quantile of the onsets (labelled covered, not known
+    covered at t, not lost, the ideal particle's state) lie, times the margin; continuations,
+    lost objects, a lost particle's copy (``_c``), unlabelled pairs and excluded occluders'
+    kinds do not count."""
     data = tmp_path / "data.pl"
     data.write_text("\n".join([
         "pos(a):t ~= (0.0000, 0.0000, 0.0300).", "pos(o):t+1 ~= (0.0600, 0.0800, 0.0500).",
@@ -211,11 +213,16 @@ def test_the_onset_reach_is_fitted_from_the_onsets(tmp_path: Path) -> None:
         "pair(a_c, o):t+1.", "occluder(a_c, o):t+1.",                    # a lost copy
         "pos(e):t ~= (0.0000, 0.0000, 0.0300).",
         "pair(e, q):t+1.", "0.2 :: occluder(e, q):t+1.",                 # unlikely: not one
+        "pos(h):t+1 ~= (0.9000, 0.0000, 0.0900).", "category(h, skin).",
+        "pair(b, h):t+1.", "occluder(b, h):t+1.",                        # a carrier: excluded
     ]) + "\n")
-    fitted = onset_reach([data])
+    fitted = onset_reach([data], exclude=["skin"], quantile=0.95, margin=1.25)
     assert fitted.onsets == 2
-    assert fitted.farthest == pytest.approx(0.1)
+    assert fitted.quantile == pytest.approx(0.1)
     assert fitted.reach == pytest.approx(0.125)
+    assert onset_reach([data], exclude=["skin"], quantile=0.5).quantile == pytest.approx(0.05)
+    assert onset_reach([data]).onsets == 3
+    assert never_occluders(PROLOG) == ["ball", "can", "skin", "hand"]
     empty = tmp_path / "empty.pl"
     empty.write_text("pair(a, o):t+1.\n")
     with pytest.raises(ValueError, match="no occlusion onset"):

@@ -7,63 +7,75 @@ was (the table-plane distance from A's last belief to O's new position). Beyond 
 learned tree gives an onset a negligible probability, and drawing it in every particle for
 every (hidden, perceived) pair is what makes a learned theory slower than the hand-written one.
 
-The reach is not set by hand: it is the largest such distance over the data's onsets (pairs
-labelled covered at t+1, not known covered at t, A not lost anywhere), in the states an ideal
-particle holds (not the ``_c`` copies of a particle that has lost the object), times a margin.
+The reach is not set by hand: it is the distance within which ``QUANTILE`` of the data's onsets
+lie (pairs labelled covered at t+1, not known covered at t, A not lost anywhere, in the states an
+ideal particle holds: not the ``_c`` copies of a particle that has lost the object), times a
+margin; onsets by occluders of the kinds the theory never asks the tree about (a carrier, a kind
+that cannot occlude: ``exclude``) do not count. The few onsets beyond it are of objects that had
+gone out of a particle's knowledge far from where they were last seen (behind something, then
+covered while moved): a particle finds them again when they reappear, as with the hand-written
+theory's ``occluder_reach``.
 """
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["MARGIN", "OnsetReach", "onset_reach"]
+__all__ = ["MARGIN", "QUANTILE", "OnsetReach", "onset_reach"]
 
-#: The reach is the farthest onset seen times this (an onset a little farther than any in the
-#: data is still possible).
-MARGIN = 1.25
+#: The share of the onsets within the reach (before the margin).
+QUANTILE = 0.9
+#: The reach is the quantile's distance times this.
+MARGIN = 2.0
 
 _POS_T = re.compile(r"^pos\((\w+)\):t ~= \(([-\d.e]+), ([-\d.e]+), ([-\d.e]+)\)\.$")
 _POS_T1 = re.compile(r"^pos\((\w+)\):t\+1 ~= \(([-\d.e]+), ([-\d.e]+), ([-\d.e]+)\)\.$")
 _KNOWN = re.compile(r"^(?:([\d.e-]+) :: )?occluded_by\((\w+), (\w+)\):t\.$")
+_CATEGORY = re.compile(r"^category\((\w+), (\w+)\)\.$")
 _LOST = re.compile(r"^lost_anywhere\((\w+)\):t\.$")
 _TARGET = re.compile(r"^(?:([\d.e-]+) :: )?occluder\((\w+), (\w+)\):t\+1\.$")
 
 
 @dataclass(frozen=True)
 class OnsetReach:
-    """The fitted reach (m), the farthest onset (m) and how many onsets it was fitted from."""
+    """The fitted reach (m), the quantile's distance (m) and how many onsets it was fitted
+    from."""
 
     reach: float
-    farthest: float
+    quantile: float
     onsets: int
 
 
-def onset_reach(data: Sequence[str | Path], margin: float = MARGIN) -> OnsetReach:
-    """The onset reach fitted from data files (see the module docstring).
+def onset_reach(data: Sequence[str | Path], exclude: Iterable[str] = (),
+                margin: float = MARGIN, quantile: float = QUANTILE) -> OnsetReach:
+    """The onset reach fitted from data files (see the module docstring); ``exclude``: the
+    occluders' categories whose onsets do not count.
 
     Raises
     ------
     ValueError
         The data hold no onset (nothing to fit the reach from).
     """
-    distances = list(_onset_distances(line.strip() for path in data
-                                      for line in Path(path).read_text(encoding="utf-8")
-                                      .splitlines()))
+    distances = sorted(_onset_distances((line.strip() for path in data
+                                         for line in Path(path).read_text(encoding="utf-8")
+                                         .splitlines()), set(exclude)))
     if not distances:
         raise ValueError(f"no occlusion onset in {', '.join(map(str, data))}: "
                          "no reach to fit")
-    farthest = max(distances)
-    return OnsetReach(round(margin * farthest, 4), farthest, len(distances))
+    q = distances[min(len(distances) - 1, math.ceil(quantile * len(distances)) - 1)]
+    return OnsetReach(round(margin * q, 4), q, len(distances))
 
 
-def _onset_distances(lines: Iterable[str]) -> Iterable[float]:
+def _onset_distances(lines: Iterable[str], exclude: set[str]) -> Iterable[float]:
     pos_t: dict[str, tuple[float, float]] = {}
     pos_t1: dict[str, tuple[float, float]] = {}
     known: set[tuple[str, str]] = set()
     lost: set[str] = set()
+    kind: dict[str, str] = {}
     onsets: list[tuple[str, str]] = []
     for line in lines:
         if m := _POS_T.match(line):
@@ -73,13 +85,16 @@ def _onset_distances(lines: Iterable[str]) -> Iterable[float]:
         elif m := _KNOWN.match(line):
             if m[1] is None or float(m[1]) > 0.5:
                 known.add((m[2], m[3]))
+        elif m := _CATEGORY.match(line):
+            kind[m[1]] = m[2]
         elif m := _LOST.match(line):
             lost.add(m[1])
         elif m := _TARGET.match(line):
             if m[1] is None or float(m[1]) > 0.5:
                 onsets.append((m[2], m[3]))
     for a, o in onsets:
-        if (a, o) in known or a in lost or a.endswith("_c") or a not in pos_t or o not in pos_t1:
+        if ((a, o) in known or a in lost or a.endswith("_c") or a not in pos_t
+                or o not in pos_t1 or kind.get(o) in exclude):
             continue
         (x, y), (xo, yo) = pos_t[a], pos_t1[o]
         yield ((x - xo) ** 2 + (y - yo) ** 2) ** 0.5

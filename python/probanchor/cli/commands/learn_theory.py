@@ -36,16 +36,22 @@ def register(sub: Any) -> None:
                         help="write DIR/<name>_tree.png, DIR/<name>_distance.png and "
                              "DIR/<name>_coefficients.md (the heaviest logistic leaves beside "
                              "the paper's)")
+    parser.add_argument("--root-model", choices=("auto", "always", "never"), default="never",
+                        help="the learner's root model (a regression over every root feature "
+                             "that every leaf reads; default never: each draw in the filter "
+                             "would compute every feature, 1.5x the CPU of a plain tree)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     parser.set_defaults(func=main)
 
 
 def main(args: argparse.Namespace) -> int:
     from probanchor.app.learned_theory import learn_theory, plot_theory
+    from probanchor.ddclearn import SearchOptions
 
     command = "anchoring " + " ".join(shlex.quote(a) for a in sys.argv[1:])
     result = learn_theory(args.data, args.out, seed=args.seed,
                           base=args.base, command=command,
+                          options=SearchOptions(root_model=args.root_model),
                           progress=not args.json and sys.stderr.isatty())
     target = result.result.targets[0]
     pictures = plot_theory(result, args.plots, args.out.stem) if args.plots else []
