@@ -20,10 +20,10 @@
 % about 1e-4 per frame, and one particle of a hidden ball under the other, identical ball is
 % enough for the matching, which takes the best particle, to swap them);
 % of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
-% while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 (fitted
-% from the data: twice the distance within which 90 % of the onsets were) of where A was; beyond it the learned
-% tree gives an onset a negligible probability, and a draw for every pair in every particle
-% would cost more than the rest of the theory.
+% while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 of
+% where A was (fitted from the data: twice the distance within which 90 % of the onsets were);
+% beyond it the learned tree gives an onset a negligible probability, and a draw for every pair
+% in every particle would cost more than the rest of the theory.
 % O is a candidate occluder of the hidden A when the particle
 % draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
 % when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
