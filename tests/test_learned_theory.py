@@ -182,6 +182,9 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
     assert report["clauses"] >= 1 and theory.is_file()
     assert (tmp_path / "learned_tree.png").stat().st_size > 1000
     assert (tmp_path / "learned_distance.png").stat().st_size > 1000
+    parameters = (tmp_path / "learned_parameters.md").read_text().splitlines()
+    assert parameters[2].startswith("| onset reach (m)")
+    assert "| 0.15 (`occluder_reach`) |" in parameters[2]
     table = (tmp_path / "learned_coefficients.md").read_text().splitlines()
     assert table[2] == "| paper (section 4) |  | -16.9 | 0.80 | 0.69 | 0.49 | 0.29 |"
     learned = [line for line in table if line.startswith("| learned")]

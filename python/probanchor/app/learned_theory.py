@@ -35,7 +35,7 @@ from probanchor.ddclearn.files import write_atomically
 from probanchor.ddclearn.learner import Form
 
 __all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError",
-           "along_distance", "coefficient_table", "never_occluders",
+           "along_distance", "coefficient_table", "never_occluders", "parameter_table",
            "learn_theory", "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
 
 #: The hand-written parts a learned theory includes before its learned rules (the vocabulary and
@@ -108,6 +108,8 @@ class LearnedTheory:
     out: Path
     result: LearnResult
     text: str
+    reach: OnsetReach | None = None
+    base: Path | None = None
 
     @property
     def logistic(self) -> list[dict[str, object]]:
@@ -235,7 +237,7 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
             raise TheoryError(f"the learned theory does not load: {error}") from None
 
     write_atomically(out, text, loads)
-    return LearnedTheory(out, result, text)
+    return LearnedTheory(out, result, text, reach, folder)
 
 
 def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:
@@ -322,7 +324,24 @@ def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Pa
     fig.savefig(curve, dpi=110)
     table = folder / f"{name}_coefficients.md"
     table.write_text(coefficient_table(theory), encoding="utf-8")
-    return [tree, curve, table]
+    written = [tree, curve, table]
+    if theory.reach is not None and theory.base is not None:
+        parameters = folder / f"{name}_parameters.md"
+        parameters.write_text(parameter_table(theory.reach, theory.base), encoding="utf-8")
+        written.append(parameters)
+    return written
+
+
+def parameter_table(reach: OnsetReach, base: str | Path) -> str:
+    """A Markdown table: the parameters fitted from the data beside the hand-written values of
+    ``base``'s too_knowledge.pl that play their part in too.pl."""
+    text = (Path(base) / "too_knowledge.pl").read_text(encoding="utf-8")
+    m = re.search(r"^occluder_reach\(([\d.eE+-]+)\)", text, re.M)
+    hand = f"{float(m.group(1)):.3g} (`occluder_reach`)" if m else "-"
+    return ("| parameter | learned | hand-written | fitted from |\n|---|---:|---:|---|\n"
+            f"| onset reach (m): how far from where a hidden object was an occluder may start "
+            f"hiding it | {reach.reach:.3g} | {hand} | {reach.onsets} onsets, {QUANTILE:.0%} "
+            f"within {reach.quantile:.3g} m, times {MARGIN:g} |\n")
 
 
 def _heaviest(theory: LearnedTheory, k: int = 6) -> list[dict[str, object]]:

@@ -58,6 +58,7 @@ def main(args: argparse.Namespace) -> int:
     figures = {"out": str(result.out), "clauses": target.clauses,
                "groundings": target.groundings, "seconds": round(target.seconds, 2),
                "log_likelihood": target.log_likelihood, "pictures": [str(p) for p in pictures],
+               "onset_reach": result.reach.reach if result.reach else None,
                "logistic_leaves": result.logistic}
     if args.json:
         print(json.dumps(figures))
