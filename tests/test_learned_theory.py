@@ -23,6 +23,7 @@ from probanchor.app.learned_theory import (
     probability_at,
     theory_text,
 )
+from probanchor.app.occlusion_affordances import Affordance, affordance_table, affordances
 from probanchor.app.occlusion_data import LabelOptions
 from probanchor.app.occlusion_reach import OnsetReach, onset_reach
 from probanchor.app.reasoning import DEFAULT_THEORY
@@ -185,6 +186,7 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
     parameters = (tmp_path / "learned_parameters.md").read_text().splitlines()
     assert parameters[2].startswith("| onset reach (m)")
     assert "| 0.15 (`occluder_reach`) |" in parameters[2]
+    assert parameters[4].startswith("| kind of O | P(O hides a hidden A)")
     table = (tmp_path / "learned_coefficients.md").read_text().splitlines()
     assert table[2] == "| paper (section 4) |  | -16.9 | 0.80 | 0.69 | 0.49 | 0.29 |"
     learned = [line for line in table if line.startswith("| learned")]
@@ -286,3 +288,25 @@ def test_an_occluder_back_in_view_still_hides_what_it_hid(tmp_path: Path) -> Non
     f.step(far, actions=actions)                   # the tree decides again: it ends
     assert f.probability("occluded_by(ball_1, mug_1):t") == 0.0
     f.close()
+
+
+def test_affordances_are_shares_of_the_data_with_a_uniform_prior(tmp_path: Path) -> None:
+    """P(hides): covered pairs' weight over all pairs' (Laplace's rule); P(carries): of the
+    occlusions going on with O lifted off (its centre more than LIFT above where A stood)."""
+    data = tmp_path / "data.pl"
+    lines = ["category(b, ball).", "category(m, mug).", "category(h, skin).",
+             "pos(a):t ~= (0.0000, 0.0000, 0.0300).",
+             "pos(b):t+1 ~= (0.0100, 0.0000, 0.0300).", "pair(a, b):t+1.",
+             "weight(occluder(a, b):t+1, 8).",                   # a ball: 8 pairs, none covered
+             "pos(m):t+1 ~= (0.0000, 0.0000, 0.0500).", "pair(a, m):t+1.", "occluder(a, m):t+1.",
+             "pos(c):t ~= (0.0000, 0.0000, 0.0300).", "occluded_by(c, h):t.",
+             "pos(h):t+1 ~= (0.0000, 0.0000, 0.2500).", "pair(c, h):t+1.", "occluder(c, h):t+1.",
+             "pos(e):t ~= (0.0000, 0.0000, 0.0300).", "occluded_by(e, m):t.",
+             "pair(e, m):t+1."]                                   # the mug at 5 cm: not lifted
+    data.write_text("\n".join(lines) + "\n")
+    found = affordances([data])
+    assert found["hides"]["ball"] == Affordance(1 / 10, 8)
+    assert found["hides"]["mug"] == Affordance(2 / 4, 2)
+    assert found["carries"] == {"skin": Affordance(2 / 3, 1)}
+    table = affordance_table(found).splitlines()
+    assert table[2] == "| ball | 0.1 (8) | - |"

@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from bridge.resources import prolog_dir
+from probanchor.app.occlusion_affordances import Affordance, affordance_table, affordances
 from probanchor.app.occlusion_reach import MARGIN, QUANTILE, OnsetReach, onset_reach
 from probanchor.ddclearn import LearnResult, SearchOptions, learn
 from probanchor.ddclearn.files import write_atomically
@@ -110,6 +111,7 @@ class LearnedTheory:
     text: str
     reach: OnsetReach | None = None
     base: Path | None = None
+    affordances: dict[str, dict[str, Affordance]] | None = None
 
     @property
     def logistic(self) -> list[dict[str, object]]:
@@ -237,7 +239,7 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
             raise TheoryError(f"the learned theory does not load: {error}") from None
 
     write_atomically(out, text, loads)
-    return LearnedTheory(out, result, text, reach, folder)
+    return LearnedTheory(out, result, text, reach, folder, affordances(data))
 
 
 def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:
@@ -327,7 +329,9 @@ def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Pa
     written = [tree, curve, table]
     if theory.reach is not None and theory.base is not None:
         parameters = folder / f"{name}_parameters.md"
-        parameters.write_text(parameter_table(theory.reach, theory.base), encoding="utf-8")
+        parameters.write_text(parameter_table(theory.reach, theory.base)
+                              + ("\n" + affordance_table(theory.affordances)
+                                 if theory.affordances else ""), encoding="utf-8")
         written.append(parameters)
     return written
 
