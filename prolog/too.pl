@@ -1,20 +1,22 @@
 /*  too.pl -- the theory of occlusion: which object may hide which, and where a hidden object is.
 
     An ordinary DDC program, filtered over time by the particle filter (prolog/ddc.pl);
-    edit it freely.  It is made of four parts, each a file of its own so that the theories
+    edit it freely.  It is made of five parts, each a file of its own so that the theories
     `anchoring learn-theory` writes share what they do not learn:
 
       too_base.pl       the vocabulary and the frame (what the runner asserts at every step,
                         what it reads back, how a perceived object's position is filtered and
-                        weighs the particles)
-      too_knowledge.pl  the parameters and the affordances (what can hide, be hidden, carry)
+                        weighs the particles, what the camera seeing nothing means)
+      too_parameters.pl the parameters (variances, reaches, heights)
+      too_affordances.pl the affordances (what can hide, be hidden, carry)
       (here)            the occlusion rules: which object hides a hidden one, how long for
       too_motion.pl     the transitive clause, the carriers' rules and the motion of hidden
                         objects
 */
 
 :- include(too_base).
-:- include(too_knowledge).
+:- include(too_parameters).
+:- include(too_affordances).
 
 % ------------------------------------------------------------------ occlusion
 % The hand-written occlusion rules (the theories anchoring learn-theory writes have learned ones

@@ -32,6 +32,10 @@ hidden(A):t+1 := object(A), \+ observed(A).
 % The camera saw nothing at all (covered by a hand): an object lost now could be anywhere.
 blind:t+1 := \+ observed(_).
 
+% An object hidden while blind stays "lost anywhere" until an occluder explains it.
+lost_anywhere(A):t+1 := hidden(A):t+1, blind:t+1, \+ occluded_by(A, _):t+1.
+lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
+
 % The measurement noise of a perceived position (per axis, square metres): (1 cm)^2.
 obs_var(0.0001).
 

@@ -5,20 +5,49 @@
     70 clauses, training log-likelihood -25205.3;
     search seed 0.
     Command: anchoring learn-theory out/learn/data_truth.pl --seed 0 --out prolog/too_learned.pl --plots docs/images
-    The hand-written parts are included from prolog/ (too_base.pl, too_knowledge.pl, too_motion.pl):
+    The hand-written parts are included from prolog/ (too_base.pl, too_parameters.pl, too_motion.pl):
     regenerate this file rather than edit it; edit those for the rest.
 */
 
 :- include('too_base.pl').
-:- include('too_knowledge.pl').
+:- include('too_parameters.pl').
+
+% ------------------------------------------------------------------ learned affordances
+% Read from the data (python/probanchor/app/occlusion_affordances.py): the share
+% of the hidden objects a kind hides, of the pairs in which it is hidden itself,
+% and of the occlusions going on in which it still holds what it hid when lifted
+% off (Laplace's rule; the data points' weight in the comment).  A kind is asked
+% about as an occluder when it hides at least 0.01 of them and is no
+% carrier, as hidden when it is at least 0.01 of the time; a carrier holds
+% what it hid when lifted off with a probability above 1/2, read from a weight of
+% at least 50 data points (too_motion.pl's carriers' rules apply to it).
+hides(ball, 0.000409).  % 17,115
+hides(box, 0.1175).  % 33,417
+hides(can, 8.074e-05).  % 12,384
+hides(cup, 0.1176).  % 32,401
+hides(mug, 0.1104).  % 32,372
+hides(skin, 0.4688).  % 4,554
+hidden_share(ball, 0.2026).  % 50,647
+hidden_share(box, 7.912e-05).  % 12,637
+hidden_share(can, 0.1151).  % 25,126
+hidden_share(cup, 6.968e-05).  % 14,349
+hidden_share(mug, 0.03581).  % 8,320
+hidden_share(skin, 4.725e-05).  % 21,164
+carries(box, 0.25).  % 2
+carries(cup, 0.3333).  % 1
+carries(skin, 0.9918).  % 1,220
+carrier(skin).
+can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
+is_carrier(O) := category(O, C), carrier(C).
+hand_known := object(O), is_carrier(O).
+can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= 0.01.
 
 % ------------------------------------------------------------------ learned occlusion rules
 % How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
 % (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples)
-% that the affordances above allow (a ball hides nothing, a hand is never hidden: the paper's
-% experiments keep that knowledge too; the tree gives a ball as occluder a probability of
-% about 1e-4 per frame, and one particle of a hidden ball under the other, identical ball is
-% enough for the matching, which takes the best particle, to swap them);
+% that the learned affordances above allow (a ball hides nothing, a hand is never hidden; the
+% tree gives a ball as occluder a probability of about 1e-4 per frame, and one particle of a
+% hidden ball under the other, identical ball is enough for the matching to swap them);
 % of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
 % while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 of
 % where A was (fitted from the data: twice the distance within which 90 % of the onsets were);

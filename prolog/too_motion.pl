@@ -4,7 +4,7 @@
     writes), after the occlusion rules: the transitive clause, the carriers' rules (a hand
     picks an object up, carries it, puts it down), where a hidden object is (with its
     occluder, in place, coasting) and the variance of where an object reappears.  Reads the
-    parameters of too_knowledge.pl.
+    parameters of too_parameters.pl.
 */
 
 % Transitive occlusion (section 5.3 of the paper; remove this clause to switch it off): an

@@ -5,6 +5,7 @@ too.pl included, loaded before it replaces anything, run by the filter; and ``an
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -19,11 +20,17 @@ from probanchor.app.learned_theory import (
     TheoryError,
     along_distance,
     learn_theory,
-    never_occluders,
     probability_at,
     theory_text,
 )
-from probanchor.app.occlusion_affordances import Affordance, affordance_table, affordances
+from probanchor.app.occlusion_affordances import (
+    MIN_SHARE,
+    Affordance,
+    affordance_clauses,
+    affordance_table,
+    affordances,
+    never_occluders,
+)
 from probanchor.app.occlusion_data import LabelOptions
 from probanchor.app.occlusion_reach import OnsetReach, onset_reach
 from probanchor.app.reasoning import DEFAULT_THEORY
@@ -32,6 +39,12 @@ from probanchor.app.theories import THEORIES, theory_path
 ROOT = Path(__file__).resolve().parents[1]
 PROLOG = DEFAULT_THEORY.parent
 REACH = OnsetReach(0.15, 0.12, 1)
+#: Affordances as the data show them (occlusion_affordances.py).
+FOUND = {"hides": {"ball": Affordance(1e-4, 9000), "mug": Affordance(0.1, 9000),
+                   "skin": Affordance(0.4, 900)},
+         "hidden": {"ball": Affordance(0.2, 9000), "mug": Affordance(0.04, 900),
+                    "skin": Affordance(1e-5, 900)},
+         "carries": {"skin": Affordance(0.99, 900)}}
 
 LEARNED = """% learned (a header of the learner's)
 
@@ -44,7 +57,7 @@ occluder(A, O):t+1 ~ finite([0.2:true, 0.8:false]) :=
 
 def test_the_theory_includes_the_hand_written_parts(tmp_path: Path) -> None:
     out = tmp_path / "sub" / "too_learned.pl"
-    text = theory_text(LEARNED, "% header\n", base=PROLOG, out=out, reach=REACH)
+    text = theory_text(LEARNED, "% header\n", base=PROLOG, out=out, reach=REACH, found=FOUND)
     hand = DEFAULT_THEORY.read_text()
     for name in (*BEFORE, *AFTER):
         assert f":- include({name.removesuffix('.pl')})." in hand          # too.pl's parts
@@ -65,13 +78,13 @@ def test_the_theory_includes_the_hand_written_parts(tmp_path: Path) -> None:
 def test_a_base_without_the_hand_written_parts_is_an_error(tmp_path: Path) -> None:
     with pytest.raises(TheoryError, match="too_motion.pl"):
         (tmp_path / "too_base.pl").write_text("x ~ val(1).\n")
-        (tmp_path / "too_knowledge.pl").write_text("y ~ val(1).\n")
-        theory_text(LEARNED, "", base=tmp_path, out=tmp_path / "t.pl", reach=REACH)
+        (tmp_path / "too_parameters.pl").write_text("y ~ val(1).\n")
+        theory_text(LEARNED, "", base=tmp_path, out=tmp_path / "t.pl", reach=REACH, found=FOUND)
 
 
 def test_the_assembled_theory_loads_and_filters(tmp_path: Path) -> None:
     path = tmp_path / "too_learned.pl"
-    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH))
+    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH, found=FOUND))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)", "object(ball_2)", "category(ball_2, ball)"]
@@ -186,7 +199,7 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
     parameters = (tmp_path / "learned_parameters.md").read_text().splitlines()
     assert parameters[2].startswith("| onset reach (m)")
     assert "| 0.15 (`occluder_reach`) |" in parameters[2]
-    assert parameters[4].startswith("| kind of O | P(O hides a hidden A)")
+    assert parameters[4].startswith("| kind | P(it hides a hidden object)")
     table = (tmp_path / "learned_coefficients.md").read_text().splitlines()
     assert table[2] == "| paper (section 4) |  | -16.9 | 0.80 | 0.69 | 0.49 | 0.29 |"
     learned = [line for line in table if line.startswith("| learned")]
@@ -227,7 +240,7 @@ def test_the_onset_reach_is_fitted_from_the_onsets(tmp_path: Path) -> None:
     assert fitted.reach == pytest.approx(0.125)
     assert onset_reach([data], exclude=["skin"], quantile=0.5).quantile == pytest.approx(0.05)
     assert onset_reach([data]).onsets == 3
-    assert never_occluders(PROLOG) == ["ball", "can", "skin", "hand"]
+
     empty = tmp_path / "empty.pl"
     empty.write_text("pair(a, o):t+1.\n")
     with pytest.raises(ValueError, match="no occlusion onset"):
@@ -239,7 +252,7 @@ def test_pairs_beyond_the_reach_draw_nothing(tmp_path: Path) -> None:
     within it, it is one in about 0.2 x 1/2 of them."""
     path = tmp_path / "too_learned.pl"
     path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path,
-                                reach=OnsetReach(0.1, 0.08, 1)))
+                                reach=OnsetReach(0.1, 0.08, 1), found=FOUND))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)", "object(mug_2)", "category(mug_2, mug)"]
@@ -268,7 +281,7 @@ def test_an_occluder_back_in_view_still_hides_what_it_hid(tmp_path: Path) -> Non
     (An object behind nothing while the camera saw nothing is lost anywhere: any occluder may
     take it.)"""
     path = tmp_path / "too_learned.pl"
-    path.write_text(theory_text(ENDS_AT_ONCE, "", base=PROLOG, out=path, reach=REACH))
+    path.write_text(theory_text(ENDS_AT_ONCE, "", base=PROLOG, out=path, reach=REACH, found=FOUND))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)"]
@@ -309,4 +322,42 @@ def test_affordances_are_shares_of_the_data_with_a_uniform_prior(tmp_path: Path)
     assert found["hides"]["mug"] == Affordance(2 / 4, 2)
     assert found["carries"] == {"skin": Affordance(2 / 3, 1)}
     table = affordance_table(found).splitlines()
-    assert table[2] == "| ball | 0.1 (8) | - |"
+    assert table[2] == "| ball | 0.1 (8) | - | - |"
+
+
+def test_the_learned_affordances_decide_who_is_asked(tmp_path: Path) -> None:
+    """From the data's probabilities: a ball hides too rarely to be asked about, a mug is, a
+    hand carries (so is no container), a hand is never asked about as hidden."""
+    clauses = affordance_clauses(FOUND)
+    assert "hides(ball, 0.0001).  % 9,000" in clauses
+    assert never_occluders(FOUND) == ["ball", "skin"]
+    path = tmp_path / "affordances.pl"
+    path.write_text(clauses + "category(b, ball). category(m, mug). category(h, skin).\n"
+                    "object(b). object(m). object(h).\n")
+    program = bridge.load(path)
+
+    def holds(goal: str) -> bool:
+        return program.query(goal, samples=1, seed=0).probability == 1.0
+
+    assert holds("can_occlude(m)") and not holds("can_occlude(b)")
+    assert not holds("can_occlude(h)")
+    assert holds("is_carrier(h)") and not holds("is_carrier(m)")
+    assert holds("hand_known")
+    assert holds("can_be_occluded(b)") and not holds("can_be_occluded(h)")
+
+
+@pytest.mark.parametrize("name", ["learned", "hindsight"])
+def test_the_shipped_learned_theories_have_no_hand_written_affordance(name: str) -> None:
+    """The shipped learned theories include neither too.pl's affordances nor its occlusion
+    rules, and their affordances, read from the data, say with probabilities that balls and
+    cans hide nothing (below MIN_SHARE) and that hands carry."""
+    text = THEORIES[name].read_text()
+    includes = re.findall(r"^:- include\('([^']+)'\)\.", text, re.M)
+    assert includes == [*BEFORE, *AFTER]
+    assert "too_affordances" not in text and "cannot_occlude(" not in text
+    probability = {(m[0], m[1]): float(m[2])
+                   for m in re.findall(r"^(hides|carries)\((\w+), ([\d.e-]+)\)\.", text, re.M)}
+    assert probability[("hides", "ball")] < MIN_SHARE
+    assert probability[("hides", "can")] < MIN_SHARE
+    assert probability[("hides", "box")] > 10 * MIN_SHARE
+    assert probability[("carries", "skin")] > 0.9

@@ -8,14 +8,15 @@ both with statistical models (a logistic regression on a distance, ...) in their
 
 The theory written includes the hand-written parts it shares with ``prolog/too.pl`` rather than
 copying them (``:- include(File).``, relative to the theory written): ``too_base.pl`` (the
-vocabulary and the filter's frame), ``too_knowledge.pl`` (parameters and affordances) and, after
-the learned rules, ``too_motion.pl`` (the transitive clause of section 5.3, the carriers' rules,
-the motion of hidden objects). In place of ``too.pl``'s own occlusion rules it has the learned
-clauses and the glue clauses that use them as the paper's theory does (section 2.3): a hidden
-object's candidate occluders are the perceived objects O for which a particle draws
-``occluder(A, O):t+1 ~= true``; it picks one uniformly (or ``behind``, when it has just vanished,
-as in ``too.pl``); an occlusion goes on while the particle draws ``occluder(A, O):t+1 ~= true``
-and O is perceived.
+vocabulary and the filter's frame), ``too_parameters.pl`` (the parameters) and, after the
+learned rules, ``too_motion.pl`` (the transitive clause of section 5.3, the carriers' rules,
+the motion of hidden objects). In place of ``too.pl``'s affordances it has those read from the
+data with their probabilities (:mod:`probanchor.app.occlusion_affordances`), and in place of
+its occlusion rules the learned clauses and the glue clauses that use them as the paper's
+theory does (section 2.3): a hidden object's candidate occluders are the perceived objects O
+for which a particle draws ``occluder(A, O):t+1 ~= true``; it picks one uniformly (or
+``behind``, when it has just vanished, as in ``too.pl``); an occlusion goes on while the
+particle draws ``occluder(A, O):t+1 ~= true`` and O is perceived.
 """
 
 from __future__ import annotations
@@ -29,19 +30,25 @@ from pathlib import Path
 import numpy as np
 
 from bridge.resources import prolog_dir
-from probanchor.app.occlusion_affordances import Affordance, affordance_table, affordances
+from probanchor.app.occlusion_affordances import (
+    Affordance,
+    affordance_clauses,
+    affordance_table,
+    affordances,
+    never_occluders,
+)
 from probanchor.app.occlusion_reach import MARGIN, QUANTILE, OnsetReach, onset_reach
 from probanchor.ddclearn import LearnResult, SearchOptions, learn
 from probanchor.ddclearn.files import write_atomically
 from probanchor.ddclearn.learner import Form
 
 __all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError",
-           "along_distance", "coefficient_table", "never_occluders", "parameter_table",
+           "along_distance", "coefficient_table", "parameter_table",
            "learn_theory", "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
 
 #: The hand-written parts a learned theory includes before its learned rules (the vocabulary and
 #: the frame; the parameters and affordances) and after them (carriers, motion of hidden objects).
-BEFORE = ("too_base.pl", "too_knowledge.pl")
+BEFORE = ("too_base.pl", "too_parameters.pl")
 AFTER = ("too_motion.pl",)
 
 #: The paper's learned clause, P1 = sigmoid(0.8 - 16.9 d) (section 4).
@@ -53,10 +60,9 @@ GLUE = """\
 % ------------------------------------------------------------------ learned occlusion rules
 % How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
 % (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples)
-% that the affordances above allow (a ball hides nothing, a hand is never hidden: the paper's
-% experiments keep that knowledge too; the tree gives a ball as occluder a probability of
-% about 1e-4 per frame, and one particle of a hidden ball under the other, identical ball is
-% enough for the matching, which takes the best particle, to swap them);
+% that the learned affordances above allow (a ball hides nothing, a hand is never hidden; the
+% tree gives a ball as occluder a probability of about 1e-4 per frame, and one particle of a
+% hidden ball under the other, identical ball is enough for the matching to swap them);
 % of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
 % while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 of
 % where A was (fitted from the data: twice the distance within which 90 % of the onsets were);
@@ -121,7 +127,8 @@ class LearnedTheory:
 
 
 def theory_text(learned_program: str, header: str, *, base: str | Path,
-                out: str | Path, reach: OnsetReach) -> str:
+                out: str | Path, reach: OnsetReach,
+                found: dict[str, dict[str, Affordance]]) -> str:
     """The theory: ``header``, the hand-written parts of ``base`` (a folder) included, the glue
     clauses, the onset reach fitted from the data and the learned program (the learner's
     output: background knowledge and clauses).
@@ -149,16 +156,10 @@ def theory_text(learned_program: str, header: str, *, base: str | Path,
     fitted = (f"% The onset reach (m): {QUANTILE:.0%} of the {reach.onsets} onsets in the data "
               f"were within {reach.quantile:.4g} m; times {MARGIN}.\n"
               f"onset_reach({reach.reach:.4g}).\n")
-    return (header + "".join(include(n) for n in BEFORE) + "\n" + GLUE + fitted + "\n"
+    return (header + "".join(include(n) for n in BEFORE) + "\n" + affordance_clauses(found)
+            + "\n" + GLUE + fitted + "\n"
             + body.rstrip()
             + "\n\n" + "".join(include(n) for n in AFTER))
-
-
-def never_occluders(base: str | Path) -> list[str]:
-    """The categories the included knowledge says the tree is never asked about as occluders
-    (``cannot_occlude(C) := true.``, ``carrier(C) := true.`` in ``base``'s too_knowledge.pl)."""
-    text = (Path(base) / "too_knowledge.pl").read_text(encoding="utf-8")
-    return re.findall(r"^(?:cannot_occlude|carrier)\((\w+)\) := true\.", text, re.M)
 
 
 def _program_body(program: str) -> str:
@@ -225,12 +226,13 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
         "*/",
         "",
     ]
+    found = affordances(data)
     try:
-        reach = onset_reach(data, exclude=never_occluders(folder))
+        reach = onset_reach(data, exclude=never_occluders(found))
     except ValueError as error:
         raise TheoryError(str(error)) from None
     text = theory_text(result.program_text(form), "\n".join(header) + "\n", base=folder,
-                       out=out, reach=reach)
+                       out=out, reach=reach, found=found)
 
     def loads(tmp: Path) -> None:
         try:
@@ -239,7 +241,7 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
             raise TheoryError(f"the learned theory does not load: {error}") from None
 
     write_atomically(out, text, loads)
-    return LearnedTheory(out, result, text, reach, folder, affordances(data))
+    return LearnedTheory(out, result, text, reach, folder, found)
 
 
 def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:
@@ -338,8 +340,8 @@ def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Pa
 
 def parameter_table(reach: OnsetReach, base: str | Path) -> str:
     """A Markdown table: the parameters fitted from the data beside the hand-written values of
-    ``base``'s too_knowledge.pl that play their part in too.pl."""
-    text = (Path(base) / "too_knowledge.pl").read_text(encoding="utf-8")
+    ``base``'s too_parameters.pl that play their part in too.pl."""
+    text = (Path(base) / "too_parameters.pl").read_text(encoding="utf-8")
     m = re.search(r"^occluder_reach\(([\d.eE+-]+)\)", text, re.M)
     hand = f"{float(m.group(1)):.3g} (`occluder_reach`)" if m else "-"
     return ("| parameter | learned | hand-written | fitted from |\n|---|---:|---:|---|\n"

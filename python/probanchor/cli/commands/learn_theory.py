@@ -6,7 +6,7 @@
 Learns the occluder rule (may O start hiding A?) and the tracking rule (does the occlusion go
 on?) as one distributional logic tree for ``occluder(A, O):t+1`` (``ddc learn``) and writes the
 complete theory: the learned rules, with the hand-written parts it shares with prolog/too.pl
-included (too_base.pl: the vocabulary and the filter's frame; too_knowledge.pl; too_motion.pl).
+included (too_base.pl: the vocabulary and the filter's frame; too_parameters.pl; too_motion.pl).
 ``--out`` is replaced only once the new theory loads. ``--plots DIR`` draws the tree and
 P(occluder | distance) beside the paper's and the original system's, and writes the table of the
 learned coefficients beside theirs.
@@ -30,7 +30,7 @@ def register(sub: Any) -> None:
                         help="the theory to write (default prolog/too_learned.pl)")
     parser.add_argument("--base", type=Path, default=None, metavar="DIR",
                         help="the folder of the hand-written parts the theory includes "
-                             "(too_base.pl, too_knowledge.pl, too_motion.pl; default prolog/)")
+                             "(too_base.pl, too_parameters.pl, too_motion.pl; default prolog/)")
     parser.add_argument("--seed", type=int, default=0, help="the learner's seed (default 0)")
     parser.add_argument("--plots", type=Path, default=None, metavar="DIR",
                         help="write DIR/<name>_tree.png, DIR/<name>_distance.png and "

@@ -1,8 +1,7 @@
-/*  too_knowledge.pl -- the hand-written parameters and affordances of the theory of occlusion.
+/*  too_parameters.pl -- the hand-written parameters of the theory of occlusion.
 
-    Included by too.pl (and, until they are learned, by the theories `anchoring learn-theory`
-    writes): the motion and occlusion constants, what can hide, be hidden or carry, and what
-    the camera seeing nothing means for an object lost then.
+    Included by too.pl and, until they are learned, by the theories `anchoring learn-theory`
+    writes: the motion and occlusion constants (variances, reaches, heights).
 */
 
 % ------------------------------------------------------------------ parameters
@@ -30,29 +29,3 @@ release_margin(0.02).       % ... and is put down when carried back within 2 cm 
 release_p(0.6).             % ... where the hand lets go of it with this probability per frame
 grip_drop(0.02).            % what a hand holds is about 2 cm below its grip point
 grip_rise(0.01).            % a hand rises when its grip goes up more than 1 cm in a frame
-
-% ------------------------------------------------------------------ background knowledge
-% Affordances (anchoring learn-theory keeps them beside the learned rules, as the paper's
-% experiments keep them, section 5.2).
-% What cannot hide anything: a ball does not afford occluding, nor does a can (closed, it
-% stands upright and contains nothing that could be put under it).
-cannot_occlude(ball) := true.
-cannot_occlude(can) := true.
-% What cannot be hidden by other objects: hands (skin) are not anchored inside anything.
-cannot_be_occluded(skin) := true.
-cannot_be_occluded(hand) := true.
-% What carries what it hides through space (a hand lifts a grasped object); containers slide
-% over the table and what they cover stays on the table.
-carrier(skin) := true.
-carrier(hand) := true.
-
-% A carrier does not cover things as a container does: it closes over them and carries them
-% (the carriers' rules below, kept beside learned occlusion rules as the affordances are).
-can_occlude(O) := category(O, C), \+ cannot_occlude(C), \+ carrier(C).
-is_carrier(O) := category(O, C), carrier(C).
-hand_known := object(O), is_carrier(O).
-can_be_occluded(A) := category(A, C), \+ cannot_be_occluded(C).
-
-% An object hidden while blind stays "lost anywhere" until an occluder explains it.
-lost_anywhere(A):t+1 := hidden(A):t+1, blind:t+1, \+ occluded_by(A, _):t+1.
-lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
