@@ -68,7 +68,7 @@ def test_the_theory_includes_the_hand_written_parts(tmp_path: Path) -> None:
         assert (out.parent / rel).resolve() == (PROLOG / name).resolve()
     # no text of too.pl or of its parts is repeated: only the learned rules and the glue
     for gone in ("covers(O, A):t+1 :=", "lowered_over(O, A):t+1 :=", "cannot_occlude(ball)",
-                 "pos(A):t+1 ~ gaussian", "obs_var(", "carrier(skin)"):
+                 "pos(A):t+1 ~ gaussian", "obs_var(", "carrier(skin) := true"):
         assert gone not in text
     assert "occluder_candidate(A, O):t+1 :=\n    pair(A, O):t+1" in text
     assert text.index(includes[-1]) > text.index("occluder(A, O):t+1 ~ finite([0.9:true")
