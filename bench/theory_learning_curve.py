@@ -1,4 +1,4 @@
-"""Learning curve of the learned theory of occlusion: identity kept against collected episodes.
+"""Learning curve of the learned theory of occlusion: identity and beliefs against episodes.
 
     .venv/bin/python bench/theory_learning_curve.py [--episodes 5,20,80] [--seeds 5]
         [--labels truth,hindsight] [--particles 1000] [--jobs 2] [--cluster BACKEND]
@@ -11,7 +11,9 @@ four shipped scenarios over ``--seeds`` seeds (the simulator's noise and the fil
 streams cached as ``anchoring evaluate`` caches them) with ``--particles`` particles in one thread
 per run (as ``anchoring evaluate --threads 1``). It prints, and with ``--md`` writes, a Markdown
 table: labels, episodes, collected pairs, the seconds of collecting (perception included, summed
-over workers) and of learning, and the identity kept (objects and runs) of the shipped runs; the
+over workers) and of learning, the identity kept (objects: every frame and at the end; runs) and the
+beliefs' accuracy (summary.json's ``beliefs``: hidden frames whose belief is within 10 cm, the
+probability of the true occluder; means over the runs) of the shipped runs; the
 hand-written theory's row on the same runs comes last, for reference. The collection episodes and
 the theories' runs are jobs (``python/probanchor/jobs``) on ``--jobs`` spawned processes or, with
 ``--cluster ray|auto|ray://HOST:PORT``, on Ray; the figures are the same on either. """
@@ -43,13 +45,19 @@ def _run(theory: str, scenario: str, seed: int, particles: int, cache: str) -> d
     out = run(RunOptions(percepts=stream, particles=particles, seed=seed, theory=Path(theory),
                          threads=1, progress=False))
     objects = out.summary["objects"]
+    beliefs = out.summary.get("beliefs") or {}
     return {"scenario": scenario, "seed": seed, "kept": sum(o["identity_kept"] for o in objects),
-            "objects": len(objects)}
+            "kept_end": sum(o["identity_kept_at_end"] for o in objects),
+            "objects": len(objects), "within": beliefs.get("within"),
+            "p_occluder": beliefs.get("true_occluder_probability")}
 
 
 def identity(theory: Path, seeds: int, particles: int, cache: Path, jobs: int,
-             cluster: str | None = None) -> tuple[int, int, int, int]:
-    """Objects kept, objects, runs kept, runs over the shipped scenarios and seeds."""
+             cluster: str | None = None) -> dict[str, Any]:
+    """Over the shipped scenarios and seeds: objects kept (every frame, at the end), objects,
+    runs kept, runs, and the beliefs' accuracy (summary.json's ``beliefs``: the share of hidden
+    frames whose belief is within 10 cm, the probability of the true occluder), averaged over
+    the runs that have hidden frames."""
     from probanchor.jobs import Job, parse_cluster, raise_failures, run_jobs
 
     work = [Job(f"{theory.stem} {s} seed {k}", _run, (str(theory), s, k, particles, str(cache)))
@@ -58,10 +66,16 @@ def identity(theory: Path, seeds: int, particles: int, cache: Path, jobs: int,
                              bar=sys.stderr.isatty()))
     raise_failures(outcomes)
     rows = [o.value for o in outcomes]
-    kept = sum(r["kept"] for r in rows)
-    objects = sum(r["objects"] for r in rows)
-    runs_kept = sum(r["kept"] == r["objects"] for r in rows)
-    return kept, objects, runs_kept, len(rows)
+
+    def mean(key: str) -> float | str:
+        values = [r[key] for r in rows if r[key] is not None]
+        return round(sum(values) / len(values), 3) if values else "-"
+
+    return {"objects_kept": sum(r["kept"] for r in rows),
+            "objects_kept_end": sum(r["kept_end"] for r in rows),
+            "objects": sum(r["objects"] for r in rows),
+            "runs_kept": sum(r["kept"] == r["objects"] for r in rows), "runs": len(rows),
+            "within": mean("within"), "p_occluder": mean("p_occluder")}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -98,22 +112,18 @@ def main(argv: list[str] | None = None) -> int:
                                             labels=LabelOptions(source=labels)))
             collected = time.perf_counter() - started
             learned = learn_theory([data], theory, seed=0)
-            kept, objects, runs_kept, runs = identity(theory, args.seeds, args.particles,
-                                                      args.percepts, args.jobs, args.cluster)
+            kept = identity(theory, args.seeds, args.particles, args.percepts, args.jobs,
+                            args.cluster)
             rows.append({"labels": labels, "episodes": n, "pairs": report.pairs,
                          "collect_s": round(collected, 1),
                          "perception_s": round(report.seconds_perception, 1),
                          "learn_s": round(learned.result.targets[0].seconds, 1),
-                         "clauses": learned.result.targets[0].clauses,
-                         "objects_kept": kept, "objects": objects, "runs_kept": runs_kept,
-                         "runs": runs})
+                         "clauses": learned.result.targets[0].clauses, **kept})
             print(json.dumps(rows[-1]), flush=True)
-    kept, objects, runs_kept, runs = identity(DEFAULT_THEORY, args.seeds, args.particles,
-                                              args.percepts, args.jobs, args.cluster)
+    kept = identity(DEFAULT_THEORY, args.seeds, args.particles, args.percepts, args.jobs,
+                    args.cluster)
     rows.append({"labels": "hand-written (prolog/too.pl)", "episodes": "-", "pairs": "-",
-                 "collect_s": "-", "perception_s": "-", "learn_s": "-", "clauses": "-",
-                 "objects_kept": kept, "objects": objects, "runs_kept": runs_kept,
-                 "runs": runs})
+                 "collect_s": "-", "perception_s": "-", "learn_s": "-", "clauses": "-", **kept})
     table = _table(rows, args)
     print(table)
     if args.md is not None:
@@ -128,8 +138,9 @@ def _table(rows: list[dict[str, Any]], args: argparse.Namespace) -> str:
             f"{args.episodes} --seeds {args.seeds} --labels {args.labels} --particles "
             f"{args.particles}` -->\n\n"
             "| labels | episodes | pairs | collecting s (perception s) | learning s | clauses "
-            "| identity kept (objects) | identity kept (runs) |\n"
-            "|---|---:|---:|---:|---:|---:|---:|---:|")
+            "| identity kept (objects) | at the end (objects) | identity kept (runs) "
+            "| belief within 10 cm | P(true occluder) |\n"
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     lines = [head]
     for r in rows:
         pct_o = 100 * r["objects_kept"] / max(r["objects"], 1)
@@ -138,7 +149,9 @@ def _table(rows: list[dict[str, Any]], args: argparse.Namespace) -> str:
         lines.append(f"| {r['labels']} | {r['episodes']} | {r['pairs']} | {coll} "
                      f"| {r['learn_s']} | {r['clauses']} "
                      f"| {r['objects_kept']}/{r['objects']} ({pct_o:.0f} %) "
-                     f"| {r['runs_kept']}/{r['runs']} ({pct_r:.0f} %) |")
+                     f"| {r['objects_kept_end']}/{r['objects']} "
+                     f"| {r['runs_kept']}/{r['runs']} ({pct_r:.0f} %) "
+                     f"| {r['within']} | {r['p_occluder']} |")
     return "\n".join(lines)
 
 

@@ -1,105 +1,70 @@
 /*  too_learned_hindsight.pl -- the theory of occlusion with rules learned from experience.
 
-    Written by `anchoring learn-theory`: the hand-written occlusion rules of
-    too.pl are replaced by a tree learned (ddc learn) from data_hindsight.pl:
-    28680 groundings of occluder(A, O):t+1, 38 clauses,
-    training log-likelihood -9712.18; search seed 0.
+    Written by `anchoring learn-theory`: a tree learned (ddc learn) from
+    data_hindsight.pl: 26103 groundings of occluder(A, O):t+1,
+    28 clauses, training log-likelihood -9359.52;
+    search seed 0.
     Command: anchoring learn-theory out/learn/data_hindsight.pl --seed 0 --out prolog/too_learned_hindsight.pl --plots docs/images
-    Everything else is too.pl's (motion, observations, blind frames, the
-    transitive clause). Regenerate it rather than edit it; edit
-    too.pl for the rest.
+    The hand-written parts are included from prolog/ (too_base.pl, too_parameters.pl, too_motion.pl):
+    regenerate this file rather than edit it; edit those for the rest.
 */
 
-/*  too.pl -- the theory of occlusion: which object may hide which, and where a hidden object is.
+:- include('too_base.pl').
+:- include('too_parameters.pl').
 
-    An ordinary DDC program, filtered over time by the particle filter (prolog/ddc.pl);
-    edit it freely.  What the runner tells it at every step t+1 (one camera frame):
-
-      facts         object(A)          every anchor that exists, as an atom (ball-1 -> ball_1)
-                    category(A, C)     its best category: ball, mug, cup, box, can, skin, ...
-                    observed(A)        A was perceived in this frame
-      observations  observation(pos(A)) ~= (X,Y,Z)   its perceived position (metres, z up);
-                                                      a hand's (a carrier's) is where it
-                                                      closes: its percept's grip point
-
-    What it reads back, per particle: pos(A):t ~= (X,Y,Z) and occluded_by(A, O):t.
-*/
-
-% ------------------------------------------------------------------ facts
-% What the runner asserts at every step (above): declared, so that reading them is not taken
-% for a call to a predicate defined nowhere.
-:- dynamic((object/1, category/2, observed/1)).
-
-% ------------------------------------------------------------------ parameters
-% Variances are per axis, in square metres; one step is one camera frame.
-obs_var(0.0001).            % measurement noise of a perceived position: (1 cm)^2
-motion_var(0.0004).         % how far a perceived object moves in one frame: (2 cm)^2
-reappear_var(0.0025).       % where a hidden object shows up again, around its belief: (5 cm)^2
-lost_var(0.04).             % where an object lost while the camera saw nothing shows up again:
-                            % (20 cm)^2 around its belief (it may have been moved anywhere)
-follow_var(0.000004).       % jitter of a hidden object that follows its occluder: (2 mm)^2
-wander_var(0.0001).         % how far a hidden object under nothing may move in a frame: (1 cm)^2
-coast_keep(0.9).            % fraction of its velocity a hidden object under nothing keeps per frame
-follow_keep(0.95).          % fraction of its offset from the occluder's centre kept per frame
-occluder_reach(0.15).       % an occluder is within 15 cm of the object in the table plane ...
-occluder_rise(0.02).        % ... and its centre is no more than 2 cm lower than the object's
-cover_height(0.12).         % a container whose centre rises more than this above the object's
-                            % centre no longer covers it (it was lifted)
-grip_reach(0.06).           % a carrier (a hand) closes over an object within 6 cm of where it
-grip_height(0.1).           % grips in the table plane, its grip at most 10 cm above the object
-lift_margin(0.03).          % a carried object lifted 3 cm above where it stood was picked up ...
-release_margin(0.02).       % ... and is put down when carried back within 2 cm of that height,
-release_p(0.6).             % ... where the hand lets go of it with this probability per frame
-grip_drop(0.02).            % what a hand holds is about 2 cm below its grip point
-grip_rise(0.01).            % a hand rises when its grip goes up more than 1 cm in a frame
-
-% ------------------------------------------------------------------ background knowledge
-% Affordances (anchoring learn-theory keeps them beside the learned rules, as the paper's
-% experiments keep them, section 5.2).
-% What cannot hide anything: a ball does not afford occluding, nor does a can (closed, it
-% stands upright and contains nothing that could be put under it).
-cannot_occlude(ball) := true.
-cannot_occlude(can) := true.
-% What cannot be hidden by other objects: hands (skin) are not anchored inside anything.
-cannot_be_occluded(skin) := true.
-cannot_be_occluded(hand) := true.
-% What carries what it hides through space (a hand lifts a grasped object); containers slide
-% over the table and what they cover stays on the table.
-carrier(skin) := true.
-carrier(hand) := true.
-
-% A carrier does not cover things as a container does: it closes over them and carries them
-% (the carriers' rules below, kept beside learned occlusion rules as the affordances are).
-can_occlude(O) := category(O, C), \+ cannot_occlude(C), \+ carrier(C).
+% ------------------------------------------------------------------ learned affordances
+% Read from the data (python/probanchor/app/occlusion_affordances.py): the share
+% of the hidden objects a kind hides, of the pairs in which it is hidden itself,
+% and of the occlusions going on in which it still holds what it hid when lifted
+% off (Laplace's rule; the data points' weight in the comment).  A kind is asked
+% about as an occluder when it hides at least 0.01 of them and is no
+% carrier, as hidden when it is at least 0.01 of the time; a carrier holds
+% what it hid when lifted off with a probability above 1/2, read from a weight of
+% at least 50 data points (too_motion.pl's carriers' rules apply to it).
+hides(ball, 0.001167).  % 3,425
+hides(box, 0.1865).  % 13,333
+hides(can, 0.0003084).  % 3,241
+hides(cup, 0.2313).  % 10,137
+hides(mug, 0.2615).  % 10,461
+hides(skin, 0.1052).  % 1,509
+hidden_share(ball, 0.2257).  % 30,281
+hidden_share(box, 0.002671).  % 2,619
+hidden_share(can, 0.1809).  % 2,829
+hidden_share(cup, 0.01064).  % 1,877
+hidden_share(mug, 0.1082).  % 3,308
+hidden_share(skin, 0.0008375).  % 1,192
+carries(box, 0.9677).  % 29
+carries(skin, 0.9851).  % 65
+carrier(skin).
+can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
 is_carrier(O) := category(O, C), carrier(C).
 hand_known := object(O), is_carrier(O).
-can_be_occluded(A) := category(A, C), \+ cannot_be_occluded(C).
+can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= 0.01.
 
-% ------------------------------------------------------------------ seen and hidden
-seen(A):t+1 := observed(A).
-hidden(A):t+1 := object(A), \+ observed(A).
-% The camera saw nothing at all (covered by a hand): an object lost now could be anywhere.
-blind:t+1 := \+ observed(_).
-
-
-% An object hidden while blind stays "lost anywhere" until an occluder explains it.
-lost_anywhere(A):t+1 := hidden(A):t+1, blind:t+1, \+ occluded_by(A, _):t+1.
-lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
-
-% ------------------------------------------------------------------ occlusion
 % ------------------------------------------------------------------ learned occlusion rules
 % How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
 % (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples)
-% that the affordances above allow (a ball hides nothing, a hand is never hidden: the paper's
-% experiments keep that knowledge too; the tree gives a ball as occluder a probability of
-% about 1e-4 per frame, and one particle of a hidden ball under the other, identical ball is
-% enough for the matching, which takes the best particle, to swap them);
+% that the learned affordances above allow (a ball hides nothing, a hand is never hidden; the
+% tree gives a ball as occluder a probability of about 1e-4 per frame, and one particle of a
+% hidden ball under the other, identical ball is enough for the matching to swap them);
+% of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
+% while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 of
+% where A was (fitted from the data: twice the distance within which 90 % of the onsets were);
+% beyond it the learned tree gives an onset a negligible probability, and a draw for every pair
+% in every particle would cost more than the rest of the theory.
 % O is a candidate occluder of the hidden A when the particle
 % draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
 % when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
 % occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
 pair(A, O):t+1 :=
-    hidden(A):t+1, observed(O), O \== A, can_be_occluded(A), can_occlude(O).
+    hidden(A):t+1, observed(O), O \== A, can_be_occluded(A), can_occlude(O),
+    (   occluded_by(A, O):t
+    ->  true
+    ;   lost_anywhere(A):t
+    ->  true
+    ;   pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (X, Y, _), onset_reach(R),
+        (X-XO)**2 + (Y-YO)**2 < R*R
+    ).
 occluder_candidate(A, O):t+1 :=
     pair(A, O):t+1, \+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
 pick_occluder(A):t+1 ~ uniform(Os) :=
@@ -111,10 +76,40 @@ pick_occluder(A):t+1 ~ uniform(Os) :=
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
 occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
 occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+    occluded_by(A, O):t, seen(O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+% An occluder out of view at t (the camera saw nothing, or it was hidden itself) that is
+% perceived again still hides what it hid (as the transitive clause kept it while unseen): the
+% data have no occluder moved while out of view, so the tree's distance from where A was would
+% end the occlusion wherever the occluder was taken unseen (two look-alike containers swapped
+% while the camera was covered); from the next frame on, the tree decides again.
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, hidden(A):t+1, observed(O), \+ seen(O):t.
+% The onset reach (m): 90% of the 66 onsets in the data were within 0.09137 m; times 2.0.
+onset_reach(0.1827).
 
 % The learned rules (ddc learn): a distributional logic tree for occluder/2 (each path from its
 % root to a leaf is one clause of the tree), with the background knowledge it reads.
+learned_from(own, ['data_hindsight.pl'],
+    [occluder(_, _):t+1],
+    [ type(occluder(obj, obj):t+1),
+      type(pair(obj, obj):t+1),
+      type(occluded_by(obj, obj):t),
+      type(seen(obj):t),
+      type(lost_anywhere(obj):t),
+      type(distance(obj, obj):t+1),
+      type(distance3(obj, obj):t+1),
+      type(rise(obj, obj):t+1),
+      type(lift(obj):t+1),
+      type(kind(obj):t+1),
+      rv(occluder(_, _):t+1, boolean),
+      rv(distance(_, _):t+1, continuous),
+      rv(distance3(_, _):t+1, continuous),
+      rv(rise(_, _):t+1, continuous),
+      rv(lift(_):t+1, continuous),
+      rv(kind(_):t+1, discrete([ball, box, can, cup, mug, skin])),
+      examples(occluder(A, B):t+1, pair(A, B):t+1)]).
+
+% Background knowledge from the data that the learned clauses call.
 distance(A, O):t+1 ~ val(D) :=
     pos(A):t ~= (X, Y, _),
     pos(O):t+1 ~= (XO, YO, _),
@@ -123,369 +118,136 @@ rise(A, O):t+1 ~ val(H) :=
     pos(A):t ~= (_, _, Z),
     pos(O):t+1 ~= (_, _, ZO),
     H is ZO-Z.
-lift(O):t+1 ~ val(H) :=
-    pos(O):t ~= (_, _, Z0),
-    pos(O):t+1 ~= (_, _, Z1),
-    H is Z1-Z0.
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 38 clauses, 28680 groundings, training log-likelihood -9712.18 (mean -0.128922 per grounding), 67 parameters.
+% occluder(Occluded, Occluder):t+1: 28 clauses, 26103 groundings, training log-likelihood -9359.52 (mean -0.136853 per grounding), 45 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   occluded_by(Occluded, Occluder):t
-        ->  % n = 2403 (weight 8081.35), log-likelihood -28.4281, logistic
-            logistic([Distance], [-74.076, 7.93402], P1),
-            P2 is 1-P1
+        ->  % n = 2246 (weight 7634), log-likelihood -0.999804, finite
+            P1 = 0.999869041,
+            P2 = 0.000130959
         ;   (   kind(Occluded):t+1 ~= ball
             ->  (   kind(Occluder):t+1 ~= ball
                 ->  (   rise(Occluded, Occluder):t+1 ~= Rise
                     ->  (   Rise < 0.0
-                        ->  % n = 593 (weight 2117), log-likelihood -0.999292, finite
-                            P1 = 0.000471921,
-                            P2 = 0.999528079
+                        ->  % n = 539 (weight 1899), log-likelihood -0.999211, finite
+                            P1 = 0.000526039,
+                            P2 = 0.999473961
                         ;   Rise < 0.1
-                        ->  % n = 450 (weight 1478), log-likelihood -3.92495, logistic
-                            logistic([Distance], [-46.2047, 2.3389], P1),
+                        ->  % n = 427 (weight 1435), log-likelihood -3.78558, logistic
+                            logistic([Distance], [-46.3561, 2.40104], P1),
                             P2 is 1-P1
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-36.1381, 0.00167557], P1),
+                            logistic([Distance], [-36.4706, 0.0885668], P1),
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-36.1381, 0.00167557], P1),
+                        logistic([Distance], [-36.4706, 0.0885668], P1),
                         P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= box
                 ->  (   lost_anywhere(Occluded):t
                     ->  (   seen(Occluder):t
-                        ->  % n = 211 (weight 807), log-likelihood -0.998145, finite
-                            P1 = 0.00123609,
-                            P2 = 0.99876391
-                        ;   % n = 15 (weight 31), log-likelihood -4.59763, logistic
-                            logistic([Distance], [-15.1434, 0.709852], P1),
+                        ->  % n = 243 (weight 967), log-likelihood -0.998451, finite
+                            P1 = 0.00103199,
+                            P2 = 0.99896801
+                        ;   % n = 14 (weight 30), log-likelihood -4.5939, logistic
+                            logistic([Distance], [-14.7634, 0.71021], P1),
                             P2 is 1-P1
                         )
-                    ;   % n = 4864 (weight 13240), log-likelihood -1744.81, logistic
-                        logistic([Distance], [-23.6978, 1.44386], P1),
+                    ;   % n = 4844 (weight 13200), log-likelihood -1743.04, logistic
+                        logistic([Distance], [-23.508, 1.43466], P1),
                         P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= can
-                ->  % n = 1194 (weight 4878), log-likelihood -2.80907, logistic
-                    logistic([Distance], [-58.3218, 2.23954], P1),
-                    P2 is 1-P1
+                ->  % n = 1129 (weight 4613), log-likelihood -0.999675, finite
+                    P1 = 0.000216685,
+                    P2 = 0.999783315
                 ;   kind(Occluder):t+1 ~= cup
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise4
-                    ->  (   Rise4 < 0.0
-                        ->  % n = 174 (weight 534), log-likelihood -29.3428, logistic
-                            logistic([Distance], [-55.8819, -1.47057], P1),
-                            P2 is 1-P1
-                        ;   Rise4 < 0.1
-                        ->  % n = 4662 (weight 10898), log-likelihood -3823.28, logistic
-                            logistic([Distance], [-11.9924, 0.962263], P1),
-                            P2 is 1-P1
-                        ;   (   lift(Occluder):t+1 ~= Lift
-                            ->  % n = 221 (weight 253), log-likelihood -36.9343, logistic
-                                logistic([Distance, Lift], [-19.8593, 76.6907, 1.67714], P1),
-                                P2 is 1-P1
-                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Distance], [-17.3878, 1.61301], P1),
-                                P2 is 1-P1
-                            )
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-11.4484, 0.742624], P1),
-                        P2 is 1-P1
-                    )
+                ->  % n = 5007 (weight 11755), log-likelihood -3987.04, logistic
+                    logistic([Distance], [-12.2546, 0.918993], P1),
+                    P2 is 1-P1
                 ;   kind(Occluder):t+1 ~= mug
                 ->  (   lost_anywhere(Occluded):t
                     ->  (   seen(Occluder):t
-                        ->  % n = 227 (weight 863), log-likelihood -0.998265, finite
-                            P1 = 0.00115607,
-                            P2 = 0.99884393
-                        ;   % n = 15 (weight 23), log-likelihood -8.73935, logistic
-                            logistic([Distance], [-13.9312, 1.58054], P1),
+                        ->  % n = 191 (weight 687), log-likelihood -0.997822, finite
+                            P1 = 0.00145138,
+                            P2 = 0.99854862
+                        ;   % n = 14 (weight 22), log-likelihood -6.71177, logistic
+                            logistic([Distance], [-18.0297, 2.53124], P1),
                             P2 is 1-P1
                         )
-                    ;   (   rise(Occluded, Occluder):t+1 ~= Rise8
-                        ->  (   Rise8 < 0.0
-                            ->  % n = 45 (weight 105), log-likelihood -0.985923, finite
-                                P1 = 0.00934579,
-                                P2 = 0.99065421
-                            ;   Rise8 < 0.1
-                            ->  % n = 4631 (weight 10731), log-likelihood -2893.53, logistic
-                                logistic([Distance], [-18.5087, 1.68891], P1),
-                                P2 is 1-P1
-                            ;   % n = 201 (weight 233), log-likelihood -55.7819, logistic
-                                logistic([Distance], [-15.2393, 0.394428], P1),
-                                P2 is 1-P1
-                            )
-                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-18.3173, 1.61318], P1),
-                            P2 is 1-P1
-                        )
+                    ;   % n = 4815 (weight 10887), log-likelihood -2977.3, logistic
+                        logistic([Distance], [-18.4878, 1.64759], P1),
+                        P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= skin
-                ->  % n = 1020 (weight 1392), log-likelihood -228.842, logistic
-                    logistic([Distance], [-11.455, -0.81872], P1),
+                ->  % n = 1064 (weight 1380), log-likelihood -315.543, logistic
+                    logistic([Distance], [-11.0131, -0.335431], P1),
                     P2 is 1-P1
                 ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-17.0031, 0.977971], P1),
+                    logistic([Distance], [-17.1858, 1.0578], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= box
-            ->  (   seen(Occluded):t
-                ->  % n = 301 (weight 300), log-likelihood -10.0772, logistic
-                    logistic([Distance], [-39.5877, 2.64281], P1),
-                    P2 is 1-P1
-                ;   % n = 808 (weight 2491.4), log-likelihood -68.8348, logistic
-                    logistic([Distance], [-35.3112, -0.681842], P1),
-                    P2 is 1-P1
-                )
+            ->  % n = 1035 (weight 2631), log-likelihood -30.014, logistic
+                logistic([Distance], [-34.2758, -1.5906], P1),
+                P2 is 1-P1
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 1538 (weight 3942), log-likelihood -66.789, logistic
-                logistic([Distance], [-84.8809, 5.48788], P1),
+            ->  % n = 1460 (weight 3756), log-likelihood -66.593, logistic
+                logistic([Distance], [-83.8892, 5.43526], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= cup
-            ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
-                ->  (   Rise12 < 0.0
-                    ->  % n = 291 (weight 567), log-likelihood -18.654, logistic
-                        logistic([Distance], [-40.4883, 1.27194], P1),
-                        P2 is 1-P1
-                    ;   Rise12 < 0.1
-                    ->  % n = 811 (weight 1874.26), log-likelihood -156.723, logistic
-                        logistic([Distance], [-27.3944, -0.635822], P1),
-                        P2 is 1-P1
-                    ;   % n = 186 (weight 262), log-likelihood -10.2214, logistic
-                        logistic([Distance], [-106.531, 5.89834], P1),
-                        P2 is 1-P1
-                    )
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-35.7469, 0.185191], P1),
-                    P2 is 1-P1
-                )
+            ->  % n = 877 (weight 1913), log-likelihood -64.7934, logistic
+                logistic([Distance], [-19.1048, -2.17832], P1),
+                P2 is 1-P1
             ;   kind(Occluded):t+1 ~= mug
-            ->  (   rise(Occluded, Occluder):t+1 ~= Rise16
-                ->  (   Rise16 < 0.0
-                    ->  (   lost_anywhere(Occluded):t
-                        ->  % n = 187 (weight 715), log-likelihood -0.997907, finite
-                            P1 = 0.0013947,
-                            P2 = 0.9986053
-                        ;   % n = 769 (weight 2122.63), log-likelihood -127.484, logistic
-                            logistic([Distance], [-22.0013, -1.56282], P1),
-                            P2 is 1-P1
-                        )
-                    ;   Rise16 < 0.1
-                    ->  (   lost_anywhere(Occluded):t
-                        ->  % n = 41 (weight 141), log-likelihood -0.989478, finite
-                            P1 = 0.00699301,
-                            P2 = 0.99300699
-                        ;   % n = 1325 (weight 3169), log-likelihood -245.191, logistic
-                            logistic([Distance], [-53.3228, 2.26704], P1),
-                            P2 is 1-P1
-                        )
-                    ;   % n = 390 (weight 510.365), log-likelihood -103.27, logistic
-                        logistic([Distance], [-14.8417, 0.149202], P1),
-                        P2 is 1-P1
-                    )
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-36.6755, 0.536202], P1),
+            ->  (   kind(Occluder):t+1 ~= ball
+                ->  % n = 226 (weight 722), log-likelihood -0.997927, finite
+                    P1 = 0.00138122,
+                    P2 = 0.99861878
+                ;   kind(Occluder):t+1 ~= box
+                ->  % n = 774 (weight 1598), log-likelihood -22.551, logistic
+                    logistic([Distance], [-109.289, 4.74875], P1),
+                    P2 is 1-P1
+                ;   kind(Occluder):t+1 ~= can
+                ->  % n = 51 (weight 119), log-likelihood -0.987558, finite
+                    P1 = 0.00826446,
+                    P2 = 0.99173554
+                ;   kind(Occluder):t+1 ~= cup
+                ->  % n = 245 (weight 697), log-likelihood -51.9538, logistic
+                    logistic([Distance], [-27.8168, 0.923398], P1),
+                    P2 is 1-P1
+                ;   kind(Occluder):t+1 ~= mug
+                ->  % n = 384 (weight 1008), log-likelihood -7.91792, logistic
+                    logistic([Distance], [-61.8614, 3.53325], P1),
+                    P2 is 1-P1
+                ;   kind(Occluder):t+1 ~= skin
+                ->  % n = 206 (weight 246), log-likelihood -69.7027, logistic
+                    logistic([Distance], [-16.565, 1.69037], P1),
+                    P2 is 1-P1
+                ;   \+ kind(Occluder):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-48.0383, 2.84919], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 1135 (weight 3575), log-likelihood -37.9459, finite
-                P1 = 0.00167738,
-                P2 = 0.99832262
+            ->  % n = 312 (weight 1192), log-likelihood -0.998743, finite
+                P1 = 0.000837521,
+                P2 = 0.999162479
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-18.2921, 0.763818], P1),
+                logistic([Distance], [-18.6373, 1.01157], P1),
                 P2 is 1-P1
             )
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.205644,
-        P2 = 0.794356
+        P1 = 0.217318,
+        P2 = 0.782682
     ).
-% Transitive occlusion (section 5.3 of the paper; remove this clause to switch it off): an
-% object whose occluder is itself hidden stays with it, under whatever hides the occluder (or,
-% while the occluder is under nothing, where the occluder is believed to be: a box lowered
-% over a mug hides the mug a few frames before it covers it).
-occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, hidden(A):t+1, hidden(O):t+1.
 
-% ------------------------------------------------------------------ carriers
-% A hand (a carrier) picks an object up by closing over it, carries it in 3-D and puts it
-% down.  These rules are background knowledge, kept beside learned occlusion rules (as the
-% affordances and the transitive clause are).  A carrier's position is where it closes (the
-% runner gives a hand's grip point), so what it holds is near it, however much of the
-% forearm is in view.
-% (Every rule starts with the carriers, `object(O), is_carrier(O)` or `hand_known`: with no
-% hand in the scene they cost nothing; and none reads a derived predicate at t other than
-% seen/1 and occluded_by/2, which the filter keeps anyway: rest_z/1 and raised/1 are variables
-% of the objects a hand holds.)
-% O's grip is over the hidden A: within grip_reach of where A was in the table plane, at most
-% grip_height above A and not below it (grip_was_over/2: so it was in the previous frame).
-grip_over(O, A):t+1 :=
-    object(O), is_carrier(O), observed(O), hidden(A):t+1, O \== A, can_be_occluded(A),
-    pos(A):t ~= (X, Y, Z), pos(O):t+1 ~= (XO, YO, ZO),
-    grip_reach(R), grip_height(H), occluder_rise(L),
-    D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, ZO - Z < H, Z < ZO + L.
-grip_was_over(O, A):t+1 :=
-    object(O), is_carrier(O), seen(O):t, object(A), A \== O, \+ seen(A):t,
-    can_be_occluded(A), pos(A):t ~= (X, Y, Z), pos(O):t ~= (XO, YO, ZO),
-    grip_reach(R), grip_height(H), occluder_rise(L),
-    D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, ZO - Z < H, Z < ZO + L.
-% O, holding nothing else, may have picked A up when A vanished just now under its grip, or
-% when its grip has just come over A (it was not in the previous frame): a candidate occluder,
-% picked as any other by the occlusion rules above (hand-written or learned).  A hand hovering
-% over what it has just let go of does not pick it up again.
-grasp_candidate(A, O):t+1 :=
-    grip_over(O, A):t+1, \+ occluded_by(_, O):t,
-    (seen(A):t -> true ; \+ grip_was_over(O, A):t+1).
-% O has picked A up when it rises from over A and A stays unseen: left on the table, A would be
-% in view once the hand is off it (a particle that had A stay `behind` when it vanished under
-% the hand).  Not what a hand has let go of (it has rest_z/1 since).
-grasp_candidate(A, O):t+1 :=
-    grip_was_over(O, A):t+1, observed(O), hidden(A):t+1, \+ occluded_by(A, _):t,
-    \+ occluded_by(_, O):t, \+ rest_z(A):t ~= _,
-    pos(O):t ~= (_, _, Z0), pos(O):t+1 ~= (_, _, Z1), grip_rise(E), Z1 > Z0 + E.
-occluder_candidate(A, O):t+1 := hand_known, grasp_candidate(A, O):t+1.
-
-% The carrier holds A while it is perceived (and, by the transitive clause, while it is not)
-% until it lets A go.
-occluded_by(A, O):t+1 :=
-    object(O), is_carrier(O), occluded_by(A, O):t, hidden(A):t+1, observed(O),
-    \+ released(A):t+1 ~= true.
-% Where A stood when a hand took it (its height): a carried object is not lowered below it;
-% kept while A is hidden.
-rest_z(A):t+1 ~ val(Z) :=
-    object(O), is_carrier(O), occluded_by(A, O):t+1, \+ occluded_by(A, O):t,
-    pos(A):t ~= (_, _, Z).
-rest_z(A):t+1 ~ val(Z) :=
-    hand_known, hidden(A):t+1, rest_z(A):t ~= Z,
-    \+ (object(O), is_carrier(O), occluded_by(A, O):t+1, \+ occluded_by(A, O):t).
-% A has been carried up (the hand rising with it, lift_margin above where it stood) since it
-% was taken ...
-raised(A):t+1 ~ val(true) :=
-    object(O), is_carrier(O), occluded_by(A, O):t+1,
-    (   raised(A):t ~= true
-    ->  true
-    ;   pos(O):t ~= (_, _, ZO0), pos(O):t+1 ~= (_, _, ZO1), ZO1 > ZO0,
-        pos(A):t+1 ~= (_, _, Z), rest_z(A):t+1 ~= R, lift_margin(M), Z > R + M
-    ).
-% ... and carried back down to within release_margin of that height: put down.  The hand lets
-% it go with probability release_p per frame there (it stays where it is; the hand leaves).
-released(A):t+1 ~ finite([P:true, Q:false]) :=
-    object(O), is_carrier(O), occluded_by(A, O):t, observed(O), hidden(A):t+1,
-    raised(A):t ~= true, pos(A):t ~= (_, _, Z), rest_z(A):t ~= R, release_margin(M),
-    Z =< R + M, release_p(P), Q is 1 - P.
-
-% ------------------------------------------------------------------ positions
-% A perceived object's position is the same in every particle: its filtered estimate, a point
-% (val) rather than a sample.  One filter carries all objects, so a particle's weight is the
-% product of every perceived object's predictive density; were the perceived positions sampled
-% per particle (e.g. from the Kalman posterior, the optimal proposal), every frame's weights
-% would differ only by those objects' own measurement noise, the effective sample size would
-% fall below the threshold nearly every frame, and each resampling would randomly thin the
-% modes of hidden objects whose particles carry no information of their own (genetic drift:
-% the shell game's ball lost its mode under the right container before it was lifted).  A
-% perceived object's posterior hardly depends on which occlusion hypothesis a particle holds,
-% so it is marginalised out of the particles (the Rao-Blackwellisation of section 2.2 of the
-% paper: keep analytically what needs no sampling); its point is the mean of that Gaussian
-% posterior.  Its measurement still weights every particle with the Gaussian predictive
-% density below; the density is simply the same in every particle that agrees on where the
-% object was, so the weights only move when the particles disagree: when a hidden object is
-% seen again, at the positions the particles had believed it to be (the informative event
-% that selects the right mode).
-% First sighting: at the perceived position.
-pos(A):t+1 ~ val((X, Y, Z)) :=
-    observed(A), observation(pos(A)) ~= (X, Y, Z), \+ pos(A):t ~= _.
-% Perceived in the previous frame too: the mean of the posterior of (motion prior x
-% measurement) (a Kalman step with a fixed gain).
-pos(A):t+1 ~ val((MX, MY, MZ)) :=
-    observed(A), seen(A):t, observation(pos(A)) ~= (OX, OY, OZ), pos(A):t ~= (X, Y, Z),
-    prior_var(A, P):t+1, obs_var(R), K is P / (P + R),
-    MX is X + K*(OX-X), MY is Y + K*(OY-Y), MZ is Z + K*(OZ-Z).
-% Seen again after being hidden: at the perceived position, in every particle (the particle's
-% weight already says how well its belief predicted the position; from here on the particles
-% agree again).
-pos(A):t+1 ~ val((X, Y, Z)) :=
-    observed(A), \+ seen(A):t, pos(A):t ~= _, observation(pos(A)) ~= (X, Y, Z).
-% Hidden under the same occluder as before: moves with it (in the table plane; a carrier
-% such as a hand also lifts it, and lowers it no further than where it stood: a hand closing
-% over an object comes down to it, then lifts it).  Its offset from the occluder's centre is
-% kept with follow_keep and jittered with follow_var, so the belief settles within the
-% occluder's footprint (spread sqrt(follow_var / (1 - follow_keep^2)), 6 mm) instead of
-% wandering further off frame after frame; its height hardly jitters (an object under a
-% container stays on the table).
-pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
-    hidden(A):t+1, occluded_by(A, O):t, occluded_by(A, O):t+1,
-    pos(O):t ~= (X0, Y0, Z0), pos(O):t+1 ~= (X1, Y1, Z1), pos(A):t ~= (X, Y, Z),
-    follow_keep(K), MX is X1 + K*(X - X0), MY is Y1 + K*(Y - Y0),
-    (   is_carrier(O)
-    ->  MZ0 is Z + Z1 - Z0,
-        (   rest_z(A):t+1 ~= R
-        ->  MZ is max(MZ0, R)
-        ;   MZ = MZ0
-        )
-    ;   MZ = Z
-    ),
-    follow_var(V), VZ is V / 100.
-% Hidden under an occluder that has just been picked: under it, at the object's own height
-% (in a hand that picked it up late, as it was already rising: at most grip_drop below the
-% grip).
-pos(A):t+1 ~ gaussian([XO, YO, Z], C) :=
-    hidden(A):t+1, occluded_by(A, O):t+1, \+ occluded_by(A, O):t,
-    pos(O):t+1 ~= (XO, YO, ZO), pos(A):t ~= (_, _, Z0),
-    (   is_carrier(O)
-    ->  grip_drop(G), Z is max(Z0, ZO - G)
-    ;   Z = Z0
-    ),
-    follow_var(V), diagonal(V, C).
-% Hidden under nothing (behind something, or left on the table): it may be moved while unseen
-% (a mug carried behind a box, a container swapped while merged with another in the image).
-% It coasts on with the velocity it had when it vanished, slowing down (coast_keep per frame,
-% so at most 1 / (1 - coast_keep) frames' worth of its last motion: a static object stays),
-% and its belief spreads by wander_var per frame in the table plane; a reappearance then
-% weights the particles by where they had it, and matching finds the particles near it.
-pos(A):t+1 ~ gaussian([MX, MY, Z], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
-    hidden(A):t+1, \+ is_carrier(A), \+ occluded_by(A, _):t+1, pos(A):t ~= (X, Y, Z),
-    velocity(A, VX, VY):t+1, MX is X + VX, MY is Y + VY,
-    wander_var(V), VZ is V / 100.
-% A hand out of view is believed where it was last seen, the same point in every particle, so
-% that when it comes back its position weighs every particle alike (a hand's position says
-% nothing about what hides what).
-pos(A):t+1 ~ val((X, Y, Z)) := hidden(A):t+1, is_carrier(A), pos(A):t ~= (X, Y, Z).
-
-% The velocity (metres per frame, in the table plane) of a perceived object: the change of its
-% filtered position; of a hidden object under nothing: the last one, slowing down; else none.
-vel(A):t+1 ~ val((VX, VY)) :=
-    observed(A), seen(A):t, pos(A):t ~= (X0, Y0, _), pos(A):t+1 ~= (X1, Y1, _),
-    VX is X1 - X0, VY is Y1 - Y0.
-vel(A):t+1 ~ val((VX, VY)) :=
-    hidden(A):t+1, \+ occluded_by(A, _):t+1, velocity(A, VX, VY):t+1.
-velocity(A, VX, VY):t+1 :=
-    vel(A):t ~= (VX0, VY0), coast_keep(K), VX is K * VX0, VY is K * VY0.
-velocity(A, 0.0, 0.0):t+1 := object(A), \+ vel(A):t ~= _.
-
-% ------------------------------------------------------------------ observation model
-% A perceived position weights each particle by its predictive density: motion + noise for an
-% object that was perceived in the previous frame, a wider one for an object that reappears.
-observation(pos(A)):t+1 ~ gaussian([X, Y, Z], C) :=
-    pos(A):t ~= (X, Y, Z), predictive_var(A, V):t+1, diagonal(V, C).
-% A new object: nothing to compare with (weight 1).
-observation(pos(A)):t+1 ~ val(_) :=
-    object(A), \+ pos(A):t ~= _.
-
-prior_var(A, P):t+1 := object(A), seen(A):t, motion_var(P).
-prior_var(A, P):t+1 := object(A), \+ seen(A):t, \+ lost_anywhere(A):t, reappear_var(P).
-% An object lost while the camera saw nothing, and not under anything since, may have been moved
-% anywhere on the table (two look-alike containers swapped): where it shows up again says little
-% about which particle was right, so that the hypotheses of which one is which (the identity
-% hypotheses the runner keeps in the particles) survive until something decides them.
-prior_var(A, P):t+1 := object(A), \+ seen(A):t, lost_anywhere(A):t, lost_var(P).
-predictive_var(A, V):t+1 := prior_var(A, P):t+1, obs_var(R), V is P + R.
-
-diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V]).
+:- include('too_motion.pl').

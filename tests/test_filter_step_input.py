@@ -55,7 +55,7 @@ def test_a_position_must_have_three_numbers_although_a_catch_all_clause_takes_an
         with pytest.raises(FilterError, match=r"observation 3 .*: a value of the wrong type: "
                                               r"observation\(pos\(ball_1\)\) takes 3 finite "
                                               r"numbers, a tuple \(X1,\.\.\.\) or a list "
-                                              r"\(too\.pl:\d+\)"):
+                                              r"\(too_base\.pl:\d+\)"):
             f.step(["object(ball_1)", "observed(ball_1)",
                     terms.observation(terms.fact("pos", "ball_1"), value)])
         _unchanged(f)

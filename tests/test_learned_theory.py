@@ -1,10 +1,11 @@
-"""The learned theory of occlusion: written from too.pl with its hand-written occlusion rules
-replaced, loaded before it replaces anything, run by the filter; and ``anchoring collect`` /
+"""The learned theory of occlusion: the learned rules with the hand-written parts shared with
+too.pl included, loaded before it replaces anything, run by the filter; and ``anchoring collect`` /
 ``anchoring learn-theory`` end to end on a short generated game."""
 
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -14,19 +15,36 @@ import bridge
 from ddc_cli_helpers import Run
 from probanchor.app.collect import CollectError, CollectOptions, collect
 from probanchor.app.learned_theory import (
-    BEGIN,
-    END,
+    AFTER,
+    BEFORE,
     TheoryError,
     along_distance,
     learn_theory,
     probability_at,
     theory_text,
 )
+from probanchor.app.occlusion_affordances import (
+    MIN_SHARE,
+    Affordance,
+    affordance_clauses,
+    affordance_table,
+    affordances,
+    never_occluders,
+)
 from probanchor.app.occlusion_data import LabelOptions
+from probanchor.app.occlusion_reach import OnsetReach, onset_reach
 from probanchor.app.reasoning import DEFAULT_THEORY
 from probanchor.app.theories import THEORIES, theory_path
 
 ROOT = Path(__file__).resolve().parents[1]
+PROLOG = DEFAULT_THEORY.parent
+REACH = OnsetReach(0.15, 0.12, 1)
+#: Affordances as the data show them (occlusion_affordances.py).
+FOUND = {"hides": {"ball": Affordance(1e-4, 9000), "mug": Affordance(0.1, 9000),
+                   "skin": Affordance(0.4, 900)},
+         "hidden": {"ball": Affordance(0.2, 9000), "mug": Affordance(0.04, 900),
+                    "skin": Affordance(1e-5, 900)},
+         "carries": {"skin": Affordance(0.99, 900)}}
 
 LEARNED = """% learned (a header of the learner's)
 
@@ -37,28 +55,36 @@ occluder(A, O):t+1 ~ finite([0.2:true, 0.8:false]) :=
 """
 
 
-def test_the_hand_written_occlusion_rules_are_replaced() -> None:
-    base = DEFAULT_THEORY.read_text()
-    text = theory_text(base, LEARNED, "% header\n")
-    assert BEGIN not in text and END not in text
-    for gone in ("covers(O, A):t+1 :=", "lowered_over(O, A):t+1 :="):
-        assert gone in base and gone not in text
-    for kept in ("occluded_by(A, O):t, hidden(A):t+1, hidden(O):t+1.",   # transitive
-                 "cannot_occlude(ball) := true.",                        # affordances
-                 "pos(A):t+1 ~ gaussian", "lost_anywhere(A):t+1 :=", "carrier(skin) := true."):
-        assert kept in text
+def test_the_theory_includes_the_hand_written_parts(tmp_path: Path) -> None:
+    out = tmp_path / "sub" / "too_learned.pl"
+    text = theory_text(LEARNED, "% header\n", base=PROLOG, out=out, reach=REACH, found=FOUND)
+    hand = DEFAULT_THEORY.read_text()
+    for name in (*BEFORE, *AFTER):
+        assert f":- include({name.removesuffix('.pl')})." in hand          # too.pl's parts
+    includes = [line for line in text.splitlines() if line.startswith(":- include(")]
+    assert len(includes) == len(BEFORE) + len(AFTER)
+    for line, name in zip(includes, (*BEFORE, *AFTER), strict=True):
+        rel = line.removeprefix(":- include('").removesuffix("').")
+        assert (out.parent / rel).resolve() == (PROLOG / name).resolve()
+    # no text of too.pl or of its parts is repeated: only the learned rules and the glue
+    for gone in ("covers(O, A):t+1 :=", "lowered_over(O, A):t+1 :=", "cannot_occlude(ball)",
+                 "pos(A):t+1 ~ gaussian", "obs_var(", "carrier(skin) := true"):
+        assert gone not in text
     assert "occluder_candidate(A, O):t+1 :=\n    pair(A, O):t+1" in text
+    assert text.index(includes[-1]) > text.index("occluder(A, O):t+1 ~ finite([0.9:true")
     assert text.index("occluder(A, O):t+1 ~ finite([0.9:true") > text.index("pick_occluder")
 
 
-def test_a_base_without_marked_rules_is_an_error() -> None:
-    with pytest.raises(TheoryError, match="hand-written occlusion rules"):
-        theory_text("x ~ val(1).\n", LEARNED, "")
+def test_a_base_without_the_hand_written_parts_is_an_error(tmp_path: Path) -> None:
+    with pytest.raises(TheoryError, match="too_motion.pl"):
+        (tmp_path / "too_base.pl").write_text("x ~ val(1).\n")
+        (tmp_path / "too_parameters.pl").write_text("y ~ val(1).\n")
+        theory_text(LEARNED, "", base=tmp_path, out=tmp_path / "t.pl", reach=REACH, found=FOUND)
 
 
 def test_the_assembled_theory_loads_and_filters(tmp_path: Path) -> None:
     path = tmp_path / "too_learned.pl"
-    path.write_text(theory_text(DEFAULT_THEORY.read_text(), LEARNED, ""))
+    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH, found=FOUND))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)", "object(ball_2)", "category(ball_2, ball)"]
@@ -126,10 +152,16 @@ def test_a_failed_learn_theory_keeps_the_previous_file(game_data: Path, tmp_path
     with pytest.raises(bridge.DDCError, match=rf"{bad}:\d+: .*not a number"):
         learn_theory([bad], out)
     assert out.read_text() == "% the previous theory\n"
-    broken_base = tmp_path / "base.pl"
-    broken_base.write_text(DEFAULT_THEORY.read_text().replace(
+    broken_base = tmp_path / "base"
+    broken_base.mkdir()
+    for name in (*BEFORE, *AFTER):
+        (broken_base / name).write_text((PROLOG / name).read_text())
+    base_file = broken_base / "too_base.pl"
+    base_file.write_text(base_file.read_text().replace(
         "diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V]).", "diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V)."))
-    with pytest.raises(TheoryError, match="does not load: .*syntax error"):
+    line = base_file.read_text().splitlines().index("diagonal(V, [V, 0, 0, 0, V, 0, 0, 0, V).")
+    # the error names the included file and its line
+    with pytest.raises(TheoryError, match=rf"does not load: {base_file}:{line + 1}: syntax error"):
         learn_theory([game_data], out, base=broken_base)
     assert out.read_text() == "% the previous theory\n"
     assert list(tmp_path.glob(".too_learned.pl.*")) == []
@@ -164,6 +196,10 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
     assert report["clauses"] >= 1 and theory.is_file()
     assert (tmp_path / "learned_tree.png").stat().st_size > 1000
     assert (tmp_path / "learned_distance.png").stat().st_size > 1000
+    parameters = (tmp_path / "learned_parameters.md").read_text().splitlines()
+    assert parameters[2].startswith("| onset reach (m)")
+    assert "| 0.15 (`occluder_reach`) |" in parameters[2]
+    assert parameters[4].startswith("| kind | P(it hides a hidden object)")
     table = (tmp_path / "learned_coefficients.md").read_text().splitlines()
     assert table[2] == "| paper (section 4) |  | -16.9 | 0.80 | 0.69 | 0.49 | 0.29 |"
     learned = [line for line in table if line.startswith("| learned")]
@@ -174,3 +210,154 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
         assert line.split(" | ")[2:4] == [f"{slope:.1f}", f"{bias:.2f}"]
     bad = anchoring("collect", "--out", tmp_path / "x.pl")
     assert bad.returncode == 1 and "nothing to collect" in bad.stderr
+
+
+def test_the_onset_reach_is_fitted_from_the_onsets(tmp_path: Path) -> None:
+    """The distance within which the quantile of the onsets (labelled covered, not known
+    covered at t, not lost, the ideal particle's state) lie, times the margin; continuations,
+    lost objects, a lost particle's copy (``_c``), unlabelled pairs and excluded occluders'
+    kinds do not count."""
+    data = tmp_path / "data.pl"
+    data.write_text("\n".join([
+        "pos(a):t ~= (0.0000, 0.0000, 0.0300).", "pos(o):t+1 ~= (0.0600, 0.0800, 0.0500).",
+        "pair(a, o):t+1.", "occluder(a, o):t+1.",                        # onset at 0.10 m
+        "pos(b):t ~= (0.0000, 0.0000, 0.0300).", "pos(p):t+1 ~= (0.0300, 0.0400, 0.0500).",
+        "pair(b, p):t+1.", "0.7 :: occluder(b, p):t+1.",                 # onset at 0.05 m
+        "pos(c):t ~= (0.0000, 0.0000, 0.0300).", "pos(q):t+1 ~= (0.9000, 0.0000, 0.0500).",
+        "occluded_by(c, q):t.", "pair(c, q):t+1.", "occluder(c, q):t+1.",  # goes on: not one
+        "pos(d):t ~= (0.0000, 0.0000, 0.0300).", "lost_anywhere(d):t.",
+        "pair(d, q):t+1.", "occluder(d, q):t+1.",                        # lost: not one
+        "pos(a_c):t ~= (0.5000, 0.0000, 0.0300).",
+        "pair(a_c, o):t+1.", "occluder(a_c, o):t+1.",                    # a lost copy
+        "pos(e):t ~= (0.0000, 0.0000, 0.0300).",
+        "pair(e, q):t+1.", "0.2 :: occluder(e, q):t+1.",                 # unlikely: not one
+        "pos(h):t+1 ~= (0.9000, 0.0000, 0.0900).", "category(h, skin).",
+        "pair(b, h):t+1.", "occluder(b, h):t+1.",                        # a carrier: excluded
+    ]) + "\n")
+    fitted = onset_reach([data], exclude=["skin"], quantile=0.95, margin=1.25)
+    assert fitted.onsets == 2
+    assert fitted.quantile == pytest.approx(0.1)
+    assert fitted.reach == pytest.approx(0.125)
+    assert onset_reach([data], exclude=["skin"], quantile=0.5).quantile == pytest.approx(0.05)
+    assert onset_reach([data]).onsets == 3
+
+    empty = tmp_path / "empty.pl"
+    empty.write_text("pair(a, o):t+1.\n")
+    with pytest.raises(ValueError, match="no occlusion onset"):
+        onset_reach([empty])
+
+
+def test_pairs_beyond_the_reach_draw_nothing(tmp_path: Path) -> None:
+    """A mug beyond the onset reach of where a ball vanished is no candidate in any particle;
+    within it, it is one in about 0.2 x 1/2 of them."""
+    path = tmp_path / "too_learned.pl"
+    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path,
+                                reach=OnsetReach(0.1, 0.08, 1), found=FOUND))
+    f = bridge.Filter(path, particles=200, seed=1, threads=1)
+    actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
+               "category(mug_1, mug)", "object(mug_2)", "category(mug_2, mug)"]
+    mugs = ["observed(mug_1)", "observation(pos(mug_1)) ~= (0.05, 0.0, 0.05)",
+            "observed(mug_2)", "observation(pos(mug_2)) ~= (0.0, 0.2, 0.05)"]
+    f.step(["observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)", *mugs],
+           actions=actions)
+    f.step(mugs, actions=actions)
+    assert 0.1 * 0.5 < f.probability("occluded_by(ball_1, mug_1):t") < 0.2
+    assert f.probability("occluded_by(ball_1, mug_2):t") == 0.0
+    f.close()
+
+
+ENDS_AT_ONCE = """% learned (a header of the learner's)
+
+occluder(A, O):t+1 ~ finite([0.0:true, 1.0:false]) :=
+    pair(A, O):t+1, occluded_by(A, O):t.
+occluder(A, O):t+1 ~ finite([1.0:true, 0.0:false]) :=
+    pair(A, O):t+1, \\+ occluded_by(A, O):t.
+"""
+
+
+def test_an_occluder_back_in_view_still_hides_what_it_hid(tmp_path: Path) -> None:
+    """A tree that ends every occlusion: a ball under a mug through a blind frame is still under
+    it in the frame the mug reappears (far away), and the tree decides from the next frame.
+    (An object behind nothing while the camera saw nothing is lost anywhere: any occluder may
+    take it.)"""
+    path = tmp_path / "too_learned.pl"
+    path.write_text(theory_text(ENDS_AT_ONCE, "", base=PROLOG, out=path, reach=REACH, found=FOUND))
+    f = bridge.Filter(path, particles=200, seed=1, threads=1)
+    actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
+               "category(mug_1, mug)"]
+    mug = ["observed(mug_1)", "observation(pos(mug_1)) ~= (0.05, 0.0, 0.05)"]
+    far = ["observed(mug_1)", "observation(pos(mug_1)) ~= (0.4, 0.3, 0.05)"]
+    f.step(["observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)", *mug],
+           actions=actions)
+    f.step(mug, actions=actions)                   # vanished: under the mug or behind
+    under = f.probability("occluded_by(ball_1, mug_1):t")
+    assert 0.3 < under < 0.7
+    f.step([], actions=actions)                    # blind: the transitive clause keeps it
+    assert f.probability("occluded_by(ball_1, mug_1):t") == pytest.approx(under, abs=0.15)
+    # back in view, far away: the particles that had it under the mug still do (the tree would
+    # end it), those that had it behind, lost while blind, take the mug as any occluder
+    f.step(far, actions=actions)
+    assert f.probability("occluded_by(ball_1, mug_1):t") == pytest.approx(1.0)
+    f.step(far, actions=actions)                   # the tree decides again: it ends
+    assert f.probability("occluded_by(ball_1, mug_1):t") == 0.0
+    f.close()
+
+
+def test_affordances_are_shares_of_the_data_with_a_uniform_prior(tmp_path: Path) -> None:
+    """P(hides): covered pairs' weight over all pairs' (Laplace's rule); P(carries): of the
+    occlusions going on with O lifted off (its centre more than LIFT above where A stood)."""
+    data = tmp_path / "data.pl"
+    lines = ["category(b, ball).", "category(m, mug).", "category(h, skin).",
+             "pos(a):t ~= (0.0000, 0.0000, 0.0300).",
+             "pos(b):t+1 ~= (0.0100, 0.0000, 0.0300).", "pair(a, b):t+1.",
+             "weight(occluder(a, b):t+1, 8).",                   # a ball: 8 pairs, none covered
+             "pos(m):t+1 ~= (0.0000, 0.0000, 0.0500).", "pair(a, m):t+1.", "occluder(a, m):t+1.",
+             "pos(c):t ~= (0.0000, 0.0000, 0.0300).", "occluded_by(c, h):t.",
+             "pos(h):t+1 ~= (0.0000, 0.0000, 0.2500).", "pair(c, h):t+1.", "occluder(c, h):t+1.",
+             "pos(e):t ~= (0.0000, 0.0000, 0.0300).", "occluded_by(e, m):t.",
+             "pair(e, m):t+1."]                                   # the mug at 5 cm: not lifted
+    data.write_text("\n".join(lines) + "\n")
+    found = affordances([data])
+    assert found["hides"]["ball"] == Affordance(1 / 10, 8)
+    assert found["hides"]["mug"] == Affordance(2 / 4, 2)
+    assert found["carries"] == {"skin": Affordance(2 / 3, 1)}
+    table = affordance_table(found).splitlines()
+    assert table[2] == "| ball | 0.1 (8) | - | - |"
+
+
+def test_the_learned_affordances_decide_who_is_asked(tmp_path: Path) -> None:
+    """From the data's probabilities: a ball hides too rarely to be asked about, a mug is, a
+    hand carries (so is no container), a hand is never asked about as hidden."""
+    clauses = affordance_clauses(FOUND)
+    assert "hides(ball, 0.0001).  % 9,000" in clauses
+    assert never_occluders(FOUND) == ["ball", "skin"]
+    path = tmp_path / "affordances.pl"
+    path.write_text(clauses + "category(b, ball). category(m, mug). category(h, skin).\n"
+                    "object(b). object(m). object(h).\n")
+    program = bridge.load(path)
+
+    def holds(goal: str) -> bool:
+        return program.query(goal, samples=1, seed=0).probability == 1.0
+
+    assert holds("can_occlude(m)") and not holds("can_occlude(b)")
+    assert not holds("can_occlude(h)")
+    assert holds("is_carrier(h)") and not holds("is_carrier(m)")
+    assert holds("hand_known")
+    assert holds("can_be_occluded(b)") and not holds("can_be_occluded(h)")
+
+
+@pytest.mark.parametrize("name", ["learned", "hindsight"])
+def test_the_shipped_learned_theories_have_no_hand_written_affordance(name: str) -> None:
+    """The shipped learned theories include neither too.pl's affordances nor its occlusion
+    rules, and their affordances, read from the data, say with probabilities that balls and
+    cans hide nothing (below MIN_SHARE) and that hands carry."""
+    text = THEORIES[name].read_text()
+    includes = re.findall(r"^:- include\('([^']+)'\)\.", text, re.M)
+    assert includes == [*BEFORE, *AFTER]
+    assert "too_affordances" not in text and "cannot_occlude(" not in text
+    probability = {(m[0], m[1]): float(m[2])
+                   for m in re.findall(r"^(hides|carries)\((\w+), ([\d.e-]+)\)\.", text, re.M)}
+    assert probability[("hides", "ball")] < MIN_SHARE
+    assert probability[("hides", "can")] < MIN_SHARE
+    assert probability[("hides", "box")] > 10 * MIN_SHARE
+    assert probability[("carries", "skin")] > 0.9

@@ -95,6 +95,9 @@ value_numbers((A, B), [A|T]) :- !, comma_list(B, T).
 comma_list((A, B), [A|T]) :- !, comma_list(B, T).
 comma_list(A, [A]).
 
+kind_text(_, Kind-(Included:Line), Text) :- !,     % a clause of an included file
+    file_base_name(Included, Base),
+    kind_text(Base, Kind-Line, Text).
 kind_text(File, Kind-Line, Text) :-
     kind_words(Kind, Words),
     format(atom(Text), "~w (~w:~w)", [Words, File, Line]).

@@ -92,6 +92,7 @@ prolog:message(error(ddc(Cause, Where), _)) -->
     where(Where),
     cause(Cause).
 
+where(_:(File:Line)) --> { integer(Line) }, !, where(File:Line).   % in an included file
 where(File:Line) --> { integer(Line) }, !, [ '~w:~w: '-[File, Line] ].
 where(text(T)) --> !, [ 'in "~w": '-[T] ].
 where(query) --> !, [ 'query: ' ].
@@ -115,6 +116,7 @@ cause(no_observation_clause(O)) --> !,
     [ 'no clause applies to the observation ~p'-[O] ].
 cause(no_such_file(F)) --> !, [ 'no such file ~w'-[F] ].
 cause(bad_directive(D)) --> !, [ 'unknown directive ~p'-[D] ].
+cause(include_cycle(F)) --> !, [ 'the file ~w includes itself'-[F] ].
 cause(bad_head(H)) --> !,
     [ 'not a clause head: ~p (a random variable is defined by ~~ or :=, e.g. h:t+1 := true)'-[H] ].
 cause(fresh_arithmetic) --> !,

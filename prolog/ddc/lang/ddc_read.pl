@@ -65,27 +65,65 @@ resolve_file(Spec, File) :-
 %   applies to the rest of that file, from its line on, and to nothing
 %   else, so a program (even one that is refused) cannot change how other
 %   programs or queries are read.
+%
+%   A directive `:- include(Spec).` is replaced by the terms of the file
+%   Spec names, resolved relative to the including file (as Prolog's
+%   include/1: the included text is read as if it stood there, with the
+%   operators declared so far).  An included term's Line is Included:Line,
+%   so that every error about it names the included file and its line.
+%
+%   @error ddc(no_such_file(Spec), File:Line) for an include of no file;
+%   ddc(include_cycle(Included), File:Line) for a file that includes itself.
 read_program(File, Items) :-
-    check_file_nesting(File),
     in_temporary_module(Reader,
                         set_module(Reader:base(ddc)),
-                        read_program(File, Reader, Items)).
+                        read_program(File, Reader, [], Items, [])).
 
-read_program(File, Reader, Items) :-
+read_program(File, Reader, Stack, Items, Tail) :-
+    check_file_nesting(File),
     setup_call_cleanup(
         open(File, read, S),
-        read_terms(S, File, Reader, Items),
+        read_terms(S, File, Reader, [File|Stack], Items, Tail),
         close(S)).
 
-read_terms(S, File, Reader, Items) :-
+read_terms(S, File, Reader, Stack, Items, Tail) :-
     catch(read_term(S, T, [ module(Reader), term_position(P), syntax_errors(error) ]),
           E, syntax_error(E, File)),
     (   T == end_of_file
-    ->  Items = []
+    ->  Items = Tail
     ;   stream_position_data(line_count, P, Line),
-        reader_directive(T, Reader, File:Line),
-        Items = [t(T, Line)|Rest],
-        read_terms(S, File, Reader, Rest)
+        (   Stack = [_]
+        ->  L = Line
+        ;   L = File:Line
+        ),
+        (   include_directive(T, Spec)
+        ->  included_file(Spec, File, Stack, File:Line, Inc),
+            read_program(Inc, Reader, Stack, Items, Rest)
+        ;   reader_directive(T, Reader, File:Line),
+            Items = [t(T, L)|Rest]
+        ),
+        read_terms(S, File, Reader, Stack, Rest, Tail)
+    ).
+
+include_directive(T, Spec) :-
+    nonvar(T), T = (:- D), nonvar(D), D = include(Spec).
+
+%   included_file(+Spec, +File, +Stack, +Where, -Included): the file that
+%   `:- include(Spec)` in File names, relative to File's folder.
+included_file(Spec, File, Stack, Where, Inc) :-
+    (   ground(Spec),
+        (   absolute_file_name(Spec, Inc0, [ relative_to(File), file_type(prolog),
+                                             access(read), file_errors(fail) ])
+        ->  true
+        ;   absolute_file_name(Spec, Inc0, [ relative_to(File), access(read),
+                                             file_errors(fail) ])
+        )
+    ->  (   memberchk(Inc0, Stack)
+        ->  throw(error(ddc(include_cycle(Inc0), Where), _))
+        ;   Inc = Inc0
+        )
+    ;   term_to_atom(Spec, A),
+        throw(error(ddc(no_such_file(A), Where), _))
     ).
 
 %   reader_directive(+Term, +Reader, +Where): an op/3 directive takes
@@ -271,7 +309,7 @@ item_line(der(_, _, _, _, L), L).
 %   Rethrows Error of loading Culprit as the program's error at Where
 %   (an engine error that already names a line keeps it).
 load_error(error(ddc(C, W0), _), _, Where) :- !,
-    (   W0 = _:L0, integer(L0), L0 > 0 -> W = W0 ; W = Where ),
+    (   W0 = _:L0, ( integer(L0), L0 > 0 ; L0 = _:_ ) -> W = W0 ; W = Where ),
     throw(error(ddc(C, W), _)).
 load_error(E, _, Where) :-
     throw(error(ddc(prolog_error(E), Where), _)).

@@ -6,20 +6,22 @@ holds) the hidden object A at t+1. Its branch where A was known to be under O at
 rule* (does the occlusion go on?), the other branch the *occluder rule* (may O start hiding A?),
 both with statistical models (a logistic regression on a distance, ...) in their leaves.
 
-The theory written is the hand-written one (``prolog/too.pl``) with its hand-written occlusion
-rules (the parts between ``% -- begin hand-written occlusion rules`` and ``% -- end ...``: what
-may occlude what, which container covers which object, which object may be picked as an
-occluder, how long an occlusion lasts) replaced by the learned clauses and three glue clauses
-that use them as the paper's theory does (section 2.3): a hidden object's candidate occluders
-are the perceived objects O for which a particle draws ``occluder(A, O):t+1 ~= true``; it picks
-one uniformly (or ``behind``, when it has just vanished, as in ``too.pl``); an occlusion goes on
-while the particle draws ``occluder(A, O):t+1 ~= true`` and O is perceived. Everything else of
-``too.pl`` stays: motion and observation models, what blind frames do, the transitive clause
-(section 5.3: added by hand).
+The theory written includes the hand-written parts it shares with ``prolog/too.pl`` rather than
+copying them (``:- include(File).``, relative to the theory written): ``too_base.pl`` (the
+vocabulary and the filter's frame), ``too_parameters.pl`` (the parameters) and, after the
+learned rules, ``too_motion.pl`` (the transitive clause of section 5.3, the carriers' rules,
+the motion of hidden objects). In place of ``too.pl``'s affordances it has those read from the
+data with their probabilities (:mod:`probanchor.app.occlusion_affordances`), and in place of
+its occlusion rules the learned clauses and the glue clauses that use them as the paper's
+theory does (section 2.3): a hidden object's candidate occluders are the perceived objects O
+for which a particle draws ``occluder(A, O):t+1 ~= true``; it picks one uniformly (or
+``behind``, when it has just vanished, as in ``too.pl``); an occlusion goes on while the
+particle draws ``occluder(A, O):t+1 ~= true`` and O is perceived.
 """
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -27,17 +29,27 @@ from pathlib import Path
 
 import numpy as np
 
-from probanchor.app.reasoning import DEFAULT_THEORY
+from bridge.resources import prolog_dir
+from probanchor.app.occlusion_affordances import (
+    Affordance,
+    affordance_clauses,
+    affordance_table,
+    affordances,
+    never_occluders,
+)
+from probanchor.app.occlusion_reach import MARGIN, QUANTILE, OnsetReach, onset_reach
 from probanchor.ddclearn import LearnResult, SearchOptions, learn
 from probanchor.ddclearn.files import write_atomically
 from probanchor.ddclearn.learner import Form
 
-__all__ = ["DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError", "along_distance",
-           "coefficient_table",
+__all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError",
+           "along_distance", "coefficient_table", "parameter_table",
            "learn_theory", "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
 
-BEGIN = "% -- begin hand-written occlusion rules"
-END = "% -- end hand-written occlusion rules"
+#: The hand-written parts a learned theory includes before its learned rules (the vocabulary and
+#: the frame; the parameters and affordances) and after them (carriers, motion of hidden objects).
+BEFORE = ("too_base.pl", "too_parameters.pl")
+AFTER = ("too_motion.pl",)
 
 #: The paper's learned clause, P1 = sigmoid(0.8 - 16.9 d) (section 4).
 PAPER = (-16.9, 0.8)
@@ -48,16 +60,27 @@ GLUE = """\
 % ------------------------------------------------------------------ learned occlusion rules
 % How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
 % (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples)
-% that the affordances above allow (a ball hides nothing, a hand is never hidden: the paper's
-% experiments keep that knowledge too; the tree gives a ball as occluder a probability of
-% about 1e-4 per frame, and one particle of a hidden ball under the other, identical ball is
-% enough for the matching, which takes the best particle, to swap them);
+% that the learned affordances above allow (a ball hides nothing, a hand is never hidden; the
+% tree gives a ball as occluder a probability of about 1e-4 per frame, and one particle of a
+% hidden ball under the other, identical ball is enough for the matching to swap them);
+% of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
+% while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 of
+% where A was (fitted from the data: twice the distance within which 90 % of the onsets were);
+% beyond it the learned tree gives an onset a negligible probability, and a draw for every pair
+% in every particle would cost more than the rest of the theory.
 % O is a candidate occluder of the hidden A when the particle
 % draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
 % when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
 % occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
 pair(A, O):t+1 :=
-    hidden(A):t+1, observed(O), O \\== A, can_be_occluded(A), can_occlude(O).
+    hidden(A):t+1, observed(O), O \\== A, can_be_occluded(A), can_occlude(O),
+    (   occluded_by(A, O):t
+    ->  true
+    ;   lost_anywhere(A):t
+    ->  true
+    ;   pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (X, Y, _), onset_reach(R),
+        (X-XO)**2 + (Y-YO)**2 < R*R
+    ).
 occluder_candidate(A, O):t+1 :=
     pair(A, O):t+1, \\+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
 pick_occluder(A):t+1 ~ uniform(Os) :=
@@ -69,13 +92,20 @@ pick_occluder(A):t+1 ~ uniform(Os) :=
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \\== [].
 occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \\== behind.
 occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+    occluded_by(A, O):t, seen(O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+% An occluder out of view at t (the camera saw nothing, or it was hidden itself) that is
+% perceived again still hides what it hid (as the transitive clause kept it while unseen): the
+% data have no occluder moved while out of view, so the tree's distance from where A was would
+% end the occlusion wherever the occluder was taken unseen (two look-alike containers swapped
+% while the camera was covered); from the next frame on, the tree decides again.
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, hidden(A):t+1, observed(O), \\+ seen(O):t.
 """
 
 
 class TheoryError(ValueError):
-    """A theory that cannot be written: the base has no rules to replace, or the result does
-    not load (the message names the file, line and cause)."""
+    """A theory that cannot be written: a hand-written part to include is missing, or the result
+    does not load (the message names the file, line and cause)."""
 
 
 @dataclass
@@ -85,6 +115,9 @@ class LearnedTheory:
     out: Path
     result: LearnResult
     text: str
+    reach: OnsetReach | None = None
+    base: Path | None = None
+    affordances: dict[str, dict[str, Affordance]] | None = None
 
     @property
     def logistic(self) -> list[dict[str, object]]:
@@ -93,26 +126,40 @@ class LearnedTheory:
         return logistic_leaves(self.result)
 
 
-def theory_text(base: str, learned_program: str, header: str) -> str:
-    """The base theory with its hand-written occlusion rules replaced by the learned ones.
+def theory_text(learned_program: str, header: str, *, base: str | Path,
+                out: str | Path, reach: OnsetReach,
+                found: dict[str, dict[str, Affordance]]) -> str:
+    """The theory: ``header``, the hand-written parts of ``base`` (a folder) included, the glue
+    clauses, the onset reach fitted from the data and the learned program (the learner's
+    output: background knowledge and clauses).
 
-    ``learned_program`` is the learner's output (background knowledge and clauses); it goes,
-    after the glue clauses, where the last hand-written part was.
+    The includes name the parts relative to the folder of ``out``, the file the theory is
+    written to (the DC reader resolves an include relative to the including file).
+
+    Raises
+    ------
+    TheoryError
+        ``base`` lacks one of the hand-written parts.
     """
-    pattern = re.compile(rf"^{re.escape(BEGIN)}.*?^{re.escape(END)}[^\n]*\n", re.S | re.M)
-    parts = list(pattern.finditer(base))
-    if not parts:
-        raise TheoryError(f"the base theory has no '{BEGIN}' ... '{END}' part to replace")
+    folder = Path(base)
+    missing = [name for name in (*BEFORE, *AFTER) if not (folder / name).is_file()]
+    if missing:
+        raise TheoryError(f"{folder}: no hand-written part {', '.join(missing)} to include")
+    here = Path(out).resolve().parent
+
+    def include(name: str) -> str:
+        rel = os.path.relpath((folder / name).resolve(), here)
+        quoted = rel.replace("\\", "\\\\").replace("'", "\\'")
+        return f":- include('{quoted}').\n"
+
     body = _program_body(learned_program)
-    out: list[str] = []
-    last = 0
-    for i, m in enumerate(parts):
-        out.append(base[last:m.start()])
-        if i == len(parts) - 1:
-            out.append(GLUE + "\n" + body.rstrip() + "\n")
-        last = m.end()
-    out.append(base[last:])
-    return header + "".join(out)
+    fitted = (f"% The onset reach (m): {QUANTILE:.0%} of the {reach.onsets} onsets in the data "
+              f"were within {reach.quantile:.4g} m; times {MARGIN}.\n"
+              f"onset_reach({reach.reach:.4g}).\n")
+    return (header + "".join(include(n) for n in BEFORE) + "\n" + affordance_clauses(found)
+            + "\n" + GLUE + fitted + "\n"
+            + body.rstrip()
+            + "\n\n" + "".join(include(n) for n in AFTER))
 
 
 def _program_body(program: str) -> str:
@@ -128,10 +175,15 @@ def _program_body(program: str) -> str:
 
 
 def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
-                 options: SearchOptions | None = None, base: str | Path = DEFAULT_THEORY,
+                 options: SearchOptions | None = None, base: str | Path | None = None,
                  command: str | None = None, progress: bool = False,
                  form: Form = "tree") -> LearnedTheory:
     """Learn the occlusion rules from ``data`` and write the complete theory to ``out``.
+
+    Without ``options``, the learner's defaults but for its root model (``never``): a root model
+    is a regression over every root feature that every leaf reads, so each draw of
+    ``occluder(A, O):t+1`` in the filter would compute every feature (1.5 times the CPU of a
+    plain tree, which reads only the features on its path).
 
     The tree goes into the theory in its tree form (``form="tree"``: one clause whose body is
     the tree, each test evaluated once per particle, as fast in the filter as the hand-written
@@ -143,36 +195,44 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     Raises
     ------
     TheoryError
-        The base theory has nothing to replace, or the theory written does not load.
+        A hand-written part is missing from ``base`` (default ``prolog/``), or the theory
+        written does not load.
     bridge.DDCError
         The data has an error (its message names the file and line).
     """
     import bridge
 
     out = Path(out)
-    base_path = Path(base)
+    folder = Path(base) if base is not None else prolog_dir()
+    if options is None:
+        options = SearchOptions(root_model="never")
     result = learn(data, ["occluder:t+1"], seed=seed, options=options, progress=progress)
     target = result.targets[0]
     names = ", ".join(Path(d).name for d in data)
+    parts = ", ".join((*BEFORE, *AFTER))
     header = [
         f"/*  {out.name} -- the theory of occlusion with rules learned from experience.",
         "",
-        "    Written by `anchoring learn-theory`: the hand-written occlusion rules of",
-        f"    {base_path.name} are replaced by a tree learned (ddc learn) from {names}:",
-        f"    {target.groundings} groundings of occluder(A, O):t+1, {target.clauses} clauses,",
-        f"    training log-likelihood {target.log_likelihood:.6g}; search seed {seed}.",
+        "    Written by `anchoring learn-theory`: a tree learned (ddc learn) from",
+        f"    {names}: {target.groundings} groundings of occluder(A, O):t+1,",
+        f"    {target.clauses} clauses, training log-likelihood {target.log_likelihood:.6g};",
+        f"    search seed {seed}.",
     ]
     if command:
         header.append(f"    Command: {command}")
     header += [
-        f"    Everything else is {base_path.name}'s (motion, observations, blind frames, the",
-        "    transitive clause). Regenerate it rather than edit it; edit",
-        f"    {base_path.name} for the rest.",
+        f"    The hand-written parts are included from {folder.name}/ ({parts}):",
+        "    regenerate this file rather than edit it; edit those for the rest.",
         "*/",
         "",
     ]
-    text = theory_text(base_path.read_text(encoding="utf-8"), result.program_text(form),
-                       "\n".join(header) + "\n")
+    found = affordances(data)
+    try:
+        reach = onset_reach(data, exclude=never_occluders(found))
+    except ValueError as error:
+        raise TheoryError(str(error)) from None
+    text = theory_text(result.program_text(form), "\n".join(header) + "\n", base=folder,
+                       out=out, reach=reach, found=found)
 
     def loads(tmp: Path) -> None:
         try:
@@ -181,7 +241,7 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
             raise TheoryError(f"the learned theory does not load: {error}") from None
 
     write_atomically(out, text, loads)
-    return LearnedTheory(out, result, text)
+    return LearnedTheory(out, result, text, reach, folder, found)
 
 
 def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:
@@ -268,7 +328,26 @@ def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Pa
     fig.savefig(curve, dpi=110)
     table = folder / f"{name}_coefficients.md"
     table.write_text(coefficient_table(theory), encoding="utf-8")
-    return [tree, curve, table]
+    written = [tree, curve, table]
+    if theory.reach is not None and theory.base is not None:
+        parameters = folder / f"{name}_parameters.md"
+        parameters.write_text(parameter_table(theory.reach, theory.base)
+                              + ("\n" + affordance_table(theory.affordances)
+                                 if theory.affordances else ""), encoding="utf-8")
+        written.append(parameters)
+    return written
+
+
+def parameter_table(reach: OnsetReach, base: str | Path) -> str:
+    """A Markdown table: the parameters fitted from the data beside the hand-written values of
+    ``base``'s too_parameters.pl that play their part in too.pl."""
+    text = (Path(base) / "too_parameters.pl").read_text(encoding="utf-8")
+    m = re.search(r"^occluder_reach\(([\d.eE+-]+)\)", text, re.M)
+    hand = f"{float(m.group(1)):.3g} (`occluder_reach`)" if m else "-"
+    return ("| parameter | learned | hand-written | fitted from |\n|---|---:|---:|---|\n"
+            f"| onset reach (m): how far from where a hidden object was an occluder may start "
+            f"hiding it | {reach.reach:.3g} | {hand} | {reach.onsets} onsets, {QUANTILE:.0%} "
+            f"within {reach.quantile:.3g} m, times {MARGIN:g} |\n")
 
 
 def _heaviest(theory: LearnedTheory, k: int = 6) -> list[dict[str, object]]:
