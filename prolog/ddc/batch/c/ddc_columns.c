@@ -601,29 +601,31 @@ get_index(term_t t, column *c, size_t *ip)
    batch argument is one, else a list, so that a caller that passes lists
    gets lists back. */
 
-typedef struct pset { size_t n; uint32_t v[]; } pset;
-
+/* Blobs that are one malloc'd struct whose first member is its count
+   (pset, frows, gplan): freed whole, written as <name>(count). */
 static int
-release_pset(atom_t a)
-{ pset *p = PL_blob_data(a, NULL, NULL);
-  free(p);
+release_counted(atom_t a)
+{ free(PL_blob_data(a, NULL, NULL));
   return TRUE;
 }
 
 static int
-write_pset(IOSTREAM *s, atom_t a, int flags)
-{ pset *p = PL_blob_data(a, NULL, NULL);
+write_counted(IOSTREAM *s, atom_t a, int flags)
+{ PL_blob_t *type;
+  const size_t *n = PL_blob_data(a, NULL, &type);
   (void)flags;
-  Sfprintf(s, "<ddc_batch>(%zu)", p ? p->n : (size_t)0);
+  Sfprintf(s, "<%s>(%zu)", type->name, n ? *n : (size_t)0);
   return TRUE;
 }
+
+typedef struct pset { size_t n; uint32_t v[]; } pset;
 
 static PL_blob_t pset_blob =
 { .magic   = PL_BLOB_MAGIC,
   .flags   = PL_BLOB_NOCOPY|PL_BLOB_UNIQUE,
   .name    = "ddc_batch",
-  .release = release_pset,
-  .write   = write_pset
+  .release = release_counted,
+  .write   = write_counted
 };
 
 /* A view of a batch: its n indices (0-based, ascending) v, owned (to be
@@ -990,26 +992,12 @@ col_row_width(term_t tc, term_t tw)
 
 typedef struct frows { size_t n; double v[]; } frows;
 
-static int
-release_frows(atom_t a)
-{ free(PL_blob_data(a, NULL, NULL));
-  return TRUE;
-}
-
-static int
-write_frows(IOSTREAM *s, atom_t a, int flags)
-{ frows *r = PL_blob_data(a, NULL, NULL);
-  (void)flags;
-  Sfprintf(s, "<ddc_floats>(%zu)", r ? r->n : (size_t)0);
-  return TRUE;
-}
-
 static PL_blob_t frows_blob =
 { .magic   = PL_BLOB_MAGIC,
   .flags   = PL_BLOB_NOCOPY|PL_BLOB_UNIQUE,
   .name    = "ddc_floats",
-  .release = release_frows,
-  .write   = write_frows
+  .release = release_counted,
+  .write   = write_counted
 };
 
 /* col_pack_rows(+Columns, +W, -Rows): the rows of col_rows/4 of each column
@@ -1143,26 +1131,12 @@ col_num_arity(term_t tc, term_t tk)
    same way) */
 typedef struct gplan { size_t n; uint32_t gl[]; } gplan;
 
-static int
-release_gplan(atom_t a)
-{ free(PL_blob_data(a, NULL, NULL));
-  return TRUE;
-}
-
-static int
-write_gplan(IOSTREAM *s, atom_t a, int flags)
-{ gplan *p = PL_blob_data(a, NULL, NULL);
-  (void)flags;
-  Sfprintf(s, "<ddc_sources>(%zu)", p ? p->n : (size_t)0);
-  return TRUE;
-}
-
 static PL_blob_t gplan_blob =
 { .magic   = PL_BLOB_MAGIC,
   .flags   = PL_BLOB_NOCOPY|PL_BLOB_UNIQUE,
   .name    = "ddc_sources",
-  .release = release_gplan,
-  .write   = write_gplan
+  .release = release_counted,
+  .write   = write_counted
 };
 
 /* get_plan(t, &p, &own): the sources t (a blob, or a list of G-L pairs,
