@@ -222,6 +222,37 @@ def test_point_estimate_mode_and_mean():
         point_estimate(pts, np.zeros(1000))
 
 
+def mode_by_definition(pts: np.ndarray, w: np.ndarray, cell: float = 0.05) -> np.ndarray:
+    """point_estimate's mode written out cube by cube: the occupied cube whose mass with its
+    26 neighbours is largest (the first in lexicographic order on a tie), the weighted mean of
+    the particles of it and its neighbours, then one mean-shift step within one cell."""
+    keys = [tuple(k) for k in np.floor(pts / cell).astype(np.int64)]
+    mass: dict[tuple, float] = {}
+    for k, wi in zip(keys, w, strict=True):
+        mass[k] = mass.get(k, 0.0) + wi
+
+    def around(k):
+        return [(k[0] + a, k[1] + b, k[2] + c)
+                for a in (-1, 0, 1) for b in (-1, 0, 1) for c in (-1, 0, 1)]
+    best = max(sorted(mass), key=lambda k: sum(mass.get(n, 0.0) for n in around(k)))
+    members = np.array([max(abs(a - b) for a, b in zip(k, best, strict=True)) <= 1
+                        for k in keys])
+    centre = (pts[members] * w[members, None]).sum(axis=0) / w[members].sum()
+    near = np.linalg.norm(pts - centre, axis=1) <= cell
+    return (pts[near] * w[near, None]).sum(axis=0) / w[near].sum()
+
+
+def test_point_estimate_mode_is_the_heaviest_neighbourhood():
+    rng = np.random.default_rng(7)
+    for _ in range(40):
+        n = int(rng.integers(1, 400))
+        centres = rng.normal(0.0, 0.3, (int(rng.integers(1, 4)), 3))
+        spread = rng.choice([0.002, 0.03, 0.12])
+        pts = centres[rng.integers(0, len(centres), n)] + rng.normal(0.0, spread, (n, 3))
+        w = rng.random(n) + 1e-3
+        assert np.allclose(point_estimate(pts, w), mode_by_definition(pts, w), atol=1e-12)
+
+
 def test_truth_from_dict():
     truth = {"objects": {
         "ball_1": {"position": [0, 0, 0.05], "visible": False, "hidden_by": "mug_1"},

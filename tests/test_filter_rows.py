@@ -75,3 +75,52 @@ def test_the_column_library_copies_the_rows_into_the_array(
         f.samples("q:t")  # (integers: a list of floats)
     assert replies[1] == [1.0, 2.0] * 50
     assert replies[0] == 150 if backend == "foreign" else isinstance(replies[0], list)
+
+
+INDEX_PROGRAM = """
+h:0 ~ uniform([a, b, c, d]).
+h:t+1 ~ val(H) := h:t ~= H.
+under(O):t := h:t ~= O, O \\== d.
+"""
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+@pytest.mark.parametrize("engine", ["batched", "per_particle"])
+def test_indices_are_the_positions_of_the_values_in_the_list(
+        tmp_path: Path, threads: int, engine: str) -> None:
+    program = tmp_path / "indices.pl"
+    program.write_text(INDEX_PROGRAM)
+    atoms = ["c", "a"]  # b is not listed; d has no solution
+    with Filter(program, particles=60, seed=2, threads=threads, engine=engine) as f:
+        f.step([])
+        values = f.values("O", "under(O):t")
+        expected = np.array([atoms.index(v) if v in atoms else -1 for v in values])
+        got = f.indices("O", "under(O):t", atoms)
+        assert got.dtype == np.int64 and got.shape == (60,)
+        assert np.array_equal(got, expected)
+        assert set(got) == {-1, 0, 1}  # (each case occurs among 60 particles)
+        assert np.array_equal(f.indices("O", "under(O):t", []), np.full(60, -1))
+
+
+def test_the_column_library_copies_the_indices_into_the_array(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from bridge import filter as bridge_filter
+    from bridge import prolog as bridge_prolog
+
+    program = tmp_path / "indices.pl"
+    program.write_text(INDEX_PROGRAM)
+    replies = []
+    call = bridge_filter._call
+
+    def recording(goal: str, bindings: dict) -> dict:
+        result = call(goal, bindings)
+        if goal.startswith("bridge_indices_into("):
+            replies.append(result["I"])
+        return result
+
+    monkeypatch.setattr(bridge_filter, "_call", recording)
+    with Filter(program, particles=50, seed=4, threads=2, engine="batched") as f:
+        f.step([])
+        backend = bridge_prolog.query_once("ddc_batch_col:col_backend(B)")["B"]
+        f.indices("O", "under(O):t", ["a", "b"])
+    assert replies[0] == 50 if backend == "foreign" else isinstance(replies[0], list)

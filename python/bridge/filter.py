@@ -636,6 +636,27 @@ class Filter:
         return (flat if width == 1 else flat.reshape(self.particles, width)), self.weights
 
     @_locked
+    def indices(self, template: Any, goal: Any, atoms: Sequence[str]) -> np.ndarray:
+        """Per particle, the position in ``atoms`` of ``template`` at the first solution of
+        ``goal`` whose ``template`` is one of ``atoms``; -1 where there is none (int64 array
+        of N). Which of a few constants each particle answers, e.g. which occluder hides an
+        object: ``indices("O", "occluded_by(ball_1, O):t", ["mug_1", "mug_2"])``."""
+        # (copied as doubles into `buffer` by the column library where it is loaded, NaN
+        # for none: no conversion of a value per particle; else a list of integers)
+        buffer = np.empty(self.particles, dtype=float)
+        result = self._query("bridge_indices_into(K, P, L, _A, _C, I, Err)", template, goal,
+                             extra={"L": [str(a) for a in atoms],
+                                    "_A": buffer.ctypes.data, "_C": buffer.size})
+        found = result["I"]
+        if isinstance(found, int):
+            values = buffer[:found]
+            out = np.full(self.particles, -1, dtype=np.int64)
+            known = ~np.isnan(values)
+            out[known] = values[known].astype(np.int64)
+            return out
+        return np.asarray(found, dtype=np.int64).reshape(self.particles)
+
+    @_locked
     def mean(self, term: Any, goal: Any | None = None) -> tuple[Any, Any]:
         """Weighted (mean, covariance) of a numeric or tuple variable over the particles where
         it is defined: floats for a number, a (k,) and a (k, k) array for a k-tuple."""

@@ -63,6 +63,7 @@
             batch_values/4,             % +State, +Template, +Goal, -Values
             batch_rows/5,               % +State, +Template, +Goal, -Width, -Floats
             batch_packed_rows/5,        % +State, +Template, +Goal, -Width, -Rows
+            batch_packed_indices/5,     % +State, ?Template, +Goal, +Atoms, -Indices
             batch_time/2,               % +State, -T
             batch_size/2,               % +State, -N
             batch_keep/2,               % +State, -Kept
@@ -77,7 +78,7 @@
 :- use_module(ddc_batch_program).
 :- use_module(ddc_batch_tables).
 :- use_module(ddc_batch_col).
-:- use_module(ddc_batch_columns, [plan/3, bind/2]).
+:- use_module(ddc_batch_columns, [plan/3, bind/2, split/4]).
 :- use_module(ddc_batch_rv, [weigh_branch/5]).
 :- use_module(ddc_batch_eval).
 :- use_module(ddc_batch_state).
@@ -432,6 +433,39 @@ column_rows(W, C, Fs0, Fs) :- col_rows(C, W, Fs0, Fs).
 batch_packed_rows(S, Template, Goal, W, Rows) :-
     row_columns(S, Template, Goal, W, Cs),
     col_pack_rows(Cs, W, Rows).
+
+%!  batch_packed_indices(+State, ?Template, +Goal, +Atoms, -Indices) is semidet.
+%
+%   Per particle, the 0-based position in Atoms of Template at the first
+%   of Goal's solutions whose Template is one of Atoms, as a blob of
+%   doubles (col_pack_rows/3; NaN where there is none): each solution of
+%   Goal (a set of particles) sets the particles not yet set.  Fails
+%   where a solution binds Template to something other than an atom in a
+%   particle, or without the column library.
+batch_packed_indices(S, Template, Goal, Atoms, Indices) :-
+    state_groups(S, Gs),
+    maplist(group_index_column(Template-Goal, Atoms), Gs, Cs),
+    col_pack_rows(Cs, 1, Indices).
+
+group_index_column(TG, Atoms, G, C) :-
+    copy_term(TG, Template-Goal),
+    query_env(G, E, All),
+    batch_state_size(G, N),
+    col_new(N, '$u', C),
+    with_state(G, forall(eval_body(Goal, E, All, Ps), set_index(Template, Atoms, Ps, C))).
+
+%   (A solution's Template is one atom for all of its particles, or a
+%   column of them, split into the groups of particles that agree.)
+set_index(Template, Atoms, Ps, C) :-
+    forall(split(Template, Ps, Value, Ps1), set_index_value(Value, Atoms, Ps1, C)).
+
+set_index_value(Value, Atoms, Ps, C) :-
+    atom(Value),
+    (   nth0(I, Atoms, Value)
+    ->  X is float(I),
+        col_set_each(Ps, C, X)
+    ;   true
+    ).
 
 %   row_columns(+S, +Template, +Goal, -W, -Columns): the columns of each
 %   group's values of the variable of Goal (every one computed), and the

@@ -23,6 +23,7 @@
             bridge_values/4,            % +Key, +PairText, -Values, -Err
             bridge_numeric_rows/6,      % +Key, +PairText, -Width, -Floats, -Values, -Err
             bridge_rows_into/8,         % +Key, +PairText, +Address, +Capacity, -W, -F, -V, -Err
+            bridge_indices_into/7,      % +Key, +PairText, +Atoms, +Address, +Capacity, -I, -Err
             bridge_frames/3             % +File, -Frames, -Err
           ]).
 
@@ -32,7 +33,7 @@
 :- use_module('../../ddc.pl', [ filter_new/5, filter_step/4, filter_undo/1, filter_resample/2,
                      filter_rename/3, filter_time/2, filter_engine/2, filter_free/1,
                      filter_holds/3, filter_values/4, filter_rows/6 ]).
-:- use_module(ddc_filter, [filter_packed_rows/6]).
+:- use_module(ddc_filter, [filter_packed_rows/6, filter_packed_indices/5]).
 :- use_module('../batch/ddc_batch_col', [col_floats_into/4, col_floats_list/2]).
 :- use_module('../lang/ddc_nesting', [check_text_nesting/2]).
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
@@ -169,6 +170,22 @@ bridge_rows_into(Key, PairText, Address, Capacity, Width, Floats, Values, Err) :
               rows_into(Rows, Address, Capacity, Floats),
               maplist(py_solution, Values0, Values) ), Err),
     ( var(Width) -> Width = 0, Floats = [], Values = [] ; true ).
+
+%!  bridge_indices_into(+Key, +PairText, +Atoms:list(text), +Address, +Capacity,
+%!                      -Indices, -Err) is det.
+%
+%   filter_packed_indices/5 of ddc_bridge_pair(Template, Goal) parsed from
+%   PairText and the atoms of the texts Atoms (taken as names): where the
+%   engine reads them from its columns, copied as doubles into the memory
+%   at Address that holds Capacity of them (NaN for -1; Indices their
+%   number), else Indices a list of integers.
+bridge_indices_into(Key, PairText, Texts, Address, Capacity, Indices, Err) :-
+    guarded(( must_be(integer, Address), must_be(nonneg, Capacity),
+              must_be(list(text), Texts), maplist(atom_string, Atoms, Texts),
+              filter_of(Key, F), parse_goal(PairText, ddc_bridge_pair(Template, Goal)),
+              filter_packed_indices(F, Template, Goal, Atoms, Packed),
+              rows_into(Packed, Address, Capacity, Indices) ), Err),
+    ( var(Indices) -> Indices = [] ; true ).
 
 rows_into(Rows, Address, Capacity, Floats) :-
     (   is_list(Rows) -> Floats = Rows

@@ -45,6 +45,10 @@ the engine's State (updated in place):
   engine_rows(+State, +Template, +Goal, -Width, -Floats)   (semidet:
       rows read without building the values; else the API makes them
       from engine_values/4)
+  engine_packed_rows(+State, +Template, +Goal, -Width, -Rows),
+  engine_packed_indices(+State, +Template, +Goal, +Atoms, -Indices)
+      (optional, semidet: read straight from the engine's columns into a
+      blob of doubles; else the API makes them from engine_values/4)
   engine_time(+State, -T)
   engine_size(+State, -N)
   engine_statistics(+State, -Stats)
@@ -65,6 +69,8 @@ engine gives the same distribution, from other draws).
             filter_values/4,            % +Filter, +Template, +Goal, -Values
             filter_rows/6,              % +Filter, +Template, +Goal, -Width, -Floats, -Values
             filter_packed_rows/6,       % +Filter, +Template, +Goal, -Width, -Floats, -Values
+            filter_indices/5,           % +Filter, ?Template, +Goal, +Atoms, -Indices
+            filter_packed_indices/5,    % +Filter, ?Template, +Goal, +Atoms, -Indices
             filter_time/2,              % +Filter, -T
             filter_engine/2,            % +Filter, -Engine
             filter_size/2,              % +Filter, -N
@@ -608,6 +614,42 @@ filter_packed_rows(F, Template, Goal, Width, Floats, Values) :-
         E:engine_packed_rows(S, Template, Goal, Width0, Rows)
     ->  Width = Width0, Floats = Rows, Values = []
     ;   filter_rows(F, Template, Goal, Width, Floats, Values)
+    ).
+
+%!  filter_indices(+Filter, ?Template, +Goal, +Atoms:list(atom), -Indices:list(integer))
+%!      is det.
+%
+%   Per particle, the 0-based position in Atoms of Template at the first
+%   solution of Goal whose Template is one of Atoms, or -1 where there is
+%   none: which of a few constants a particle answers, as numbers (the
+%   Python bridge reads which occluder hides an object in each particle
+%   this way, without a value per particle converted in between).
+%
+%   @error type_error(list(atom), Atoms) if Atoms is not a list of atoms.
+filter_indices(F, Template, Goal, Atoms, Indices) :-
+    must_be(list(atom), Atoms),
+    filter_values(F, I, (Goal, nth0(I, Atoms, Template)), Values),
+    maplist(index_value, Values, Indices).
+
+index_value(V, I) :-
+    (   integer(V) -> I = V ; I = -1 ).
+
+%!  filter_packed_indices(+Filter, ?Template, +Goal, +Atoms:list(atom), -Indices) is det.
+%
+%   filter_indices/5, with Indices, where the engine reads them straight
+%   from its columns (the batched engine's engine_packed_indices/5 with
+%   its column library), a blob of doubles as filter_packed_rows/6 gives
+%   (NaN for -1); else the list of integers of filter_indices/5.
+filter_packed_indices(F, Template, Goal, Atoms, Indices) :-
+    outside_filter(F), !,
+    filter_call(F, filter_packed_indices(F, Template, Goal, Atoms, Indices)).
+filter_packed_indices(F, Template, Goal, Atoms, Indices) :-
+    must_be(list(atom), Atoms),
+    filter_handle(F, E, S),
+    (   current_predicate(E:engine_packed_indices/5),
+        E:engine_packed_indices(S, Template, Goal, Atoms, Packed)
+    ->  Indices = Packed
+    ;   filter_indices(F, Template, Goal, Atoms, Indices)
     ).
 
 %   step_input(+Obs, +Acts, -Weighted, -Facts): a step's input checked

@@ -126,6 +126,13 @@ engine_packed_rows(State, Template, Goal, Width, Rows) :-
     batch_query_goal(S, Goal, G),
     batch_packed_rows(S, Template, G, Width, Rows).
 
+%   engine_packed_indices(+State, ?Template, +Goal, +Atoms, -Indices) is
+%   semidet: ddc_filter:filter_packed_indices/5 read from the columns.
+engine_packed_indices(State, Template, Goal, Atoms, Indices) :-
+    batched_current(State, S),
+    batch_query_goal(S, Goal, G),
+    batch_packed_indices(S, Template, G, Atoms, Indices).
+
 engine_time(State, T) :-
     batched_current(State, S),
     batch_time(S, T).

@@ -136,24 +136,21 @@ class OcclusionReasoner:
     def belief(self, symbol: str, occluders: Sequence[str] = ()) -> Belief | None:
         """The position particles of ``symbol`` (None where no particle knows the anchor),
         read with the occluder each particle has it under (one of ``occluders``, by index;
-        -1 for none or another), in one query."""
+        -1 for none or another): two queries that read the filter's columns as they are."""
         atom = self.atom(symbol)
-        names = [self.atom(o) for o in occluders]
-        listed = "[" + ", ".join(names) + "]"
-        values, weights = self.filter.samples(
-            "(X, Y, Z, I)",
-            f"pos({atom}):t ~= (X, Y, Z), ( occluded_by({atom}, O):t, nth0(I, {listed}, O) "
-            "-> true ; I = -1 )")
-        values = np.asarray(values, dtype=float).reshape(self.particles, -1)
+        values, weights = self.filter.samples(f"pos({atom}):t")
+        if values.dtype == object or values.ndim != 2 or values.shape[1] != 3:
+            return None  # no particle has a position for it
         defined = ~np.isnan(values).any(axis=1)
-        if not defined.any() or values.shape[1] != 4:
+        if not defined.any():
             return None
         w = weights[defined]
         total = float(w.sum())
         if total <= 0:
             return None
-        return Belief(values[defined, :3], w / total,
-                      values[defined, 3].astype(np.int64), tuple(occluders))
+        under = self.filter.indices("O", f"occluded_by({atom}, O):t",
+                                    [self.atom(o) for o in occluders])
+        return Belief(values[defined], w / total, under[defined], tuple(occluders))
 
     def occluders(self, symbol: str) -> list[tuple[float, str]]:
         """``[(p, occluder symbol), ...]`` most probable first; the rest of the mass is on

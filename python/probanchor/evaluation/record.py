@@ -337,14 +337,15 @@ def point_estimate(
     keys = np.floor(pts / cell).astype(np.int64)
     keys -= keys.min(axis=0) - 1
     dims = keys.max(axis=0) + 2
-    cubes, inverse = np.unique(keys, axis=0, return_inverse=True)
-    inverse = inverse.reshape(-1)
-    mass = np.bincount(inverse, weights=w)
 
     def code(k: np.ndarray) -> np.ndarray:
         return (k[..., 0] * dims[1] + k[..., 1]) * dims[2] + k[..., 2]
 
-    codes = code(cubes)  # sorted, since np.unique sorts rows lexicographically
+    # Each cube by one integer code (in the cubes' lexicographic order, since every key lies
+    # in 1..dims-2): a sort of N integers, not of N rows.
+    codes, first, inverse = np.unique(code(keys), return_index=True, return_inverse=True)
+    cubes = keys[first]
+    mass = np.bincount(inverse.reshape(-1), weights=w)
     offsets = np.stack(np.meshgrid([-1, 0, 1], [-1, 0, 1], [-1, 0, 1]), -1).reshape(-1, 3)
     neighbours = code(cubes[None, :, :] + offsets[:, None, :])  # (27, M)
     at = np.clip(np.searchsorted(codes, neighbours), 0, len(codes) - 1)
