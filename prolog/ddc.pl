@@ -62,6 +62,7 @@
             filter_holds/3,             % +Filter, +Goal, -Flags
             filter_values/4,            % +Filter, +Template, +Goal, -Values
             filter_rows/6,              % +Filter, +Template, +Goal, -Width, -Floats, -Values
+            filter_indices/5,           % +Filter, ?Template, +Goal, +Atoms, -Indices
             filter_time/2,              % +Filter, -T
             filter_engine/2,            % +Filter, -Engine
             filter_size/2,              % +Filter, -N
@@ -80,7 +81,7 @@
 :- use_module('ddc/runtime/ddc_query').
 :- use_module('ddc/filter/ddc_filter', [ filter_new/4, filter_new/5, filter_step/4, filter_undo/1,
                             filter_resample/2, filter_rename/3, filter_holds/3, filter_values/4,
-                            filter_rows/6, filter_time/2, filter_engine/2, filter_size/2,
+                            filter_rows/6, filter_indices/5, filter_time/2, filter_engine/2, filter_size/2,
                             filter_statistics/2, filter_free/1, filter_call/2 ]).
 :- use_module('ddc/runtime/ddc_world', [eval_dist/2]).
 %   (filter_call/2, dist_sugar/2 and eval_dist/2 are imported for the
@@ -114,6 +115,7 @@
     filter_holds(+Filter, +Goal, -Flags),
     filter_values(+Filter, +Template, +Goal, -Values),
     filter_rows(+Filter, +Template, +Goal, -Width, -Floats, -Values),
+    filter_indices(+Filter, ?Template, +Goal, +Atoms, -Indices),
     filter_time(+Filter, -T), filter_engine(+Filter, -Engine),
     filter_size(+Filter, -N), filter_statistics(+Filter, -Stats), filter_free(+Filter);
     filter_new/5 with share(false) computes

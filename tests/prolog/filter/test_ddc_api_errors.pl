@@ -52,6 +52,12 @@ test(bad_resampling_indices_are_a_domain_error,
     filter_free(F),
     E = error(domain_error(particle_indices(20), Is), context(ddc_filter:filter_resample/2, _)).
 
+test(indices_of_no_atoms_are_a_type_error, [forall(member(Engine, [per_particle, batched]))]) :-
+    new_filter(Engine, F),
+    catch(filter_indices(F, X, x:t ~= X, [a, 1.5], _), E, true),
+    filter_free(F),
+    E = error(type_error(_, _), _).
+
 test(index_out_of_range_is_a_domain_error) :-
     new_filter(per_particle, F),
     numlist(1, 20, Is),                     % 20 is out of range 0..19
