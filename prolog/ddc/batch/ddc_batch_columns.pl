@@ -21,6 +21,7 @@
             vm_finite/4,                % +Ps, +Binds, +Entries, !Column
             split/4,                    % +Term, +Ps0, -Term1, -Ps
             split_column/4,             % +Column, +Ps0, -V, -Ps
+            groups_by_values/3,         % +Ps, +Columns, -Groups
             unify_value/4,              % ?P, +V, +Ps0, -Ps
             unify_column/4,             % ?P, +Column, +Ps0, -Ps
             unify_column/5,             % ?P, +Column, +Arity, +Ps0, -Ps
@@ -490,7 +491,9 @@ split(T0, Ps0, T1, Ps) :-
     ;   T1 = T0, Ps = Ps0
     ).
 
-%   groups_by_values(+Ps, +Columns, -Groups): Vs-Ps pairs, the particles
+%!  groups_by_values(+Ps, +Columns, -Groups) is det.
+%
+%   Vs-Ps pairs, the particles
 %   of Ps grouped by their values Vs in Columns, in the standard order of
 %   Vs (each group's particles in the order of Ps).
 groups_by_values(Ps, Cs, Groups) :-

@@ -76,7 +76,8 @@ state_keep(S, Kept) :-
 query_env(S, E, All) :-
     batch_state_module(S, M), batch_state_size(S, N), batch_state_time(S, T),
     batch_state_tables(S, Tables), batch_state_facts(S, Facts),
-    make_env([module(M), size(N), now(T), tables(Tables), facts(Facts), observations([]),
+    fact_index(Facts, FactIndex),
+    make_env([module(M), size(N), now(T), tables(Tables), facts(FactIndex), observations([]),
               checked([])], E),
     ps_all(N, All).
 
