@@ -15,6 +15,11 @@ Usage (from the repository root)::
     .venv/bin/python scripts/particles_identical.py --base REV --particles 100 --threads 1 \\
         --engines batched
 
+With ``--particles-only`` the digest leaves out the answers to the run's own queries (the
+anchors' position samples, the occluders' distributions) and keeps the particles after each
+step and the run's summary: for a change in how the loop reads the filter, whose queries then
+differ while the particles must not.
+
 The digest of one configuration alone (of this tree)::
 
     .venv/bin/python scripts/particles_identical.py --digest 100 1 batched
@@ -50,15 +55,20 @@ def _entry_point(tree: Path) -> tuple[str, str]:
     return module, function
 
 
-def digest_run(tree: Path, particles: int, threads: int, engine: str) -> str:
-    """Run the shell game in this process (the code of ``tree``) and return its digest."""
+def digest_run(tree: Path, particles: int, threads: int, engine: str,
+               particles_only: bool = False) -> str:
+    """Run the shell game in this process (the code of ``tree``) and return its digest (with
+    ``particles_only``, of the steps and the particles after them, not of other queries)."""
     import janus_swi as janus
 
     digest = hashlib.sha256()
     original = janus.query_once
+    dumping = [False]
 
     def recording(goal: str, bindings: dict | None = None, *args, **kwargs):
         result = original(goal, bindings or {}, *args, **kwargs)
+        if particles_only and not dumping[0]:
+            return result
         if isinstance(result, dict):
             for key in sorted(result):
                 value = result[key]
@@ -74,8 +84,10 @@ def digest_run(tree: Path, particles: int, threads: int, engine: str) -> str:
 
     def step_and_dump(self, *args, **kwargs):
         result = step(self, *args, **kwargs)
+        dumping[0] = True
         self.values("L", "findall(K-V, pos(K):t ~= V, L)")
         self.values("L", "findall(K-O, occluded_by(K, O):t ~= true, L)")
+        dumping[0] = False
         digest.update(self.log_weights.tobytes())
         return result
 
@@ -94,13 +106,14 @@ def digest_run(tree: Path, particles: int, threads: int, engine: str) -> str:
     return digest.hexdigest()
 
 
-def tree_digest(tree: Path, particles: int, threads: int, engine: str) -> tuple[str, float]:
+def tree_digest(tree: Path, particles: int, threads: int, engine: str,
+                particles_only: bool = False) -> tuple[str, float]:
     """One configuration's digest, computed by a fresh interpreter on ``tree``'s code."""
     env = dict(os.environ, PYTHONPATH=str(tree / "python"))
     started = time.perf_counter()
     proc = subprocess.run(
         [sys.executable, str(Path(__file__).resolve()), "--tree", str(tree), "--digest",
-         str(particles), str(threads), engine],
+         str(particles), str(threads), engine, *(["--particles-only"] if particles_only else [])],
         cwd=tree, env=env, capture_output=True, text=True, check=False)
     seconds = time.perf_counter() - started
     lines = [line for line in proc.stdout.splitlines() if line.startswith(DIGEST_PREFIX)]
@@ -137,11 +150,14 @@ def main() -> int:
     parser.add_argument("--tree", type=Path, default=ROOT, help=argparse.SUPPRESS)
     parser.add_argument("--digest", nargs=3, metavar=("PARTICLES", "THREADS", "ENGINE"),
                         help="print the digest of one configuration of this tree and stop")
+    parser.add_argument("--particles-only", action="store_true",
+                        help="digest the steps and the particles after each, not the answers to "
+                             "the run's other queries")
     args = parser.parse_args()
     if args.digest:
         particles, threads, engine = args.digest
-        print(DIGEST_PREFIX + digest_run(args.tree, int(particles), int(threads), engine),
-              flush=True)
+        print(DIGEST_PREFIX + digest_run(args.tree, int(particles), int(threads), engine,
+                                         args.particles_only), flush=True)
         return 0
     with tempfile.TemporaryDirectory(prefix="particles-base-") as tmp:
         base = Path(tmp) / "tree"
@@ -154,8 +170,10 @@ def main() -> int:
                   f"  digest")
             for particles, threads, engine in itertools.product(
                     args.particles, args.threads, args.engines):
-                before, t_before = tree_digest(base, particles, threads, engine)
-                after, t_after = tree_digest(ROOT, particles, threads, engine)
+                before, t_before = tree_digest(base, particles, threads, engine,
+                                               args.particles_only)
+                after, t_after = tree_digest(ROOT, particles, threads, engine,
+                                             args.particles_only)
                 same = before == after
                 failures += not same
                 print(f"{particles:>9} {threads:>7} {engine:<13} {t_before:7.1f} {t_after:7.1f}"
