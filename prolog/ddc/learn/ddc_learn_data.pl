@@ -7,8 +7,10 @@
     the questions the learner asks of it: which values a random variable
     has, which literals hold, in one partial possible world at a time.
 
-    It reads the files and runs the final checks; the rest lives in
-    modules of one job each, re-exported here:
+    Its files are read by the engine's reader of DC files
+    (lang/ddc_source.pl: includes, operators, syntax and missing files);
+    this module says what their terms mean and runs the final checks; the
+    rest lives in modules of one job each, re-exported here:
 
       ddc_learn_syntax.pl    time-indexed terms renamed; DC bodies as goals
       ddc_learn_bias.pl      the declarative bias; each predicate's kind
