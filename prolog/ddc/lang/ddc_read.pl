@@ -63,7 +63,7 @@ resolve_file(Spec, File) :-
 %   syntax_error(Message), permission_error(include, source_sink, File), each
 %   with context(ddc_source:source_terms/3, File:Line).
 read_program(File, Terms) :-
-    source_terms(File, [module(ddc)], Sources),
+    source_terms(File, [module(ddc), variable_names(false)], Sources),
     program_terms(Sources, File, Terms).
 
 program_terms([], _, []).
