@@ -270,13 +270,14 @@ dialect_of(_, _, own).
 %   of File, read with the DC operators (and `::`) by the reader of DC files
 %   (lang/ddc_source.pl): `:- include(Spec).` is replaced by the clauses of
 %   the file it names (File1 that file), `:- op/3` applies to the rest of
-%   the file.
+%   the file.  The bracket depth is not scanned first, as the engine's
+%   programs are (it would cost more than reading large files of facts).
 %
 %   @error the reader's (lang/ddc_source.pl): existence_error(source_sink, Spec),
 %   syntax_error(Message), permission_error(include, source_sink, File), each
 %   with context(ddc_source:source_terms/3, File:Line).
 data_read_terms(File, Dialect, Items) :-
-    source_terms(File, [module(ddc_learn_data)], Sources),
+    source_terms(File, [module(ddc_learn_data), check_nesting(false)], Sources),
     maplist(data_item(Dialect), Sources, Items).
 
 data_item(D, src(T, Vs, File, Line), item(T, Vs, D, File:Line)).
