@@ -9,8 +9,9 @@
     subsystem below prolog/ddc/ (module names keep their ddc_ prefix):
 
       lang/     the language: ddc_ops.pl (the operators ~, ~=, :=, <-, pr),
-                ddc_records.pl (records with named fields), ddc_read.pl
-                (reading program files), ddc_compile.pl and ddc_body.pl
+                ddc_records.pl (records with named fields), ddc_source.pl
+                (the one reader of DC files, the learner's too), ddc_read.pl
+                (what a program's terms mean), ddc_compile.pl and ddc_body.pl
                 (compiling items and clause bodies), ddc_programs.pl (the
                 programs loaded into modules, ddc_load/1,2), ddc_dist.pl
                 (distributions), ddc_models.pl (models of learned clauses),
@@ -194,12 +195,22 @@ beats a density).
 
 ## Errors
 
-An error in a program (its text, or a clause that misbehaves when it
-runs) is `error(ddc(Cause, Where), _)` with Where = File:Line (or
-`query`); print_message/2 renders it as `File:Line: cause`.  Causes:
-syntax_error(Msg), distribution(Dist, Why), non_ground_head(H),
+A file that cannot be read (the engine's programs and the learner's
+data alike: library ddc/lang/ddc_source) is an ISO error term whose
+context names the file and line, `error(Formal,
+context(ddc_source:source_terms/3, File:Line))`: existence_error(source_sink,
+Spec) for no such file (a program named by the caller: context
+`context(ddc_source:source_file/3, _)`), or an included one,
+syntax_error(Msg) for a term that does not parse (syntax_error(too_deep(Max))
+for brackets nested too deep), permission_error(include, source_sink, F)
+for a file that includes itself, op/3's error for a bad `:- op/3`.
+
+An error in what a program says (a clause, or a clause that misbehaves
+when it runs) is `error(ddc(Cause, Where), _)` with Where = File:Line (or
+`query`).  Causes: distribution(Dist, Why), non_ground_head(H),
 overlapping_clauses(Key, OtherFile:OtherLine), zero_evidence(Evidence),
-no_observation_clause(Obs), bad_directive(D).
+no_observation_clause(Obs), bad_directive(D), syntax_error(Msg) (of a
+query's text).  print_message/2 renders both as `File:Line: cause`.
 
 A misuse of the API is an ISO error term, its context the predicate and
 what went wrong, `error(Formal, context(Module:Name/Arity, Message))`:

@@ -57,13 +57,21 @@ def test_filter_errors_by_cause(tmp_path: Path) -> None:
     assert unknown.value.cause == "existence_error"
     broken = tmp_path / "broken.pl"
     broken.write_text("x:0 ~ val(1).\ny:t+1 ~ gaussian(0, 1 := true.\n")
-    with pytest.raises(ProgramError, match=r"broken\.pl:2"):
-        Filter(broken, particles=10)
+    with pytest.raises(BadArgumentError, match=r"broken\.pl:2: syntax error") as syntax:
+        Filter(broken, particles=10)  # a file that does not parse: the reader's syntax_error
+    assert syntax.value.cause == "syntax_error"
+    bad = tmp_path / "bad.pl"
+    bad.write_text("x:0 ~ val(1).\ny:t+1 ~ nosuch(1) := true.\n")
+    with pytest.raises(ProgramError, match=r"bad\.pl:2"):
+        Filter(bad, particles=10)  # a program that says something wrong: ddc(Cause, Where)
 
 
 def test_static_program_and_learning_errors(tmp_path: Path) -> None:
     bad = tmp_path / "bad.pl"
     bad.write_text("coin ~ finite([0.5:true, 0.5:false]).\nx ~ val(1) := coin ~= .\n")
+    with pytest.raises(BadArgumentError, match=r"bad\.pl:2: syntax error"):
+        bridge.load(bad)
+    bad.write_text("coin ~ finite([0.5:true, 0.5:false]).\nx ~ nosuch(1) := coin ~= true.\n")
     with pytest.raises(ProgramError, match=r"bad\.pl:2"):
         bridge.load(bad)
     data = tmp_path / "data.pl"

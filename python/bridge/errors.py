@@ -4,8 +4,8 @@ Every error that comes from Prolog (a call through janus, or a message the bridg
 helper returns) is an :class:`EngineError`; its class says what kind of thing went wrong, read
 from the Prolog error term's formal part (:attr:`EngineError.cause`):
 
-- :class:`ProgramError`: ``ddc(Cause, File:Line)``, a DC program (its text, or a clause that
-  misbehaved as it ran);
+- :class:`ProgramError`: ``ddc(Cause, File:Line)``, a DC program (what a clause says, or a
+  clause that misbehaved as it ran);
 - :class:`LearningDataError`: ``ddc_learn(Cause, Where)``, learning data;
 - :class:`FrameFileError`: ``ddc_belief(frame(File, Line, Cause))``, a frame file (also a
   ``ValueError``);
@@ -13,7 +13,9 @@ from the Prolog error term's formal part (:attr:`EngineError.cause`):
   not loaded;
 - :class:`BadArgumentError`: ``instantiation_error``, ``type_error/2``, ``domain_error/2``,
   ``syntax_error/1``, ...: what was asked (a text that does not parse or is not ground, a value
-  of the wrong type; also a ``ValueError``);
+  of the wrong type; also a ``ValueError``); a program or data file that does not parse is
+  ``syntax_error/1`` too (the reader of DC files, ``ddc/lang/ddc_source.pl``), its message
+  ``file:line: syntax error: ...``;
 - :class:`NotPermittedError`: ``permission_error/3``, e.g. a second undo.
 
 Anything else (a Prolog goal that failed, a resource error) is the base class itself. The

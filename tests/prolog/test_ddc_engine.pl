@@ -28,10 +28,16 @@ close_to(P, Exact, Tol) :-
     ;   format(user_error, "~w is not within ~w of ~w~n", [P, Tol, Exact]), fail
     ).
 
-%   error_at(+Goal, -Cause, -Line): Goal throws a ddc error at a line.
+%   error_at(+Goal, -Cause, -Line): Goal throws a ddc error at a line, or the reader's
+%   (ddc_source.pl: a file that cannot be read, Cause its ISO formal term).
 error_at(G, Cause, Line) :-
-    catch((G, Cause = none, Line = 0), error(ddc(Cause, Where), _), true),
-    (   Where = _:Line0 -> Line = Line0 ; true ).
+    catch((G, Cause = none, Line = 0), error(Formal, Ctx), true),
+    (   var(Formal) -> true
+    ;   Formal = ddc(Cause, Where) -> true
+    ;   Ctx = context(ddc_source:_, Where) -> Cause = Formal
+    ;   throw(error(Formal, Ctx))
+    ),
+    (   nonvar(Where), Where = _:Line0 -> Line = Line0 ; true ).
 
 :- begin_tests(ddc_language).
 

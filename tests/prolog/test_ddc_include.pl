@@ -1,4 +1,4 @@
-/*  plunit tests of `:- include(File).` in DC programs (prolog/ddc_read.pl): the included
+/*  plunit tests of `:- include(File).` in DC programs (prolog/ddc/lang/ddc_source.pl): the included
     file's clauses are the program's, it is found relative to the including file, and every
     error about one of its clauses names the included file and its line.
 */
@@ -23,9 +23,13 @@ path(Dir, Name, Path) :-
     absolute_file_name(Path0, Path).
 
 %   error_where(+Goal, -Cause, -File, -Line): Goal throws a ddc error about File:Line (in an
-%   included file, the error names the included file).
+%   included file, the error names the included file), or the reader's (ddc_source.pl: a
+%   file that cannot be read, Cause its ISO formal term).
 error_where(G, Cause, File, Line) :-
-    catch((G, fail), error(ddc(Cause, Where), _), true),
+    catch((G, fail), error(Formal, Ctx), true),
+    (   Formal = ddc(Cause, Where) -> true
+    ;   Ctx = context(ddc_source:_, Where) -> Cause = Formal
+    ),
     (   Where = _:(File:Line), integer(Line) -> true
     ;   Where = File:Line
     ).
@@ -100,12 +104,12 @@ test(lines_of_the_including_file_stay_its_own) :-
 test(no_such_included_file) :-
     files([ 'main.pl'-['a ~ val(1).', ':- include(nowhere).'] ], D),
     path(D, 'main.pl', F),
-    error_where(ddc_load(F), no_such_file(nowhere), F, 2).
+    error_where(ddc_load(F), existence_error(source_sink, nowhere), F, 2).
 
 test(a_file_that_includes_itself) :-
     files([ 'main.pl'-[':- include(base).'],
             'base.pl'-['a ~ val(1).', ':- include(main).'] ], D),
     path(D, 'main.pl', F), path(D, 'base.pl', B),
-    error_where(ddc_load(F), include_cycle(F), B, 2).
+    error_where(ddc_load(F), permission_error(include, source_sink, F), B, 2).
 
 :- end_tests(ddc_include).

@@ -216,7 +216,7 @@ test(free_and_a_failed_new_leave_nothing_behind) :-
     filter_free(F),                                     % (again: nothing to do)
     write_program(['x:0 ~ val(1).', 'x:t+1 ~ val(X) := x:t ~= X, (.'], Bad),
     aggregate_all(count, ddc_filter:filter_engine_(_, _, _, _), Before),
-    catch(filter_new(Bad, 5, 1, _), error(ddc(syntax_error(_), Bad:2), _), true),
+    catch(filter_new(Bad, 5, 1, _), error(syntax_error(_), context(ddc_source:_, Bad:2)), true),
     aggregate_all(count, ddc_filter:filter_engine_(_, _, _, _), Before).
 
 :- end_tests(ddc_threads).

@@ -1,7 +1,8 @@
 /** <module> The DDC engine's errors: at run time, and as messages
 
 Part of the DDC engine (ddc.pl is the module users load).  Every error
-of the engine is error(ddc(Cause, Where), _); this module names the
+of a program is error(ddc(Cause, Where), _) (a file that cannot be read
+at all, the reader's ISO error, ddc_source.pl); this module names the
 program's clause in an error raised while it runs, and renders the
 errors as messages (File:Line: cause).
 */
@@ -11,6 +12,7 @@ errors as messages (File:Line: cause).
           ]).
 
 :- use_module(ddc_programs, [program_file_/2]).
+:- use_module(ddc_source, [source_error/1]).
 
 :- multifile prolog:message//1.
 
@@ -53,6 +55,7 @@ program_error(E0, E, Frame, Catcher) :-
 engine_error(E) :- var(E), !.
 engine_error(error(ddc(_, _), _)).
 engine_error(error(ddc_distribution(_, _), _)).
+engine_error(E) :- source_error(E).     % a file that cannot be read (ddc_source.pl)
 engine_error('$aborted').
 engine_error(unwind(_)).
 engine_error(time_limit_exceeded).
@@ -114,9 +117,7 @@ cause(zero_evidence(E)) --> !,
     [ 'the evidence ~p has weight 0 in every sample (impossible evidence, or too few samples)'-[E] ].
 cause(no_observation_clause(O)) --> !,
     [ 'no clause applies to the observation ~p'-[O] ].
-cause(no_such_file(F)) --> !, [ 'no such file ~w'-[F] ].
 cause(bad_directive(D)) --> !, [ 'unknown directive ~p'-[D] ].
-cause(include_cycle(F)) --> !, [ 'the file ~w includes itself'-[F] ].
 cause(bad_head(H)) --> !,
     [ 'not a clause head: ~p (a random variable is defined by ~~ or :=, e.g. h:t+1 := true)'-[H] ].
 cause(fresh_arithmetic) --> !,

@@ -5,12 +5,12 @@
     hold, and a text nested 15,000-20,000 brackets deep ends the process with a
     segmentation fault.  Every text the engine reads from a user (a program file, a query,
     an observation) is first scanned here: deeper than max_nesting/1 is an error naming the
-    file and line, before the reader sees it.
+    file and line, before the reader sees it (ddc_source.pl for files).
 */
 
 :- module(ddc_nesting,
           [ max_nesting/1,              % -Depth
-            check_file_nesting/1,       % +File
+            file_too_deep/3,            % +File, -Max, -Line
             check_text_nesting/2        % +Text, +Where
           ]).
 
@@ -30,21 +30,18 @@ operators are read without recursion and are not limited here.
 %   to crash between 15,000 and 20,000).
 max_nesting(10000).
 
-%!  check_file_nesting(+File:atom) is det.
+%!  file_too_deep(+File:atom, -Max:integer, -Line:integer) is semidet.
 %
-%   @error ddc(too_deep(Max), File:Line) if File nests brackets deeper than max_nesting/1;
-%   Line is where the limit is passed.
-check_file_nesting(File) :-
+%   File nests brackets deeper than Max (max_nesting/1), first on Line; fails if it does
+%   not.  The reader of DC files (ddc_source.pl) calls it before it reads a file.
+file_too_deep(File, Max, Line) :-
     must_be(atom, File),
     read_file_to_string(File, Text, []),
     max_nesting(Max),
-    (   open_brackets(Text, Opens),
-        Opens > Max,                        % (else it cannot nest deeper: no scan)
-        string_codes(Text, Codes),
-        too_deep(Codes, Max, Line)
-    ->  throw(error(ddc(too_deep(Max), File:Line), _))
-    ;   true
-    ).
+    open_brackets(Text, Opens),
+    Opens > Max,                            % (else it cannot nest deeper: no scan)
+    string_codes(Text, Codes),
+    too_deep(Codes, Max, Line).
 
 %   open_brackets(+Text, -N): how many opening brackets Text holds, quoted or not.
 open_brackets(Text, N) :-

@@ -1,10 +1,11 @@
-/*  ddc_read.pl -- reading DC program files.
+/*  ddc_read.pl -- what the terms of a DC program file mean.
 
-    Part of the DDC engine (ddc.pl is the module users load).  Reads a
-    program file into terms with their lines, and sorts them into the
-    program's items (random variable and derived clauses, plain Prolog
-    clauses) and its directives, each remembering its line so that every
-    error names File:Line.
+    Part of the DDC engine (ddc.pl is the module users load).  The engine's
+    client of the reader of DC files (ddc_source.pl, which opens the file,
+    follows its includes and reports what keeps it from being read): sorts a
+    program's terms into its items (random variable and derived clauses,
+    plain Prolog clauses) and its directives, each remembering its line so
+    that every error names File:Line.
 */
 
 :- module(ddc_read,
@@ -20,8 +21,7 @@
 
 :- use_module(library(lists)).
 :- use_module(library(aggregate)).
-:- use_module(library(modules)).
-:- use_module(ddc_nesting).
+:- use_module(ddc_source, [source_file/3, source_terms/3]).
 :- use_module('../compat/dc_compat_load').   % the original DC's option directives and arithmetic
 
 :- use_module(ddc_ops).
@@ -30,7 +30,7 @@
 %   file; see ddc.pl).
 :- set_prolog_flag(optimise, true).
 
-/** <module> Reading DC program files
+/** <module> The items of a DC program file
 
 An item is one of
   - rv(Id, X, Kind, Dist, Body, Line): a random variable clause
@@ -46,102 +46,30 @@ variable and derived clauses in file order from 1.
 %   File is the absolute name of the program file Spec (a Prolog file
 %   first, then any file).
 %
-%   @error ddc(no_such_file(Spec), Spec:0) if there is none.
+%   @error existence_error(source_sink, Spec) if there is none (ddc_source.pl).
 resolve_file(Spec, File) :-
-    (   absolute_file_name(Spec, File0, [file_type(prolog), access(read), file_errors(fail)])
-    ->  File = File0
-    ;   absolute_file_name(Spec, File0, [access(read), file_errors(fail)])
-    ->  File = File0
-    ;   term_to_atom(Spec, A),
-        throw(error(ddc(no_such_file(A), A:0), _))
-    ).
+    source_file(Spec, [prefer(prolog)], File).
 
 %!  read_program(+File:atom, -Terms:list) is det.
 %
-%   Terms is a list of t(Term, Line).
+%   Terms is a list of t(Term, Line): the terms of the program File as
+%   the reader of DC files (ddc_source.pl) reads them, with the engine's
+%   operators: `:- include(Spec).` replaced by the included file's terms,
+%   `:- op/3` applied to the rest of the file only.  An included term's
+%   Line is Included:Line, so that every error about it names the
+%   included file and its line.
 %
-%   The file is read in a temporary module that inherits the engine's
-%   operators (its base module is ddc): an `:- op/3` directive of the file
-%   applies to the rest of that file, from its line on, and to nothing
-%   else, so a program (even one that is refused) cannot change how other
-%   programs or queries are read.
-%
-%   A directive `:- include(Spec).` is replaced by the terms of the file
-%   Spec names, resolved relative to the including file (as Prolog's
-%   include/1: the included text is read as if it stood there, with the
-%   operators declared so far).  An included term's Line is Included:Line,
-%   so that every error about it names the included file and its line.
-%
-%   @error ddc(no_such_file(Spec), File:Line) for an include of no file;
-%   ddc(include_cycle(Included), File:Line) for a file that includes itself.
-read_program(File, Items) :-
-    in_temporary_module(Reader,
-                        set_module(Reader:base(ddc)),
-                        read_program(File, Reader, [], Items, [])).
+%   @error the reader's (ddc_source.pl): existence_error(source_sink, Spec),
+%   syntax_error(Message), permission_error(include, source_sink, File), each
+%   with context(ddc_source:source_terms/3, File:Line).
+read_program(File, Terms) :-
+    source_terms(File, [module(ddc), variable_names(false)], Sources),
+    program_terms(Sources, File, Terms).
 
-read_program(File, Reader, Stack, Items, Tail) :-
-    check_file_nesting(File),
-    setup_call_cleanup(
-        open(File, read, S),
-        read_terms(S, File, Reader, [File|Stack], Items, Tail),
-        close(S)).
-
-read_terms(S, File, Reader, Stack, Items, Tail) :-
-    catch(read_term(S, T, [ module(Reader), term_position(P), syntax_errors(error) ]),
-          E, syntax_error(E, File)),
-    (   T == end_of_file
-    ->  Items = Tail
-    ;   stream_position_data(line_count, P, Line),
-        (   Stack = [_]
-        ->  L = Line
-        ;   L = File:Line
-        ),
-        (   include_directive(T, Spec)
-        ->  included_file(Spec, File, Stack, File:Line, Inc),
-            read_program(Inc, Reader, Stack, Items, Rest)
-        ;   reader_directive(T, Reader, File:Line),
-            Items = [t(T, L)|Rest]
-        ),
-        read_terms(S, File, Reader, Stack, Rest, Tail)
-    ).
-
-include_directive(T, Spec) :-
-    nonvar(T), T = (:- D), nonvar(D), D = include(Spec).
-
-%   included_file(+Spec, +File, +Stack, +Where, -Included): the file that
-%   `:- include(Spec)` in File names, relative to File's folder.
-included_file(Spec, File, Stack, Where, Inc) :-
-    (   ground(Spec),
-        (   absolute_file_name(Spec, Inc0, [ relative_to(File), file_type(prolog),
-                                             access(read), file_errors(fail) ])
-        ->  true
-        ;   absolute_file_name(Spec, Inc0, [ relative_to(File), access(read),
-                                             file_errors(fail) ])
-        )
-    ->  (   memberchk(Inc0, Stack)
-        ->  throw(error(ddc(include_cycle(Inc0), Where), _))
-        ;   Inc = Inc0
-        )
-    ;   term_to_atom(Spec, A),
-        throw(error(ddc(no_such_file(A), Where), _))
-    ).
-
-%   reader_directive(+Term, +Reader, +Where): an op/3 directive takes
-%   effect in the reading module at once; an error of op/3 (a bad priority
-%   or type, redefining `,` or `|`) is the program's error at Where.
-reader_directive(T, Reader, Where) :-
-    nonvar(T), T = (:- D), nonvar(D), D = op(P, Type, Names), !,
-    catch(op(P, Type, Reader:Names), E, load_error(E, op(P, Type, Names), Where)).
-reader_directive(_, _, _).
-
-syntax_error(error(syntax_error(Msg), Ctx), File) :- !,
-    (   Ctx = stream(_, Line, _, _) -> true
-    ;   Ctx = file(_, Line, _, _) -> true
-    ;   Line = 0
-    ),
-    throw(error(ddc(syntax_error(Msg), File:Line), _)).
-syntax_error(E, _) :-
-    throw(E).
+program_terms([], _, []).
+program_terms([src(T, _, F, Line)|Ss], File, [t(T, L)|Ts]) :-
+    (   F == File -> L = Line ; L = F:Line ),
+    program_terms(Ss, File, Ts).
 
 %!  classify_program(+File, +Module, +Terms, -Items, -Options, -DirectiveClauses) is det.
 %
@@ -261,7 +189,7 @@ directive(D, File, L, _, O0, O, C, C) :-
     append(Os, O, O0).
 directive(dynamic(S), _, _, _, [facts(S)|O], O, C, C) :- !.   % read from a filter step's facts
 directive(discontiguous(_), _, _, _, O, O, C, C) :- !.
-directive(op(_, _, _), _, _, _, O, O, C, C) :- !.     % applied while reading (read_program/2)
+directive(op(_, _, _), _, _, _, O, O, C, C) :- !.     % applied while reading (ddc_source.pl)
 directive(D, File, L, _, _, _, _, _) :-
     throw(error(ddc(bad_directive(D), File:L), _)).
 

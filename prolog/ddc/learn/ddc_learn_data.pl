@@ -7,8 +7,10 @@
     the questions the learner asks of it: which values a random variable
     has, which literals hold, in one partial possible world at a time.
 
-    It reads the files and runs the final checks; the rest lives in
-    modules of one job each, re-exported here:
+    Its files are read by the engine's reader of DC files
+    (lang/ddc_source.pl: includes, operators, syntax and missing files);
+    this module says what their terms mean and runs the final checks; the
+    rest lives in modules of one job each, re-exported here:
 
       ddc_learn_syntax.pl    time-indexed terms renamed; DC bodies as goals
       ddc_learn_bias.pl      the declarative bias; each predicate's kind
@@ -43,6 +45,7 @@
 :- use_module(library(pairs)).
 :- use_module('../lang/ddc_dist').
 :- use_module('../lang/ddc_models').
+:- use_module('../lang/ddc_source', [source_file/3, source_terms/3]).
 :- use_module(ddc_learn_syntax, [time_rename_items/3]).
 :- use_module(ddc_learn_bias, [bias_items/2, bias_term/2, finish_preds/2, given_weight/3]).
 :- use_module(ddc_learn_facts, [load_item/2, prob_table/2]).
@@ -105,9 +108,12 @@ data_counter(0).
 %   declared domain, a non-number for a continuous attribute, a key with
 %   two values, a mode that names an unknown predicate, a target without
 %   facts, a rank that lists a predicate twice are errors naming the file
-%   and line.
+%   and line.  A file may include another (`:- include(File).`, relative
+%   to it), and declare operators for the rest of its text (`:- op/3`).
 %
-%   @error ddc_learn(Cause, File:Line)
+%   @error ddc_learn(Cause, File:Line) for what the data say;
+%   the reader's ISO errors (lang/ddc_source.pl) for a file that cannot be
+%   read: existence_error(source_sink, Spec), syntax_error(Message), ...
 learn_data_load(Files, Options, Data) :-
     must_be(list, Files),
     must_be(list, Options),
@@ -118,13 +124,7 @@ learn_data_load(Files, Options, Data) :-
     catch(load_into(Data, Paths, Check, Options), E, ( learn_data_free(Data), throw(E) )).
 
 resolve_data_file(Spec, Path) :-
-    (   absolute_file_name(Spec, Path, [access(read), file_errors(fail)])
-    ->  true
-    ;   absolute_file_name(Spec, Path0, [extensions([pl]), access(read), file_errors(fail)])
-    ->  Path = Path0
-    ;   term_to_atom(Spec, A),
-        throw(error(ddc_learn(no_such_file(A), A:0), _))
-    ).
+    source_file(Spec, [prefer(exact)], Path).
 
 new_data_module(M) :-
     with_mutex(ddc_learn_data,
@@ -266,34 +266,21 @@ dialect_of(_, _, own).
 
 %!  data_read_terms(+File, +Dialect, -Items) is det.
 %
-%   Items is item(Term, VariableNames, Dialect, File:Line) for each clause
-%   of File, read with the DC operators (and `::`).
+%   Items is item(Term, VariableNames, Dialect, File1:Line) for each clause
+%   of File, read with the DC operators (and `::`) by the reader of DC files
+%   (lang/ddc_source.pl): `:- include(Spec).` is replaced by the clauses of
+%   the file it names (File1 that file), `:- op/3` applies to the rest of
+%   the file.  The bracket depth is not scanned first, as the engine's
+%   programs are (it would cost more than reading large files of facts).
 %
-%   @error ddc_learn(syntax_error(Msg), File:Line)
+%   @error the reader's (lang/ddc_source.pl): existence_error(source_sink, Spec),
+%   syntax_error(Message), permission_error(include, source_sink, File), each
+%   with context(ddc_source:source_terms/3, File:Line).
 data_read_terms(File, Dialect, Items) :-
-    setup_call_cleanup(open(File, read, S),
-                       read_items(S, File, Dialect, Items),
-                       close(S)).
+    source_terms(File, [module(ddc_learn_data), check_nesting(false)], Sources),
+    maplist(data_item(Dialect), Sources, Items).
 
-read_items(S, File, D, Items) :-
-    catch(read_term(S, T, [ module(ddc_learn_data), term_position(P),
-                            variable_names(Vs), syntax_errors(error) ]),
-          E, read_error(E, File)),
-    (   T == end_of_file
-    ->  Items = []
-    ;   stream_position_data(line_count, P, Line),
-        Items = [item(T, Vs, D, File:Line)|Rest],
-        read_items(S, File, D, Rest)
-    ).
-
-read_error(error(syntax_error(Msg), Ctx), File) :- !,
-    (   Ctx = stream(_, Line, _, _) -> true
-    ;   Ctx = file(_, Line, _, _) -> true
-    ;   Line = 0
-    ),
-    throw(error(ddc_learn(syntax_error(Msg), File:Line), _)).
-read_error(E, _) :-
-    throw(E).
+data_item(D, src(T, Vs, File, Line), item(T, Vs, D, File:Line)).
 
                  /*******************************
                  *        FINAL CHECKS          *

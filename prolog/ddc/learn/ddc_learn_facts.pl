@@ -59,6 +59,7 @@ directive(_, dynamic(_), _) :- !.
 directive(_, set_prolog_flag(_, _), _) :- !.
 directive(_, first_applicable(_), _) :- !.
 directive(_, initialization(_), _) :- !.
+directive(_, op(_, _, _), _) :- !.          % applied while reading (lang/ddc_source.pl)
 directive(_, D, W) :-
     throw(error(ddc_learn(bad_directive(D), W), _)).
 

@@ -8,7 +8,9 @@
 /** <module> Messages of the structure learner
 
 Errors are error(ddc_learn(Cause, Where), _), warnings
-ddc_learn_warning(Where-Cause); both print as `File:Line: cause`.
+ddc_learn_warning(Where-Cause); both print as `File:Line: cause`.  A
+file that cannot be read (no such file, a syntax error) is the reader's
+ISO error (lang/ddc_source.pl), printed the same way.
 */
 
 %!  message_text(+Message, -Text:string) is det.
@@ -37,8 +39,6 @@ learn_where(File:Line) --> { integer(Line), Line > 0 }, !, [ '~w:~w: '-[File, Li
 learn_where(File:_) --> !, [ '~w: '-[File] ].
 learn_where(W) --> [ '~w: '-[W] ].
 
-learn_cause(syntax_error(Msg)) --> !, [ 'syntax error: ~w'-[Msg] ].
-learn_cause(no_such_file(F)) --> !, [ 'no such file: ~w'-[F] ].
 learn_cause(unsupported_time(T)) --> !,
     [ '~q: learning data describe one step: only :t and :t+1 are allowed'-[T] ].
 learn_cause(time_name_clash(IN, A, B)) --> !,

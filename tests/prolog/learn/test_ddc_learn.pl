@@ -20,11 +20,18 @@ load(Lines, M) :-
     data(Lines, F),
     learn_load([F], [], M).
 
-%   load_error(+Lines, -Cause, -Line): loading throws ddc_learn(Cause, _:Line).
+%   load_error(+Lines, -Cause, -Line): loading throws ddc_learn(Cause, _:Line), or the
+%   reader's error (lang/ddc_source.pl: a file that cannot be read, Cause its ISO formal
+%   term).
 load_error(Lines, Cause, Line) :-
     data(Lines, F),
     catch(( learn_load([F], [], M), learn_free(M), Cause = none, Line = 0 ),
-          error(ddc_learn(Cause, Where), _), true),
+          error(Formal, Ctx), true),
+    (   var(Formal) -> true
+    ;   Formal = ddc_learn(Cause, Where) -> true
+    ;   Ctx = context(ddc_source:_, Where) -> Cause = Formal
+    ;   throw(error(Formal, Ctx))
+    ),
     (   nonvar(Where), Where = _:Line0 -> Line = Line0 ; true ).
 
 close_to(X, Y, Tol) :-
@@ -132,6 +139,17 @@ test(only_t_and_t_plus_1) :-
 test(syntax_error_names_its_line) :-
     load_error(['learn(c(X)).', 'c(1) ~= a.', 'c(2) ~= .'], Cause, Line),
     Cause = syntax_error(_), Line =:= 3.
+
+test(include_of_no_file_names_its_line) :-
+    load_error(['learn(c(X)).', ':- include(nowhere).', 'c(1) ~= a.'], Cause, Line),
+    Cause = existence_error(source_sink, nowhere), Line =:= 2.
+
+test(included_facts_are_the_datas) :-
+    data(['c(2) ~= b.'], Inc),
+    format(atom(Include), ':- include(~q).', [Inc]),
+    load(['learn(c(X)).', Include, 'c(1) ~= a.'], M),
+    learn_data_pred(M, c, 1, rv(discrete([a, b]))),
+    learn_free(M).
 
 test(unknown_directive) :-
     load_error(['learn(c(X)).', ':- frobnicate.', 'c(1) ~= a.'], Cause, Line),
