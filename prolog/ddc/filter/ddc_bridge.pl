@@ -4,16 +4,22 @@
     bridge.Filter calls these predicates through janus, one call per step or
     query, and bridge.frames one per frame file.  They parse the texts
     Python sends (in the operator context of module ddc), run the engine's
-    filter predicates (filter_new/5, filter_step/4, ...), turn errors into
-    one-line messages and particle values into data janus maps onto Python
-    values.  Nothing here keeps state: the filter is the engine's, named by
-    the text of its atom.
+    filter predicates (filter_new/5, filter_step/4, ...) and the rules of
+    the weights and resampling (ddc_weights.pl), turn errors into one-line
+    messages and particle values into data janus maps onto Python values.
+    Nothing here keeps state: the filter is the engine's, named by the text
+    of its atom, the weights bridge.Filter's, handed in and back.
 */
 
 :- module(ddc_bridge,
           [ bridge_new/9,               % +Program, +N, +Seed, +Share, +Threads, +Engine,
                                         % -Key, -Used, -Err
             bridge_step/5,              % +Key, +ObsTexts, +ActTexts, -LogWeights, -Err
+            bridge_weighted_step/12,    % +Key, +ObsTexts, +ActTexts, +LogWeights0, +Threshold,
+                                        % +Scheme, -LogWeights, -Increment, -ESS, -Infinite,
+                                        % -Draws, -Err
+            bridge_weighted_resample/6, % +Key, +Scheme, +LogWeights0, +Uniforms, -Indices,
+                                        % -LogWeights
             bridge_undo/1,              % +Key
             bridge_resample/2,          % +Key, +Indices
             bridge_rename/5,            % +Key, +Olds, +News, +Indices, -Err
@@ -38,6 +44,7 @@
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
 :- use_module(library(lists), [nth1/3]).
 :- use_module(ddc_observation_types, [observation_type_error/4]).
+:- use_module(ddc_weights).
 
 /** <module> The Prolog side of the Python bridge
 
@@ -82,16 +89,72 @@ bridge_new(Program, N, Seed, Share, Threads, Engine, F, Used, Err) :-
 %   (ddc_observation_types.pl), is an error naming its kind (observation, action), its
 %   1-based place and its text.
 bridge_step(Key, ObsTexts, ActTexts, LW, Err) :-
-    guarded(( filter_of(Key, F),
-              parse_terms(observation, ObsTexts, Obs),
-              parse_terms(action, ActTexts, Acts),
-              check_observation_types(F, ObsTexts, Obs),
-              filter_step(F, Obs, Acts, LW0),
+    guarded(( text_step(Key, ObsTexts, ActTexts, _, LW0),
               maplist(to_float, LW0, LW)
             ), Err),
     ( var(LW) -> LW = [] ; true ).
 
+%   text_step(+Key, +ObsTexts, +ActTexts, -F, -LogWeights): filter_step/4 of Key's filter F
+%   with the observations and actions parsed and checked.
+text_step(Key, ObsTexts, ActTexts, F, LW) :-
+    filter_of(Key, F),
+    parse_terms(observation, ObsTexts, Obs),
+    parse_terms(action, ActTexts, Acts),
+    check_observation_types(F, ObsTexts, Obs),
+    filter_step(F, Obs, Acts, LW).
+
 to_float(X, F) :- ( float(X) -> F = X ; F is float(X) ).
+
+%!  bridge_weighted_step(+Key, +ObsTexts:list, +ActTexts:list, +LogWeights0:list(float),
+%!                       +Threshold:float, +Scheme, -LogWeights:list(float),
+%!                       -Increment:float, -ESS:float, -Infinite:boolean, -Draws, -Err) is det.
+%
+%   bridge_step/5, then the step's weighting by weights_update/6 from the
+%   normalised LogWeights0 the caller holds: LogWeights the new ones,
+%   Increment the log of the step's weighted mean likelihood, ESS the
+%   effective sample size, Infinite whether only particles of infinite
+%   likelihood were kept.  When every particle gets weight 0 (Increment
+%   -inf) the step is undone (filter_undo/1) and LogWeights are uniform.
+%   Draws is the number of uniforms the resampling by Scheme takes
+%   (resample_draws/3) when the particles are to be resampled
+%   (resample_needed/3 with Threshold), else `none`: the caller draws them
+%   and calls bridge_weighted_resample/6.  Outputs are empty or none when
+%   Err is not "".
+bridge_weighted_step(Key, ObsTexts, ActTexts, LW0, Th, Scheme, LW, Inc, ESS, Inf, Draws,
+                     Err) :-
+    guarded(( text_step(Key, ObsTexts, ActTexts, F, StepLW),
+              weights_update(LW0, StepLW, LW1, Inc, ESS, Inf),
+              length(LW0, N),
+              (   Inc =:= -inf
+              ->  filter_undo(F),
+                  weights_uniform(N, LW),
+                  Draws = none
+              ;   LW = LW1,
+                  (   resample_needed(ESS, Th, N)
+                  ->  weights_normalised(LW, Ws),
+                      resample_draws(Scheme, Ws, Draws)
+                  ;   Draws = none
+                  )
+              )
+            ), Err),
+    (   var(LW) -> LW = [], Inc = none, ESS = none, Inf = none, Draws = none ; true ).
+
+%!  bridge_weighted_resample(+Key, +Scheme, +LogWeights0:list(float),
+%!                           +Uniforms:list(float), -Indices:list(integer),
+%!                           -LogWeights:list(float)) is det.
+%
+%   filter_resample/2 with the ancestors that resample_indices/4 picks by
+%   Scheme for the normalised LogWeights0 from Uniforms (as many as
+%   bridge_weighted_step/12's Draws); Indices are those ancestors
+%   (0-based), for the caller's data that follow the particles, LogWeights
+%   the uniform weights after it.
+bridge_weighted_resample(Key, Scheme, LW0, Us, Is, LW) :-
+    filter_of(Key, F),
+    weights_normalised(LW0, Ws),
+    resample_indices(Scheme, Ws, Us, Is),
+    filter_resample(F, Is),
+    length(LW0, N),
+    weights_uniform(N, LW).
 
 %!  bridge_undo(+Key) is det.
 %
