@@ -185,7 +185,7 @@ def _as_term_text(value: Any) -> str:
 
 
 class Filter:
-    """A DDC particle filter: particles in Prolog, weights and resampling in numpy."""
+    """A DDC particle filter: particles in Prolog, weights by the rules of ddc_weights.pl."""
 
     def __init__(
         self,

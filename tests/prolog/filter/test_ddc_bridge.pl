@@ -5,6 +5,7 @@
 :- use_module('../../../prolog/ddc').
 :- use_module('../../../prolog/ddc/filter/ddc_bridge').
 :- use_module('../../../prolog/ddc/filter/ddc_belief', [read_frame_file/2]).
+:- use_module('../../../prolog/ddc/filter/ddc_weights').
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
@@ -93,6 +94,40 @@ test(holds_flags_every_particle) :-
     assertion((S > 0, S < 40)),
     bridge_holds(Key, "maze(0,1):t ~=", _, Err2),
     assertion((Err2 = _-TErr2, sub_string(TErr2, 0, _, _, "goal maze(0,1):t ~=: "))),
+    bridge_free(Key).
+
+test(weighted_step_normalises_and_says_when_to_resample) :-
+    new_filter(30, Key),
+    weights_uniform(30, LW0),
+    bridge_weighted_step(Key, ["observation(up) ~= wall", "observation(right) ~= free"],
+                         ["action(null)"], LW0, 2.0, residual, LW, Inc, ESS, Inf, Draws, Err),
+    assertion(Err == ""),
+    assertion(Inf == false),
+    length(LW, 30),
+    foldl([L, S0, S]>>(S is S0 + exp(L)), LW, 0.0, Sum),
+    assertion(abs(Sum - 1) < 1.0e-12),
+    assertion(ESS > 0), assertion(ESS =< 30.0000001),
+    assertion(Inc < 0),
+    % (threshold 2: always below) the draws of residual resampling
+    weights_normalised(LW, Ws),
+    resample_draws(residual, Ws, Draws),
+    length(Us, Draws), maplist(=(0.5), Us),
+    bridge_weighted_resample(Key, residual, LW, Us, Is, LW1),
+    length(Is, 30),
+    assertion(LW1 == LW0),
+    bridge_free(Key).
+
+test(weighted_step_undoes_a_frame_of_weight_zero) :-
+    new_filter(10, Key),
+    weights_uniform(10, LW0),
+    % (a value outside `finite`'s support: every particle weight 0)
+    bridge_weighted_step(Key, ["observation(up) ~= maybe"], ["action(null)"], LW0, 0.5,
+                         systematic, LW, Inc, ESS, _, Draws, Err),
+    assertion(Err == ""),
+    assertion(Inc =:= -inf), assertion(ESS == 0.0), assertion(Draws == none),
+    assertion(LW == LW0),
+    bridge_time(Key, T),
+    assertion(T == 0),
     bridge_free(Key).
 
 test(resample_copies_the_particles_it_names) :-
