@@ -247,6 +247,8 @@ class Filter:
         #: the uniforms of the resampling come from this stream (``resample_draws/3`` says how
         #: many each resampling takes)
         self._rng = np.random.default_rng(self.seed)
+        self._log_weights = np.empty(0)  # (uniform once the particles are made)
+        self._ess = math.nan
         self.log_likelihood = 0.0
         self.zero_weight_events = 0
         self.frames = 0
