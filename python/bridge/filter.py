@@ -248,6 +248,7 @@ class Filter:
         #: many each resampling takes)
         self._rng = np.random.default_rng(self.seed)
         self._log_weights = np.empty(0)  # (uniform once the particles are made)
+        self._uniform = True
         self._ess = math.nan
         self.log_likelihood = 0.0
         self.zero_weight_events = 0
@@ -275,7 +276,11 @@ class Filter:
         self._key = str(result["K"])
         #: the engine that steps the particles: "batched" or "per_particle" (``auto`` resolved)
         self.engine = str(result["Used"])
-        self._uniform_weights()
+        #: the log weights 1/N (``weights_uniform/2``), held while the weights are uniform
+        self._uniform_log_weights = np.asarray(
+            prolog.call(f"{_WEIGHTS_MODULE}:weights_uniform", N=self.particles, LW=OUT)["LW"],
+            dtype=float)
+        self._set_weights([])
 
     # -- life cycle ---------------------------------------------------------------------------
     def close(self) -> None:
@@ -330,15 +335,17 @@ class Filter:
         """Effective sample size of the current weights (N right after resampling)."""
         return self._ess
 
-    def _uniform_weights(self) -> None:
-        """Every particle the weight 1/N (``weights_uniform/2``)."""
-        found = prolog.call(f"{_WEIGHTS_MODULE}:weights_uniform", N=self.particles, LW=OUT)
-        self._log_weights = np.asarray(found["LW"], dtype=float)
-        self._ess = float(self.particles)
-
-    def _set_weights(self, log_weights: Any, ess: Any) -> None:
-        self._log_weights = np.asarray(log_weights, dtype=float)
-        self._ess = float(ess)
+    def _set_weights(self, log_weights: list[float], ess: float | None = None) -> None:
+        """The normalised log weights Prolog gave (``[]``: uniform) and their ESS (N for
+        uniform weights)."""
+        self._uniform = not log_weights
+        if self._uniform:
+            self._log_weights = self._uniform_log_weights
+            self._ess = float(self.particles)
+        else:
+            self._log_weights = np.asarray(log_weights, dtype=float)
+            if ess is not None:
+                self._ess = float(ess)
 
     # -- stepping -----------------------------------------------------------------------------
     @_locked
@@ -352,11 +359,17 @@ class Filter:
         act_texts = self._texts("action", actions)
         time_before = self.time
         call_started = _time.perf_counter()
+        # The uniforms a resampling may take (1 for systematic, N for the other schemes) are
+        # drawn before the call; the stream then moves on by those it took only.
+        stream = self._rng.bit_generator.state
+        uniforms = self._rng.random(1 if self.resampling == "systematic" else self.particles)
+        self._rng.bit_generator.state = stream
         try:
             result = _call("bridge_weighted_step", K=key, O=obs_texts, A=act_texts,
-                           LW0=self._log_weights.tolist(), Th=self.resample_threshold,
-                           Sch=self.resampling, LW=OUT, Inc=OUT, ESS=OUT, Inf=OUT,
-                           Draws=OUT, Err=OUT)
+                           LW0=[] if self._uniform else self._log_weights.tolist(),
+                           Th=self.resample_threshold, Sch=self.resampling,
+                           Us=uniforms.tolist(), LW=OUT, Inc=OUT, ESS=OUT, Inf=OUT,
+                           Drawn=OUT, Is=OUT, Err=OUT)
         except Exception as exc:  # janus-level failure: treat like an engine error
             result = {"Err": (getattr(exc, "cause", ""), str(exc)), "LW": []}
         prolog_seconds = _time.perf_counter() - call_started
@@ -368,22 +381,18 @@ class Filter:
         if result["Inf"] in (True, "true"):
             logger.warning("step %d: infinite likelihoods; keeping only those particles", frame)
         increment = float(result["Inc"])
-        self._set_weights(result["LW"], result["ESS"])
+        self._set_weights(result["LW"])
         if not math.isfinite(increment):  # (the step was undone, the weights made uniform)
-            self._ess = float(self.particles)
             return self._zero_weight(frame, started, prolog_seconds)
         self.log_likelihood += increment
-        ess = self._ess
-        draws = result["Draws"]
-        resampled = draws != "none"
+        ess = float(result["ESS"])
+        resampled = result["Is"] != "none"
         if resampled:
-            uniforms = self._rng.random(int(draws))
-            found = _call("bridge_weighted_resample", K=key, Sch=self.resampling,
-                          LW0=self._log_weights.tolist(), Us=uniforms.tolist(), Is=OUT,
-                          LW=OUT)
-            self.particle_data.resample(np.asarray(found["Is"], dtype=np.int64))
-            self._set_weights(found["LW"], self.particles)
+            self._rng.random(int(result["Drawn"]))
+            self.particle_data.resample(np.asarray(result["Is"], dtype=np.int64))
             self.resample_count += 1
+        else:
+            self._ess = ess
         return self._finish(
             StepResult(self.time, frame, ess, resampled, increment, False, 0.0, prolog_seconds),
             started,
@@ -529,7 +538,7 @@ class Filter:
         )
         logger.warning(message)
         warnings.warn(message, ZeroWeightWarning, stacklevel=4)  # the caller of step
-        # (the step was undone and the weights made uniform by bridge_weighted_step/12)
+        # (the step was undone and the weights made uniform by bridge_weighted_step/14)
         return self._finish(
             StepResult(self.time, frame, 0.0, False, -math.inf, True, 0.0, prolog_seconds),
             started,

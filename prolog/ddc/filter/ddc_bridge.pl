@@ -15,11 +15,9 @@
           [ bridge_new/9,               % +Program, +N, +Seed, +Share, +Threads, +Engine,
                                         % -Key, -Used, -Err
             bridge_step/5,              % +Key, +ObsTexts, +ActTexts, -LogWeights, -Err
-            bridge_weighted_step/12,    % +Key, +ObsTexts, +ActTexts, +LogWeights0, +Threshold,
-                                        % +Scheme, -LogWeights, -Increment, -ESS, -Infinite,
-                                        % -Draws, -Err
-            bridge_weighted_resample/6, % +Key, +Scheme, +LogWeights0, +Uniforms, -Indices,
-                                        % -LogWeights
+            bridge_weighted_step/14,    % +Key, +ObsTexts, +ActTexts, +LogWeights0, +Threshold,
+                                        % +Scheme, +Uniforms, -LogWeights, -Increment, -ESS,
+                                        % -Infinite, -Drawn, -Ancestors, -Err
             bridge_undo/1,              % +Key
             bridge_resample/2,          % +Key, +Indices
             bridge_rename/5,            % +Key, +Olds, +News, +Indices, -Err
@@ -106,55 +104,43 @@ text_step(Key, ObsTexts, ActTexts, F, LW) :-
 to_float(X, F) :- ( float(X) -> F = X ; F is float(X) ).
 
 %!  bridge_weighted_step(+Key, +ObsTexts:list, +ActTexts:list, +LogWeights0:list(float),
-%!                       +Threshold:float, +Scheme, -LogWeights:list(float),
-%!                       -Increment:float, -ESS:float, -Infinite:boolean, -Draws, -Err) is det.
+%!                       +Threshold:float, +Scheme, +Uniforms:list(float),
+%!                       -LogWeights:list(float), -Increment:float, -ESS:float,
+%!                       -Infinite:boolean, -Drawn:integer, -Ancestors, -Err) is det.
 %
-%   bridge_step/5, then the step's weighting by weights_update/6 from the
-%   normalised LogWeights0 the caller holds: LogWeights the new ones,
-%   Increment the log of the step's weighted mean likelihood, ESS the
-%   effective sample size, Infinite whether only particles of infinite
-%   likelihood were kept.  When every particle gets weight 0 (Increment
-%   -inf) the step is undone (filter_undo/1) and LogWeights are uniform.
-%   Draws is the number of uniforms the resampling by Scheme takes
-%   (resample_draws/3) when the particles are to be resampled
-%   (resample_needed/3 with Threshold), else `none`: the caller draws them
-%   and calls bridge_weighted_resample/6.  Outputs are empty or none when
-%   Err is not "".
-bridge_weighted_step(Key, ObsTexts, ActTexts, LW0, Th, Scheme, LW, Inc, ESS, Inf, Draws,
-                     Err) :-
+%   One step of the weighted filter, by the rules of ddc_weights.pl: bridge_step/5, the
+%   step's weighting from the normalised LogWeights0 the caller holds ([] for uniform
+%   weights) by weights_update/6 (LogWeights the new ones, Increment the log of the step's
+%   weighted mean likelihood, ESS the effective sample size, Infinite whether only
+%   particles of infinite likelihood were kept), and, when resample_needed/3 says so with
+%   Threshold, the resampling by Scheme: Ancestors are the indices resample_indices/4 picks
+%   (0-based; `none` when not resampled), from the first Drawn of Uniforms (the caller's
+%   draws: resample_draws/3 of them are used, at most 1 for systematic, N for the other
+%   schemes), and LogWeights is [] (uniform).  When every particle gets weight 0
+%   (Increment -inf) the step is undone (filter_undo/1) and LogWeights is [].  Outputs
+%   are empty or none when Err is not "".
+bridge_weighted_step(Key, ObsTexts, ActTexts, LW0, Th, Scheme, Us, LW, Inc, ESS, Inf, Drawn,
+                     Ancestors, Err) :-
     guarded(( text_step(Key, ObsTexts, ActTexts, F, StepLW),
-              weights_update(LW0, StepLW, LW1, Inc, ESS, Inf),
-              length(LW0, N),
+              length(StepLW, N),
+              (   LW0 == [] -> weights_uniform(N, Uniform) ; Uniform = LW0 ),
+              weights_update(Uniform, StepLW, LW1, Inc, ESS, Inf),
               (   Inc =:= -inf
               ->  filter_undo(F),
-                  weights_uniform(N, LW),
-                  Draws = none
-              ;   LW = LW1,
-                  (   resample_needed(ESS, Th, N)
-                  ->  weights_normalised(LW, Ws),
-                      resample_draws(Scheme, Ws, Draws)
-                  ;   Draws = none
-                  )
+                  LW = [], Drawn = 0, Ancestors = none
+              ;   resample_needed(ESS, Th, N)
+              ->  weights_normalised(LW1, Ws),
+                  resample_draws(Scheme, Ws, Drawn),
+                  resample_indices(Scheme, Ws, Us, Ancestors),
+                  filter_resample(F, Ancestors),
+                  LW = []
+              ;   LW = LW1, Drawn = 0, Ancestors = none
               )
             ), Err),
-    (   var(LW) -> LW = [], Inc = none, ESS = none, Inf = none, Draws = none ; true ).
-
-%!  bridge_weighted_resample(+Key, +Scheme, +LogWeights0:list(float),
-%!                           +Uniforms:list(float), -Indices:list(integer),
-%!                           -LogWeights:list(float)) is det.
-%
-%   filter_resample/2 with the ancestors that resample_indices/4 picks by
-%   Scheme for the normalised LogWeights0 from Uniforms (as many as
-%   bridge_weighted_step/12's Draws); Indices are those ancestors
-%   (0-based), for the caller's data that follow the particles, LogWeights
-%   the uniform weights after it.
-bridge_weighted_resample(Key, Scheme, LW0, Us, Is, LW) :-
-    filter_of(Key, F),
-    weights_normalised(LW0, Ws),
-    resample_indices(Scheme, Ws, Us, Is),
-    filter_resample(F, Is),
-    length(LW0, N),
-    weights_uniform(N, LW).
+    (   var(LW)
+    ->  LW = [], Inc = none, ESS = none, Inf = none, Drawn = 0, Ancestors = none
+    ;   true
+    ).
 
 %!  bridge_undo(+Key) is det.
 %

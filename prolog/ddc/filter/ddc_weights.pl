@@ -28,6 +28,10 @@
 :- use_module(library(lists)).
 :- use_module(library(error)).
 
+%   Arithmetic compiled to virtual-machine instructions (local to this
+%   file; see ddc.pl): a step's weights are a few passes over N floats.
+:- set_prolog_flag(optimise, true).
+
 /** <module> Particle weights and resampling
 
 Log weights are lists of floats, one per particle, normalised (their
@@ -73,7 +77,7 @@ weights_update(LWs0, Step, LWs, Inc, ESS, Infinite) :-
     length(LWs0, N),
     (   length(Step, N) -> true ; domain_error(same_length(N), Step) ),
     NegInf is -inf,
-    foldl(combine, LWs0, Step, Comb0, NegInf, Max0),
+    combine(LWs0, Step, Comb0, NegInf, Max0),
     (   Max0 =:= inf
     ->  Infinite = true,
         maplist(keep_infinite, Comb0, Comb),
@@ -84,7 +88,7 @@ weights_update(LWs0, Step, LWs, Inc, ESS, Infinite) :-
     ),
     (   Max =:= -inf
     ->  Inc = Max
-    ;   foldl(add_exp(Max), Comb, 0.0, Sum),
+    ;   sum_exp(Comb, Max, 0.0, Sum),
         Inc is Max + log(Sum)
     ),
     (   Inc =:= -inf
@@ -93,35 +97,43 @@ weights_update(LWs0, Step, LWs, Inc, ESS, Infinite) :-
     ;   normalise(Comb, Inc, LWs, ESS)
     ).
 
-%   combine(+L0, +L, -C, +Max0, -Max): C the combined log weight (NaN
+%   combine(+L0s, +Ls, -Cs, +Max0, -Max): Cs the combined log weights (NaN
 %   counts as -inf; arithmetic that yields an infinity raises
 %   float_overflow, so the infinities are handled before they reach it),
-%   Max the largest so far (max/2 of two infinities overflows).
-combine(L0, L, C, M0, M) :-
+%   Max the largest (max/2 of two infinities overflows).  (The passes over
+%   the particles are plain recursions: a step makes a few of them.)
+combine([], [], [], M, M).
+combine([L0|L0s], [L|Ls], [C|Cs], M0, M) :-
     (   L =:= L, L > -inf, L0 > -inf    % (L =:= L: not NaN)
     ->  (   L =:= inf -> C = L ; C is L0 + L )
     ;   C is -inf
     ),
-    (   C > M0 -> M = C ; M = M0 ).
+    (   C > M0 -> M1 = C ; M1 = M0 ),
+    combine(L0s, Ls, Cs, M1, M).
 
 keep_infinite(C, K) :-
     (   C =:= inf -> K = 0.0 ; K is -inf ).
 
-add_exp(M, L, S0, S) :-
-    (   L =:= -inf -> S = S0 ; S is S0 + exp(L - M) ).
+%   sum_exp(+Cs, +M, +S0, -S): S0 plus the sum of exp(C - M), from left to right.
+sum_exp([], _, S, S).
+sum_exp([L|Ls], M, S0, S) :-
+    (   L =:= -inf -> S1 = S0 ; S1 is S0 + exp(L - M) ),
+    sum_exp(Ls, M, S1, S).
 
 %   normalise(+Comb, +Inc, -LWs, -ESS): LWs = Comb - Inc, ESS = 1/sum(exp(LW)^2)
 normalise(Comb, Inc, LWs, ESS) :-
-    foldl(normalise_(Inc), Comb, LWs, 0.0, S),
+    normalise(Comb, Inc, LWs, 0.0, S),
     ESS is 1 / S.
 
-normalise_(Inc, C, L, S0, S) :-
+normalise([], _, [], S, S).
+normalise([C|Cs], Inc, [L|Ls], S0, S) :-
     (   C =:= -inf
-    ->  L = C, S = S0
+    ->  L = C, S1 = S0
     ;   L is C - Inc,
         W is exp(L),
-        S is S0 + W*W
-    ).
+        S1 is S0 + W*W
+    ),
+    normalise(Cs, Inc, Ls, S1, S).
 
 %!  weights_reweight(+LogWeights0:list, +LogFactors:list, -LogWeights:list, -Increment:float,
 %!                   -ESS:float) is det.
@@ -150,8 +162,10 @@ add_square(L, S0, S) :-
 %!  weights_normalised(+LogWeights:list, -Weights:list(float)) is det.
 %
 %   The weights exp(L) of normalised log weights (0.0 for -inf).
-weights_normalised(LWs, Ws) :-
-    maplist(exp_weight, LWs, Ws).
+weights_normalised([], []).
+weights_normalised([L|Ls], [W|Ws]) :-
+    exp_weight(L, W),
+    weights_normalised(Ls, Ws).
 
 exp_weight(L, W) :-
     (   L =:= -inf -> W = 0.0 ; W is exp(L) ).
@@ -177,11 +191,13 @@ resample_draws_(multinomial, Ws, N) :-
     length(Ws, N).
 resample_draws_(residual, Ws, R) :-
     length(Ws, N),
-    foldl(add_copies(N), Ws, 0, Kept),
+    kept_copies(Ws, N, 0, Kept),
     R is N - Kept.
 
-add_copies(N, W, K0, K) :-
-    K is K0 + floor(N * W).
+kept_copies([], _, K, K).
+kept_copies([W|Ws], N, K0, K) :-
+    K1 is K0 + floor(N * W),
+    kept_copies(Ws, N, K1, K).
 
 %!  resample_indices(+Scheme, +Weights:list(float), +Uniforms:list(float),
 %!                   -Indices:list(integer)) is det.
@@ -211,9 +227,7 @@ resample_indices(Scheme, Ws, Us, Is) :-
 resample_indices_(systematic, Ws, Us, Is) :-
     first_uniforms(1, Us, [U]),
     length(Ws, N),
-    N1 is N - 1,
-    numlist(0, N1, Ks),
-    maplist(systematic_position(U, N), Ks, Ps),
+    systematic_positions(0, N, U, Ps),
     walk(Ws, Ps, Is).
 resample_indices_(multinomial, Ws, Us, Is) :-
     length(Ws, N),
@@ -248,8 +262,12 @@ first_uniforms(K, Us, First) :-
     ;   domain_error(enough_uniforms(K), Us)
     ).
 
-systematic_position(U, N, K, P) :-
-    P is (U + K) / N.
+%   systematic_positions(+K, +N, +U, -Ps): (U+K)/N, ..., (U+N-1)/N
+systematic_positions(N, N, _, []) :- !.
+systematic_positions(K, N, U, [P|Ps]) :-
+    P is (U + K) / N,
+    K1 is K + 1,
+    systematic_positions(K1, N, U, Ps).
 
 residual_copies(N, W, C) :-
     C is floor(N * W).
@@ -272,21 +290,27 @@ repeat_index(I, C, L0, L) :-
 walk(Ws, Ps, Is) :-
     length(Ws, N),
     Last is N - 1,
-    walk(Ws, 0, 0.0, Last, Ps, Is).
+    walk(Ps, Ws, 0, 0.0, Last, Is).
 
-walk(_, _, _, _, [], []) :- !.
-walk(_, Last, _, Last, Ps, Is) :- !,
-    maplist(constant(Last), Ps, Is).
-walk([W|Ws1], I, C0, Last, [P|Ps], Is) :-
-    C is C0 + W,
-    (   C > P
-    ->  Is = [I|Is1],
-        walk([W|Ws1], I, C0, Last, Ps, Is1)
-    ;   I1 is I + 1,
-        walk(Ws1, I1, C, Last, [P|Ps], Is)
+%   walk(+Ps, +Ws, +I, +C0, +Last, -Is): Ws the weights from index I on, C0
+%   the cumulative weight before I.
+walk([], _, _, _, _, []).
+walk([P|Ps], Ws, I, C0, Last, Is) :-
+    (   I =:= Last
+    ->  last_index([P|Ps], Last, Is)
+    ;   Ws = [W|Ws1],
+        C is C0 + W,
+        (   C > P
+        ->  Is = [I|Is1],
+            walk(Ps, Ws, I, C0, Last, Is1)
+        ;   I1 is I + 1,
+            walk([P|Ps], Ws1, I1, C, Last, Is)
+        )
     ).
 
-constant(C, _, C).
+last_index([], _, []).
+last_index([_|Ps], Last, [Last|Is]) :-
+    last_index(Ps, Last, Is).
 
 %!  numpy_sum(+Xs:list(float), -Sum:float) is det.
 %

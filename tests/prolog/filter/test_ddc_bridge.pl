@@ -96,36 +96,38 @@ test(holds_flags_every_particle) :-
     assertion((Err2 = _-TErr2, sub_string(TErr2, 0, _, _, "goal maze(0,1):t ~=: "))),
     bridge_free(Key).
 
-test(weighted_step_normalises_and_says_when_to_resample) :-
+test(weighted_step_normalises_and_resamples_below_the_threshold) :-
     new_filter(30, Key),
-    weights_uniform(30, LW0),
-    bridge_weighted_step(Key, ["observation(up) ~= wall", "observation(right) ~= free"],
-                         ["action(null)"], LW0, 2.0, residual, LW, Inc, ESS, Inf, Draws, Err),
+    Obs = ["observation(up) ~= wall", "observation(right) ~= free"],
+    bridge_weighted_step(Key, Obs, ["action(null)"], [], 0.0, residual, [], LW, Inc, ESS, Inf,
+                         Drawn, Is, Err),
     assertion(Err == ""),
     assertion(Inf == false),
+    assertion(Is == none), assertion(Drawn == 0),
     length(LW, 30),
     foldl([L, S0, S]>>(S is S0 + exp(L)), LW, 0.0, Sum),
     assertion(abs(Sum - 1) < 1.0e-12),
     assertion(ESS > 0), assertion(ESS =< 30.0000001),
     assertion(Inc < 0),
-    % (threshold 2: always below) the draws of residual resampling
-    weights_normalised(LW, Ws),
-    resample_draws(residual, Ws, Draws),
-    length(Us, Draws), maplist(=(0.5), Us),
-    bridge_weighted_resample(Key, residual, LW, Us, Is, LW1),
-    length(Is, 30),
-    assertion(LW1 == LW0),
+    % (threshold 2: always below) resampled from the given uniforms, the weights uniform
+    length(Us, 30), maplist(=(0.5), Us),
+    bridge_weighted_step(Key, Obs, ["action(null)"], LW, 2.0, residual, Us, LW2, _, _, _,
+                         Drawn2, Is2, Err2),
+    assertion(Err2 == ""),
+    assertion(LW2 == []),
+    length(Is2, 30),
+    assertion(between(0, 30, Drawn2)),
+    bridge_time(Key, 2),
     bridge_free(Key).
 
 test(weighted_step_undoes_a_frame_of_weight_zero) :-
     new_filter(10, Key),
-    weights_uniform(10, LW0),
     % (a value outside `finite`'s support: every particle weight 0)
-    bridge_weighted_step(Key, ["observation(up) ~= maybe"], ["action(null)"], LW0, 0.5,
-                         systematic, LW, Inc, ESS, _, Draws, Err),
+    bridge_weighted_step(Key, ["observation(up) ~= maybe"], ["action(null)"], [], 0.5,
+                         systematic, [0.5], LW, Inc, ESS, _, Drawn, Is, Err),
     assertion(Err == ""),
-    assertion(Inc =:= -inf), assertion(ESS == 0.0), assertion(Draws == none),
-    assertion(LW == LW0),
+    assertion(Inc =:= -inf), assertion(ESS == 0.0), assertion(Drawn == 0),
+    assertion(Is == none), assertion(LW == []),
     bridge_time(Key, T),
     assertion(T == 0),
     bridge_free(Key).
