@@ -22,8 +22,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from bridge.resampling import systematic_indices  # (pure numpy: the DDC filter's resampler)
-
 PROCESS_VAR = 0.000025  # (0.5 cm)^2 per step and axis
 SENSOR_VAR = 0.0004  # (2 cm)^2 per axis
 OCCLUDER_RADIUS = 0.3
@@ -143,9 +141,20 @@ def scenario(m: int, steps: int, seed: int = 0) -> list[Frame]:
     return frames
 
 
+def systematic_indices(weights: np.ndarray, offset: float) -> np.ndarray:
+    """Systematic resampling: positions (offset + k) / N, each taking the first particle
+    whose cumulative weight exceeds it (the last counting as 1)."""
+    n = len(weights)
+    cumulative = np.cumsum(weights)
+    cumulative[-1] = 1.0
+    return np.minimum(np.searchsorted(cumulative, (offset + np.arange(n)) / n, side="right"),
+                      n - 1)
+
+
 class NumpyOcclusionFilter:
     """The same model, particles as numpy arrays; bootstrap filter with systematic resampling
-    (bridge.resampling's, the DDC filter's) when the ESS falls below ``threshold`` * N."""
+    (the DDC filter's scheme, here in numpy: the reference is numpy alone) when the ESS falls
+    below ``threshold`` * N."""
 
     def __init__(self, m: int, particles: int, seed: int = 0, threshold: float = 0.9) -> None:
         self.m, self.n, self.threshold = m, particles, threshold
@@ -206,7 +215,7 @@ class NumpyOcclusionFilter:
         self.pos, self.seen, self.hidden_under = new, seen_new.copy(), hidden_under
         w = np.exp(self.log_weights)
         if 1.0 / np.dot(w, w) < self.threshold * n:
-            idx = systematic_indices(w, self.rng)
+            idx = systematic_indices(w, self.rng.random())
             self.pos, self.hidden_under = self.pos[idx], self.hidden_under[idx]
             self.log_weights = np.full(n, -math.log(n))
 

@@ -53,6 +53,7 @@
             ddc_query_text/6,           % +Module, +QueryText, +EvidenceText, +N, +Seed, -Result
             ddc_expectation_text/7,     % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Result
             ddc_distribution_text/7,    % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Pairs
+            ddc_sample_text/5,          % +Module, +TemplateText, +GoalText, +Seed, -Texts
             ddc_sample_world/4,         % +Module, +Query, +Options, -Facts
             filter_new/4,               % +ProgramFile, +N, +Seed, -Filter
             filter_new/5,               % +ProgramFile, +N, +Seed, +Options, -Filter
@@ -104,7 +105,7 @@
     ddc_query(+Module, +Evidence, +Query, +Options, -P, -stats(SE, ESS, NCounted, N)),
     ddc_sample_world(+Module, +Query, +Options, -Facts) (ddc_query.pl)
   - Python bridge helpers: ddc_query_text/6, ddc_expectation_text/7,
-    ddc_distribution_text/7 (ddc_query.pl)
+    ddc_distribution_text/7, ddc_sample_text/5 (ddc_query.pl)
   - logistic(+Inputs, +Weights, -P), linear(+Inputs, +Weights, -Y),
     softmax(+Inputs, +WeightRows, -Ps), mean_list/2, mode_list/2,
     antimode_list/2, and the rest of ddc_models.pl's exports (re-exported)

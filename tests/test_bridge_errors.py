@@ -22,6 +22,7 @@ from bridge.errors import (
 from bridge.filter import Filter, call_helper
 from bridge.frames import read_frames
 from bridge.learning import LearningData
+from bridge.prolog import OUT
 
 ROOT = Path(__file__).resolve().parents[1]
 PIT_WORLD = ROOT / "prolog" / "examples" / "filter" / "pit_world.pl"
@@ -53,7 +54,7 @@ def test_filter_errors_by_cause(tmp_path: Path) -> None:
         with pytest.raises(EngineError, match="rename"):
             f.rename({"wall": "free"})
     with pytest.raises(UnknownObjectError, match="does not exist") as unknown:
-        call_helper("bridge_time(K, T)", {"K": "no_such_filter"})
+        call_helper("bridge_time", K="no_such_filter", T=OUT)
     assert unknown.value.cause == "existence_error"
     broken = tmp_path / "broken.pl"
     broken.write_text("x:0 ~ val(1).\ny:t+1 ~ gaussian(0, 1 := true.\n")
@@ -85,3 +86,49 @@ def test_frame_file_errors(tmp_path: Path) -> None:
     frames.write_text('{"observations": ["ok"]}\n{"bad": 1}\n')
     with pytest.raises(FrameFileError, match=r"frames\.jsonl:2"):
         read_frames(frames)
+
+
+def test_learner_errors_arrive_by_cause_naming_file_and_line(tmp_path: Path) -> None:
+    """The learner is called through the same adapter as the filter (bridge.prolog): its
+    Prolog errors arrive as the EngineError subclass of their cause, the message the data's
+    file:line."""
+    bad = tmp_path / "bad.pl"
+    bad.write_text("p(a) ~= 1.\nq(a ~= 2.\n")
+    with pytest.raises(BadArgumentError, match=r"bad\.pl:2: syntax error") as syntax:
+        LearningData([bad])  # (the one reader of DC files: its ISO syntax_error)
+    assert syntax.value.cause == "syntax_error"
+    head = ["type(y(e)).", "type(d(e)).", "rv(y(_), boolean).", "rv(d(_), continuous).",
+            "learn(y(X)).", "mode(y(_), d(+)).", "d(1) ~= 0.5.", "y(1) ~= true."]
+    unknown = tmp_path / "unknown.pl"
+    unknown.write_text("\n".join([*head, "learn(z(X)).", ""]))
+    with pytest.raises(LearningDataError, match=r"unknown\.pl:9: target z/1 has no facts"):
+        LearningData([unknown])
+    good = tmp_path / "good.pl"
+    good.write_text("\n".join([*head, ""]))
+    with LearningData([good]) as data:
+        assert [t["predicate"] for t in data.targets()] == ["y"]
+        with pytest.raises(UnknownObjectError, match="ddc_learn_target `z' does not exist"):
+            data.root("z")
+        root = data.root("y")
+        assert root.y.tolist() == [0.0]
+    with pytest.raises(UnknownObjectError, match="no such file"):
+        LearningData([tmp_path / "missing.pl"])
+
+
+def test_the_adapter_calls_named_predicates_with_data() -> None:
+    """bridge.prolog.call: arguments by name and in order, OUT for outputs; a failing goal is
+    the base class naming the predicate; anything but a module-qualified name is refused."""
+    from bridge import prolog
+
+    assert prolog.call("lists:sum_list", Xs=[1, 2, 3.5], S=OUT)["S"] == 6.5
+    with pytest.raises(EngineError, match="lists:member/2 failed") as failed:
+        prolog.call("lists:member", X=4, L=[1, 2])
+    assert type(failed.value) is EngineError
+    with pytest.raises(BadArgumentError) as bad:
+        prolog.call("error:must_be", T="positive_integer", X=-1)
+    assert bad.value.cause == "type_error"
+    for name in ("sum_list", "lists:sum_list(X)", "lists:sum_list, halt"):
+        with pytest.raises(ValueError, match="module-qualified"):
+            prolog.call(name, S=OUT)
+    with pytest.raises(ValueError, match="variable"):
+        prolog.call("lists:sum_list", xs=[1], S=OUT)

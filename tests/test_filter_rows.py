@@ -61,9 +61,9 @@ def test_the_column_library_copies_the_rows_into_the_array(
     replies = []
     call = bridge_filter._call
 
-    def recording(goal: str, bindings: dict) -> dict:
-        result = call(goal, bindings)
-        if goal.startswith("bridge_rows_into("):
+    def recording(name: str, /, **arguments: object) -> dict:
+        result = call(name, **arguments)
+        if name == "bridge_rows_into":
             replies.append(result["F"])
         return result
 
@@ -112,9 +112,9 @@ def test_the_column_library_copies_the_indices_into_the_array(
     replies = []
     call = bridge_filter._call
 
-    def recording(goal: str, bindings: dict) -> dict:
-        result = call(goal, bindings)
-        if goal.startswith("bridge_indices_into("):
+    def recording(name: str, /, **arguments: object) -> dict:
+        result = call(name, **arguments)
+        if name == "bridge_indices_into":
             replies.append(result["I"])
         return result
 

@@ -1,8 +1,8 @@
 """The errors of the DDC engine, as Python sees them: one base class, a subclass per cause.
 
-Every error that comes from Prolog (a call through janus, or a message the bridge's Prolog
-helper returns) is an :class:`EngineError`; its class says what kind of thing went wrong, read
-from the Prolog error term's formal part (:attr:`EngineError.cause`):
+Every error that comes from Prolog (a call through the adapter :mod:`bridge.prolog`, or a
+message the filter's Prolog helper returns) is an :class:`EngineError`; its class says what
+kind of thing went wrong, read from the Prolog error term's formal part (:attr:`EngineError.cause`):
 
 - :class:`ProgramError`: ``ddc(Cause, File:Line)``, a DC program (what a clause says, or a
   clause that misbehaved as it ran);
@@ -93,17 +93,3 @@ def from_helper(err: Any, prefix: str = "") -> EngineError:
     the text."""
     cause, text = (str(err[0]), str(err[1])) if isinstance(err, tuple) else ("", str(err))
     return engine_error(cause, prefix + text)
-
-
-def from_prolog(error: Exception, prefix: str = "") -> EngineError:
-    """The error of a ``janus.PrologError`` (its term's formal name read in Prolog), its
-    message ``prefix`` and the engine's message."""
-    cause = ""
-    term = getattr(error, "term", None)
-    if term is not None:
-        import janus_swi as janus
-
-        found = janus.query_once("( E = error(_F, _), callable(_F) -> functor(_F, _N, _), "
-                                 "atom_string(_N, C) ; C = \"\" )", {"E": term})
-        cause = str(found.get("C", "")) if found.get("truth") else ""
-    return engine_error(cause, prefix + str(error).strip())

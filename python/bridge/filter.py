@@ -1,10 +1,13 @@
 """The DDC particle filter seen from Python.
 
 Prolog (``prolog/ddc.pl``) owns the semantics: the particles live there between steps and one
-call per step samples the transition and weights every particle. Python owns the bookkeeping:
-normalised log weights (numpy), the effective sample size, resampling indices drawn from a numpy
-``Generator`` seeded from ``seed`` (:mod:`bridge.resampling`), the running log-likelihood, and
-timing.
+call per step samples the transition, weights every particle and, by the rules of
+``prolog/ddc/filter/ddc_weights.pl`` (the same as the swipl belief's, ``ddc_belief.pl``),
+normalises the weights, adds the step's likelihood to the running log-likelihood, computes the
+effective sample size and says whether to resample; the ancestors are picked there too. Python
+holds the normalised log weights between steps (a numpy array it hands back at each step), the
+numpy ``Generator`` seeded from ``seed`` whose uniforms the resampling takes, the running
+log-likelihood, and timing.
 
 Example::
 
@@ -59,16 +62,15 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import wraps
 from pathlib import Path
-from typing import Any, Concatenate, ParamSpec, TypeVar
+from typing import Any, Concatenate, Literal, ParamSpec, TypeVar
 
-import janus_swi as janus
 import numpy as np
 
 from bridge import prolog
 from bridge.engines import ENGINES, Engine
-from bridge.errors import EngineError, from_helper, from_prolog
+from bridge.errors import EngineError, from_helper
 from bridge.particle_data import ParticleData
-from bridge.resampling import RESAMPLERS, Resampling, effective_sample_size, resample_indices
+from bridge.prolog import OUT
 from bridge.terms import Compound, Text, item_text, to_term
 from bridge.threads import DEFAULT_THREADS
 
@@ -89,20 +91,17 @@ class ZeroWeightWarning(RuntimeWarning):
     """Every particle got weight 0 in a step; the pre-step particles were kept."""
 
 
-# --------------------------------------------------------------------------------------------
-# Weights arithmetic (resampling itself is bridge.resampling, pure numpy)
-
-
-def _logsumexp(values: np.ndarray) -> float:
-    top = float(np.max(values))
-    if not math.isfinite(top):
-        return top
-    return top + math.log(float(np.sum(np.exp(values - top))))
+#: The resampling schemes (``resample_indices/4`` in prolog/ddc/filter/ddc_weights.pl)
+Resampling = Literal["systematic", "multinomial", "residual"]
+SCHEMES: tuple[str, ...] = ("multinomial", "residual", "systematic")
+#: The rules of the weights and resampling (called through the adapter, as the helper's)
+_WEIGHTS_MODULE = "ddc_weights"
 
 
 # --------------------------------------------------------------------------------------------
 # The Prolog side of the bridge: prolog/ddc/filter/ddc_bridge.pl, loaded once, parses the texts,
-# turns errors into messages and particle values into janus-friendly data.
+# turns errors into messages and particle values into janus-friendly data; its predicates are
+# called through the one adapter, bridge.prolog.
 
 #: The engine file loaded before the first filter is made (tests may point it elsewhere).
 ENGINE: Path = prolog.PROLOG_DIR / "ddc.pl"
@@ -122,33 +121,25 @@ def _ensure_engine() -> None:
         engine = ENGINE
         if not engine.exists():
             raise FilterError(f"{engine}: the DDC engine is missing")
-        try:
-            prolog.ensure_loaded(engine)
-            # (use_module/2 with no imports: the helper's predicates stay out of user)
-            janus.query_once("use_module(F, [])", {"F": str(HELPER)})
-        except janus.PrologError as error:
-            raise from_prolog(error, f"{engine}: ") from None
+        prolog.ensure_loaded(engine)
+        # (no imports: the helper's predicates stay out of user)
+        prolog.ensure_loaded(HELPER, imports=False)
         _helper_loaded = True
 
 
-def call_helper(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
-    """Run ``goal``, a call of prolog/ddc/filter/ddc_bridge.pl, once (the engine and the helper are
-    loaded first); a Prolog error or failure is a :class:`FilterError`."""
+def call_helper(name: str, /, **arguments: Any) -> dict[str, Any]:
+    """Call the predicate ``name`` of prolog/ddc/filter/ddc_bridge.pl once (the engine and the
+    helper are loaded first) through :func:`bridge.prolog.call`: ``arguments`` by name, in
+    order, :data:`bridge.prolog.OUT` for an output; a Prolog error or failure is a
+    :class:`FilterError` (the subclass of its cause)."""
     _ensure_engine()
-    return _call(goal, bindings)
+    return _call(name, **arguments)
 
 
-def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
-    """Run ``goal`` of the helper module once, in whatever thread calls (the particles live
-    in a Prolog engine of their own, which any thread may run: ``filter_new/5``); a Prolog
-    error or failure is a :class:`FilterError`."""
-    try:
-        result = janus.query_once(f"{_HELPER_MODULE}:{goal}", bindings)
-    except janus.PrologError as error:
-        raise from_prolog(error) from None
-    if not result.get("truth", False):
-        raise FilterError(f"Prolog goal failed: {goal}")
-    return result
+def _call(name: str, /, **arguments: Any) -> dict[str, Any]:
+    """Call the helper's predicate ``name`` once, in whatever thread calls (the particles live
+    in a Prolog engine of their own, which any thread may run: ``filter_new/5``)."""
+    return prolog.call(f"{_HELPER_MODULE}:{name}", **arguments)
 
 
 # --------------------------------------------------------------------------------------------
@@ -194,7 +185,7 @@ def _as_term_text(value: Any) -> str:
 
 
 class Filter:
-    """A DDC particle filter: particles in Prolog, weights and resampling in numpy."""
+    """A DDC particle filter: particles in Prolog, weights by the rules of ddc_weights.pl."""
 
     def __init__(
         self,
@@ -238,9 +229,9 @@ class Filter:
             raise ValueError(f"resample_threshold must be in [0, 1], got {resample_threshold}")
         if engine not in ENGINES:
             raise ValueError(f"unknown engine {engine!r}; use one of {list(ENGINES)}")
-        if resampling not in RESAMPLERS:
+        if resampling not in SCHEMES:
             raise ValueError(
-                f"unknown resampling scheme {resampling!r}; use one of {sorted(RESAMPLERS)}"
+                f"unknown resampling scheme {resampling!r}; use one of {list(SCHEMES)}"
             )
         path = Path(program_path)
         if not path.is_file():
@@ -253,8 +244,12 @@ class Filter:
         self.share = bool(share)
         self.threads = int(threads)
         self.engine: str = engine
+        #: the uniforms of the resampling come from this stream (``resample_draws/3`` says how
+        #: many each resampling takes)
         self._rng = np.random.default_rng(self.seed)
-        self._log_weights = np.full(self.particles, -math.log(self.particles))
+        self._log_weights = np.empty(0)  # (uniform once the particles are made)
+        self._uniform = True
+        self._ess = math.nan
         self.log_likelihood = 0.0
         self.zero_weight_events = 0
         self.frames = 0
@@ -269,11 +264,9 @@ class Filter:
         #: one call on the filter at a time (a step is several Prolog calls)
         self._lock = threading.RLock()
         _ensure_engine()
-        result = _call(
-            "bridge_new(P, N, S, Sh, Th, E, K, Used, Err)",
-            {"P": str(self.program_path), "N": self.particles, "S": self.seed,
-             "Sh": "true" if self.share else "false", "Th": self.threads, "E": engine},
-        )
+        result = _call("bridge_new", P=str(self.program_path), N=self.particles, S=self.seed,
+                       Sh="true" if self.share else "false", Th=self.threads, E=engine,
+                       K=OUT, Used=OUT, Err=OUT)
         if result["Err"]:
             error = from_helper(result["Err"])  # usually "file:line: cause" already
             text = str(error)
@@ -283,6 +276,11 @@ class Filter:
         self._key = str(result["K"])
         #: the engine that steps the particles: "batched" or "per_particle" (``auto`` resolved)
         self.engine = str(result["Used"])
+        #: the log weights 1/N (``weights_uniform/2``), held while the weights are uniform
+        self._uniform_log_weights = np.asarray(
+            prolog.call(f"{_WEIGHTS_MODULE}:weights_uniform", N=self.particles, LW=OUT)["LW"],
+            dtype=float)
+        self._set_weights([])
 
     # -- life cycle ---------------------------------------------------------------------------
     def close(self) -> None:
@@ -290,7 +288,7 @@ class Filter:
         with self._lock:
             if self._key is not None:
                 key, self._key = self._key, None
-                _call("bridge_free(K)", {"K": key})
+                _call("bridge_free", K=key)
 
     def __enter__(self) -> Filter:
         return self
@@ -320,7 +318,7 @@ class Filter:
     @_locked
     def time(self) -> int:
         """The time step of the particles (0 after construction, +1 per non-zero-weight step)."""
-        return int(_call("bridge_time(K, T)", {"K": self._handle()})["T"])
+        return int(_call("bridge_time", K=self._handle(), T=OUT)["T"])
 
     @property
     def log_weights(self) -> np.ndarray:
@@ -335,7 +333,19 @@ class Filter:
     @property
     def ess(self) -> float:
         """Effective sample size of the current weights (N right after resampling)."""
-        return effective_sample_size(self._log_weights)
+        return self._ess
+
+    def _set_weights(self, log_weights: list[float], ess: float | None = None) -> None:
+        """The normalised log weights Prolog gave (``[]``: uniform) and their ESS (N for
+        uniform weights)."""
+        self._uniform = not log_weights
+        if self._uniform:
+            self._log_weights = self._uniform_log_weights
+            self._ess = float(self.particles)
+        else:
+            self._log_weights = np.asarray(log_weights, dtype=float)
+            if ess is not None:
+                self._ess = float(ess)
 
     # -- stepping -----------------------------------------------------------------------------
     @_locked
@@ -349,10 +359,17 @@ class Filter:
         act_texts = self._texts("action", actions)
         time_before = self.time
         call_started = _time.perf_counter()
+        # The uniforms a resampling may take (1 for systematic, N for the other schemes) are
+        # drawn before the call; the stream then moves on by those it took only.
+        stream = self._rng.bit_generator.state
+        uniforms = self._rng.random(1 if self.resampling == "systematic" else self.particles)
+        self._rng.bit_generator.state = stream
         try:
-            result = _call(
-                "bridge_step(K, O, A, LW, Err)", {"K": key, "O": obs_texts, "A": act_texts}
-            )
+            result = _call("bridge_weighted_step", K=key, O=obs_texts, A=act_texts,
+                           LW0=[] if self._uniform else self._log_weights.tolist(),
+                           Th=self.resample_threshold, Sch=self.resampling,
+                           Us=uniforms.tolist(), LW=OUT, Inc=OUT, ESS=OUT, Inf=OUT,
+                           Drawn=OUT, Is=OUT, Err=OUT)
         except Exception as exc:  # janus-level failure: treat like an engine error
             result = {"Err": (getattr(exc, "cause", ""), str(exc)), "LW": []}
         prolog_seconds = _time.perf_counter() - call_started
@@ -360,32 +377,22 @@ class Filter:
         if result["Err"]:
             self._restore(time_before)
             raise from_helper(result["Err"], f"{self.program_path.name}: step {frame}: ")
-        step_log_weights = np.asarray(result["LW"], dtype=float)
-        if step_log_weights.shape != (self.particles,):
-            self._restore(time_before)
-            raise FilterError(
-                f"{self.program_path.name}: step {frame}: the engine returned "
-                f"{step_log_weights.size} log weights for {self.particles} particles"
-            )
         self.frames = frame
-        combined = self._log_weights + np.where(np.isnan(step_log_weights), -np.inf,
-                                                step_log_weights)
-        if np.isposinf(combined).any():
+        if result["Inf"] in (True, "true"):
             logger.warning("step %d: infinite likelihoods; keeping only those particles", frame)
-            combined = np.where(np.isposinf(combined), 0.0, -np.inf)
-        increment = _logsumexp(combined)
-        if not math.isfinite(increment):
+        increment = float(result["Inc"])
+        self._set_weights(result["LW"])
+        if not math.isfinite(increment):  # (the step was undone, the weights made uniform)
             return self._zero_weight(frame, started, prolog_seconds)
         self.log_likelihood += increment
-        self._log_weights = combined - increment
-        ess = self.ess
-        resampled = ess < self.resample_threshold * self.particles
+        ess = float(result["ESS"])
+        resampled = result["Is"] != "none"
         if resampled:
-            indices = resample_indices(self.weights, self.resampling, self._rng)
-            _call("bridge_resample(K, I)", {"K": key, "I": indices.tolist()})
-            self.particle_data.resample(indices)
-            self._log_weights = np.full(self.particles, -math.log(self.particles))
+            self._rng.random(int(result["Drawn"]))
+            self.particle_data.resample(np.asarray(result["Is"], dtype=np.int64))
             self.resample_count += 1
+        else:
+            self._ess = ess
         return self._finish(
             StepResult(self.time, frame, ess, resampled, increment, False, 0.0, prolog_seconds),
             started,
@@ -426,8 +433,8 @@ class Filter:
         indices = self._particle_indices("rename", particles)
         if not olds or indices.size == 0:
             return
-        result = _call("bridge_rename(K, O, N, I, Err)",
-                       {"K": key, "O": olds, "N": news, "I": (indices + 1).tolist()})
+        result = _call("bridge_rename", K=key, O=olds, N=news, I=(indices + 1).tolist(),
+                       Err=OUT)
         if result["Err"]:
             raise from_helper(result["Err"], "rename: ")
 
@@ -482,12 +489,14 @@ class Filter:
                               "each must be finite or -inf")
         if np.isneginf(factors).all():
             raise FilterError("reweight: every log factor is -inf")
-        combined = self._log_weights + factors
-        increment = _logsumexp(combined)
+        found = prolog.call(f"{_WEIGHTS_MODULE}:weights_reweight",
+                            LW0=self._log_weights.tolist(), F=factors.tolist(), LW=OUT,
+                            Inc=OUT, ESS=OUT)
+        increment = float(found["Inc"])
         if not math.isfinite(increment):
             raise FilterError("reweight: the factors give weight 0 to every particle that "
                               "has weight")
-        self._log_weights = combined - increment
+        self._set_weights(found["LW"], found["ESS"])
         self.log_likelihood += increment
 
     def _texts(self, kind: str, items: Iterable[Any]) -> list[str]:
@@ -516,7 +525,7 @@ class Filter:
     def _restore(self, time_before: int) -> None:
         try:
             if self.time != time_before:
-                _call("bridge_undo(K)", {"K": self._handle()})
+                _call("bridge_undo", K=self._handle())
         except Exception as exc:  # pragma: no cover - the engine refused to undo
             logger.error("could not undo a failed step: %s", exc)
 
@@ -529,8 +538,7 @@ class Filter:
         )
         logger.warning(message)
         warnings.warn(message, ZeroWeightWarning, stacklevel=4)  # the caller of step
-        _call("bridge_undo(K)", {"K": self._handle()})
-        self._log_weights = np.full(self.particles, -math.log(self.particles))
+        # (the step was undone and the weights made uniform by bridge_weighted_step/14)
         return self._finish(
             StepResult(self.time, frame, 0.0, False, -math.inf, True, 0.0, prolog_seconds),
             started,
@@ -548,9 +556,7 @@ class Filter:
     @_locked
     def holds(self, goal: Any) -> np.ndarray:
         """Per particle, 1 if ``goal`` holds in it, else 0 (int8 array of N)."""
-        result = _call(
-            "bridge_holds(K, G, F, Err)", {"K": self._handle(), "G": _as_term_text(goal)}
-        )
+        result = _call("bridge_holds", K=self._handle(), G=_as_term_text(goal), F=OUT, Err=OUT)
         if result["Err"]:
             raise from_helper(result["Err"], "query: ")
         return np.asarray(result["F"], dtype=np.int8)
@@ -563,20 +569,16 @@ class Filter:
     @_locked
     def values(self, template: Any, goal: Any) -> list[Any]:
         """Per particle, ``template`` at the first solution of ``goal`` (None: no solution)."""
-        return list(self._query("bridge_values(K, P, V, Err)", template, goal)["V"])
+        return list(self._query("bridge_values", template, goal, V=OUT, Err=OUT)["V"])
 
-    def _query(self, call: str, template: Any, goal: Any,
-               extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
-        """One bridge query over the particles: ``template`` at the first solution of
-        ``goal`` (bound to ``P`` as a pair), the filter as ``K``, ``extra`` bindings too;
-        ``Err`` raised."""
+    def _query(self, name: str, template: Any, goal: Any, **rest: Any) -> dict[str, Any]:
+        """One bridge query ``name`` over the particles: the filter as ``K``, ``template`` at
+        the first solution of ``goal`` (as a pair, ``P``), then the arguments ``rest``; ``Err``
+        raised."""
         template_text = _as_term_text(template)
         goal_text = _as_term_text(goal)
-        result = _call(
-            call,
-            {"K": self._handle(), "P": f"ddc_bridge_pair(({template_text}),({goal_text}))",
-             **(extra or {})},
-        )
+        result = _call(name, K=self._handle(),
+                       P=f"ddc_bridge_pair(({template_text}),({goal_text}))", **rest)
         if result["Err"]:
             raise from_helper(result["Err"], f"query {template_text!r} for {goal_text!r}: ")
         return result
@@ -624,9 +626,9 @@ class Filter:
         # conversion of each float by janus; else a list.  The buffer's address and size are
         # _-named: janus gives back no such binding.)
         buffer = np.empty(self.particles * _MAX_ROW_WIDTH, dtype=float)
-        result = self._query("bridge_rows_into(K, P, _A, _C, W, F, V, Err)",
-                             *self._template_goal(term, goal),
-                             extra={"_A": buffer.ctypes.data, "_C": buffer.size})
+        result = self._query("bridge_rows_into", *self._template_goal(term, goal),
+                             _A=buffer.ctypes.data, _C=buffer.size, W=OUT, F=OUT, V=OUT,
+                             Err=OUT)
         width = int(result["W"])
         if width == 0:
             return _as_array(result["V"]), self.weights
@@ -644,9 +646,9 @@ class Filter:
         # (copied as doubles into `buffer` by the column library where it is loaded, NaN
         # for none: no conversion of a value per particle; else a list of integers)
         buffer = np.empty(self.particles, dtype=float)
-        result = self._query("bridge_indices_into(K, P, L, _A, _C, I, Err)", template, goal,
-                             extra={"L": [str(a) for a in atoms],
-                                    "_A": buffer.ctypes.data, "_C": buffer.size})
+        result = self._query("bridge_indices_into", template, goal,
+                             L=[str(a) for a in atoms], _A=buffer.ctypes.data, _C=buffer.size,
+                             I=OUT, Err=OUT)
         found = result["I"]
         if isinstance(found, int):
             values = buffer[:found]

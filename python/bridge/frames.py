@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 from bridge.errors import FrameFileError, from_helper
 from bridge.filter import FilterError, call_helper
+from bridge.prolog import OUT
 from bridge.terms import Text
 
 __all__ = ["Frame", "FrameFileError", "read_frames"]
@@ -37,7 +38,7 @@ def read_frames(path: str | os.PathLike[str]) -> list[Frame]:
     """Every frame of the file at ``path`` (the whole file is read and checked first: a bad
     line raises :class:`FrameFileError` naming the file, the line and the cause)."""
     try:
-        result = call_helper("bridge_frames(F, Frames, Err)", {"F": os.fspath(path)})
+        result = call_helper("bridge_frames", F=os.fspath(path), Frames=OUT, Err=OUT)
     except FilterError as error:
         raise FrameFileError(f"{os.fspath(path)}: {error}", error.cause) from None
     if result["Err"]:

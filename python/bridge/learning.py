@@ -13,9 +13,13 @@ Example::
     root = data.root(target["predicate"])        # node id, y, weight, example per grounding
     candidates = data.candidates(root.node)
 
-Errors of the data (a value outside its declared domain, a mode naming an unknown predicate, a
-target without facts, ...) raise :class:`bridge.DDCError` whose message names file:line and the
-cause.
+Every call goes through the adapter :mod:`bridge.prolog` to a named predicate of the learner
+(``library(ddc/learn)``, ``prolog/ddc/learn/ddc_learn_bridge.pl`` for those whose options come as
+a dict), with data as its arguments. Errors of the data (a value outside its declared domain, a
+mode naming an unknown predicate, a target without facts, ...) raise
+:class:`bridge.errors.LearningDataError`, other errors of the engine their subclass of
+:class:`bridge.errors.EngineError` (:class:`bridge.DDCError`), the message naming file:line and
+the cause.
 """
 
 from __future__ import annotations
@@ -26,32 +30,39 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import janus_swi as janus
 import numpy as np
 
 from bridge import prolog
-from bridge.errors import from_prolog
-from bridge.program import DDCError
+from bridge.errors import EngineError, UnknownObjectError
+from bridge.prolog import OUT
 
+#: The learner's API (library(ddc/learn)) and its predicates that take dicts of options
 LEARNER: Path = prolog.PROLOG_DIR / "ddc/learn.pl"
+LEARNER_BRIDGE: Path = prolog.PROLOG_DIR / "ddc/learn/ddc_learn_bridge.pl"
+
+#: (the name the learner's errors had before; the base class of the engine's errors)
+DDCError = EngineError
 
 _lock = threading.Lock()
 
 
-def _call(goal: str, bindings: dict[str, Any]) -> dict[str, Any]:
+def _call(predicate: str, **arguments: Any) -> dict[str, Any]:
+    """Call the learner's ``predicate`` once through :func:`bridge.prolog.call` (one call at a
+    time, from any thread)."""
     prolog.ensure_loaded(LEARNER)
-    if "M" in bindings:  # the data module: an atom in Prolog (janus passes str as a string)
-        bindings = dict(bindings)
-        bindings["_MS"] = bindings.pop("M")
-        goal = f"atom_string(M, _MS), {goal}"
-    try:
-        with _lock:
-            result = janus.query_once(goal, bindings)
-    except janus.PrologError as error:
-        raise from_prolog(error) from None
-    if not result.get("truth", False):
-        raise DDCError(f"the learner failed on {goal}")
-    return result
+    prolog.ensure_loaded(LEARNER_BRIDGE, imports=False)
+    with _lock:
+        return prolog.call(predicate, **arguments)
+
+
+def _existing(files: Sequence[str | Path]) -> list[str]:
+    """The absolute paths of ``files``; an :class:`~bridge.errors.UnknownObjectError` names
+    the first that is not a file."""
+    paths = [str(Path(f).resolve()) for f in files]
+    for p in paths:
+        if not Path(p).is_file():
+            raise UnknownObjectError(f"{p}: no such file", "existence_error")
+    return paths
 
 
 @dataclass(frozen=True)
@@ -133,38 +144,32 @@ class LearningData:
         bias: Sequence[str | Path] | None = None,
         program: str | Path | None = None,
     ) -> None:
-        paths = [str(Path(f).resolve()) for f in files]
-        biases = [str(Path(f).resolve()) for f in (bias or [])]
-        programs = [] if program is None else [str(Path(program).resolve())]
-        for p in paths + biases + programs:
-            if not Path(p).is_file():
-                raise DDCError(f"{p}: no such file")
-        options = f"[samples({int(samples)}), max_worlds({int(max_worlds)})"
-        if not targets:
-            options += ", targets(false)"
-        options += f", seed({int(seed)})]" if seed is not None else "]"
-        result = _call("term_string(_O0, OT), "
-                       "findall(program(_P), member(_P, Ps), _O1), "
-                       "append([_O0, [bias_files(Bs)], _O1], _O), "
-                       "ddc_learn:learn_load(Fs, _O, M)",
-                       {"Fs": paths, "OT": options, "Bs": biases, "Ps": programs})
+        paths = _existing(files)
+        options: dict[str, Any] = {
+            "samples": int(samples), "max_worlds": int(max_worlds),
+            "targets": "true" if targets else "false",
+            "bias_files": _existing(bias or []),
+            "programs": _existing([] if program is None else [program])}
+        if seed is not None:
+            options["seed"] = int(seed)
+        result = _call("ddc_learn_bridge:learn_bridge_load", Fs=paths, O=options, M=OUT)
         self.module: str = str(result["M"])
         self.files = tuple(paths)
 
     # -- the data
     def targets(self) -> list[dict[str, Any]]:
         """The targets: name (DC head), predicate (internal name), kind, domain, file, line."""
-        result = _call("ddc_learn:learn_targets(M, Ts)", {"M": self.module})
+        result = _call("ddc_learn:learn_targets", M=self.module, Ts=OUT)
         return [dict(t) for t in result["Ts"]]
 
     def warnings(self) -> list[str]:
         """Warnings of the data, as ``file:line: cause`` lines."""
-        result = _call("ddc_learn_data:learn_data_warnings(M, Ss)", {"M": self.module})
+        result = _call("ddc_learn_data:learn_data_warnings", M=self.module, Ss=OUT)
         return [str(s) for s in result["Ss"]]
 
     # -- nodes
     def root(self, predicate: str) -> Root:
-        result = _call("ddc_learn:learn_root(M, P, [], R)", {"M": self.module, "P": predicate})
+        result = _call("ddc_learn:learn_root", M=self.module, P=predicate, O=[], R=OUT)
         r = result["R"]
         return Root(node=int(r["node"]), y=np.asarray(r["y"], dtype=float),
                     weight=np.asarray(r["weight"], dtype=float),
@@ -172,28 +177,26 @@ class LearningData:
 
     def candidates(self, node: int) -> list[dict[str, Any]]:
         """The literals the bias allows at ``node`` (see ``learn_candidates/3``)."""
-        result = _call("ddc_learn:learn_candidates(M, N, Cs)", {"M": self.module, "N": node})
+        result = _call("ddc_learn:learn_candidates", M=self.module, N=node, Cs=OUT)
         return [dict(c) for c in result["Cs"]]
 
     def evaluate(self, node: int, candidates: Sequence[int]) -> list[Outcome]:
         """Each candidate's outcome in every row of ``node``."""
         if not candidates:
             return []
-        result = _call("ddc_learn:learn_evaluate(M, N, Ids, Os)",
-                       {"M": self.module, "N": node, "Ids": [int(c) for c in candidates]})
+        result = _call("ddc_learn:learn_evaluate", M=self.module, N=node,
+                       Ids=[int(c) for c in candidates], Os=OUT)
         return [_outcome(o) for o in result["Os"]]
 
     def evaluate_rows(self, node: int, candidate: int, rows: Sequence[int]) -> Outcome:
         """A candidate's outcome in some rows of ``node`` (row indices from 0)."""
-        result = _call("ddc_learn:learn_evaluate_rows(M, N, C, Is, O)",
-                       {"M": self.module, "N": node, "C": int(candidate),
-                        "Is": [int(i) for i in rows]})
+        result = _call("ddc_learn:learn_evaluate_rows", M=self.module, N=node, C=int(candidate),
+                       Is=[int(i) for i in rows], O=OUT)
         return _outcome(result["O"])
 
     def split(self, node: int, candidate: int) -> list[Child]:
         """Split ``node`` by a candidate: one child per branch, in branch order."""
-        result = _call("ddc_learn:learn_split(M, N, C, Cs)",
-                       {"M": self.module, "N": node, "C": int(candidate)})
+        result = _call("ddc_learn:learn_split", M=self.module, N=node, C=int(candidate), Cs=OUT)
         return [Child(node=int(c["node"]), branch=int(c["branch"]),
                       row=np.asarray(c["row"], dtype=np.int64),
                       factor=np.asarray(c["factor"], dtype=float),
@@ -202,18 +205,18 @@ class LearningData:
     def forget(self, nodes: Sequence[int]) -> None:
         """Drop nodes' rows (branches not kept)."""
         if nodes:
-            _call("forall(member(_N, Ns), ddc_learn:learn_forget(M, _N))",
-                  {"M": self.module, "Ns": [int(n) for n in nodes]})
+            _call("ddc_learn_bridge:learn_bridge_forget", M=self.module,
+                  Ns=[int(n) for n in nodes])
 
     def subset(self, node: int, rows: Sequence[int]) -> int:
         """A new node with ``node``'s path and its rows at the indices ``rows`` (from 0)."""
-        result = _call("ddc_learn:learn_subset(M, N, Is, S)",
-                       {"M": self.module, "N": int(node), "Is": [int(i) for i in rows]})
+        result = _call("ddc_learn:learn_subset", M=self.module, N=int(node),
+                       Is=[int(i) for i in rows], S=OUT)
         return int(result["S"])
 
     def forget_rows(self, node: int) -> None:
         """Drop a node's rows but keep its path (a split node that may become a leaf)."""
-        _call("ddc_learn:learn_forget_rows(M, N)", {"M": self.module, "N": int(node)})
+        _call("ddc_learn:learn_forget_rows", M=self.module, N=int(node))
 
     # -- clauses
     def leaf_clause(self, node: int, model: str, regressors: Sequence[int]) -> dict[str, str]:
@@ -222,9 +225,8 @@ class LearningData:
         ``model`` is the Prolog text of the leaf's model term (``logistic([-16.9, 0.8])``),
         ``regressors`` the path steps whose values are its inputs.
         """
-        result = _call("ddc_learn:learn_leaf_text(M, N, MT, Rs, D)",
-                       {"M": self.module, "N": node, "MT": model,
-                        "Rs": [int(r) for r in regressors]})
+        result = _call("ddc_learn:learn_leaf_text", M=self.module, N=node, MT=model,
+                       Rs=[int(r) for r in regressors], D=OUT)
         return {k: str(v) for k, v in dict(result["D"]).items()}
 
     def set_root_model(self, predicate: str, model: str) -> None:
@@ -233,8 +235,7 @@ class LearningData:
         ``model`` is the Prolog text of ``root_model(Features, Rows)``: a leaf regressor ``-1-J``
         is then the J-th score of that model (:mod:`probanchor.ddclearn.root_model`).
         """
-        _call("ddc_learn:learn_root_model(M, P, T)",
-              {"M": self.module, "P": predicate, "T": model})
+        _call("ddc_learn:learn_root_model", M=self.module, P=predicate, T=model)
 
     def record(self, files: Sequence[str | Path], predicates: Sequence[str]) -> str:
         """The record a learned program keeps of its data (``learn_data_record/4``).
@@ -243,16 +244,14 @@ class LearningData:
         dialect, ``files`` as given, the targets of the internal names ``predicates`` and the
         declarations that say how the facts are read.
         """
-        result = _call("ddc_learn_data:learn_data_record(M, Fs, Ps, T)",
-                       {"M": self.module, "Fs": [str(f) for f in files],
-                        "Ps": list(predicates)})
+        result = _call("ddc_learn_data:learn_data_record", M=self.module,
+                       Fs=[str(f) for f in files], Ps=list(predicates), T=OUT)
         return str(result["T"])
 
     def background(self, leaves: Sequence[tuple[int, str, Sequence[int]]]) -> list[str]:
         """The background clauses (DC text) that the leaves' clauses need."""
-        result = _call("ddc_learn:learn_background_for(M, Ls, Ts)",
-                       {"M": self.module,
-                        "Ls": [[int(n), m, [int(r) for r in rs]] for n, m, rs in leaves]})
+        result = _call("ddc_learn:learn_background_for", M=self.module,
+                       Ls=[[int(n), m, [int(r) for r in rs]] for n, m, rs in leaves], Ts=OUT)
         return [str(t) for t in result["Ts"]]
 
     def tree_clause(self, leaves: Sequence[tuple[int, str, Sequence[int], str]]) -> str | None:
@@ -262,9 +261,9 @@ class LearningData:
         and the comment written at the leaf. None if the leaves' distributions are not of
         one family (no single head).
         """
-        result = _call("( ddc_learn:learn_tree_text(M, Ls, T0) -> T = [T0] ; T = [] )",
-                       {"M": self.module,
-                        "Ls": [[int(n), m, [int(r) for r in rs], c] for n, m, rs, c in leaves]})
+        result = _call("ddc_learn_bridge:learn_bridge_tree_text", M=self.module,
+                       Ls=[[int(n), m, [int(r) for r in rs], c] for n, m, rs, c in leaves],
+                       T=OUT)
         return str(result["T"][0]) if result["T"] else None
 
     def program_scores(self, program: str | Path, predicates: Sequence[str] = (),
@@ -274,17 +273,15 @@ class LearningData:
         With ``examples`` each target's dict has ``examples``: per grounding (in the order of
         the target's groundings) its weight and log-likelihood.
         """
-        path = Path(program).resolve()
-        if not path.is_file():
-            raise DDCError(f"{path}: no such file")
-        result = _call("ddc_learn:learn_program_scores(M, F, Ts, [examples(E)], Ss)",
-                       {"M": self.module, "F": str(path), "Ts": list(predicates),
-                        "E": "true" if examples else "false"})
+        [path] = _existing([program])
+        result = _call("ddc_learn_bridge:learn_bridge_program_scores", M=self.module, F=path,
+                       Ts=list(predicates), O={"examples": "true" if examples else "false"},
+                       Ss=OUT)
         return [dict(s) for s in result["Ss"]]
 
     def free(self) -> None:
         """Forget the data (its Prolog module)."""
-        _call("ddc_learn:learn_free(M)", {"M": self.module})
+        _call("ddc_learn:learn_free", M=self.module)
 
     def __enter__(self) -> LearningData:
         return self
@@ -293,19 +290,13 @@ class LearningData:
         self.free()
 
 
-def _split_call(files: Sequence[str | Path], seed: int,
-                unit: str | None) -> tuple[dict[str, Any], str]:
-    """The bindings (``Fs``, ``S``) and the goal binding ``_Us`` shared by the split's calls."""
-    paths = [str(Path(f).resolve()) for f in files]
-    for p in paths:
-        if not Path(p).is_file():
-            raise DDCError(f"{p}: no such file")
+def _split_options(seed: int, unit: str | None) -> dict[str, Any]:
+    """The options shared by the split's calls."""
     prolog.ensure_loaded(prolog.PROLOG_DIR / "ddc/learn/ddc_learn_split.pl")
-    bindings: dict[str, Any] = {"Fs": paths, "S": int(seed)}
-    if unit is None:
-        return bindings, "_Us = []"
-    bindings["US"] = str(unit)
-    return bindings, "atom_string(_U, US), _Us = [unit(_U)]"
+    options: dict[str, Any] = {"seed": int(seed)}
+    if unit is not None:
+        options["unit"] = str(unit)
+    return options
 
 
 def split_files(
@@ -356,12 +347,11 @@ def split_files(
     """
     if not 0.0 < float(fraction) < 1.0:
         raise ValueError(f"the test fraction must be between 0 and 1 (exclusive), got {fraction}")
-    bindings, goal = _split_call(files, seed, unit)
-    bindings.update({"Tr": str(Path(train).resolve()), "Te": str(Path(test).resolve()),
-                     "F": float(fraction)})
-    goal += (", ddc_learn_split:learn_split_files(Fs, [train(Tr), test(Te), fraction(F), "
-             "seed(S)|_Us], St)")
-    stats = dict(_call(goal, bindings)["St"])
+    options = _split_options(seed, unit)
+    options.update({"train": str(Path(train).resolve()), "test": str(Path(test).resolve()),
+                    "fraction": float(fraction)})
+    stats = dict(_call("ddc_learn_bridge:learn_bridge_split_files", Fs=_existing(files),
+                       O=options, St=OUT)["St"])
     return {k: int(stats[k]) for k in ("train", "test", "cut", "both", "units", "test_units")}
 
 
@@ -404,13 +394,9 @@ def fold_files(
     """
     if len(parts) < 2:
         raise ValueError(f"cross-validation needs at least 2 folds, got {len(parts)}")
-    bindings, goal = _split_call(files, seed, unit)
-    bindings["Ps"] = [[str(Path(tr).resolve()), str(Path(te).resolve())] for tr, te in parts]
-    goal += ", findall(_Tr-_Te, member([_Tr, _Te], Ps), _Pairs)"
-    # each fold's counts as the values of its dict, in the standard order of the keys
-    goal += (", ddc_learn_split:learn_fold_files(Fs, [parts(_Pairs), seed(S)|_Us], _St), "
-             "findall(_Vs, (member(_D, _St), dict_pairs(_D, _, _KVs), pairs_values(_KVs, _Vs)), "
-             "St)")
+    options = _split_options(seed, unit)
+    pairs = [[str(Path(tr).resolve()), str(Path(te).resolve())] for tr, te in parts]
+    folds = _call("ddc_learn_bridge:learn_bridge_fold_files", Fs=_existing(files), Ps=pairs,
+                  O=options, St=OUT)["St"]
     keys = ("both", "cut", "fold", "test", "test_units", "train", "units")
-    return [dict(zip(keys, map(int, values), strict=True))
-            for values in _call(goal, bindings)["St"]]
+    return [{k: int(dict(fold)[k]) for k in keys} for fold in folds]

@@ -19,10 +19,9 @@ import threading
 from dataclasses import dataclass
 from pathlib import Path
 
-import janus_swi as janus
-
 from bridge import prolog
-from bridge.errors import EngineError, from_prolog
+from bridge.errors import EngineError
+from bridge.prolog import OUT
 
 ENGINE: Path = prolog.PROLOG_DIR / "ddc.pl"
 DEFAULT_SAMPLES = 10_000
@@ -53,18 +52,13 @@ def _engine() -> None:
     prolog.ensure_loaded(ENGINE)
 
 
-def _call(goal: str, bindings: dict[str, object]) -> dict[str, object]:
-    """Run ``goal`` once (one static call at a time, from any thread); a Prolog error,
-    loading the engine's included, is a :class:`DDCError`."""
-    try:
-        _engine()
-        with _lock:
-            result = janus.query_once(goal, bindings)
-    except janus.PrologError as error:
-        raise from_prolog(error) from None
-    if not result.get("truth", False):
-        raise DDCError(f"the engine failed on {goal}")
-    return result
+def _call(predicate: str, **arguments: object) -> dict[str, object]:
+    """Call the engine's ``predicate`` once through :func:`bridge.prolog.call` (one static
+    call at a time, from any thread); a Prolog error, loading the engine's included, is a
+    :class:`DDCError` (the subclass of its cause)."""
+    _engine()
+    with _lock:
+        return prolog.call(predicate, **arguments)
 
 
 @dataclass(frozen=True)
@@ -84,16 +78,8 @@ class Program:
         """P(query | evidence) from ``samples`` sampled worlds (same seed, same answer)."""
         if samples < 1:
             raise ValueError("samples must be positive")
-        result = _call(
-            "ddc:ddc_query_text(M, Q, E, N, S, R)",
-            {
-                "M": self.module,
-                "Q": query,
-                "E": evidence or "",
-                "N": int(samples),
-                "S": "none" if seed is None else int(seed),
-            },
-        )
+        result = _call("ddc:ddc_query_text", M=self.module, Q=query, E=evidence or "",
+                       N=int(samples), S="none" if seed is None else int(seed), R=OUT)
         probability, stderr, ess, n = result["R"]  # type: ignore[misc]
         return QueryResult(float(probability), float(stderr), float(ess), int(n))
 
@@ -109,11 +95,9 @@ class Program:
 
         The estimate is in ``probability`` (the field name is shared with :meth:`query`).
         """
-        result = _call(
-            "ddc:ddc_expectation_text(M, X, Q, E, N, S, R)",
-            {"M": self.module, "X": value, "Q": query, "E": evidence or "",
-             "N": int(samples), "S": "none" if seed is None else int(seed)},
-        )
+        result = _call("ddc:ddc_expectation_text", M=self.module, X=value, Q=query,
+                       E=evidence or "", N=int(samples), S="none" if seed is None else int(seed),
+                       R=OUT)
         mean, stderr, ess, n = result["R"]  # type: ignore[misc]
         return QueryResult(float(mean), float(stderr), float(ess), int(n))
 
@@ -126,11 +110,9 @@ class Program:
         seed: int | None = None,
     ) -> list[tuple[float, str]]:
         """[(p, value as Prolog text), ...]: the distribution of ``value`` given the query."""
-        result = _call(
-            "ddc:ddc_distribution_text(M, X, Q, E, N, S, R)",
-            {"M": self.module, "X": value, "Q": query, "E": evidence or "",
-             "N": int(samples), "S": "none" if seed is None else int(seed)},
-        )
+        result = _call("ddc:ddc_distribution_text", M=self.module, X=value, Q=query,
+                       E=evidence or "", N=int(samples), S="none" if seed is None else int(seed),
+                       R=OUT)
         return [(float(p), str(v)) for p, v in result["R"]]  # type: ignore[union-attr]
 
     def sample(self, template: str, goal: str, seed: int) -> list[str]:
@@ -143,14 +125,8 @@ class Program:
         Each solution is returned as Prolog term text (``term_string/2``: atoms quoted when
         needed, floats in full precision), e.g. ``"1-p-0.25"``.
         """
-        result = _call(
-            "atom_string(_M, MS),"
-            " format(string(_Both), '(~w)-(~w)', [TT, GT]),"
-            " term_string(_T-_G, _Both, [module(ddc)]),"
-            " ddc:ddc_sample_world(_M, findall(_T, _G, _L), [seed(S)], _),"
-            " findall(_X, (member(_Y, _L), term_string(_Y, _X)), L)",
-            {"MS": self.module, "TT": template, "GT": goal, "S": int(seed)},
-        )
+        result = _call("ddc:ddc_sample_text", M=self.module, TT=template, GT=goal,
+                       S=int(seed), L=OUT)
         return [str(s) for s in result["L"]]  # type: ignore[union-attr]
 
     def reload(self) -> Program:
@@ -163,5 +139,5 @@ def load(path: str | Path) -> Program:
     resolved = Path(path).resolve()
     if not resolved.exists():
         raise DDCError(f"{resolved}: no such file")
-    result = _call("ddc:ddc_load(F, M)", {"F": str(resolved)})
+    result = _call("ddc:ddc_load", F=str(resolved), M=OUT)
     return Program(resolved, str(result["M"]))

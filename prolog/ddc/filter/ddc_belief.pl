@@ -3,9 +3,10 @@
     The filter predicates of ddc.pl (filter_new/5, filter_step/4, ...) hold
     the particles and return each step's log weights; the weights, the
     effective sample size, the resampling and the running log-likelihood
-    are kept by the caller (in the Python bridge, by bridge.Filter).  This
-    module keeps them in Prolog, with the same rules as bridge.Filter, so
-    that a program can be filtered and its belief queried from swipl:
+    are kept by the caller, by the rules of ddc_weights.pl (which the
+    Python bridge's bridge.Filter calls too).  This module keeps them in
+    Prolog, so that a program can be filtered and its belief queried from
+    swipl:
 
         swipl prolog/ddc/filter/ddc_belief.pl
         ?- belief_new('prolog/examples/filter/pit_world.pl',
@@ -14,9 +15,10 @@
            belief_probability(B, maze(1,1):t ~= free, P),
            belief_distribution(B, maze(2,0):t, D).
 
-    (The random draws differ from bridge.Filter's, which resamples with
-    numpy: the same seed gives the same answers within Prolog, bit for bit,
-    not the same answers as the Python side.)
+    (The resampling's uniforms come from a Prolog random stream here, from
+    a numpy Generator in bridge.Filter: the same seed gives the same
+    answers within Prolog, bit for bit, not the same answers as the Python
+    side.)
 */
 
 :- module(ddc_belief,
@@ -51,6 +53,7 @@
 :- use_module(library(http/json)).
 :- use_module('../lang/ddc_nesting').
 :- use_module('../runtime/ddc_pool', [with_random_stream/3]).
+:- use_module(ddc_weights).
 
 :- meta_predicate belief_run(+, +, 1).
 
@@ -90,7 +93,7 @@ belief_new(File, Options, belief(Key)) :-
     must_be(between(0.0, 1.0), Th),
     must_be(oneof([systematic, multinomial, residual]), Scheme),
     filter_new(File, N, Seed, [threads(K), share(Share), engine(Engine)], F),
-    uniform_log_weights(N, LWs),
+    weights_uniform(N, LWs),
     resampling_stream(Seed, R),
     gensym('$ddc_belief_', Key),
     nb_setval(Key, belief(F, N, LWs, 0.0, 0, Th, Scheme, R, 0)).
@@ -120,12 +123,13 @@ belief_free(B) :-
 %!  belief_step(+Belief, +Observations, +Actions, -Step) is det.
 %
 %   One filter step (filter_step/4) with the observations (`h ~= v` and
-%   plain facts) and actions of time t+1, then, as bridge.Filter: the
-%   log weights become the normalised sum of the old ones and the step's
-%   (NaN counts as -inf); the log of their weighted mean likelihood is
-%   added to the log-likelihood; if the effective sample size falls below
-%   the threshold the particles are resampled and the weights made
-%   uniform.  If every particle gets weight 0, the step is undone, the
+%   plain facts) and actions of time t+1, then, by the rules of
+%   ddc_weights.pl (weights_update/6): the log weights become the
+%   normalised sum of the old ones and the step's (NaN counts as -inf);
+%   the log of their weighted mean likelihood is added to the
+%   log-likelihood; if the effective sample size falls below the
+%   threshold the particles are resampled (resample_indices/4, N uniforms
+%   drawn from the belief's stream) and the weights made uniform.  If every particle gets weight 0, the step is undone, the
 %   weights are made uniform, a warning is printed and the zero-weight
 %   count goes up: the time does not advance.  Step is a dict step{time,
 %   frame, ess, resampled, log_likelihood, zero_weight} (log_likelihood:
@@ -137,33 +141,29 @@ belief_step(B, Obs, Acts, Step) :-
     state(B, belief(F, N, LWs0, LL0, Z0, Th, Scheme, R0, Fr0)),
     filter_step(F, Obs, Acts, StepLWs),
     Fr is Fr0 + 1,
-    maplist(combined_log_weight, LWs0, StepLWs, Comb0),
-    (   member(C, Comb0), C =:= inf
-    ->  print_message(warning, ddc_belief(infinite_likelihood(Fr))),
-        maplist(keep_infinite, Comb0, Comb)
-    ;   Comb = Comb0
+    weights_update(LWs0, StepLWs, LWs1, Inc, ESS, Infinite),
+    (   Infinite == true
+    ->  print_message(warning, ddc_belief(infinite_likelihood(Fr)))
+    ;   true
     ),
-    log_sum_exp(Comb, Inc),
     B = belief(Key),
     (   Inc =:= -inf
     ->  filter_undo(F),
         Z is Z0 + 1,
-        uniform_log_weights(N, LWs),
+        weights_uniform(N, LWs),
         filter_time(F, T),
         print_message(warning, ddc_belief(zero_weight(Fr, N, Z))),
         nb_setval(Key, belief(F, N, LWs, LL0, Z, Th, Scheme, R0, Fr)),
         Step = step{time: T, frame: Fr, ess: 0.0, resampled: false,
                     log_likelihood: Inc, zero_weight: true}
     ;   LL is LL0 + Inc,
-        maplist(minus(Inc), Comb, LWs1),
-        ess(LWs1, ESS),
-        (   ESS < Th * N
-        ->  maplist(exp_weight, LWs1, Ws),
+        (   resample_needed(ESS, Th, N)
+        ->  weights_normalised(LWs1, Ws),
             length(Us, N),
             with_random_stream(state(R0), maplist(random_float_, Us), R),
             resample_indices(Scheme, Ws, Us, Is),
             filter_resample(F, Is),
-            uniform_log_weights(N, LWs),
+            weights_uniform(N, LWs),
             Resampled = true
         ;   LWs = LWs1, R = R0, Resampled = false
         ),
@@ -176,207 +176,6 @@ belief_step(B, Obs, Acts, Step) :-
 random_float_(U) :-
     U is random_float.
 
-%   (Arithmetic that yields an infinity raises float_overflow: the
-%   infinities are handled before they reach it.)
-combined_log_weight(L0, L, C) :-
-    (   L =:= L, L > -inf, L0 > -inf    % (L =:= L: not NaN)
-    ->  (   L =:= inf -> C = L ; C is L0 + L )
-    ;   C is -inf
-    ).
-
-keep_infinite(C, K) :-
-    (   C =:= inf -> K = 0.0 ; K is -inf ).
-
-minus(A, X, Y) :-
-    (   X =:= -inf -> Y = X ; Y is X - A ).
-
-exp_weight(L, W) :-
-    (   L =:= -inf -> W = 0.0 ; W is exp(L) ).
-
-uniform_log_weights(N, LWs) :-
-    L is -log(N),
-    length(LWs, N),
-    maplist(=(L), LWs).
-
-%   log_sum_exp(+Ls, -S): log(sum exp(L)), -inf for an empty sum.
-log_sum_exp([L|Ls], S) :-
-    foldl(larger, Ls, L, M),            % (max/2 of two infinities overflows)
-    (   M =:= -inf
-    ->  S = M
-    ;   foldl(add_exp(M), [L|Ls], 0.0, Sum),
-        S is M + log(Sum)
-    ).
-
-larger(X, M0, M) :-
-    (   X > M0 -> M = X ; M = M0 ).
-
-add_exp(M, L, S0, S) :-
-    (   L =:= -inf -> S = S0 ; S is S0 + exp(L - M) ).
-
-ess(LWs, ESS) :-
-    foldl(add_square, LWs, 0.0, S),
-    ESS is 1 / S.
-
-add_square(L, S0, S) :-
-    exp_weight(L, W),
-    S is S0 + W*W.
-
-%!  resample_indices(+Scheme, +Weights:list(float), +Uniforms:list(float),
-%!                   -Indices:list(integer)) is det.
-%
-%   N ancestor indices (0-based, ascending) for N normalised Weights, from
-%   uniform numbers in [0, 1), with the rules of python/bridge/resampling.py
-%   (tests/test_resampling_equal.py gives both the same uniforms and expects
-%   the same indices):
-%     - systematic: one offset U (the first uniform), positions (U+k)/N:
-%       particle i is copied floor(N w_i) or ceil(N w_i) times;
-%     - multinomial: the first N uniforms, sorted, are the positions;
-%     - residual: floor(N w_i) copies of each particle, the R = N - sum of
-%       the floors that remain drawn as multinomial (the first R uniforms)
-%       from the residuals N w_i - floor(N w_i), normalised by their sum as
-%       numpy computes it (numpy_sum/2).
-%   Each position takes the first particle whose cumulative weight exceeds
-%   it, the last particle any position that none exceeds (its cumulative
-%   weight counts as 1).  N uniforms always suffice.
-%
-%   @error domain_error(enough_uniforms(K), Uniforms) if fewer than the K
-%   the scheme needs are given.
-resample_indices(Scheme, Ws, Us, Is) :-
-    must_be(oneof([systematic, multinomial, residual]), Scheme),
-    must_be(list(number), Ws),
-    must_be(list(number), Us),
-    resample_indices_(Scheme, Ws, Us, Is).
-
-resample_indices_(systematic, Ws, Us, Is) :-
-    first_uniforms(1, Us, [U]),
-    length(Ws, N),
-    N1 is N - 1,
-    numlist(0, N1, Ks),
-    maplist(systematic_position(U, N), Ks, Ps),
-    walk(Ws, Ps, Is).
-resample_indices_(multinomial, Ws, Us, Is) :-
-    length(Ws, N),
-    first_uniforms(N, Us, Draws),
-    msort(Draws, Ps),
-    walk(Ws, Ps, Is).
-resample_indices_(residual, Ws, Us, Is) :-
-    length(Ws, N),
-    maplist(residual_copies(N), Ws, Copies),
-    sum_list(Copies, Kept),
-    Rest is N - Kept,
-    N1 is N - 1,
-    numlist(0, N1, Ids),
-    foldl(repeat_index, Ids, Copies, Det, []),
-    (   Rest =:= 0
-    ->  Is = Det
-    ;   maplist(residual_weight(N), Ws, Copies, Rs0),
-        numpy_sum(Rs0, RSum),
-        maplist(divide(RSum), Rs0, Rs),
-        first_uniforms(Rest, Us, Draws),
-        msort(Draws, Ps),
-        walk(Rs, Ps, Extra),
-        append(Det, Extra, All),
-        msort(All, Is)
-    ).
-
-%   first_uniforms(+K, +Us, -First): the first K of Us.
-first_uniforms(K, Us, First) :-
-    length(First, K),
-    (   append(First, _, Us)
-    ->  true
-    ;   domain_error(enough_uniforms(K), Us)
-    ).
-
-systematic_position(U, N, K, P) :-
-    P is (U + K) / N.
-
-residual_copies(N, W, C) :-
-    C is floor(N * W).
-
-residual_weight(N, W, C, R) :-
-    R is N * W - C.
-
-divide(D, X, Y) :-
-    Y is X / D.
-
-repeat_index(I, C, L0, L) :-
-    length(Is, C),
-    maplist(=(I), Is),
-    append(Is, L, L0).
-
-%   walk(+Weights, +SortedPositions, -Indices): for each position the first
-%   index whose cumulative weight exceeds it; the last index for a position
-%   that none exceeds (as if the last cumulative weight were 1 and positions
-%   below 1: numpy's searchsorted, capped at N-1).
-walk(Ws, Ps, Is) :-
-    length(Ws, N),
-    Last is N - 1,
-    walk(Ws, 0, 0.0, Last, Ps, Is).
-
-walk(_, _, _, _, [], []) :- !.
-walk(_, Last, _, Last, Ps, Is) :- !,
-    maplist(constant(Last), Ps, Is).
-walk([W|Ws1], I, C0, Last, [P|Ps], Is) :-
-    C is C0 + W,
-    (   C > P
-    ->  Is = [I|Is1],
-        walk([W|Ws1], I, C0, Last, Ps, Is1)
-    ;   I1 is I + 1,
-        walk(Ws1, I1, C, Last, [P|Ps], Is)
-    ).
-
-constant(C, _, C).
-
-%!  numpy_sum(+Xs:list(float), -Sum:float) is det.
-%
-%   The sum of the non-empty list Xs as numpy's sum of a float64 array
-%   computes it, bit for bit: pairwise summation.  A run of fewer than 8
-%   numbers is added from left to right; a run of at most 128 in 8
-%   interleaved partial sums (the k-th takes elements k, k+8, ...),
-%   combined as ((s0+s1)+(s2+s3))+((s4+s5)+(s6+s7)), then the N mod 8 left
-%   over added one by one; a longer run is split in two, the first half
-%   floor(N/2) rounded down to a multiple of 8, and the halves' sums added.
-%   (For non-negative numbers, as the residuals are: numpy starts from
-%   -0.0, the same as starting from the first number.)
-numpy_sum(Xs, S) :-
-    length(Xs, N),
-    pairwise_sum(N, Xs, [], S).
-
-%   pairwise_sum(+N, +Xs, -Rest, -S): S the sum of the first N of Xs, Rest
-%   the others.
-pairwise_sum(N, [X|Xs], Rest, S) :-
-    N < 8, !,
-    N1 is N - 1,
-    add_run(N1, Xs, X, S, Rest).
-pairwise_sum(N, [X0,X1,X2,X3,X4,X5,X6,X7|Xs], Rest, S) :-
-    N =< 128, !,
-    Blocks is N // 8 - 1,
-    add_blocks(Blocks, Xs, s(X0,X1,X2,X3,X4,X5,X6,X7), s(R0,R1,R2,R3,R4,R5,R6,R7), Xs1),
-    S0 is ((R0+R1)+(R2+R3))+((R4+R5)+(R6+R7)),
-    K is N mod 8,
-    add_run(K, Xs1, S0, S, Rest).
-pairwise_sum(N, Xs, Rest, S) :-
-    Half is N // 2,
-    N1 is Half - Half mod 8,
-    N2 is N - N1,
-    pairwise_sum(N1, Xs, Xs1, S1),
-    pairwise_sum(N2, Xs1, Rest, S2),
-    S is S1 + S2.
-
-%   add_run(+K, +Xs, +S0, -S, -Rest): S0 plus the first K of Xs, left to right.
-add_run(0, Xs, S, S, Xs) :- !.
-add_run(K, [X|Xs], S0, S, Rest) :-
-    S1 is S0 + X,
-    K1 is K - 1,
-    add_run(K1, Xs, S1, S, Rest).
-
-add_blocks(0, Xs, R, R, Xs) :- !.
-add_blocks(B, [X0,X1,X2,X3,X4,X5,X6,X7|Xs], s(A0,A1,A2,A3,A4,A5,A6,A7), R, Rest) :-
-    B0 is A0+X0, B1 is A1+X1, B2 is A2+X2, B3 is A3+X3,
-    B4 is A4+X4, B5 is A5+X5, B6 is A6+X6, B7 is A7+X7,
-    B1s is B - 1,
-    add_blocks(B1s, Xs, s(B0,B1,B2,B3,B4,B5,B6,B7), R, Rest).
-
 		 /*******************************
 		 *            QUERIES           *
 		 *******************************/
@@ -386,14 +185,14 @@ add_blocks(B, [X0,X1,X2,X3,X4,X5,X6,X7|Xs], s(A0,A1,A2,A3,A4,A5,A6,A7), R, Rest)
 %   The normalised weights of the particles (they sum to 1).
 belief_weights(B, Ws) :-
     state(B, belief(_, _, LWs, _, _, _, _, _, _)),
-    maplist(exp_weight, LWs, Ws).
+    weights_normalised(LWs, Ws).
 
 %!  belief_ess(+Belief, -ESS) is det.
 %
 %   The effective sample size of the current weights (N after resampling).
 belief_ess(B, ESS) :-
     state(B, belief(_, _, LWs, _, _, _, _, _, _)),
-    ess(LWs, ESS).
+    weights_ess(LWs, ESS).
 
 %!  belief_time(+Belief, -T) is det.
 belief_time(B, T) :-
@@ -494,6 +293,9 @@ belief_mean(B, Term, Mean, Cov) :-
     ->  M = [Mean], C = [[Cov]]
     ;   list_tuple(M, Mean), Cov = C
     ).
+
+divide(D, X, Y) :-
+    Y is X / D.
 
 rows([], _, []) :- !.
 rows(Fs, W, [R|Rs]) :-

@@ -4,16 +4,20 @@
     bridge.Filter calls these predicates through janus, one call per step or
     query, and bridge.frames one per frame file.  They parse the texts
     Python sends (in the operator context of module ddc), run the engine's
-    filter predicates (filter_new/5, filter_step/4, ...), turn errors into
-    one-line messages and particle values into data janus maps onto Python
-    values.  Nothing here keeps state: the filter is the engine's, named by
-    the text of its atom.
+    filter predicates (filter_new/5, filter_step/4, ...) and the rules of
+    the weights and resampling (ddc_weights.pl), turn errors into one-line
+    messages and particle values into data janus maps onto Python values.
+    Nothing here keeps state: the filter is the engine's, named by the text
+    of its atom, the weights bridge.Filter's, handed in and back.
 */
 
 :- module(ddc_bridge,
           [ bridge_new/9,               % +Program, +N, +Seed, +Share, +Threads, +Engine,
                                         % -Key, -Used, -Err
             bridge_step/5,              % +Key, +ObsTexts, +ActTexts, -LogWeights, -Err
+            bridge_weighted_step/14,    % +Key, +ObsTexts, +ActTexts, +LogWeights0, +Threshold,
+                                        % +Scheme, +Uniforms, -LogWeights, -Increment, -ESS,
+                                        % -Infinite, -Drawn, -Ancestors, -Err
             bridge_undo/1,              % +Key
             bridge_resample/2,          % +Key, +Indices
             bridge_rename/5,            % +Key, +Olds, +News, +Indices, -Err
@@ -39,6 +43,7 @@
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
 :- use_module(library(lists), [nth1/3]).
 :- use_module(ddc_observation_types, [observation_type_error/4]).
+:- use_module(ddc_weights).
 
 /** <module> The Prolog side of the Python bridge
 
@@ -83,16 +88,60 @@ bridge_new(Program, N, Seed, Share, Threads, Engine, F, Used, Err) :-
 %   (ddc_observation_types.pl), is an error naming its kind (observation, action), its
 %   1-based place and its text.
 bridge_step(Key, ObsTexts, ActTexts, LW, Err) :-
-    guarded(( filter_of(Key, F),
-              parse_terms(observation, ObsTexts, Obs),
-              parse_terms(action, ActTexts, Acts),
-              check_observation_types(F, ObsTexts, Obs),
-              filter_step(F, Obs, Acts, LW0),
+    guarded(( text_step(Key, ObsTexts, ActTexts, _, LW0),
               maplist(to_float, LW0, LW)
             ), Err),
     ( var(LW) -> LW = [] ; true ).
 
+%   text_step(+Key, +ObsTexts, +ActTexts, -F, -LogWeights): filter_step/4 of Key's filter F
+%   with the observations and actions parsed and checked.
+text_step(Key, ObsTexts, ActTexts, F, LW) :-
+    filter_of(Key, F),
+    parse_terms(observation, ObsTexts, Obs),
+    parse_terms(action, ActTexts, Acts),
+    check_observation_types(F, ObsTexts, Obs),
+    filter_step(F, Obs, Acts, LW).
+
 to_float(X, F) :- ( float(X) -> F = X ; F is float(X) ).
+
+%!  bridge_weighted_step(+Key, +ObsTexts:list, +ActTexts:list, +LogWeights0:list(float),
+%!                       +Threshold:float, +Scheme, +Uniforms:list(float),
+%!                       -LogWeights:list(float), -Increment:float, -ESS:float,
+%!                       -Infinite:boolean, -Drawn:integer, -Ancestors, -Err) is det.
+%
+%   One step of the weighted filter, by the rules of ddc_weights.pl: bridge_step/5, the
+%   step's weighting from the normalised LogWeights0 the caller holds ([] for uniform
+%   weights) by weights_update/6 (LogWeights the new ones, Increment the log of the step's
+%   weighted mean likelihood, ESS the effective sample size, Infinite whether only
+%   particles of infinite likelihood were kept), and, when resample_needed/3 says so with
+%   Threshold, the resampling by Scheme: Ancestors are the indices resample_indices/4 picks
+%   (0-based; `none` when not resampled), from the first Drawn of Uniforms (the caller's
+%   draws: resample_draws/3 of them are used, at most 1 for systematic, N for the other
+%   schemes), and LogWeights is [] (uniform).  When every particle gets weight 0
+%   (Increment -inf) the step is undone (filter_undo/1) and LogWeights is [].  Outputs
+%   are empty or none when Err is not "".
+bridge_weighted_step(Key, ObsTexts, ActTexts, LW0, Th, Scheme, Us, LW, Inc, ESS, Inf, Drawn,
+                     Ancestors, Err) :-
+    guarded(( text_step(Key, ObsTexts, ActTexts, F, StepLW),
+              length(StepLW, N),
+              (   LW0 == [] -> weights_uniform(N, Uniform) ; Uniform = LW0 ),
+              weights_update(Uniform, StepLW, LW1, Inc, ESS, Inf),
+              (   Inc =:= -inf
+              ->  filter_undo(F),
+                  LW = [], Drawn = 0, Ancestors = none
+              ;   resample_needed(ESS, Th, N)
+              ->  weights_normalised(LW1, Ws),
+                  resample_draws(Scheme, Ws, Drawn),
+                  resample_indices(Scheme, Ws, Us, Ancestors),
+                  filter_resample(F, Ancestors),
+                  LW = []
+              ;   LW = LW1, Drawn = 0, Ancestors = none
+              )
+            ), Err),
+    (   var(LW)
+    ->  LW = [], Inc = none, ESS = none, Inf = none, Drawn = 0, Ancestors = none
+    ;   true
+    ).
 
 %!  bridge_undo(+Key) is det.
 %

@@ -1,8 +1,9 @@
 /** <module> The particle filter API of the DDC engine
 
 Part of the DDC engine (ddc.pl is the module users load, and re-exports
-this module's API).  Python owns the weights and the resampling
-choices; Prolog owns the particles: N worlds, each holding the values
+this module's API).  The caller owns the weights and the resampling
+choices (by the rules of ddc_weights.pl: ddc_belief.pl in swipl,
+bridge.Filter in Python); this module owns the particles: N worlds, each holding the values
 of time t (and the untimed ones), kept in a global variable named by
 the filter handle, of a Prolog engine of the filter's own that any
 thread may run (filter_new/5: "Threads and reloads").

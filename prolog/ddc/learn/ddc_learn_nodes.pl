@@ -55,9 +55,16 @@ branch.
 %   index of its example (the grounding of the head it comes from).
 %
 %   @error ddc_learn(target_without_facts(N/A), Where)
+%   @error existence_error(ddc_learn_target, Target) if Data declares no
+%          such target (learn_targets/2 lists them).
 learn_root(M, N, _Options, _{node: Id, y: Ys, weight: Ws, example: Es}) :-
     learn_data_targets(M, Ts),
-    memberchk(target(N, A, Spec, Names, W), Ts),
+    (   memberchk(target(N, A, Spec, Names, W), Ts)
+    ->  true
+    ;   findall(T, member(target(T, _, _, _, _), Ts), Known),
+        format(string(Msg), "its targets are ~q", [Known]),
+        throw(error(existence_error(ddc_learn_target, N), context(learn_root/4, Msg)))
+    ),
     head_vars(M, N, A, Names, Vars),
     target_examples(M, N, A, Keys),
     (   Keys == [] -> throw(error(ddc_learn(target_without_facts(N/A), W), _)) ; true ),

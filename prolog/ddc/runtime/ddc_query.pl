@@ -19,6 +19,7 @@ single world (ddc_sample_world/4).
             ddc_expectation_text/7,     % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Result
             ddc_distribution_text/7,    % +Module, +ValueText, +QueryText, +EvidenceText, +N, +Seed, -Pairs
             ddc_sample_world/4,         % +Module, +Query, +Options, -Facts
+            ddc_sample_text/5,          % +Module, +TemplateText, +GoalText, +Seed, -Texts
             no_program_loaded/1         % +PI
           ]).
 
@@ -208,6 +209,19 @@ ddc_distribution_text(M, XT, QT, ET, N, Seed, Pairs) :-
     (   Seed == none -> Opts = [samples(N)] ; Opts = [samples(N), seed(Seed)] ),
     distribution(Ev, Q, X, D, [program(M)|Opts]),
     findall([P, VT], ( member(P:V, D), format(string(VT), "~q", [V]) ), Pairs).
+
+%!  ddc_sample_text(+Module, +TemplateText, +GoalText, +Seed, -Texts:list(string)) is det.
+%
+%   The solutions of findall(Template, Goal, L) in one world of Module's
+%   program sampled with Seed (ddc_sample_world/4), each written back as
+%   text (term_string/2); the two texts are read together, so they share
+%   variables.
+ddc_sample_text(M, TT, GT, Seed, Texts) :-
+    must_be(integer, Seed),
+    format(string(Both), "(~w)-(~w)", [TT, GT]),
+    text_goal(Both, T-G),
+    ddc_sample_world(M, findall(T, G, L), [seed(Seed)], _),
+    findall(X, ( member(Y, L), term_string(Y, X) ), Texts).
 
 empty_text(T) :- var(T), !.
 empty_text('').

@@ -5,6 +5,7 @@
 :- use_module('../../../prolog/ddc').
 :- use_module('../../../prolog/ddc/filter/ddc_bridge').
 :- use_module('../../../prolog/ddc/filter/ddc_belief', [read_frame_file/2]).
+:- use_module('../../../prolog/ddc/filter/ddc_weights').
 :- use_module(library(plunit)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
@@ -93,6 +94,42 @@ test(holds_flags_every_particle) :-
     assertion((S > 0, S < 40)),
     bridge_holds(Key, "maze(0,1):t ~=", _, Err2),
     assertion((Err2 = _-TErr2, sub_string(TErr2, 0, _, _, "goal maze(0,1):t ~=: "))),
+    bridge_free(Key).
+
+test(weighted_step_normalises_and_resamples_below_the_threshold) :-
+    new_filter(30, Key),
+    Obs = ["observation(up) ~= wall", "observation(right) ~= free"],
+    bridge_weighted_step(Key, Obs, ["action(null)"], [], 0.0, residual, [], LW, Inc, ESS, Inf,
+                         Drawn, Is, Err),
+    assertion(Err == ""),
+    assertion(Inf == false),
+    assertion(Is == none), assertion(Drawn == 0),
+    length(LW, 30),
+    foldl([L, S0, S]>>(S is S0 + exp(L)), LW, 0.0, Sum),
+    assertion(abs(Sum - 1) < 1.0e-12),
+    assertion(ESS > 0), assertion(ESS =< 30.0000001),
+    assertion(Inc < 0),
+    % (threshold 2: always below) resampled from the given uniforms, the weights uniform
+    length(Us, 30), maplist(=(0.5), Us),
+    bridge_weighted_step(Key, Obs, ["action(null)"], LW, 2.0, residual, Us, LW2, _, _, _,
+                         Drawn2, Is2, Err2),
+    assertion(Err2 == ""),
+    assertion(LW2 == []),
+    length(Is2, 30),
+    assertion(between(0, 30, Drawn2)),
+    bridge_time(Key, 2),
+    bridge_free(Key).
+
+test(weighted_step_undoes_a_frame_of_weight_zero) :-
+    new_filter(10, Key),
+    % (a value outside `finite`'s support: every particle weight 0)
+    bridge_weighted_step(Key, ["observation(up) ~= maybe"], ["action(null)"], [], 0.5,
+                         systematic, [0.5], LW, Inc, ESS, _, Drawn, Is, Err),
+    assertion(Err == ""),
+    assertion(Inc =:= -inf), assertion(ESS == 0.0), assertion(Drawn == 0),
+    assertion(Is == none), assertion(LW == []),
+    bridge_time(Key, T),
+    assertion(T == 0),
     bridge_free(Key).
 
 test(resample_copies_the_particles_it_names) :-
