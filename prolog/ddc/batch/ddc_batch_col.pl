@@ -69,7 +69,8 @@
             col_append_each/3,          % +Ps, !ListColumn, +Value
             col_select_unify/4,         % +Ps, +Column, +Pattern, -Out
             col_with_arity/4,           % +Ps, +Column, +K, -Out
-            col_sets_each/3             % +Ps, +ListColumn, !Column
+            col_sets_each/3,            % +Ps, +ListColumn, !Column
+            col_weights_update/6        % +LW0, +Step, -LW, -Inc, -ESS, -Infinite
           ]).
 
 :- use_module(library(ordsets)).
@@ -98,7 +99,7 @@ cell (docs/batched-filter.md, "Columns in C").
 
 %   The interface version the Prolog side expects of the library
 %   (DDC_COLUMNS_VERSION in prolog/ddc/batch/c/ddc_columns.c).
-columns_version(2).
+columns_version(3).
 
 %!  ps_all(+N, -Ps) is det.
 %!  ps_list(+Ps, -List:list(integer)) is det.
@@ -313,6 +314,13 @@ col_rows(_, _, _, _) :- fail.
 col_pack_rows(_, _, _) :- fail.
 col_floats_into(_, _, _, _) :- fail.
 col_floats_list(_, _) :- fail.
+
+%!  col_weights_update(+LogWeights0, +StepLogWeights, -LogWeights, -Increment, -ESS,
+%!                     -Infinite) is semidet.
+%
+%   Fast path of ddc_weights:weights_update/6 (the same operations in the
+%   same order, in C; fails here).
+col_weights_update(_, _, _, _, _, _) :- fail.
 
 %!  col_row_width(+Column, -Width) is semidet.
 %

@@ -27,6 +27,7 @@
 :- use_module(library(apply)).
 :- use_module(library(lists)).
 :- use_module(library(error)).
+:- use_module('../batch/ddc_batch_col', [col_weights_update/6]).  % (the passes in C)
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl): a step's weights are a few passes over N floats.
@@ -73,6 +74,10 @@ weights_uniform(N, LWs) :-
 %
 %   @error domain_error(same_length(N), StepLogWeights) if the lists'
 %          lengths differ.
+weights_update(LWs0, Step, LWs, Inc, ESS, Infinite) :-    % (in C where the library is)
+    col_weights_update(LWs0, Step, LWs1, Inc1, ESS1, Infinite1),
+    !,
+    LWs = LWs1, Inc = Inc1, ESS = ESS1, Infinite = Infinite1.
 weights_update(LWs0, Step, LWs, Inc, ESS, Infinite) :-
     length(LWs0, N),
     (   length(Step, N) -> true ; domain_error(same_length(N), Step) ),

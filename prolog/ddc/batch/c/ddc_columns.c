@@ -37,7 +37,7 @@
 #include <stdint.h>
 #include <math.h>
 
-#define DDC_COLUMNS_VERSION 2
+#define DDC_COLUMNS_VERSION 3
 
 #define T_U      0                      /* '$u': not drawn yet */
 #define T_UNDEF  1                      /* '$undef': no clause applies */
@@ -1071,6 +1071,87 @@ col_floats_list(term_t tr, term_t out)
       if ( !PL_put_float(h, r->v[j]) || !PL_cons_list(l, h, l) ) return FALSE;
     return PL_unify(out, l);
   }
+}
+
+/* col_weights_update(+LW0, +Step, -LW, -Inc, -ESS, -Infinite): the fast path of
+   ddc_weights:weights_update/6 (prolog/ddc/filter/ddc_weights.pl, where the rules are
+   written and commented), the same operations in the same order on doubles, so the same
+   results; it fails, and the Prolog passes run (and raise what they raise), where the lists
+   are not of numbers of the same length or a sum of two finite weights overflows. */
+static int
+get_float_list(term_t l, size_t n, double *v)
+{ term_t tail = PL_copy_term_ref(l), h = PL_new_term_ref();
+  size_t i = 0;
+  while( PL_get_list(tail, h, tail) )
+  { if ( i == n || !PL_get_float(h, &v[i]) ) return FALSE;
+    i++;
+  }
+  return i == n && PL_get_nil(tail);
+}
+
+static int
+unify_float_list(term_t out, const double *v, size_t n)
+{ term_t l = PL_new_term_ref(), h = PL_new_term_ref();
+  PL_put_nil(l);
+  for(size_t j=n; j-- > 0; )
+    if ( !PL_put_float(h, v[j]) || !PL_cons_list(l, h, l) ) return FALSE;
+  return PL_unify(out, l);
+}
+
+static foreign_t
+col_weights_update(term_t tl0, term_t ts, term_t tlw, term_t tinc, term_t tess, term_t tinf)
+{ size_t n;
+  double *l0, *st, *c, max = -INFINITY, inc, ess;
+  int infinite = FALSE, rc = FALSE;
+  if ( PL_skip_list(tl0, 0, &n) != PL_LIST || n == 0 ) return FALSE;
+  if ( !(l0 = malloc(3*n*sizeof(double))) ) return PL_resource_error("memory");
+  st = l0 + n; c = st + n;
+  if ( !get_float_list(tl0, n, l0) || !get_float_list(ts, n, st) ) goto out;
+  for(size_t i=0; i<n; i++)                       /* combine/5 */
+  { double l = st[i];
+    if ( l == l && l > -INFINITY && l0[i] > -INFINITY )
+    { if ( l == INFINITY ) c[i] = l;
+      else
+      { c[i] = l0[i] + l;
+        if ( isinf(c[i]) ) goto out;             /* (Prolog raises float_overflow) */
+      }
+    } else
+      c[i] = -INFINITY;
+    if ( c[i] > max ) max = c[i];
+  }
+  if ( max == INFINITY )                          /* keep_infinite/2 */
+  { infinite = TRUE;
+    for(size_t i=0; i<n; i++) c[i] = c[i] == INFINITY ? 0.0 : -INFINITY;
+    max = 0.0;
+  }
+  if ( max == -INFINITY )
+    inc = max;
+  else
+  { double sum = 0.0;                             /* sum_exp/4, left to right */
+    for(size_t i=0; i<n; i++)
+      if ( c[i] != -INFINITY ) sum = sum + exp(c[i] - max);
+    inc = max + log(sum);
+  }
+  if ( inc == -INFINITY )
+  { ess = 0.0;
+    rc = PL_unify(tlw, tl0);
+  } else
+  { double s = 0.0;                               /* normalise/5 */
+    for(size_t i=0; i<n; i++)
+      if ( c[i] != -INFINITY )
+      { double w;
+        c[i] = c[i] - inc;
+        w = exp(c[i]);
+        s = s + w*w;
+      }
+    ess = 1 / s;
+    rc = unify_float_list(tlw, c, n);
+  }
+  rc = rc && PL_unify_float(tinc, inc) && PL_unify_float(tess, ess) &&
+       PL_unify_atom_chars(tinf, infinite ? "true" : "false");
+out:
+  free(l0);
+  return rc;
 }
 
 /* col_status(+C, -S): open (a cell not drawn), same(V) (every cell V),
@@ -3005,6 +3086,7 @@ install_ddc_columns(void)
   PL_register_foreign("col_pack_rows",   3, col_pack_rows,   0);
   PL_register_foreign("col_floats_into", 4, col_floats_into, 0);
   PL_register_foreign("col_floats_list", 2, col_floats_list, 0);
+  PL_register_foreign("col_weights_update", 6, col_weights_update, 0);
   PL_register_foreign("col_row_width",   2, col_row_width,   0);
   PL_register_foreign("col_all_same",    3, col_all_same,    0);
   PL_register_foreign("col_num_arity",   2, col_num_arity,   0);
