@@ -15,7 +15,7 @@ from probanchor.app.motion_grip import gate, release, signed_gate, threshold
 from probanchor.app.motion_keep import ar1
 from probanchor.app.motion_parameters import DESCRIPTIONS
 from probanchor.app.motion_samples import samples_path
-from probanchor.app.motion_variances import STILL, isotropic_variance, obs_var
+from probanchor.app.motion_variances import STILL, isotropic_variance, lost_var, obs_var
 from probanchor.app.theories import THEORIES
 from probanchor.tabletop.scenario import CameraSpec, NoiseSpec, Scenario
 
@@ -39,6 +39,18 @@ def test_obs_var_is_half_the_variance_of_a_still_object_s_perceived_steps() -> N
     assert n == len(steps)
     assert v == pytest.approx(0.003 ** 2, rel=0.05)
     assert STILL < 0.01
+
+
+def test_lost_var_is_the_variance_of_a_move_between_two_places() -> None:
+    rng = np.random.default_rng(3)
+    places = rng.uniform(-0.3, 0.3, size=(20000, 2))
+    v, n = lost_var(places)
+    moves = places[rng.permutation(len(places))] - places
+    assert n == len(places)
+    assert v == pytest.approx(float(np.mean(moves * moves)), rel=0.05)
+    assert v == pytest.approx(2 * 0.6 ** 2 / 12, rel=0.05)
+    with pytest.raises(ValueError, match="fewer than two"):
+        lost_var([[0.0, 0.0]])
 
 
 def test_ar1_recovers_the_kept_fraction_and_the_jitter() -> None:
@@ -129,7 +141,8 @@ def test_the_learned_parameters_are_within_the_simulator_s_ranges(name: str) -> 
     assert (step / 30) ** 2 < p["motion_var"] < step ** 2
     # a reappearance is centimetres off its belief, less than the table is wide
     assert 0.01 ** 2 < p["reappear_var"] < 0.3 ** 2
-    assert 0.005 ** 2 < p["lost_var"] < 0.6 ** 2
+    # lost: moved anywhere on the table (the generated games' tables are about a metre wide)
+    assert 0.1 ** 2 < p["lost_var"] < 0.6 ** 2
     # an object under a container stays within its footprint (4 cm radius)
     assert 0.5 < p["follow_keep"] < 1.0 and 0 < p["follow_var"] < 0.04 ** 2
     assert 0.5 < p["coast_keep"] < 1.0 and 0 < p["wander_var"] < step ** 2

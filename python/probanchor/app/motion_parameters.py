@@ -37,7 +37,7 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
     "reappear_var": ("where a hidden object is seen again, around its belief (m²)",
                      "ML variance of the reappearances against an ideal particle's belief"),
     "lost_var": ("the same for an object lost while the camera saw nothing (m²)",
-                 "ML variance of those reappearances"),
+                 "moved anywhere: 2 x the variance of where objects stand"),
     "follow_keep": ("the fraction of its offset from its occluder a hidden object keeps",
                     "least-squares AR(1) coefficient of the true offsets"),
     "follow_var": ("the jitter of that offset per frame (m²)", "the AR(1)'s residual variance"),
@@ -85,7 +85,7 @@ def fit(samples: MotionSamples) -> list[Fitted]:
         out["obs_var"] = motion_variances.obs_var(r["displacement"])
         out["motion_var"] = motion_variances.motion_var(r["displacement"])
         out["reappear_var"] = motion_variances.reappear_var(r["reappear"])
-        out["lost_var"] = motion_variances.lost_var(r["lost"])
+        out["lost_var"] = motion_variances.lost_var(r["places"])
         k, v, n = motion_keep.follow(r["follow"])
         out["follow_keep"], out["follow_var"] = (k, n), (v, n)
         k, v, n = motion_keep.coast(r["coast"])

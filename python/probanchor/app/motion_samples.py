@@ -21,7 +21,9 @@
   whether the hand let it go (the carry did not run to the episode's end) and the hand's grip
   height frame by frame (None while unperceived);
 - ``uncover``: how far a lifted container's centre stood above what stayed on the table when
-  that became visible again.
+  that became visible again;
+- ``places``: where the perceived objects (not hands) stand in the table plane, every
+  ``PLACES_EVERY`` frames.
 
 Positions of hidden objects are the simulator's ground truth (a robot without it would have to
 infer them from where the objects reappear); the rest is what perception gave.
@@ -42,7 +44,10 @@ __all__ = ["KINDS", "MotionSamples", "episode_samples", "read_samples", "samples
 
 #: The kinds of samples (see the module docstring).
 KINDS = ("displacement", "reappear", "lost", "follow", "coast", "grasp", "hold", "carries",
-         "uncover")
+         "uncover", "places")
+
+#: ``places`` keeps where the perceived objects stand every this many frames.
+PLACES_EVERY = 15
 
 
 @dataclass
@@ -117,6 +122,10 @@ def episode_samples(episode: Episode) -> MotionSamples:
     def covered_by(k: int, a: str) -> str | None:
         return next((o for o, p in (lab[k].get(a) or {}).items() if p > 0.5), None)
 
+    for k in range(0, len(frames), PLACES_EVERY):
+        for v in frames[k].anchors.values():
+            if v.perceived and v.grip is None:
+                s.rows["places"].append([round(v.position[0], 4), round(v.position[1], 4)])
     for k in range(len(frames) - 1):
         f0, f1 = frames[k], frames[k + 1]
         for a, v1 in f1.anchors.items():
