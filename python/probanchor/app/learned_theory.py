@@ -327,7 +327,7 @@ def plot_motion(samples: MotionSamples, fitted: Sequence[Fitted], path: Path) ->
     panels = (("motion_var", "a perceived object's step (true)",
                [r[4] for r in samples.rows["displacement"] if r[4] is not None]),
               ("reappear_var", "a reappearance around its belief", samples.rows["reappear"]),
-              ("lost_var", "lost while the camera saw nothing (fitted: moved anywhere)",
+              ("lost_var", "lost while blind (the Gaussian: moved anywhere)",
                samples.rows["lost"]))
     fig = Figure(figsize=(11, 3.4))
     for i, (name, title, rows) in enumerate(panels):
