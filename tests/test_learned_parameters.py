@@ -13,8 +13,8 @@ import pytest
 from probanchor.app.learned_theory import TheoryError, learn_theory
 from probanchor.app.motion_grip import gate, release, signed_gate, threshold
 from probanchor.app.motion_keep import ar1
-from probanchor.app.motion_parameters import DESCRIPTIONS
-from probanchor.app.motion_samples import samples_path
+from probanchor.app.motion_parameters import DESCRIPTIONS, fit, parameter_clauses
+from probanchor.app.motion_samples import MotionSamples, samples_path
 from probanchor.app.motion_variances import STILL, isotropic_variance, lost_var, obs_var
 from probanchor.app.theories import THEORIES
 from probanchor.tabletop.scenario import CameraSpec, NoiseSpec, Scenario
@@ -92,6 +92,15 @@ def test_release_counts_the_frames_held_where_the_object_stood() -> None:
     assert fitted["grip_rise"] == (pytest.approx(0.05 / 2), 3)
 
 
+def test_a_parameter_without_samples_keeps_the_hand_written_value_marked() -> None:
+    hand = {name: 0.5 for name in DESCRIPTIONS}
+    fitted = fit(MotionSamples(), hand)
+    assert [(f.name, f.value, f.samples) for f in fitted] == [(n, 0.5, 0) for n in DESCRIPTIONS]
+    assert parameter_clauses(fitted).count("NOT FITTED") == len(DESCRIPTIONS)
+    with pytest.raises(ValueError, match="cannot fit obs_var: no samples"):
+        fit(MotionSamples(), {})
+
+
 def test_learn_theory_without_motion_samples_is_an_error(tmp_path) -> None:
     data = tmp_path / "data.pl"
     data.write_text("pair(a, o):t+1.\n")
@@ -126,6 +135,7 @@ def test_the_shipped_learned_theories_have_no_hand_written_constant(name: str) -
     text = THEORIES[name].read_text()
     includes = re.findall(r"^:- include\('([^']+)'\)\.", text, re.M)
     assert not any("too_parameters" in i or "too_affordances" in i for i in includes)
+    assert "NOT FITTED" not in text
     facts = _facts(name)
     for parameter in DESCRIPTIONS:
         assert parameter in facts, f"{parameter} is no learned fact of {THEORIES[name]}"

@@ -25,6 +25,7 @@ from probanchor.app.learned_theory import (
     theory_text,
 )
 from probanchor.app.motion_parameters import DESCRIPTIONS, Fitted
+from probanchor.app.motion_samples import samples_path
 from probanchor.app.occlusion_affordances import (
     MIN_SHARE,
     Affordance,
@@ -161,6 +162,7 @@ def test_a_failed_learn_theory_keeps_the_previous_file(game_data: Path, tmp_path
     bad = tmp_path / "bad.pl"
     bad.write_text(game_data.read_text() + "category(ball_1_e0_f3, ball, extra).\n"
                    "distance(x, y):t+1 ~= near.\n")
+    samples_path(bad).write_text(samples_path(game_data).read_text())
     with pytest.raises(bridge.DDCError, match=rf"{bad}:\d+: .*not a number"):
         learn_theory([bad], out)
     assert out.read_text() == "% the previous theory\n"
@@ -211,7 +213,13 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
     parameters = (tmp_path / "learned_parameters.md").read_text().splitlines()
     assert parameters[2].startswith("| onset reach (m)")
     assert "| 0.15 (`occluder_reach`) |" in parameters[2]
-    assert parameters[4].startswith("| kind | P(it hides a hidden object)")
+    assert parameters[4].startswith("| parameter | learned | hand-written | what it is")
+    fitted = parameters[6:6 + len(DESCRIPTIONS)]
+    assert [row.split(" | ")[0] for row in fitted] == [f"| `{n}`" for n in DESCRIPTIONS]
+    assert report["parameters"].keys() == DESCRIPTIONS.keys()
+    assert (tmp_path / "learned_motion.png").stat().st_size > 1000
+    k = parameters.index("", 6)
+    assert parameters[k + 1].startswith("| kind | P(it hides a hidden object)")
     table = (tmp_path / "learned_coefficients.md").read_text().splitlines()
     assert table[2] == "| paper (section 4) |  | -16.9 | 0.80 | 0.69 | 0.49 | 0.29 |"
     learned = [line for line in table if line.startswith("| learned")]

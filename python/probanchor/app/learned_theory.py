@@ -33,7 +33,13 @@ from pathlib import Path
 import numpy as np
 
 from bridge.resources import prolog_dir
-from probanchor.app.motion_parameters import Fitted, fit, parameter_clauses, parameter_rows
+from probanchor.app.motion_parameters import (
+    Fitted,
+    fit,
+    hand_written,
+    parameter_clauses,
+    parameter_rows,
+)
 from probanchor.app.motion_samples import MotionSamples, read_samples
 from probanchor.app.occlusion_affordances import (
     Affordance,
@@ -159,8 +165,9 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     ------
     TheoryError
         A hand-written part is missing from ``base`` (default ``prolog/too/``), the motion
-        samples beside the data are missing or cannot fit every parameter, or the theory
-        written does not load.
+        samples beside the data are missing, or the theory written does not load. (A parameter
+        the samples cannot fit keeps too_parameters.pl's value, marked NOT FITTED in the
+        theory.)
     bridge.DDCError
         The data has an error (its message names the file and line).
     """
@@ -172,7 +179,7 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
         options = SearchOptions(root_model="never")
     try:
         samples = read_samples(list(data))
-        fitted = fit(samples)
+        fitted = fit(samples, hand_written(folder))
     except (ValueError, FileNotFoundError) as error:
         raise TheoryError(str(error)) from None
     result = learn(data, ["occluder:t+1"], seed=seed, options=options, progress=progress)

@@ -25,7 +25,8 @@ from pathlib import Path
 from probanchor.app import motion_grip, motion_keep, motion_variances
 from probanchor.app.motion_samples import MotionSamples
 
-__all__ = ["DESCRIPTIONS", "Fitted", "fit", "parameter_clauses", "parameter_rows"]
+__all__ = ["DESCRIPTIONS", "Fitted", "fit", "hand_written", "parameter_clauses",
+           "parameter_rows"]
 
 #: Every parameter a learned theory reads, what it is, and how it is fitted.
 DESCRIPTIONS: dict[str, tuple[str, str]] = {
@@ -71,30 +72,48 @@ class Fitted:
     samples: int
 
 
-def fit(samples: MotionSamples) -> list[Fitted]:
+def fit(samples: MotionSamples, hand: dict[str, float]) -> list[Fitted]:
     """Every parameter of :data:`DESCRIPTIONS`, fitted from ``samples``.
+
+    A parameter whose samples the data lack (a collection without hands has no carry) keeps
+    its value of ``hand`` (too_parameters.pl's, :func:`hand_written`) with 0 samples: the
+    theory's comment and the table say it was not fitted.
 
     Raises
     ------
     ValueError
-        A kind of sample the data lack (names which).
+        A parameter that cannot be fitted and has no value in ``hand``.
     """
     r = samples.rows
     out: dict[str, tuple[float, int]] = {}
-    try:
-        out["obs_var"] = motion_variances.obs_var(r["displacement"])
-        out["motion_var"] = motion_variances.motion_var(r["displacement"])
-        out["reappear_var"] = motion_variances.reappear_var(r["reappear"])
-        out["lost_var"] = motion_variances.lost_var(r["places"])
-        k, v, n = motion_keep.follow(r["follow"])
-        out["follow_keep"], out["follow_var"] = (k, n), (v, n)
-        k, v, n = motion_keep.coast(r["coast"])
-        out["coast_keep"], out["wander_var"] = (k, n), (v, n)
-        out.update(motion_grip.grip(r["grasp"], r["hold"]))
-        out.update(motion_grip.release(r["carries"]))
-    except ValueError as error:
-        raise ValueError(f"the motion samples cannot fit every parameter: {error}") from None
+    groups = (
+        (("obs_var",), lambda: [motion_variances.obs_var(r["displacement"])]),
+        (("motion_var",), lambda: [motion_variances.motion_var(r["displacement"])]),
+        (("reappear_var",), lambda: [motion_variances.reappear_var(r["reappear"])]),
+        (("lost_var",), lambda: [motion_variances.lost_var(r["places"])]),
+        (("follow_keep", "follow_var"), lambda: _pair(motion_keep.follow(r["follow"]))),
+        (("coast_keep", "wander_var"), lambda: _pair(motion_keep.coast(r["coast"]))),
+        (("grip_reach", "grip_height", "occluder_rise", "grip_drop"),
+         lambda: list(motion_grip.grip(r["grasp"], r["hold"]).values())),
+        (("lift_margin", "release_margin", "release_p", "grip_rise"),
+         lambda: list(motion_grip.release(r["carries"]).values())),
+    )
+    for names, fitter in groups:
+        try:
+            values = fitter()
+        except ValueError as error:
+            missing = [n for n in names if n not in hand]
+            if missing:
+                raise ValueError(f"the motion samples cannot fit {', '.join(missing)}: "
+                                 f"{error}") from None
+            values = [(hand[n], 0) for n in names]
+        out.update(zip(names, values, strict=True))
     return [Fitted(name, out[name][0], out[name][1]) for name in DESCRIPTIONS]
+
+
+def _pair(kvn: tuple[float, float, int]) -> list[tuple[float, int]]:
+    k, v, n = kvn
+    return [(k, n), (v, n)]
 
 
 def parameter_clauses(fitted: Sequence[Fitted]) -> str:
@@ -105,12 +124,14 @@ def parameter_clauses(fitted: Sequence[Fitted]) -> str:
              "% fractions, quantiles for reaches and heights, Laplace's rule for a probability);",
              "% variances per axis in square metres, one step is one camera frame."]
     for f in fitted:
-        lines.append(f"{f.name}({f.value:.4g}).  % {DESCRIPTIONS[f.name][0]}; "
-                     f"{f.samples:,} samples")
+        how = (f"{f.samples:,} samples" if f.samples else
+               "NOT FITTED: no samples in the data, too_parameters.pl's value")
+        lines.append(f"{f.name}({f.value:.4g}).  % {DESCRIPTIONS[f.name][0]}; {how}")
     return "\n".join(lines) + "\n"
 
 
-def _hand_written(base: str | Path) -> dict[str, float]:
+def hand_written(base: str | Path) -> dict[str, float]:
+    """The hand-written parameters of ``base``'s too_parameters.pl."""
     text = (Path(base) / "too_parameters.pl").read_text(encoding="utf-8")
     return {m[1]: float(m[2]) for m in re.finditer(r"^(\w+)\(([-\d.eE+]+)\)\.", text, re.M)}
 
@@ -118,12 +139,13 @@ def _hand_written(base: str | Path) -> dict[str, float]:
 def parameter_rows(fitted: Sequence[Fitted], base: str | Path) -> str:
     """A Markdown table: each fitted parameter beside the hand-written value of ``base``'s
     too_parameters.pl, its meaning, its estimator and its sample count."""
-    hand = _hand_written(base)
+    hand = hand_written(base)
     lines = ["| parameter | learned | hand-written | what it is | fitted as | samples |",
              "|---|---:|---:|---|---|---:|"]
     for f in fitted:
         what, how = DESCRIPTIONS[f.name]
         h = hand.get(f.name)
+        n = f"{f.samples:,}" if f.samples else "none: not fitted"
         lines.append(f"| `{f.name}` | {f.value:.3g} | {'-' if h is None else f'{h:.3g}'} | "
-                     f"{what} | {how} | {f.samples:,} |")
+                     f"{what} | {how} | {n} |")
     return "\n".join(lines) + "\n"
