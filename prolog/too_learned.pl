@@ -20,7 +20,7 @@
 obs_var(2.377e-06).  % the measurement noise of a perceived position (m², per axis); 87,816 samples
 motion_var(2.595e-05).  % how far a perceived object moves in a frame (m², per axis); 102,633 samples
 reappear_var(0.003261).  % where a hidden object is seen again, around its belief (m²); 492 samples
-lost_var(0.04661).  % the same for an object lost while the camera saw nothing (m²); 6,854 samples
+lost_var(0.0664).  % the same for an object lost while the camera saw nothing (m²); 6,854 samples
 follow_keep(0.9556).  % the fraction of its offset from its occluder a hidden object keeps; 12,844 samples
 follow_var(3.008e-06).  % the jitter of that offset per frame (m²); 12,844 samples
 coast_keep(0.9643).  % the fraction of its velocity a hidden object under nothing keeps; 27,694 samples

@@ -43,12 +43,12 @@ def test_obs_var_is_half_the_variance_of_a_still_object_s_perceived_steps() -> N
 
 def test_lost_var_is_the_variance_of_a_move_between_two_places() -> None:
     rng = np.random.default_rng(3)
-    places = rng.uniform(-0.3, 0.3, size=(20000, 2))
+    places = rng.uniform([-0.5, -0.3], [0.5, 0.3], size=(20000, 2))   # a 1 m x 0.6 m table
     v, n = lost_var(places)
     moves = places[rng.permutation(len(places))] - places
     assert n == len(places)
-    assert v == pytest.approx(float(np.mean(moves * moves)), rel=0.05)
-    assert v == pytest.approx(2 * 0.6 ** 2 / 12, rel=0.05)
+    assert v == pytest.approx(float(np.mean(moves[:, 0] ** 2)), rel=0.05)   # the long side
+    assert v == pytest.approx(2 * 1.0 ** 2 / 12, rel=0.05)
     with pytest.raises(ValueError, match="fewer than two"):
         lost_var([[0.0, 0.0]])
 

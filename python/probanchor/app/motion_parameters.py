@@ -38,7 +38,7 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
     "reappear_var": ("where a hidden object is seen again, around its belief (m²)",
                      "ML variance of the reappearances against an ideal particle's belief"),
     "lost_var": ("the same for an object lost while the camera saw nothing (m²)",
-                 "moved anywhere: 2 x the variance of where objects stand"),
+                 "moved anywhere: 2 x the variance of where objects stand (longer axis)"),
     "follow_keep": ("the fraction of its offset from its occluder a hidden object keeps",
                     "least-squares AR(1) coefficient of the true offsets"),
     "follow_var": ("the jitter of that offset per frame (m²)", "the AR(1)'s residual variance"),
