@@ -68,11 +68,15 @@ def threshold(xs: Sequence[float]) -> float:
 def grip(grasps: Sequence[Sequence[float]], holds: Sequence[float]
          ) -> dict[str, tuple[float, int]]:
     """grip_reach, grip_height, occluder_rise and grip_drop with their sample counts, from the
-    ``grasp`` rows (distance, height of the grip over the object) and the ``hold`` heights."""
+    ``grasp`` rows (distance and height of the grip over the object as it vanishes under it,
+    height as the hand closes on it) and the ``hold`` heights: the gate's upper end is read
+    where the rules take the object (it vanishes under the grip), its lower end where the grip
+    comes lowest (closing on it)."""
     if not grasps:
         raise ValueError("no hand took an object: no grip to fit")
     g = np.asarray(grasps, dtype=float)
-    low, high = signed_gate(g[:, 1])
+    _, high = signed_gate(g[:, 1])                     # as the object vanishes under the grip
+    low, _ = signed_gate(g[:, 2])                      # as the hand closes on it
     n = len(g)
     return {"grip_reach": (gate(g[:, 0]), n), "grip_height": (high, n),
             "occluder_rise": (-low, n), "grip_drop": (float(np.mean(_values(holds))), len(holds))}

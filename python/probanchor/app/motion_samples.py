@@ -14,8 +14,10 @@
 - ``coast``: a hidden object under nothing, its true velocity (table plane) before and in the
   step: (vx0, vy0, vx1, vy1);
 - ``grasp``: a hand taking an object: the table-plane distance and the height of its grip
-  point above where an ideal particle believed the object, in the frame the hand starts
-  holding it (an object perceived within the second before);
+  point above where an ideal particle believed the object, in the frame the object vanished
+  under the hand in the second before it held it (the moment the carriers' rules take it),
+  else the frame it started holding it, and the grip's height as it starts holding it (the
+  lowest it comes); an object perceived within the second before;
 - ``hold``: how far the grip point is above the centre of what the hand holds;
 - ``carries``: per carry, the held object's true height above where it stood, frame by frame,
   whether the hand let it go (the carry did not run to the episode's end) and the hand's grip
@@ -252,13 +254,24 @@ def _carry(episode: Episode, a: str, hand: str, run: list[int], released: bool,
     first = run[0]
     before = _true(episode, first - 1, a) if first > 0 else None
     rest = (before or _true(episode, first, a))["position"][2]        # type: ignore[index]
-    grip = _hand_anchor(episode, first, hand)
-    recent = [j for j in range(max(0, first - RECENT), first)
+    # the moment the rules use: the object vanishing under the grip (in the second before
+    # the hand holds it), else the hand starting to hold it
+    at = first
+    for j in range(first, max(0, first - RECENT), -1):
+        if (a in frames[j].anchors and a in frames[j - 1].anchors and not frames[j].perceived(a)
+                and frames[j - 1].perceived(a)):
+            at = j
+            break
+    grip = _hand_anchor(episode, at, hand)
+    recent = [j for j in range(max(0, at - RECENT), at)
               if a in frames[j].anchors and frames[j].perceived(a)]
-    if grip is not None and recent and a in frames[first - 1].anchors:
-        x, y, z = _belief(episode, first - 1, a, covered_by, hand)
+    holding = _hand_anchor(episode, first, hand)
+    if grip is not None and holding is not None and recent and a in frames[at - 1].anchors:
+        x, y, z = _belief(episode, at - 1, a, covered_by, hand)
         gx, gy, gz = grip.grip                                          # type: ignore[misc]
-        s.rows["grasp"].append([round(math.hypot(gx - x, gy - y), 5), round(gz - z, 5)])
+        hz = holding.grip[2]                                            # type: ignore[index]
+        s.rows["grasp"].append([round(math.hypot(gx - x, gy - y), 5), round(gz - z, 5),
+                                round(hz - z, 5)])
     heights, grips = [], []
     for k in run:
         t = _true(episode, k, a)
