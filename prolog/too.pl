@@ -1,8 +1,8 @@
 /*  too.pl -- the theory of occlusion: which object may hide which, and where a hidden object is.
 
     An ordinary DDC program, filtered over time by the particle filter (prolog/ddc.pl);
-    edit it freely.  It is made of five parts, each a file of its own so that the theories
-    `anchoring learn-theory` writes share what they do not learn:
+    edit it freely.  It is made of five parts, each a file of its own (the four included ones
+    in too/) so that the theories `anchoring learn-theory` writes share what they do not learn:
 
       too_base.pl       the vocabulary and the frame (what the runner asserts at every step,
                         what it reads back, how a perceived object's position is filtered and
@@ -14,9 +14,9 @@
                         objects
 */
 
-:- include(too_base).
-:- include(too_parameters).
-:- include(too_affordances).
+:- include('too/too_base').
+:- include('too/too_parameters').
+:- include('too/too_affordances').
 
 % ------------------------------------------------------------------ occlusion
 % The hand-written occlusion rules (the theories anchoring learn-theory writes have learned ones
@@ -110,4 +110,4 @@ behind_or_under(Os, [W:behind | Ws]) :-
     behind_when_covered(W), length(Os, K), WO is (1 - W) / K,
     findall(WO:O, member(O, Os), Ws).
 
-:- include(too_motion).
+:- include('too/too_motion').

@@ -5,12 +5,34 @@
     70 clauses, training log-likelihood -25205.3;
     search seed 0.
     Command: anchoring learn-theory out/learn/data_truth.pl --seed 0 --out prolog/too_learned.pl --plots docs/images
-    The hand-written parts are included from prolog/ (too_base.pl, too_parameters.pl, too_motion.pl):
-    regenerate this file rather than edit it; edit those for the rest.
+    The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
+    regenerate this file rather than edit it; edit those for the rest.  The
+    parameters are fitted from the motion samples beside the data.
 */
 
-:- include('too_base.pl').
-:- include('too_parameters.pl').
+:- include('too/too_base.pl').
+
+% ------------------------------------------------------------------ learned parameters
+% Fitted from the motion samples beside the data (python/probanchor/app/
+% motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
+% fractions, quantiles for reaches and heights, Laplace's rule for a probability);
+% variances per axis in square metres, one step is one camera frame.
+obs_var(2.377e-06).  % the measurement noise of a perceived position (m², per axis); 87,816 samples
+motion_var(2.595e-05).  % how far a perceived object moves in a frame (m², per axis); 102,633 samples
+reappear_var(0.003261).  % where a hidden object is seen again, around its belief (m²); 492 samples
+lost_var(0.0664).  % the same for an object lost while the camera saw nothing (m²); 6,854 samples
+follow_keep(0.9556).  % the fraction of its offset from its occluder a hidden object keeps; 12,844 samples
+follow_var(3.008e-06).  % the jitter of that offset per frame (m²); 12,844 samples
+coast_keep(0.9643).  % the fraction of its velocity a hidden object under nothing keeps; 27,694 samples
+wander_var(1.096e-06).  % how far such an object may move besides (m²); 27,694 samples
+grip_reach(0.03669).  % how far (table plane) a hand's grip may be from what it takes (m); 38 samples
+grip_height(0.1281).  % how far above it (m); 38 samples
+occluder_rise(0.01008).  % how far below its centre (m; negative: above); 38 samples
+grip_drop(0.01771).  % how far what a hand holds is below its grip (m); 1,928 samples
+lift_margin(0.074).  % how high a carried object is lifted before it counts as picked up (m); 46 samples
+release_margin(0.00952).  % how near where it stood it counts as put down (m); 46 samples
+release_p(0.6866).  % the probability per frame that the hand lets go there; 65 samples
+grip_rise(0.00179).  % how far a hand's grip rises in a frame when it lifts (m); 538 samples
 
 % ------------------------------------------------------------------ learned affordances
 % Read from the data (python/probanchor/app/occlusion_affordances.py): the share
@@ -20,7 +42,8 @@
 % about as an occluder when it hides at least 0.01 of them and is no
 % carrier, as hidden when it is at least 0.01 of the time; a carrier holds
 % what it hid when lifted off with a probability above 1/2, read from a weight of
-% at least 50 data points (too_motion.pl's carriers' rules apply to it).
+% at least 50 data points (too/too_motion.pl's carriers' rules apply to
+% it).
 hides(ball, 0.000409).  % 17,115
 hides(box, 0.1175).  % 33,417
 hides(can, 8.074e-05).  % 12,384
@@ -42,49 +65,7 @@ is_carrier(O) := category(O, C), carrier(C).
 hand_known := object(O), is_carrier(O).
 can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= 0.01.
 
-% ------------------------------------------------------------------ learned occlusion rules
-% How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
-% (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples)
-% that the learned affordances above allow (a ball hides nothing, a hand is never hidden; the
-% tree gives a ball as occluder a probability of about 1e-4 per frame, and one particle of a
-% hidden ball under the other, identical ball is enough for the matching to swap them);
-% of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
-% while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 of
-% where A was (fitted from the data: twice the distance within which 90 % of the onsets were);
-% beyond it the learned tree gives an onset a negligible probability, and a draw for every pair
-% in every particle would cost more than the rest of the theory.
-% O is a candidate occluder of the hidden A when the particle
-% draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
-% when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
-% occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
-pair(A, O):t+1 :=
-    hidden(A):t+1, observed(O), O \== A, can_be_occluded(A), can_occlude(O),
-    (   occluded_by(A, O):t
-    ->  true
-    ;   lost_anywhere(A):t
-    ->  true
-    ;   pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (X, Y, _), onset_reach(R),
-        (X-XO)**2 + (Y-YO)**2 < R*R
-    ).
-occluder_candidate(A, O):t+1 :=
-    pair(A, O):t+1, \+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
-pick_occluder(A):t+1 ~ uniform(Os) :=
-    hidden(A):t+1, seen(A):t, \+ occluded_by(A, _):t,
-    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \== [],
-    Os = [behind | Os1].
-pick_occluder(A):t+1 ~ uniform(Os) :=
-    hidden(A):t+1, \+ seen(A):t, \+ occluded_by(A, _):t,
-    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
-occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
-occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, seen(O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
-% An occluder out of view at t (the camera saw nothing, or it was hidden itself) that is
-% perceived again still hides what it hid (as the transitive clause kept it while unseen): the
-% data have no occluder moved while out of view, so the tree's distance from where A was would
-% end the occlusion wherever the occluder was taken unseen (two look-alike containers swapped
-% while the camera was covered); from the next frame on, the tree decides again.
-occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, hidden(A):t+1, observed(O), \+ seen(O):t.
+:- include('too/too_learned_glue.pl').
 % The onset reach (m): 90% of the 58 onsets in the data were within 0.0406 m; times 2.0.
 onset_reach(0.0812).
 
@@ -449,4 +430,4 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
         )
     ).
 
-:- include('too_motion.pl').
+:- include('too/too_motion.pl').

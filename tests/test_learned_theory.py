@@ -17,12 +17,15 @@ from probanchor.app.collect import CollectError, CollectOptions, collect
 from probanchor.app.learned_theory import (
     AFTER,
     BEFORE,
+    GLUE,
     TheoryError,
     along_distance,
     learn_theory,
     probability_at,
     theory_text,
 )
+from probanchor.app.motion_parameters import DESCRIPTIONS, Fitted
+from probanchor.app.motion_samples import samples_path
 from probanchor.app.occlusion_affordances import (
     MIN_SHARE,
     Affordance,
@@ -37,8 +40,12 @@ from probanchor.app.reasoning import DEFAULT_THEORY
 from probanchor.app.theories import THEORIES, theory_path
 
 ROOT = Path(__file__).resolve().parents[1]
-PROLOG = DEFAULT_THEORY.parent
+PROLOG = DEFAULT_THEORY.parent / "too"
 REACH = OnsetReach(0.15, 0.12, 1)
+#: The hand-written values, as if fitted.
+HAND = {m[1]: float(m[2]) for m in re.finditer(r"^(\w+)\(([-\d.eE+]+)\)\.",
+                                                (PROLOG / "too_parameters.pl").read_text(), re.M)}
+FITTED = [Fitted(name, HAND[name], 1) for name in DESCRIPTIONS]
 #: Affordances as the data show them (occlusion_affordances.py).
 FOUND = {"hides": {"ball": Affordance(1e-4, 9000), "mug": Affordance(0.1, 9000),
                    "skin": Affordance(0.4, 900)},
@@ -57,34 +64,40 @@ occluder(A, O):t+1 ~ finite([0.2:true, 0.8:false]) :=
 
 def test_the_theory_includes_the_hand_written_parts(tmp_path: Path) -> None:
     out = tmp_path / "sub" / "too_learned.pl"
-    text = theory_text(LEARNED, "% header\n", base=PROLOG, out=out, reach=REACH, found=FOUND)
+    text = theory_text(LEARNED, "% header\n", base=PROLOG, out=out, reach=REACH, found=FOUND,
+                       fitted=FITTED)
     hand = DEFAULT_THEORY.read_text()
     for name in (*BEFORE, *AFTER):
-        assert f":- include({name.removesuffix('.pl')})." in hand          # too.pl's parts
+        assert f":- include('too/{name.removesuffix('.pl')}')." in hand    # too.pl's parts
     includes = [line for line in text.splitlines() if line.startswith(":- include(")]
-    assert len(includes) == len(BEFORE) + len(AFTER)
-    for line, name in zip(includes, (*BEFORE, *AFTER), strict=True):
+    assert len(includes) == len(BEFORE) + 1 + len(AFTER)
+    for line, name in zip(includes, (*BEFORE, GLUE, *AFTER), strict=True):
         rel = line.removeprefix(":- include('").removesuffix("').")
         assert (out.parent / rel).resolve() == (PROLOG / name).resolve()
-    # no text of too.pl or of its parts is repeated: only the learned rules and the glue
+    # no text of too.pl or of its parts is repeated: only the learned rules and parameters
     for gone in ("covers(O, A):t+1 :=", "lowered_over(O, A):t+1 :=", "cannot_occlude(ball)",
-                 "pos(A):t+1 ~ gaussian", "obs_var(", "carrier(skin) := true"):
+                 "pos(A):t+1 ~ gaussian", "carrier(skin) := true", "pick_occluder",
+                 "cover_height("):
         assert gone not in text
-    assert "occluder_candidate(A, O):t+1 :=\n    pair(A, O):t+1" in text
+    assert "occluder_candidate(A, O):t+1 :=\n    pair(A, O):t+1" in (PROLOG / GLUE).read_text()
+    for name in DESCRIPTIONS:            # every parameter the theory reads, as a fact
+        assert re.search(rf"^{name}\([-\d.e]+\)\.", text, re.M), name
     assert text.index(includes[-1]) > text.index("occluder(A, O):t+1 ~ finite([0.9:true")
-    assert text.index("occluder(A, O):t+1 ~ finite([0.9:true") > text.index("pick_occluder")
+    assert text.index("occluder(A, O):t+1 ~ finite([0.9:true") > text.index(includes[1])
 
 
 def test_a_base_without_the_hand_written_parts_is_an_error(tmp_path: Path) -> None:
     with pytest.raises(TheoryError, match="too_motion.pl"):
         (tmp_path / "too_base.pl").write_text("x ~ val(1).\n")
-        (tmp_path / "too_parameters.pl").write_text("y ~ val(1).\n")
-        theory_text(LEARNED, "", base=tmp_path, out=tmp_path / "t.pl", reach=REACH, found=FOUND)
+        (tmp_path / GLUE).write_text("y ~ val(1).\n")
+        theory_text(LEARNED, "", base=tmp_path, out=tmp_path / "t.pl", reach=REACH, found=FOUND,
+                    fitted=FITTED)
 
 
 def test_the_assembled_theory_loads_and_filters(tmp_path: Path) -> None:
     path = tmp_path / "too_learned.pl"
-    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH, found=FOUND))
+    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH, found=FOUND,
+                                fitted=FITTED))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)", "object(ball_2)", "category(ball_2, ball)"]
@@ -149,12 +162,13 @@ def test_a_failed_learn_theory_keeps_the_previous_file(game_data: Path, tmp_path
     bad = tmp_path / "bad.pl"
     bad.write_text(game_data.read_text() + "category(ball_1_e0_f3, ball, extra).\n"
                    "distance(x, y):t+1 ~= near.\n")
+    samples_path(bad).write_text(samples_path(game_data).read_text())
     with pytest.raises(bridge.DDCError, match=rf"{bad}:\d+: .*not a number"):
         learn_theory([bad], out)
     assert out.read_text() == "% the previous theory\n"
     broken_base = tmp_path / "base"
     broken_base.mkdir()
-    for name in (*BEFORE, *AFTER):
+    for name in (*BEFORE, GLUE, *AFTER, "too_parameters.pl"):
         (broken_base / name).write_text((PROLOG / name).read_text())
     base_file = broken_base / "too_base.pl"
     base_file.write_text(base_file.read_text().replace(
@@ -199,7 +213,13 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
     parameters = (tmp_path / "learned_parameters.md").read_text().splitlines()
     assert parameters[2].startswith("| onset reach (m)")
     assert "| 0.15 (`occluder_reach`) |" in parameters[2]
-    assert parameters[4].startswith("| kind | P(it hides a hidden object)")
+    assert parameters[4].startswith("| parameter | learned | hand-written | what it is")
+    fitted = parameters[6:6 + len(DESCRIPTIONS)]
+    assert [row.split(" | ")[0] for row in fitted] == [f"| `{n}`" for n in DESCRIPTIONS]
+    assert report["parameters"].keys() == DESCRIPTIONS.keys()
+    assert (tmp_path / "learned_motion.png").stat().st_size > 1000
+    k = parameters.index("", 6)
+    assert parameters[k + 1].startswith("| kind | P(it hides a hidden object)")
     table = (tmp_path / "learned_coefficients.md").read_text().splitlines()
     assert table[2] == "| paper (section 4) |  | -16.9 | 0.80 | 0.69 | 0.49 | 0.29 |"
     learned = [line for line in table if line.startswith("| learned")]
@@ -252,7 +272,7 @@ def test_pairs_beyond_the_reach_draw_nothing(tmp_path: Path) -> None:
     within it, it is one in about 0.2 x 1/2 of them."""
     path = tmp_path / "too_learned.pl"
     path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path,
-                                reach=OnsetReach(0.1, 0.08, 1), found=FOUND))
+                                reach=OnsetReach(0.1, 0.08, 1), found=FOUND, fitted=FITTED))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)", "object(mug_2)", "category(mug_2, mug)"]
@@ -281,7 +301,8 @@ def test_an_occluder_back_in_view_still_hides_what_it_hid(tmp_path: Path) -> Non
     (An object behind nothing while the camera saw nothing is lost anywhere: any occluder may
     take it.)"""
     path = tmp_path / "too_learned.pl"
-    path.write_text(theory_text(ENDS_AT_ONCE, "", base=PROLOG, out=path, reach=REACH, found=FOUND))
+    path.write_text(theory_text(ENDS_AT_ONCE, "", base=PROLOG, out=path, reach=REACH, found=FOUND,
+                                fitted=FITTED))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)"]
@@ -353,7 +374,7 @@ def test_the_shipped_learned_theories_have_no_hand_written_affordance(name: str)
     cans hide nothing (below MIN_SHARE) and that hands carry."""
     text = THEORIES[name].read_text()
     includes = re.findall(r"^:- include\('([^']+)'\)\.", text, re.M)
-    assert includes == [*BEFORE, *AFTER]
+    assert includes == [f"too/{name}" for name in (*BEFORE, GLUE, *AFTER)]
     assert "too_affordances" not in text and "cannot_occlude(" not in text
     probability = {(m[0], m[1]): float(m[2])
                    for m in re.findall(r"^(hides|carries)\((\w+), ([\d.e-]+)\)\.", text, re.M)}

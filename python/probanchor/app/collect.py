@@ -8,6 +8,8 @@ episodes are independent jobs (:mod:`probanchor.jobs`): on worker processes (spa
 of a process that has janus loaded can hang) or on a Ray cluster, combined in the order of the
 episodes whichever finished first. The data file is written only once every episode is done
 (atomically), and an empty collection (no occlusion happened) is an error that writes nothing.
+Beside the data file, ``DATA.motion.json`` holds the samples the theory's motion and carrying
+parameters are fitted from (:mod:`probanchor.app.motion_samples`).
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from probanchor.app.motion_samples import MotionSamples, episode_samples, samples_path
 from probanchor.app.occlusion_data import Collection, LabelOptions, data_text, episode_facts
 from probanchor.app.occlusion_data import hindsight_agreement as _agreement
 from probanchor.ddclearn.files import write_atomically
@@ -101,8 +104,10 @@ def game_files(folder: Path, games: int, first_seed: int) -> list[Path]:
 
 
 def _episode(scenario: Path, seed: int, cache: Path, number: int,
-             labels: LabelOptions) -> tuple[Collection, float, float, float, int]:
-    """One episode in a worker: its facts, seconds (perception, facts), hindsight agreement."""
+             labels: LabelOptions
+             ) -> tuple[Collection, float, float, float, int, MotionSamples]:
+    """One episode in a worker: its facts, seconds (perception, facts), hindsight agreement,
+    the samples of the motion parameters."""
     from probanchor.app.experience import play
     from probanchor.app.experiment import percept_stream
     from probanchor.percepts import read_percepts
@@ -114,8 +119,9 @@ def _episode(scenario: Path, seed: int, cache: Path, number: int,
     part = Collection()
     episode_facts(episode, number, labels, part)
     agree, n = _agreement(episode, labels)
+    samples = episode_samples(episode)
     done = time.perf_counter()
-    return part, perceived - started, done - perceived, agree, n
+    return part, perceived - started, done - perceived, agree, n, samples
 
 
 def collect(options: CollectOptions,
@@ -162,7 +168,9 @@ def collect(options: CollectOptions,
     total = Collection()
     seconds_p = seconds_f = agree = 0.0
     n_agree = 0
-    for scenario, (part, sp, sf, a, n) in zip(scenarios, results, strict=True):
+    motion = MotionSamples()
+    for scenario, (part, sp, sf, a, n, samples) in zip(scenarios, results, strict=True):
+        motion.extend(samples)
         total.lines += part.lines
         total.pairs += part.pairs
         total.weight += part.weight
@@ -180,6 +188,7 @@ def collect(options: CollectOptions,
         raise CollectError(f"no occlusion happened in {len(scenarios)} episodes: no anchor was "
                            "hidden while another was perceived; nothing written")
     text = data_text(total, [s.stem for s in scenarios], options.labels, options.command)
+    write_atomically(samples_path(options.out), motion.to_json())
     write_atomically(options.out, text)
     return CollectReport(
         episodes=total.episodes, pairs=total.pairs, positive=total.positive,

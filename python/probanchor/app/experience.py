@@ -39,6 +39,8 @@ class AnchorView:
     category: str
     perceived: bool
     position: tuple[float, float, float]  # perceived now, or where it was last perceived
+    #: a perceived hand's grip point (where the reasoning is told it is), else None
+    grip: tuple[float, float, float] | None = None
 
 
 @dataclass
@@ -113,8 +115,11 @@ def play(frames: Iterable[PerceptFrame], name: str) -> Episode:
         views: dict[str, AnchorView] = {}
         for anchor in manager.anchors:
             percept = perceived.get(anchor.symbol)
+            grip = None
             if percept is not None:
                 position = tuple(float(v) for v in percept.position)
+                if percept.grip is not None:
+                    grip = tuple(float(v) for v in percept.grip)
                 if percept.truth_id is not None:
                     votes[anchor.symbol][percept.truth_id] += 1
                 elif hands:
@@ -124,7 +129,8 @@ def play(frames: Iterable[PerceptFrame], name: str) -> Episode:
             else:
                 position = tuple(float(v) for v in np.asarray(anchor.position.mean()))
             views[anchor.symbol] = AnchorView(anchor.symbol, anchor.best_category,
-                                              percept is not None, position)  # type: ignore[arg-type]
+                                              percept is not None, position,  # type: ignore[arg-type]
+                                              grip)  # type: ignore[arg-type]
         out.append(EpisodeFrame(k, float(frame.time), views, frame.truth))
     truth_of: dict[str, str | None] = {}
     for symbol in sorted({s for f in out for s in f.anchors}):   # (an order of its own)

@@ -7,16 +7,19 @@ rule* (does the occlusion go on?), the other branch the *occluder rule* (may O s
 both with statistical models (a logistic regression on a distance, ...) in their leaves.
 
 The theory written includes the hand-written parts it shares with ``prolog/too.pl`` rather than
-copying them (``:- include(File).``, relative to the theory written): ``too_base.pl`` (the
-vocabulary and the filter's frame), ``too_parameters.pl`` (the parameters) and, after the
-learned rules, ``too_motion.pl`` (the transitive clause of section 5.3, the carriers' rules,
-the motion of hidden objects). In place of ``too.pl``'s affordances it has those read from the
-data with their probabilities (:mod:`probanchor.app.occlusion_affordances`), and in place of
-its occlusion rules the learned clauses and the glue clauses that use them as the paper's
-theory does (section 2.3): a hidden object's candidate occluders are the perceived objects O
-for which a particle draws ``occluder(A, O):t+1 ~= true``; it picks one uniformly (or
-``behind``, when it has just vanished, as in ``too.pl``); an occlusion goes on while the
-particle draws ``occluder(A, O):t+1 ~= true`` and O is perceived.
+copying them (``:- include(File).``, relative to the theory written, from ``prolog/too/``):
+``too_base.pl`` (the vocabulary and the filter's frame) and, after the learned rules,
+``too_motion.pl`` (the transitive clause of section 5.3, the carriers' rules, the motion of
+hidden objects: structure whose constants are learned). In place of ``too.pl``'s parameters it
+has those it reads fitted from the motion samples beside the data
+(:mod:`probanchor.app.motion_parameters`); in place of its affordances those read from the data
+with their probabilities (:mod:`probanchor.app.occlusion_affordances`); in place of its
+occlusion rules the learned clauses and the hand-written glue that uses them as the paper's
+theory does (section 2.3; ``too_learned_glue.pl``, shared by every learned theory): a hidden
+object's candidate occluders are the perceived objects O for which a particle draws
+``occluder(A, O):t+1 ~= true``; it picks one uniformly (or ``behind``, when it has just
+vanished, as in ``too.pl``); an occlusion goes on while the particle draws
+``occluder(A, O):t+1 ~= true`` and O is perceived.
 """
 
 from __future__ import annotations
@@ -30,6 +33,14 @@ from pathlib import Path
 import numpy as np
 
 from bridge.resources import prolog_dir
+from probanchor.app.motion_parameters import (
+    Fitted,
+    fit,
+    hand_written,
+    parameter_clauses,
+    parameter_rows,
+)
+from probanchor.app.motion_samples import MotionSamples, read_samples
 from probanchor.app.occlusion_affordances import (
     Affordance,
     affordance_clauses,
@@ -46,62 +57,17 @@ __all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "The
            "along_distance", "coefficient_table", "parameter_table",
            "learn_theory", "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
 
-#: The hand-written parts a learned theory includes before its learned rules (the vocabulary and
-#: the frame; the parameters and affordances) and after them (carriers, motion of hidden objects).
-BEFORE = ("too_base.pl", "too_parameters.pl")
+#: The hand-written parts (in ``prolog/too/``) a learned theory includes before its learned
+#: parameters (the vocabulary and the frame), before its learned tree (the glue that uses it) and
+#: after it (carriers, motion of hidden objects).
+BEFORE = ("too_base.pl",)
+GLUE = "too_learned_glue.pl"
 AFTER = ("too_motion.pl",)
 
 #: The paper's learned clause, P1 = sigmoid(0.8 - 16.9 d) (section 4).
 PAPER = (-16.9, 0.8)
 #: The original system's deployed model, sigmoid(1.948 - 16.488 d) (ProbAnch).
 DEPLOYED = (-16.488, 1.948)
-
-GLUE = """\
-% ------------------------------------------------------------------ learned occlusion rules
-% How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
-% (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples)
-% that the learned affordances above allow (a ball hides nothing, a hand is never hidden; the
-% tree gives a ball as occluder a probability of about 1e-4 per frame, and one particle of a
-% hidden ball under the other, identical ball is enough for the matching to swap them);
-% of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
-% while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 of
-% where A was (fitted from the data: twice the distance within which 90 % of the onsets were);
-% beyond it the learned tree gives an onset a negligible probability, and a draw for every pair
-% in every particle would cost more than the rest of the theory.
-% O is a candidate occluder of the hidden A when the particle
-% draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
-% when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
-% occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
-pair(A, O):t+1 :=
-    hidden(A):t+1, observed(O), O \\== A, can_be_occluded(A), can_occlude(O),
-    (   occluded_by(A, O):t
-    ->  true
-    ;   lost_anywhere(A):t
-    ->  true
-    ;   pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (X, Y, _), onset_reach(R),
-        (X-XO)**2 + (Y-YO)**2 < R*R
-    ).
-occluder_candidate(A, O):t+1 :=
-    pair(A, O):t+1, \\+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
-pick_occluder(A):t+1 ~ uniform(Os) :=
-    hidden(A):t+1, seen(A):t, \\+ occluded_by(A, _):t,
-    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \\== [],
-    Os = [behind | Os1].
-pick_occluder(A):t+1 ~ uniform(Os) :=
-    hidden(A):t+1, \\+ seen(A):t, \\+ occluded_by(A, _):t,
-    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \\== [].
-occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \\== behind.
-occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, seen(O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
-% An occluder out of view at t (the camera saw nothing, or it was hidden itself) that is
-% perceived again still hides what it hid (as the transitive clause kept it while unseen): the
-% data have no occluder moved while out of view, so the tree's distance from where A was would
-% end the occlusion wherever the occluder was taken unseen (two look-alike containers swapped
-% while the camera was covered); from the next frame on, the tree decides again.
-occluded_by(A, O):t+1 :=
-    occluded_by(A, O):t, hidden(A):t+1, observed(O), \\+ seen(O):t.
-"""
-
 
 class TheoryError(ValueError):
     """A theory that cannot be written: a hand-written part to include is missing, or the result
@@ -118,6 +84,8 @@ class LearnedTheory:
     reach: OnsetReach | None = None
     base: Path | None = None
     affordances: dict[str, dict[str, Affordance]] | None = None
+    parameters: list[Fitted] | None = None
+    samples: MotionSamples | None = None
 
     @property
     def logistic(self) -> list[dict[str, object]]:
@@ -128,9 +96,10 @@ class LearnedTheory:
 
 def theory_text(learned_program: str, header: str, *, base: str | Path,
                 out: str | Path, reach: OnsetReach,
-                found: dict[str, dict[str, Affordance]]) -> str:
-    """The theory: ``header``, the hand-written parts of ``base`` (a folder) included, the glue
-    clauses, the onset reach fitted from the data and the learned program (the learner's
+                found: dict[str, dict[str, Affordance]], fitted: Sequence[Fitted]) -> str:
+    """The theory: ``header``, the hand-written parts of ``base`` (a folder) included, the
+    parameters fitted from the data (``fitted``), the affordances read from it (``found``), the
+    glue included, the onset reach fitted from the data and the learned program (the learner's
     output: background knowledge and clauses).
 
     The includes name the parts relative to the folder of ``out``, the file the theory is
@@ -142,7 +111,7 @@ def theory_text(learned_program: str, header: str, *, base: str | Path,
         ``base`` lacks one of the hand-written parts.
     """
     folder = Path(base)
-    missing = [name for name in (*BEFORE, *AFTER) if not (folder / name).is_file()]
+    missing = [name for name in (*BEFORE, GLUE, *AFTER) if not (folder / name).is_file()]
     if missing:
         raise TheoryError(f"{folder}: no hand-written part {', '.join(missing)} to include")
     here = Path(out).resolve().parent
@@ -153,11 +122,11 @@ def theory_text(learned_program: str, header: str, *, base: str | Path,
         return f":- include('{quoted}').\n"
 
     body = _program_body(learned_program)
-    fitted = (f"% The onset reach (m): {QUANTILE:.0%} of the {reach.onsets} onsets in the data "
+    onset = (f"% The onset reach (m): {QUANTILE:.0%} of the {reach.onsets} onsets in the data "
               f"were within {reach.quantile:.4g} m; times {MARGIN}.\n"
               f"onset_reach({reach.reach:.4g}).\n")
-    return (header + "".join(include(n) for n in BEFORE) + "\n" + affordance_clauses(found)
-            + "\n" + GLUE + fitted + "\n"
+    return (header + "".join(include(n) for n in BEFORE) + "\n" + parameter_clauses(fitted)
+            + "\n" + affordance_clauses(found) + "\n" + include(GLUE) + onset + "\n"
             + body.rstrip()
             + "\n\n" + "".join(include(n) for n in AFTER))
 
@@ -195,21 +164,28 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     Raises
     ------
     TheoryError
-        A hand-written part is missing from ``base`` (default ``prolog/``), or the theory
-        written does not load.
+        A hand-written part is missing from ``base`` (default ``prolog/too/``), the motion
+        samples beside the data are missing, or the theory written does not load. (A parameter
+        the samples cannot fit keeps too_parameters.pl's value, marked NOT FITTED in the
+        theory.)
     bridge.DDCError
         The data has an error (its message names the file and line).
     """
     import bridge
 
     out = Path(out)
-    folder = Path(base) if base is not None else prolog_dir()
+    folder = Path(base) if base is not None else prolog_dir() / "too"
     if options is None:
         options = SearchOptions(root_model="never")
+    try:
+        samples = read_samples(list(data))
+        fitted = fit(samples, hand_written(folder))
+    except (ValueError, FileNotFoundError) as error:
+        raise TheoryError(str(error)) from None
     result = learn(data, ["occluder:t+1"], seed=seed, options=options, progress=progress)
     target = result.targets[0]
     names = ", ".join(Path(d).name for d in data)
-    parts = ", ".join((*BEFORE, *AFTER))
+    parts = ", ".join((*BEFORE, GLUE, *AFTER))
     header = [
         f"/*  {out.name} -- the theory of occlusion with rules learned from experience.",
         "",
@@ -221,8 +197,10 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     if command:
         header.append(f"    Command: {command}")
     header += [
-        f"    The hand-written parts are included from {folder.name}/ ({parts}):",
-        "    regenerate this file rather than edit it; edit those for the rest.",
+        f"    The hand-written parts are included from {folder.parent.name}/{folder.name}/ "
+        f"({parts}):",
+        "    regenerate this file rather than edit it; edit those for the rest.  The",
+        "    parameters are fitted from the motion samples beside the data.",
         "*/",
         "",
     ]
@@ -232,7 +210,7 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     except ValueError as error:
         raise TheoryError(str(error)) from None
     text = theory_text(result.program_text(form), "\n".join(header) + "\n", base=folder,
-                       out=out, reach=reach, found=found)
+                       out=out, reach=reach, found=found, fitted=fitted)
 
     def loads(tmp: Path) -> None:
         try:
@@ -241,7 +219,7 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
             raise TheoryError(f"the learned theory does not load: {error}") from None
 
     write_atomically(out, text, loads)
-    return LearnedTheory(out, result, text, reach, folder, found)
+    return LearnedTheory(out, result, text, reach, folder, found, fitted, samples)
 
 
 def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:
@@ -332,10 +310,54 @@ def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Pa
     if theory.reach is not None and theory.base is not None:
         parameters = folder / f"{name}_parameters.md"
         parameters.write_text(parameter_table(theory.reach, theory.base)
+                              + ("\n" + parameter_rows(theory.parameters, theory.base)
+                                 if theory.parameters else "")
                               + ("\n" + affordance_table(theory.affordances)
                                  if theory.affordances else ""), encoding="utf-8")
         written.append(parameters)
+    if theory.parameters and theory.samples is not None:
+        written.append(plot_motion(theory.samples, theory.parameters,
+                                   folder / f"{name}_motion.png"))
     return written
+
+
+def plot_motion(samples: MotionSamples, fitted: Sequence[Fitted], path: Path) -> Path:
+    """Histograms of the samples of three fitted variances (a perceived object's true
+    displacement per frame, a reappearance around its belief, the same after the camera saw
+    nothing; per axis, log counts) with the fitted Gaussians' expected counts."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    value = {f.name: f.value for f in fitted}
+    panels = (("motion_var", "a perceived object's step (true)",
+               [r[4] for r in samples.rows["displacement"] if r[4] is not None]),
+              ("reappear_var", "a reappearance around its belief", samples.rows["reappear"]),
+              ("lost_var", "lost while blind (the Gaussian: moved anywhere)",
+               samples.rows["lost"]))
+    fig = Figure(figsize=(11, 3.4))
+    for i, (name, title, rows) in enumerate(panels):
+        ax = fig.add_subplot(1, 3, i + 1)
+        x = np.asarray(rows, dtype=float).reshape(-1)
+        if x.size == 0:
+            continue
+        sd = float(np.sqrt(value[name]))
+        edge = max(4 * sd, float(np.quantile(np.abs(x), 0.999)))
+        bins = np.linspace(-edge, edge, 61)
+        ax.hist(x, bins=bins, color="0.6", label=f"samples ({x.size:,} per-axis values)")
+        centre = 0.5 * (bins[1:] + bins[:-1])
+        width = bins[1] - bins[0]
+        expected = x.size * width * np.exp(-centre ** 2 / (2 * sd * sd)) / (sd * np.sqrt(2 * np.pi))
+        ax.plot(centre, expected, "k-", label=f"fitted N(0, {value[name]:.2g})")
+        ax.set_yscale("log")
+        ax.set_ylim(0.5, None)
+        ax.set_xlabel("m")
+        ax.set_title(f"{name}: {title}", fontsize=8)
+        ax.legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    return path
 
 
 def parameter_table(reach: OnsetReach, base: str | Path) -> str:

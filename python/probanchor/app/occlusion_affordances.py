@@ -117,7 +117,8 @@ def affordance_clauses(found: dict[str, dict[str, Affordance]]) -> str:
            f"% about as an occluder when it hides at least {MIN_SHARE:g} of them and is no",
            f"% carrier, as hidden when it is at least {MIN_SHARE:g} of the time; a carrier holds",
            "% what it hid when lifted off with a probability above 1/2, read from a weight of",
-           f"% at least {MIN_CARRIES} data points (too_motion.pl's carriers' rules apply to it).",
+           f"% at least {MIN_CARRIES} data points (too/too_motion.pl's carriers' rules apply to",
+           "% it).",
            ]
     for name, key in (("hides", "hides"), ("hidden_share", "hidden"), ("carries", "carries")):
         out += [f"{name}({k}, {a.probability:.4g}).  % {a.points:,.0f}"

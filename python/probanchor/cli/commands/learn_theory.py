@@ -1,15 +1,19 @@
 """`anchoring learn-theory`: the theory of occlusion with rules learned from experience.
 
     anchoring learn-theory DATA.pl [MORE.pl ...] [--out prolog/too_learned.pl] [--seed S]
-                           [--plots DIR] [--base prolog/] [--json]
+                           [--plots DIR] [--base prolog/too/] [--json]
 
 Learns the occluder rule (may O start hiding A?) and the tracking rule (does the occlusion go
 on?) as one distributional logic tree for ``occluder(A, O):t+1`` (``ddc learn``) and writes the
-complete theory: the learned rules, with the hand-written parts it shares with prolog/too.pl
-included (too_base.pl: the vocabulary and the filter's frame; too_parameters.pl; too_motion.pl).
+complete theory: the learned rules, the motion and carrying parameters fitted from the samples
+`anchoring collect` writes beside DATA.pl (DATA.motion.json), the affordances read from the data,
+and the hand-written parts included from prolog/too/ (too_base.pl: the vocabulary and the
+filter's frame; too_learned_glue.pl: how the learned rule is used; too_motion.pl: carrying and
+the motion of hidden objects).
 ``--out`` is replaced only once the new theory loads. ``--plots DIR`` draws the tree and
 P(occluder | distance) beside the paper's and the original system's, and writes the table of the
-learned coefficients beside theirs.
+learned coefficients beside theirs, and the learned parameters beside the hand-written ones
+(DIR/<name>_parameters.md).
 """
 
 from __future__ import annotations
@@ -30,7 +34,8 @@ def register(sub: Any) -> None:
                         help="the theory to write (default prolog/too_learned.pl)")
     parser.add_argument("--base", type=Path, default=None, metavar="DIR",
                         help="the folder of the hand-written parts the theory includes "
-                             "(too_base.pl, too_parameters.pl, too_motion.pl; default prolog/)")
+                             "(too_base.pl, too_learned_glue.pl, too_motion.pl and, for the "
+                             "table, too_parameters.pl; default prolog/too/)")
     parser.add_argument("--seed", type=int, default=0, help="the learner's seed (default 0)")
     parser.add_argument("--plots", type=Path, default=None, metavar="DIR",
                         help="write DIR/<name>_tree.png, DIR/<name>_distance.png and "
@@ -59,6 +64,7 @@ def main(args: argparse.Namespace) -> int:
                "groundings": target.groundings, "seconds": round(target.seconds, 2),
                "log_likelihood": target.log_likelihood, "pictures": [str(p) for p in pictures],
                "onset_reach": result.reach.reach if result.reach else None,
+               "parameters": {p.name: p.value for p in result.parameters or []},
                "logistic_leaves": result.logistic}
     if args.json:
         print(json.dumps(figures))

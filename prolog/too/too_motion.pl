@@ -1,10 +1,11 @@
 /*  too_motion.pl -- the hand-written rules of carrying and of the motion of hidden objects.
 
-    Included by too.pl (and, until they are learned, by the theories `anchoring learn-theory`
-    writes), after the occlusion rules: the transitive clause, the carriers' rules (a hand
-    picks an object up, carries it, puts it down), where a hidden object is (with its
-    occluder, in place, coasting) and the variance of where an object reappears.  Reads the
-    parameters of too_parameters.pl.
+    Included by too.pl and by the theories `anchoring learn-theory` writes, after the
+    occlusion rules: the transitive clause, the carriers' rules (a hand picks an object up,
+    carries it, puts it down), where a hidden object is (with its occluder, in place,
+    coasting) and the variance of where an object reappears.  These rules are structure (the
+    vocabulary and frame of carrying and of motion); the constants they read are
+    too_parameters.pl's in too.pl and fitted from the data in a learned theory.
 */
 
 % Transitive occlusion (section 5.3 of the paper; remove this clause to switch it off): an

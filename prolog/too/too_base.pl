@@ -18,7 +18,8 @@
     pos(A):t+1 of a hidden object (and vel(A):t+1 if it coasts); prior_var(A, P):t+1, the
     variance (per axis, square metres) of where A is now around where it was believed in the
     previous frame, which the perceived object's filtering and the observation model below
-    read.
+    read; the parameters it reads: obs_var/1, the measurement noise of a perceived position
+    (per axis, square metres; too_parameters.pl, or learned).
 */
 
 % ------------------------------------------------------------------ facts
@@ -35,9 +36,6 @@ blind:t+1 := \+ observed(_).
 % An object hidden while blind stays "lost anywhere" until an occluder explains it.
 lost_anywhere(A):t+1 := hidden(A):t+1, blind:t+1, \+ occluded_by(A, _):t+1.
 lost_anywhere(A):t+1 := lost_anywhere(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
-
-% The measurement noise of a perceived position (per axis, square metres): (1 cm)^2.
-obs_var(0.0001).
 
 % ------------------------------------------------------------------ positions
 % A perceived object's position is the same in every particle: its filtered estimate, a point

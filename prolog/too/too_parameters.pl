@@ -1,11 +1,13 @@
 /*  too_parameters.pl -- the hand-written parameters of the theory of occlusion.
 
-    Included by too.pl and, until they are learned, by the theories `anchoring learn-theory`
-    writes: the motion and occlusion constants (variances, reaches, heights).
+    Included by too.pl: the motion, carrying and occlusion constants (variances, reaches,
+    heights).  The theories `anchoring learn-theory` writes have the ones they read fitted from
+    the data instead (python/probanchor/app/motion_parameters.py).
 */
 
 % ------------------------------------------------------------------ parameters
 % Variances are per axis, in square metres; one step is one camera frame.
+obs_var(0.0001).            % the measurement noise of a perceived position: (1 cm)^2
 motion_var(0.0004).         % how far a perceived object moves in one frame: (2 cm)^2
 reappear_var(0.0025).       % where a hidden object shows up again, around its belief: (5 cm)^2
 lost_var(0.09).             % where an object lost while the camera saw nothing shows up again:

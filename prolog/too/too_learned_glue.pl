@@ -1,0 +1,53 @@
+/*  too_learned_glue.pl -- how a learned theory of occlusion uses its learned occluder/2.
+
+    Hand-written, and included by the theories `anchoring learn-theory` writes (after their
+    learned affordances and parameters, before their learned tree): which pairs the learned
+    occluder(A, O):t+1 is drawn for, how a particle picks among the candidates it gives, and
+    how an occlusion goes on.  Reads onset_reach/1, fitted from the data and written into the
+    theory (python/probanchor/app/occlusion_reach.py), and the affordances can_occlude/1 and
+    can_be_occluded/1, learned too.
+*/
+
+% ------------------------------------------------------------------ learned occlusion rules
+% How the learned occluder/2 (below) is used, as the paper's theory uses its occluder rule
+% (section 2.3): the pairs it is about are a hidden A and a perceived O (the data's examples)
+% that the learned affordances above allow (a ball hides nothing, a hand is never hidden; the
+% tree gives a ball as occluder a probability of about 1e-4 per frame, and one particle of a
+% hidden ball under the other, identical ball is enough for the matching to swap them);
+% of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
+% while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 of
+% where A was (fitted from the data: twice the distance within which 90 % of the onsets were);
+% beyond it the learned tree gives an onset a negligible probability, and a draw for every pair
+% in every particle would cost more than the rest of the theory.
+% O is a candidate occluder of the hidden A when the particle
+% draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
+% when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
+% occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
+pair(A, O):t+1 :=
+    hidden(A):t+1, observed(O), O \== A, can_be_occluded(A), can_occlude(O),
+    (   occluded_by(A, O):t
+    ->  true
+    ;   lost_anywhere(A):t
+    ->  true
+    ;   pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (X, Y, _), onset_reach(R),
+        (X-XO)**2 + (Y-YO)**2 < R*R
+    ).
+occluder_candidate(A, O):t+1 :=
+    pair(A, O):t+1, \+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, seen(A):t, \+ occluded_by(A, _):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \== [],
+    Os = [behind | Os1].
+pick_occluder(A):t+1 ~ uniform(Os) :=
+    hidden(A):t+1, \+ seen(A):t, \+ occluded_by(A, _):t,
+    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
+occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, seen(O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.
+% An occluder out of view at t (the camera saw nothing, or it was hidden itself) that is
+% perceived again still hides what it hid (as the transitive clause kept it while unseen): the
+% data have no occluder moved while out of view, so the tree's distance from where A was would
+% end the occlusion wherever the occluder was taken unseen (two look-alike containers swapped
+% while the camera was covered); from the next frame on, the tree decides again.
+occluded_by(A, O):t+1 :=
+    occluded_by(A, O):t, hidden(A):t+1, observed(O), \+ seen(O):t.

@@ -1,0 +1,167 @@
+"""The motion and carrying parameters of the learned theories: each estimator recovers what
+it should from samples of a known model, and the shipped learned theories hold every parameter
+they read as a learned fact (no hand-written one included), within ranges derived from the
+simulator's settings."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+
+from probanchor.app.learned_theory import TheoryError, learn_theory
+from probanchor.app.motion_grip import gate, release, signed_gate, threshold
+from probanchor.app.motion_keep import ar1
+from probanchor.app.motion_parameters import DESCRIPTIONS, fit, parameter_clauses
+from probanchor.app.motion_samples import MotionSamples, samples_path
+from probanchor.app.motion_variances import STILL, isotropic_variance, lost_var, obs_var
+from probanchor.app.theories import THEORIES
+from probanchor.tabletop.scenario import CameraSpec, NoiseSpec, Scenario
+
+# ------------------------------------------------------------------ the estimators
+
+
+def test_the_isotropic_variance_is_the_maximum_likelihood_one() -> None:
+    rng = np.random.default_rng(0)
+    x = rng.normal(0.0, 0.02, size=(20000, 3))
+    # the standard error of a variance from n normal values is V sqrt(2 / n)
+    assert isotropic_variance(x) == pytest.approx(0.0004, rel=4 * np.sqrt(2 / x.size))
+
+
+def test_obs_var_is_half_the_variance_of_a_still_object_s_perceived_steps() -> None:
+    rng = np.random.default_rng(1)
+    noise = rng.normal(0.0, 0.003, size=(20001, 3))
+    steps = np.diff(noise, axis=0)
+    rows = [[*d, "ball", [0.0, 0.0, 0.0]] for d in steps]
+    rows += [[0.5, 0.5, 0.5, "ball", [0.01, 0.0, 0.0]]]        # it moved: not counted
+    v, n = obs_var(rows)
+    assert n == len(steps)
+    assert v == pytest.approx(0.003 ** 2, rel=0.05)
+    assert STILL < 0.01
+
+
+def test_lost_var_is_the_variance_of_a_move_between_two_places() -> None:
+    rng = np.random.default_rng(3)
+    places = rng.uniform([-0.5, -0.3], [0.5, 0.3], size=(20000, 2))   # a 1 m x 0.6 m table
+    v, n = lost_var(places)
+    moves = places[rng.permutation(len(places))] - places
+    assert n == len(places)
+    assert v == pytest.approx(float(np.mean(moves[:, 0] ** 2)), rel=0.05)   # the long side
+    assert v == pytest.approx(2 * 1.0 ** 2 / 12, rel=0.05)
+    with pytest.raises(ValueError, match="fewer than two"):
+        lost_var([[0.0, 0.0]])
+
+
+def test_ar1_recovers_the_kept_fraction_and_the_jitter() -> None:
+    rng = np.random.default_rng(2)
+    k, sd = 0.9, 0.002
+    x = np.zeros((5000, 2))
+    x[0] = [0.03, -0.02]
+    for t in range(1, len(x)):
+        x[t] = k * x[t - 1] + rng.normal(0.0, sd, 2)
+    rows = [[*x[t], *x[t + 1]] for t in range(len(x) - 1)]
+    k_hat, v_hat, n = ar1(rows)
+    assert n == len(rows)
+    assert k_hat == pytest.approx(k, abs=0.02)
+    assert v_hat == pytest.approx(sd ** 2, rel=0.06)
+    with pytest.raises(ValueError, match="nothing to fit"):
+        ar1([[0.0, 0.0, 0.0, 0.0]])
+
+
+def test_gates_and_thresholds_are_quantiles_with_the_margin() -> None:
+    xs = np.linspace(0.0, 1.0, 101)
+    assert gate(xs) == pytest.approx(2 * 0.9)
+    assert threshold(xs) == pytest.approx(0.1 / 2)
+    low, high = signed_gate(xs)
+    assert (low, high) == (pytest.approx(0.5 - 2 * 0.4), pytest.approx(0.5 + 2 * 0.4))
+
+
+def test_release_counts_the_frames_held_where_the_object_stood() -> None:
+    """Two carries up to 15 cm and back; one let go after 2 frames down there, one after 4 (3
+    frames held on, 2 releases: (2 + 1) / (6 + 2)); a third ran to the episode's end."""
+    up = [0.0, 0.05, 0.1, 0.15, 0.1, 0.05]
+    carries = [{"heights": [*up, 0.0, 0.0], "released": True, "grips": [None] * 8},
+               {"heights": [*up, 0.0, 0.0, 0.0, 0.0], "released": True,
+                "grips": [0.02, 0.07, 0.12, 0.17, None, None, None, None, None, None]},
+               {"heights": [*up, 0.0], "released": False, "grips": [None] * 7}]
+    fitted = release(carries)
+    assert fitted["lift_margin"][0] == pytest.approx(0.15 / 2)
+    assert fitted["release_margin"][0] == pytest.approx(0.0)
+    assert fitted["release_p"] == (pytest.approx(3 / 8), 6)
+    assert fitted["grip_rise"] == (pytest.approx(0.05 / 2), 3)
+
+
+def test_a_parameter_without_samples_keeps_the_hand_written_value_marked() -> None:
+    hand = {name: 0.5 for name in DESCRIPTIONS}
+    fitted = fit(MotionSamples(), hand)
+    assert [(f.name, f.value, f.samples) for f in fitted] == [(n, 0.5, 0) for n in DESCRIPTIONS]
+    assert parameter_clauses(fitted).count("NOT FITTED") == len(DESCRIPTIONS)
+    with pytest.raises(ValueError, match="cannot fit obs_var: no samples"):
+        fit(MotionSamples(), {})
+
+
+def test_learn_theory_without_motion_samples_is_an_error(tmp_path) -> None:
+    data = tmp_path / "data.pl"
+    data.write_text("pair(a, o):t+1.\n")
+    with pytest.raises(TheoryError, match=re.escape(str(samples_path(data)))):
+        learn_theory([data], tmp_path / "too_learned.pl")
+
+
+# ------------------------------------------------------------------ the shipped theories
+
+FPS = Scenario.__dataclass_fields__["fps"].default                  # frames per second
+#: The simulator's fastest motion of an object (generated games: up to 0.25 m/s) and a hand's.
+FASTEST = 0.25
+#: Depth noise at the camera's distance from the table (NoiseSpec), per axis.
+_cam = CameraSpec()
+_distance = float(np.linalg.norm(np.subtract(_cam.position, _cam.target)))
+_noise = NoiseSpec()
+DEPTH_SIGMA = _noise.depth_sigma_base + _noise.depth_sigma_quadratic * _distance ** 2
+#: How high the simulator lifts a container or a carried object (timeline's default).
+LIFT = 0.15
+
+
+def _facts(name: str) -> dict[str, float]:
+    text = THEORIES[name].read_text()
+    found: dict[str, list[float]] = {}
+    for m in re.finditer(r"^(\w+)\(([-\d.eE+]+)\)\.", text, re.M):
+        found.setdefault(m[1], []).append(float(m[2]))
+    return {k: v[0] for k, v in found.items() if len(v) == 1}
+
+
+@pytest.mark.parametrize("name", ["learned", "hindsight"])
+def test_the_shipped_learned_theories_have_no_hand_written_constant(name: str) -> None:
+    text = THEORIES[name].read_text()
+    includes = re.findall(r"^:- include\('([^']+)'\)\.", text, re.M)
+    assert not any("too_parameters" in i or "too_affordances" in i for i in includes)
+    assert "NOT FITTED" not in text
+    facts = _facts(name)
+    for parameter in DESCRIPTIONS:
+        assert parameter in facts, f"{parameter} is no learned fact of {THEORIES[name]}"
+
+
+@pytest.mark.parametrize("name", ["learned", "hindsight"])
+def test_the_learned_parameters_are_within_the_simulator_s_ranges(name: str) -> None:
+    p = _facts(name)
+    step = FASTEST / FPS                  # the farthest an object moves in a frame (m)
+    # perception averages many depth points: its noise is below one point's, not far below
+    assert (DEPTH_SIGMA / 10) ** 2 < p["obs_var"] < DEPTH_SIGMA ** 2
+    # most objects stand still most of the time; none moves faster than the fastest
+    assert (step / 30) ** 2 < p["motion_var"] < step ** 2
+    # a reappearance is centimetres off its belief, less than the table is wide
+    assert 0.01 ** 2 < p["reappear_var"] < 0.3 ** 2
+    # lost: moved anywhere on the table (the generated games' tables are about a metre wide)
+    assert 0.1 ** 2 < p["lost_var"] < 0.6 ** 2
+    # an object under a container stays within its footprint (4 cm radius)
+    assert 0.5 < p["follow_keep"] < 1.0 and 0 < p["follow_var"] < 0.04 ** 2
+    assert 0.5 < p["coast_keep"] < 1.0 and 0 < p["wander_var"] < step ** 2
+    # a hand closes over what it takes: within a few centimetres of it, from above
+    assert 0.005 < p["grip_reach"] < 0.15
+    assert 0.02 < p["grip_height"] < 0.2 and -0.1 < p["occluder_rise"] < 0.05
+    assert 0.0 < p["grip_drop"] < 0.05
+    # a carry lifts the object LIFT high and puts it back down where it stood
+    assert 0.005 < p["lift_margin"] < LIFT
+    assert 0.0 < p["release_margin"] < p["lift_margin"]
+    assert 0.05 < p["release_p"] < 1.0
+    assert 0.0 < p["grip_rise"] < step
