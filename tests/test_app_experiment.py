@@ -7,8 +7,9 @@ from pathlib import Path
 
 import yaml
 
-from probanchor.app.experiment import game_scenarios, percept_stream, run_method
 from probanchor.evaluation import results_table
+from probanchor.experiments.sweep import game_scenarios, run_method
+from probanchor.loop.sources import percept_stream
 from test_app_runner import SCENARIO
 
 
@@ -41,7 +42,7 @@ def test_every_method_runs_on_the_same_cached_stream(tmp_path: Path) -> None:
 
 
 def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypatch) -> None:
-    import probanchor.app.experiment as experiment
+    import probanchor.experiments.sweep as experiment
 
     calls: list[tuple[str, int]] = []
     methods_run: list[tuple[str, int, list[str]]] = []

@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 from percept_helpers import ball_percept
-from probanchor.app.loop import run_frames
-from probanchor.app.runner import RunOptions, run
-from probanchor.app.sources import SourceFrame
 from probanchor.evaluation import FrameTimings
+from probanchor.loop.loop import run_frames
+from probanchor.loop.runner import RunOptions, run
+from probanchor.loop.sources import SourceFrame
 from probanchor.percepts import PerceptFrame, write_percepts
 
 FRAMES = 5

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from probanchor.app.naming import symbol_atom
-from probanchor.app.reasoning import AnchorState, OcclusionReasoner
+from probanchor.loop.naming import symbol_atom
+from probanchor.loop.reasoning import AnchorState, OcclusionReasoner
 
 MUG = (0.0, 0.0, 0.05)
 BALL = (0.05, 0.0, 0.03)

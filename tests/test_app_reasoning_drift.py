@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from probanchor.app.reasoning import AnchorState, OcclusionReasoner
+from probanchor.loop.reasoning import AnchorState, OcclusionReasoner
 
 N = 100
 NOISE = 0.004  # perceived centroids jitter by ~4 mm per axis (what perception gives)

@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from probanchor.app.reasoning import AnchorState, OcclusionReasoner
-from probanchor.app.theories import THEORIES
+from probanchor.loop.reasoning import AnchorState, OcclusionReasoner
+from probanchor.loop.theories import THEORIES
 
 BALL = (-0.2, -0.05, 0.03)
 MUG = (0.0, 0.15, 0.05)

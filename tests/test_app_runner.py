@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from plunit_runner import ROOT, swipl_executable
-from probanchor.app.runner import RunOptions, run
+from probanchor.loop.runner import RunOptions, run
 from scenario_helpers import BALL_UNDER_MUG_MOVED as SCENARIO
 from scenario_helpers import scenario_file
 

@@ -11,9 +11,9 @@ from pathlib import Path
 import pytest
 
 from bridge.filter import FilterError
-from probanchor.app import reasoning, world_file
-from probanchor.app.runner import MAX_PARTICLES, RunOptions, run
 from probanchor.cli.anchoring_cli import main as anchoring
+from probanchor.loop import reasoning, world_file
+from probanchor.loop.runner import MAX_PARTICLES, RunOptions, run
 from scenario_helpers import scenario_file
 
 

@@ -7,8 +7,8 @@ from __future__ import annotations
 import numpy as np
 
 from anchoring.synthetic import TrueObject, observe, random_object, spurious
-from probanchor.app.loop import AnchoringLoop, LoopConfig
-from probanchor.app.sources import SourceFrame
+from probanchor.loop.loop import AnchoringLoop, LoopConfig
+from probanchor.loop.sources import SourceFrame
 from probanchor.percepts import Percept, PerceptFrame
 
 FPS = 15.0

@@ -23,13 +23,14 @@ from typing import Any
 import numpy as np
 
 from bridge.engines import Engine
-from probanchor.app.reasoning import DEFAULT_THREADS
-from probanchor.app.runner import RunOptions, run
-from probanchor.app.theories import theory_path
 from probanchor.evaluation import evaluate, make_summary, results_table
 from probanchor.evaluation.baselines import BASELINES, run_baseline
 from probanchor.jobs import Job, JobsFailed, parse_cluster, run_jobs
-from probanchor.percepts import read_percepts, write_percepts
+from probanchor.loop.reasoning import DEFAULT_THREADS
+from probanchor.loop.runner import RunOptions, run
+from probanchor.loop.sources import percept_stream
+from probanchor.loop.theories import theory_path
+from probanchor.percepts import read_percepts
 from probanchor.resources import scenario_file
 
 SHIPPED = ("shell_game", "can_under_box", "ball_under_box_two_balls", "transitive")
@@ -70,19 +71,6 @@ def game_scenarios(out: Path, games: int, first_seed: int = 0) -> list[Path]:
         builder.save(path)
         paths.append(path)
     return paths
-
-
-def percept_stream(scenario: Path, seed: int, cache: Path) -> Path:
-    """The perceived stream of ``scenario`` with noise seed ``seed`` (cached)."""
-    from probanchor.app.sources import perceive_scenario
-
-    path = cache / f"{scenario.stem}_seed{seed}.jsonl"
-    if not path.exists():
-        cache.mkdir(parents=True, exist_ok=True)
-        partial = path.with_suffix(".partial")
-        write_percepts(partial, perceive_scenario(scenario, seed=seed))
-        partial.rename(path)
-    return path
 
 
 def theory_digest(method: str) -> str | None:

@@ -17,10 +17,10 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from probanchor.app.occlusion_data import Collection, LabelOptions, data_text, episode_facts
-from probanchor.app.occlusion_data import hindsight_agreement as _agreement
 from probanchor.ddclearn.files import write_atomically
 from probanchor.jobs import Job, parse_cluster, raise_failures, run_jobs
+from probanchor.learning.occlusion_data import Collection, LabelOptions, data_text, episode_facts
+from probanchor.learning.occlusion_data import hindsight_agreement as _agreement
 
 __all__ = ["CollectError", "CollectOptions", "CollectReport", "collect", "game_files"]
 
@@ -103,8 +103,8 @@ def game_files(folder: Path, games: int, first_seed: int) -> list[Path]:
 def _episode(scenario: Path, seed: int, cache: Path, number: int,
              labels: LabelOptions) -> tuple[Collection, float, float, float, int]:
     """One episode in a worker: its facts, seconds (perception, facts), hindsight agreement."""
-    from probanchor.app.experience import play
-    from probanchor.app.experiment import percept_stream
+    from probanchor.learning.experience import play
+    from probanchor.loop.sources import percept_stream
     from probanchor.percepts import read_percepts
 
     started = time.perf_counter()

@@ -30,17 +30,17 @@ from pathlib import Path
 import numpy as np
 
 from bridge.resources import prolog_dir
-from probanchor.app.occlusion_affordances import (
+from probanchor.ddclearn import LearnResult, SearchOptions, learn
+from probanchor.ddclearn.files import write_atomically
+from probanchor.ddclearn.learner import Form
+from probanchor.learning.occlusion_affordances import (
     Affordance,
     affordance_clauses,
     affordance_table,
     affordances,
     never_occluders,
 )
-from probanchor.app.occlusion_reach import MARGIN, QUANTILE, OnsetReach, onset_reach
-from probanchor.ddclearn import LearnResult, SearchOptions, learn
-from probanchor.ddclearn.files import write_atomically
-from probanchor.ddclearn.learner import Form
+from probanchor.learning.occlusion_reach import MARGIN, QUANTILE, OnsetReach, onset_reach
 
 __all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError",
            "along_distance", "coefficient_table", "parameter_table",

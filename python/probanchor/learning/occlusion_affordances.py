@@ -22,7 +22,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from probanchor.app.occlusion_reach import read_points
+from probanchor.learning.occlusion_reach import read_points
 
 __all__ = ["LIFT", "MIN_CARRIES", "MIN_SHARE", "Affordance", "affordance_clauses", "affordances",
            "affordance_table", "carriers", "never_occluders"]

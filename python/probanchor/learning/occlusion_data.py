@@ -45,8 +45,8 @@ from typing import Literal
 
 import numpy as np
 
-from probanchor.app.experience import Episode
-from probanchor.app.naming import category_atom, symbol_atom
+from probanchor.learning.experience import Episode
+from probanchor.loop.naming import category_atom, symbol_atom
 
 __all__ = ["BIAS", "CATEGORIES", "FEATURES", "Collection", "LabelOptions", "episode_facts",
            "hindsight_agreement", "labels"]

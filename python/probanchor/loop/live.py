@@ -12,7 +12,7 @@ query on them, as ``anchoring shell`` would. The queries of that process are san
 processes, no changes) and limited in time and answers; it ends with the run (its input is a
 pipe from the run).
 
-    >>> from probanchor.app.live import ask                         # doctest: +SKIP
+    >>> from probanchor.loop.live import ask                         # doctest: +SKIP
     >>> ask("hidden_under(Obj, Occ, P)", port=7070)
     {'frame': 57, 'time': 11.4, 'answers': [{'Obj': 'ball_1', 'Occ': 'mug_1', 'P': 0.93}],
      'truncated': False, 'query': 'hidden_under(Obj, Occ, P)'}

@@ -14,8 +14,6 @@ import numpy as np
 from anchoring import AnchorManager, FrameResult, reasoning_position
 from anchoring.identity import AmbiguousPercept, Revision
 from bridge.engines import Engine
-from probanchor.app.reasoning import DEFAULT_THEORY, DEFAULT_THREADS, AnchorState, OcclusionReasoner
-from probanchor.app.sources import PendingFrame, SourceFrame
 from probanchor.evaluation import (
     FrameTimings,
     Hypothesis,
@@ -23,6 +21,13 @@ from probanchor.evaluation import (
     point_estimate,
     record_for_frame,
 )
+from probanchor.loop.reasoning import (
+    DEFAULT_THEORY,
+    DEFAULT_THREADS,
+    AnchorState,
+    OcclusionReasoner,
+)
+from probanchor.loop.sources import PendingFrame, SourceFrame
 
 logger = logging.getLogger(__name__)
 

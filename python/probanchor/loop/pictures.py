@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from probanchor.app.loop import AnchoringLoop, FrameOutcome
+from probanchor.loop.loop import AnchoringLoop, FrameOutcome
 from probanchor.visualise import AnchorView, CameraView, VideoWriter, draw_anchors, save_png
 
 VIDEO_NAME = "run.mp4"

@@ -1,5 +1,5 @@
 """The reasoning side of the loop: anchors in, one filter step over the theory of occlusion,
-position particles of hidden anchors out. The only module of :mod:`probanchor.app` that uses
+position particles of hidden anchors out. The only module of :mod:`probanchor.loop` that uses
 :mod:`bridge`.
 """
 
@@ -14,8 +14,8 @@ import numpy as np
 from anchoring.identity import AmbiguousPercept, IdentityHypotheses, Revision
 from bridge import DEFAULT_THREADS, Filter, terms
 from bridge.engines import Engine
-from probanchor.app.naming import category_atom, symbol_atom
-from probanchor.app.theories import DEFAULT_THEORY
+from probanchor.loop.naming import category_atom, symbol_atom
+from probanchor.loop.theories import DEFAULT_THEORY
 
 
 @dataclass(frozen=True)

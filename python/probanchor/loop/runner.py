@@ -10,18 +10,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from probanchor.app.loop import AnchoringLoop, FrameOutcome, LoopConfig, run_frames
-from probanchor.app.pictures import FramePictures
-from probanchor.app.sources import bag_frames, scenario_frames, scenario_length, stream_frames
-from probanchor.app.store import (
-    StoredRun,
-    WorldStore,
-    adopt_stored_options,
-    run_meta,
-    store_source,
-    stored_source,
-)
-from probanchor.app.world_file import world_facts, write_world
 from probanchor.evaluation import (
     TrackingRecord,
     evaluate,
@@ -29,6 +17,18 @@ from probanchor.evaluation import (
     write_records,
     write_summary,
 )
+from probanchor.loop.loop import AnchoringLoop, FrameOutcome, LoopConfig, run_frames
+from probanchor.loop.pictures import FramePictures
+from probanchor.loop.sources import bag_frames, scenario_frames, scenario_length, stream_frames
+from probanchor.loop.store import (
+    StoredRun,
+    WorldStore,
+    adopt_stored_options,
+    run_meta,
+    store_source,
+    stored_source,
+)
+from probanchor.loop.world_file import world_facts, write_world
 from probanchor.progress import progress
 
 logger = logging.getLogger(__name__)
@@ -157,12 +157,12 @@ def _run(options: RunOptions, loop: AnchoringLoop, store: WorldStore | None = No
                                  frames=options.frames)
     viewer = None
     if options.rerun is not None or options.rerun_spawn:
-        from probanchor.app.rerun_frames import RerunFrames  # rerun-sdk only when asked for
+        from probanchor.loop.rerun_frames import RerunFrames  # rerun-sdk only when asked for
 
         viewer = RerunFrames(options.rerun, options.rerun_spawn, name)
     live = None
     if options.serve is not None:
-        from probanchor.app.live import LiveWorld
+        from probanchor.loop.live import LiveWorld
 
         live = LiveWorld(options.serve)
         print(f"serving the world model at {live.url}/query?q=QUERY (anchoring shell "

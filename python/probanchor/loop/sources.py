@@ -4,7 +4,7 @@ RGB-D bag (ROS 1 or 2, perceived here) or a recorded percept stream (JSON Lines,
 A source yields one *pending frame* per camera frame: the camera's image is there (the simulator has
 rendered it), and calling the pending frame runs perception on it (timed) and gives the
 :class:`SourceFrame`.  The loop can so perceive the next frame while it reasons about the current
-one (:func:`probanchor.app.loop.run_frames`); rendering, the simulator's stand-in for a camera, is
+one (:func:`probanchor.loop.loop.run_frames`); rendering, the simulator's stand-in for a camera, is
 never timed nor overlapped.
 """
 
@@ -17,7 +17,7 @@ from functools import partial
 from pathlib import Path
 from typing import Any
 
-from probanchor.percepts import PerceptFrame, read_percepts
+from probanchor.percepts import PerceptFrame, read_percepts, write_percepts
 
 
 @dataclass
@@ -134,3 +134,15 @@ def stream_frames(path: str | Path, skipped: list[str] | None = None, start: int
     for frame in read_percepts(path, skipped):
         if frame.frame >= start:
             yield partial(SourceFrame, frame, 0.0)
+
+
+def percept_stream(scenario: Path, seed: int, cache: Path) -> Path:
+    """The perceived stream of ``scenario`` with noise seed ``seed``, cached in ``cache`` as
+    JSON Lines (perceived once; written whole or not at all)."""
+    path = cache / f"{scenario.stem}_seed{seed}.jsonl"
+    if not path.exists():
+        cache.mkdir(parents=True, exist_ok=True)
+        partial = path.with_suffix(".partial")
+        write_percepts(partial, perceive_scenario(scenario, seed=seed))
+        partial.rename(path)
+    return path

@@ -48,16 +48,16 @@ import numpy as np
 from anchoring import AnchorManager
 from anchoring.identity import AmbiguousPercept, Revision
 from anchoring.manager import AnchorManagerError
-from probanchor.app.loop import AnchoringLoop, FrameOutcome
-from probanchor.app.naming import symbol_atom
-from probanchor.app.reasoning import AnchorState
-from probanchor.app.world_file import (
+from probanchor.evaluation import TrackingRecord
+from probanchor.loop.loop import AnchoringLoop, FrameOutcome
+from probanchor.loop.naming import symbol_atom
+from probanchor.loop.reasoning import AnchorState
+from probanchor.loop.world_file import (
     anchor_particle_facts,
     frame_fact,
     particle_lines,
     world_facts,
 )
-from probanchor.evaluation import TrackingRecord
 
 FORMAT = "anchoring-store 2"  # 2: frames.filter_input holds the identity layer's input too
 
@@ -195,7 +195,7 @@ def run_meta(source: str, options: Any) -> dict[str, str]:
     source:
         ``scenario:PATH``, ``bag:PATH`` or ``percepts:PATH`` (absolute paths).
     options:
-        The run's :class:`probanchor.app.runner.RunOptions`.
+        The run's :class:`probanchor.loop.runner.RunOptions`.
 
     Returns
     -------

@@ -22,8 +22,8 @@ from typing import Any
 import numpy as np
 
 from bridge.terms import quote_atom, to_term
-from probanchor.app.loop import AnchoringLoop
-from probanchor.app.naming import category_atom, symbol_atom
+from probanchor.loop.loop import AnchoringLoop
+from probanchor.loop.naming import category_atom, symbol_atom
 
 
 def _fmt(x: float) -> str:

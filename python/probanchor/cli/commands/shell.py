@@ -41,7 +41,7 @@ def main(args: argparse.Namespace) -> int:
     if args.connect is not None:
         return _connected(args.connect, args.query)
     if args.store is not None:
-        from probanchor.app.store import WorldStore
+        from probanchor.loop.store import WorldStore
 
         store = WorldStore.open(args.store)
         try:
@@ -57,7 +57,7 @@ def main(args: argparse.Namespace) -> int:
         world = args.dir / "world.pl" if args.dir.is_dir() else args.dir
     if not world.exists():
         raise FileNotFoundError(f"{world}: no world file (run `anchoring run ... --out DIR`)")
-    from probanchor.app.live import prolog_string, swipl_path
+    from probanchor.loop.live import prolog_string, swipl_path
 
     swipl = swipl_path()
     if args.query is not None:
@@ -79,7 +79,7 @@ def main(args: argparse.Namespace) -> int:
 
 def _connected(port: int, query: str | None) -> int:
     """Ask a run's query server: one query as JSON, or a prompt that asks each query typed."""
-    from probanchor.app.live import LiveError, ask
+    from probanchor.loop.live import LiveError, ask
 
     if query is not None:
         try:
