@@ -8,6 +8,7 @@ from collections.abc import Callable, Iterable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -119,6 +120,47 @@ class AnchoringLoop:
     def close(self) -> None:
         if self.reasoner is not None:
             self.reasoner.close()
+
+    def snapshot(self) -> dict[str, Any]:
+        """What a store keeps of the loop to resume it (JSON-able): the anchor manager's state
+        (``manager``: :meth:`anchoring.AnchorManager.to_json`) and the loop's own counts
+        (``loop``: the rejected percepts, the ambiguous re-acquisitions); the filter's
+        particles are not in it (a resume replays the frames)."""
+        return {"manager": self.manager.to_json(),
+                "loop": {"rejected_percepts": self.rejected_percepts,
+                         "ambiguities": [[f, i, c] for f, i, c in self.ambiguities]}}
+
+    def restore(self, snapshot: dict[str, Any], revisions: list[Revision],
+                source: str = "") -> None:
+        """Take the state of a :meth:`snapshot` (as read back from JSON) and the run's
+        revisions so far; the filter is not touched (replay the frames' filter input through
+        :attr:`reasoner` after this).
+
+        Parameters
+        ----------
+        snapshot:
+            A :meth:`snapshot`, read back from JSON.
+        revisions:
+            Every revision of the run until then, in order.
+        source:
+            Where the snapshot was read from, for the errors (a file name).
+
+        Raises
+        ------
+        KeyError, ValueError, anchoring.manager.AnchorManagerError
+            The snapshot is not one; the loop is left as it was.
+        """
+        manager = AnchorManager.from_json(snapshot["manager"], self.manager.matcher, source)
+        counts = snapshot["loop"]
+        rejected = int(counts["rejected_percepts"])
+        ambiguities = [(int(f), int(i), {str(k): float(v) for k, v in c.items()})
+                       for f, i, c in counts["ambiguities"]]
+        if not self.config.reidentify:
+            manager.reid_seconds = 0
+        self.manager = manager
+        self.rejected_percepts = rejected
+        self.ambiguities = ambiguities
+        self.revisions = list(revisions)
 
     def process(self, source: SourceFrame) -> FrameOutcome:
         """One frame: anchoring and reasoning (:meth:`advance`), then its record."""

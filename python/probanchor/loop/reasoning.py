@@ -86,6 +86,11 @@ class OcclusionReasoner:
             return np.full((self.particles, 3), np.nan)
         return values
 
+    def particle_occluders(self, symbol: str) -> list[str | None]:
+        """Per particle, the atom of the occluder it has ``symbol`` under (None: none)."""
+        return [None if o is None else str(o)
+                for o in self.filter.values("O", f"occluded_by({self.atom(symbol)}, O):t")]
+
     def rename(self, mapping: Mapping[str, str], particles: np.ndarray | None) -> None:
         self.filter.rename({self.atom(a): self.atom(b) for a, b in mapping.items()}, particles)
 

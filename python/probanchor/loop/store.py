@@ -45,7 +45,6 @@ from typing import Any
 
 import numpy as np
 
-from anchoring import AnchorManager
 from anchoring.identity import AmbiguousPercept, Revision
 from anchoring.manager import AnchorManagerError
 from probanchor.evaluation import TrackingRecord
@@ -331,20 +330,23 @@ class WorldStore:
             lock.release()
             raise
         try:
-            with store._named("starting a run"):
-                if store._has_schema() and store._count("frames"):
-                    raise StoreError(f"{path}: already holds a run of "
-                                     f"{store._count('frames')} frames; continue it with "
-                                     "--resume, or give another file")
-                with store.db:
-                    store.db.executescript(SCHEMA)
-                    store.db.execute("DELETE FROM meta")
-                    store.db.executemany("INSERT INTO meta VALUES (?, ?)",
-                                         sorted(meta.items()))
+            store._start(meta)  # noqa: SLF001 (its own class's, in its constructor)
         except BaseException:
             store.close()
             raise
         return store
+
+    def _start(self, meta: dict[str, str]) -> None:
+        """The schema and ``meta`` written into a file that holds no run."""
+        with self._named("starting a run"):
+            if self._has_schema() and self._count("frames"):
+                raise StoreError(f"{self.path}: already holds a run of "
+                                 f"{self._count('frames')} frames; continue it with "
+                                 "--resume, or give another file")
+            with self.db:
+                self.db.executescript(SCHEMA)
+                self.db.execute("DELETE FROM meta")
+                self.db.executemany("INSERT INTO meta VALUES (?, ?)", sorted(meta.items()))
 
     @classmethod
     def open(cls, path: Path | str, write: bool = False) -> WorldStore:
@@ -383,7 +385,7 @@ class WorldStore:
                 raise StoreError(f"{path}: not an anchoring store (format "
                                  f"{meta.get('format', 'missing')!r}, expected {FORMAT!r})")
             if write:
-                store._check_whole()
+                store._check_whole()  # noqa: SLF001 (its own class's, in its constructor)
         except BaseException:
             store.close()
             raise
@@ -539,8 +541,7 @@ class WorldStore:
             rows.extend((i, atom, *p, o) for i, (p, o) in enumerate(zip(xyz, occluders,
                                                                         strict=True)))
         perceived = {s for s, h in record.hypotheses.items() if h.perceived}
-        loop_state = {"rejected_percepts": loop.rejected_percepts,
-                      "ambiguities": [[f, i, c] for f, i, c in loop.ambiguities]}
+        snapshot = loop.snapshot()
         with self._named(f"writing frame {frame}"), self.db:
             db = self.db
             db.execute("INSERT INTO frames VALUES (?, ?, ?, ?)",
@@ -554,8 +555,8 @@ class WorldStore:
             db.executemany("INSERT INTO particles VALUES (?, ?)", enumerate(weights.tolist()))
             db.executemany("INSERT INTO particle_values VALUES (?, ?, ?, ?, ?, ?)", rows)
             db.executemany("INSERT OR REPLACE INTO state VALUES (?, ?)", [
-                ("manager", json.dumps(loop.manager.to_json())),
-                ("loop", json.dumps(loop_state)),
+                ("manager", json.dumps(snapshot["manager"])),
+                ("loop", json.dumps(snapshot["loop"])),
                 ("world", "\n".join(world_facts(loop, perceived,
                                                  particles=(np.ones(0), [])))),
             ])
@@ -565,20 +566,13 @@ class WorldStore:
                          ) -> tuple[np.ndarray, dict[str, tuple[np.ndarray, list[Any]]]]:
         """The weights, and per anchor its position (N x 3, NaN: none) and occluder (None:
         none) in every particle."""
-        if loop.reasoner is None:
+        reasoner = loop.reasoner
+        if reasoner is None:
             return np.ones(0), {}
-        f = loop.reasoner.filter
-        out = {}
-        for anchor in loop.manager.anchors:
-            atom = symbol_atom(anchor.symbol)
-            positions, _ = f.samples(f"pos({atom}):t")
-            positions = np.asarray(positions, dtype=float).reshape(f.particles, -1)
-            if positions.shape[1] != 3:
-                positions = np.full((f.particles, 3), np.nan)
-            occluders = [None if o is None else str(o)
-                         for o in f.values("O", f"occluded_by({atom}, O):t")]
-            out[anchor.symbol] = (positions, occluders)
-        return f.weights, out
+        out = {anchor.symbol: (reasoner.positions(anchor.symbol),
+                               reasoner.particle_occluders(anchor.symbol))
+               for anchor in loop.manager.anchors}
+        return reasoner.weights(), out
 
     # ------------------------------------------------------------------ resuming
     def check_resumable(self, meta: dict[str, str]) -> None:
@@ -633,20 +627,15 @@ class WorldStore:
             stored = np.array([w for (w,) in db.execute(
                 "SELECT weight FROM particles ORDER BY i")])
         try:
-            manager = AnchorManager.from_json(json.loads(state["manager"]),
-                                              loop.manager.matcher, str(self.path))
-            loop_state = json.loads(state["loop"])
+            snapshot = {"manager": json.loads(state["manager"]),
+                        "loop": json.loads(state["loop"])}
             records = [TrackingRecord.from_json(json.loads(r)) for _, _, r in rows]
+            loop.restore(snapshot, [Revision.from_json(r) for record in records
+                                    for r in record.revised], str(self.path))
         except (KeyError, ValueError, AnchorManagerError) as exc:
             raise StoreError(f"{self.path}: the stored world model cannot be read: {exc}"
                              ) from None
-        if not loop.config.reidentify:
-            manager.reid_seconds = 0
-        loop.manager = manager
-        loop.rejected_percepts = int(loop_state["rejected_percepts"])
-        loop.ambiguities = [(int(f), int(i), {str(k): float(v) for k, v in c.items()})
-                            for f, i, c in loop_state["ambiguities"]]
-        loop.revisions = [Revision.from_json(r) for record in records for r in record.revised]
+        manager = loop.manager
         if loop.reasoner is not None:
             for frame, inputs, _ in rows:
                 states, ambiguous, evidence, revised = read_filter_input(inputs)
@@ -655,8 +644,8 @@ class WorldStore:
                     raise StoreError(f"{self.path}: replaying frame {frame} did not revise the "
                                      "identities the store says it revised (was the store "
                                      "changed by another program?)")
-            if stored.shape != loop.reasoner.filter.weights.shape or not np.allclose(
-                    stored, loop.reasoner.filter.weights, rtol=1e-9, atol=1e-12):
+            if stored.shape != loop.reasoner.weights().shape or not np.allclose(
+                    stored, loop.reasoner.weights(), rtol=1e-9, atol=1e-12):
                 raise StoreError(f"{self.path}: replaying the stored frames did not give the "
                                  "stored particles, with the same source, options and "
                                  "versions (was the store changed by another program?)")

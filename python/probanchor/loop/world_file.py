@@ -104,11 +104,10 @@ def particle_rows(loop: AnchoringLoop) -> tuple[np.ndarray, list[tuple[int, str]
     assert reasoner is not None
     facts: list[tuple[int, str]] = []
     for anchor in loop.manager.anchors:
-        atom = symbol_atom(anchor.symbol)
-        positions = reasoner.filter.values("P", f"pos({atom}):t ~= P")
-        occluders = reasoner.filter.values("O", f"occluded_by({atom}, O):t")
-        facts.extend(anchor_particle_facts(atom, positions, occluders))
-    return reasoner.filter.weights, facts
+        facts.extend(anchor_particle_facts(symbol_atom(anchor.symbol),
+                                           reasoner.positions(anchor.symbol),
+                                           reasoner.particle_occluders(anchor.symbol)))
+    return reasoner.weights(), facts
 
 
 def anchor_particle_facts(atom: str, positions: Sequence[Any], occluders: Sequence[Any]
