@@ -20,7 +20,7 @@ Examples:
     ?- ambiguous(Percept, Dist).
 */
 
-:- module(world,
+:- module(anchoring_world,
           [ load_world/1,       % +File
             anchors/1,          % -Atoms
             prob/2,             % :Goal, -P

@@ -72,8 +72,8 @@ def prolog_string(text: str) -> str:
 
 
 class PrologAnswers:
-    """A SWI-Prolog process running ``world_ask:serve/0`` on world files; one query at a
-    time. Started at the first query; ends when its input closes (this process ending)."""
+    """A SWI-Prolog process running ``anchoring_world_ask:serve/0`` on world files; one query
+    at a time. Started at the first query; ends when its input closes (this process ending)."""
 
     def __init__(self) -> None:
         self._lock = threading.Lock()
@@ -86,8 +86,8 @@ class PrologAnswers:
             goal = (f"consult({prolog_string(str(prolog_file('shell', 'world.pl')))}), "
                     f"consult({prolog_string(str(prolog_file('shell', 'world_ask.pl')))})")
             self._process = subprocess.Popen(
-                [swipl_path(), "-q", "--no-signals", "-g", goal, "-g", "world_ask:serve",
-                 "-t", "halt"],
+                [swipl_path(), "-q", "--no-signals", "-g", goal,
+                 "-g", "anchoring_world_ask:serve", "-t", "halt"],
                 stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
                 text=True, encoding="utf-8", bufsize=1)
             self._loaded = None
@@ -103,7 +103,8 @@ class PrologAnswers:
         return json.loads(line)
 
     def ask(self, snapshot: Snapshot, query: str, max_answers: int) -> dict[str, Any]:
-        """The answers of ``query`` on ``snapshot`` (the dict of ``world_ask:ask_json/3``)."""
+        """The answers of ``query`` on ``snapshot`` (the dict of
+        ``anchoring_world_ask:ask_json/3``)."""
         with self._lock:
             process = self._start()
             try:

@@ -61,9 +61,9 @@ def main(args: argparse.Namespace) -> int:
 
     swipl = swipl_path()
     if args.query is not None:
+        query = prolog_string(args.query.strip().removesuffix("."))
         goal = (f"consult({prolog_string(str(prolog_file('shell', 'world_ask.pl')))}), "
-                f"world_ask:print_answers({prolog_string(args.query.strip().removesuffix('.'))}"
-                ", [])")
+                f"anchoring_world_ask:print_answers({query}, [])")
         done = subprocess.run([swipl, "-q", "-g", goal, "-t", "halt",
                                str(prolog_file("shell/world.pl")), str(world)],
                               capture_output=True, text=True)
@@ -72,7 +72,7 @@ def main(args: argparse.Namespace) -> int:
             raise RuntimeError(f"{world}: swipl failed: {done.stderr.strip()}")
         print(line.strip())
         return 1 if "error" in json.loads(line) else 0
-    argv = [swipl, "-g", "world:banner", str(prolog_file("shell/world.pl")), str(world)]
+    argv = [swipl, "-g", "anchoring_world:banner", str(prolog_file("shell/world.pl")), str(world)]
     os.execv(swipl, argv)
     return 0  # pragma: no cover - execv does not return
 
