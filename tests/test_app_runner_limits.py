@@ -58,7 +58,7 @@ def test_the_world_file_is_written_when_the_particles_cannot_be_read(
     output = run(RunOptions(scenario=scenario, particles=30, progress=False, out=out,
                             picture_every=1000))
     text = (out / "world.pl").read_text()
-    assert "% the particles could not be read from the filter: EngineError: too.pl: Stack" \
+    assert "% the particles could not be read from the filter: DDCError: too.pl: Stack" \
         in text
     assert text.count("anchor(") == len(output.records[-1].hypotheses)
     assert f"world_frame({output.records[-1].frame}, " in text and "particle(" not in text

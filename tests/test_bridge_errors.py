@@ -1,6 +1,6 @@
-"""The engine's errors in Python: one base class (bridge.errors.EngineError, also known as
-bridge.FilterError and bridge.DDCError), a subclass per cause picked from the Prolog error
-term, the message the engine's (file:line where there is one)."""
+"""The DDC system's errors in Python: one base class (bridge.errors.DDCError, also known as
+bridge.FilterError and by its earlier name bridge.EngineError), a subclass per cause picked
+from the Prolog error term, the message the DDC system's (file:line where there is one)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import pytest
 import bridge
 from bridge.errors import (
     BadArgumentError,
-    EngineError,
+    DDCError,
     FrameFileError,
     LearningDataError,
     NotPermittedError,
@@ -28,10 +28,11 @@ PIT_WORLD = ROOT / "prolog" / "examples" / "filter" / "pit_world.pl"
 
 
 def test_the_old_names_are_the_base_class() -> None:
-    assert bridge.FilterError is EngineError and bridge.DDCError is EngineError
+    assert bridge.FilterError is DDCError and bridge.EngineError is DDCError
+    assert bridge.DDCError is DDCError and DDCError.__name__ == "DDCError"
     for cls in (ProgramError, LearningDataError, FrameFileError, UnknownObjectError,
                 BadArgumentError, NotPermittedError):
-        assert issubclass(cls, EngineError)
+        assert issubclass(cls, DDCError)
     assert issubclass(FrameFileError, ValueError) and issubclass(BadArgumentError, ValueError)
 
 
@@ -40,7 +41,7 @@ def test_causes_pick_the_class() -> None:
     assert error_class("existence_error") is UnknownObjectError
     assert error_class("instantiation_error") is BadArgumentError
     assert error_class("permission_error") is NotPermittedError
-    assert error_class("resource_error") is EngineError
+    assert error_class("resource_error") is DDCError
 
 
 def test_filter_errors_by_cause(tmp_path: Path) -> None:
@@ -50,7 +51,7 @@ def test_filter_errors_by_cause(tmp_path: Path) -> None:
         assert caught.value.cause == "bad_input"
         with pytest.raises(BadArgumentError, match="query"):
             f.probability("maze(1,1):t ~=")
-        with pytest.raises(EngineError, match="rename"):
+        with pytest.raises(DDCError, match="rename"):
             f.rename({"wall": "free"})
     with pytest.raises(UnknownObjectError, match="does not exist") as unknown:
         call_helper("bridge_time(K, T)", {"K": "no_such_filter"})

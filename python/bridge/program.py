@@ -8,9 +8,9 @@ Example::
     result.probability, result.stderr, result.ess   # ~0.3833, its standard error, its ESS
 
 Queries and evidence are Prolog text in the DC syntax (``coin ~= true``,
-``(g ~= A, A > 0)``, ``pos(1):3 > 0``). Every error of the engine (a bad program file, an
+``(g ~= A, A > 0)``, ``pos(1):3 > 0``). Every error of the DDC system (a bad program file, an
 unknown distribution, invalid parameters, impossible evidence, a query that does not parse)
-raises :class:`DDCError` whose message is the engine's, naming file:line and the cause.
+raises :class:`DDCError` whose message is the DDC system's, naming file:line and the cause.
 """
 
 from __future__ import annotations
@@ -22,17 +22,13 @@ from pathlib import Path
 import janus_swi as janus
 
 from bridge import prolog
-from bridge.errors import EngineError, from_prolog
+from bridge.errors import DDCError, from_prolog
 
-ENGINE: Path = prolog.PROLOG_DIR / "ddc.pl"
+DDC_FILE: Path = prolog.PROLOG_DIR / "ddc.pl"
 DEFAULT_SAMPLES = 10_000
 
 _lock = threading.Lock()
 
-
-#: An error reported by the DDC engine (the message names file:line and the cause): the base
-#: class of the engine's errors, :class:`bridge.errors.EngineError`, whose subclasses say why
-DDCError = EngineError
 
 
 @dataclass(frozen=True)
@@ -49,21 +45,21 @@ class QueryResult:
     samples: int
 
 
-def _engine() -> None:
-    prolog.ensure_loaded(ENGINE)
+def _load_ddc() -> None:
+    prolog.ensure_loaded(DDC_FILE)
 
 
 def _call(goal: str, bindings: dict[str, object]) -> dict[str, object]:
     """Run ``goal`` once (one static call at a time, from any thread); a Prolog error,
-    loading the engine's included, is a :class:`DDCError`."""
+    loading the DDC system's included, is a :class:`DDCError`."""
     try:
-        _engine()
+        _load_ddc()
         with _lock:
             result = janus.query_once(goal, bindings)
     except janus.PrologError as error:
         raise from_prolog(error) from None
     if not result.get("truth", False):
-        raise DDCError(f"the engine failed on {goal}")
+        raise DDCError(f"the DDC system failed on {goal}")
     return result
 
 
@@ -138,7 +134,7 @@ class Program:
 
         ``goal`` is a DC goal (``between(1, 100, I), a(I) ~= A, y(I) ~= Y``) read together with
         ``template`` (``I-A-Y``): they share variables. Every random variable the goal reads is
-        drawn once in the world (by the engine's backward sampler, ``ddc_sample_world/4``), so
+        drawn once in the world (by the DDC system's backward sampler, ``ddc_sample_world/4``), so
         the solutions are one joint sample of the program; the same seed gives the same world.
         Each solution is returned as Prolog term text (``term_string/2``: atoms quoted when
         needed, floats in full precision), e.g. ``"1-p-0.25"``.

@@ -1,4 +1,4 @@
-"""Resampling a weighted particle set, in numpy alone (no janus, no engine).
+"""Resampling a weighted particle set, in numpy alone (no janus, no Prolog).
 
 Three schemes pick N ancestor indices (0-based, ascending) for N normalised weights:
 
