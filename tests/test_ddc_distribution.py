@@ -1,5 +1,5 @@
-"""The DDC engine stands on its own: the distribution's own requirements (no extra) are the
-engine's (janus, numpy, scipy, scikit-learn), and a wheel of this tree installed into a fresh
+"""The DDC system stands on its own: the distribution's own requirements (no extra) are the
+system's (janus, numpy, scipy, scikit-learn), and a wheel of this tree installed into a fresh
 virtual environment that holds only those (and what they require) answers ``ddc query``,
 ``ddc filter`` and ``ddc learn`` while pybullet and open3d cannot be imported.
 
@@ -24,7 +24,7 @@ from packaging.utils import canonicalize_name
 from test_package_resources import _source_copy
 
 ROOT = Path(__file__).resolve().parents[1]
-ENGINE_REQUIREMENTS = {"janus-swi", "numpy", "scipy", "scikit-learn", "threadpoolctl"}
+DDC_REQUIREMENTS = {"janus-swi", "numpy", "scipy", "scikit-learn", "threadpoolctl"}
 APPLICATION_ONLY = ("pybullet", "open3d", "cv2", "rosbags", "matplotlib", "yaml")
 
 
@@ -34,10 +34,10 @@ def base_requirements(lines: list[str]) -> set[str]:
             if not r.marker or r.marker.evaluate({"extra": ""})}
 
 
-def test_the_distribution_requires_only_the_engine_dependencies() -> None:
+def test_the_distribution_requires_only_the_ddc_systems_dependencies() -> None:
     with (ROOT / "pyproject.toml").open("rb") as handle:
         project = tomllib.load(handle)["project"]
-    assert base_requirements(project["dependencies"]) == ENGINE_REQUIREMENTS
+    assert base_requirements(project["dependencies"]) == DDC_REQUIREMENTS
     assert "app" in project["optional-dependencies"]
 
 
@@ -63,7 +63,7 @@ def link_distributions(distributions: dict[str, metadata.Distribution], folder: 
                 (folder / top).symlink_to(source)
 
 
-def test_the_engine_alone_in_a_fresh_environment(tmp_path: Path) -> None:
+def test_the_ddc_system_alone_in_a_fresh_environment(tmp_path: Path) -> None:
     source = _source_copy(tmp_path / "source")
     built = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w",
                             str(tmp_path / "wheel"), str(source)],
@@ -78,7 +78,7 @@ def test_the_engine_alone_in_a_fresh_environment(tmp_path: Path) -> None:
                     for line in archive.read(meta).decode().splitlines()
                     if line.startswith("Requires-Dist:")]
     wanted = base_requirements(requires)
-    assert wanted == ENGINE_REQUIREMENTS
+    assert wanted == DDC_REQUIREMENTS
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
     python = venv / "bin" / "python"

@@ -1,4 +1,4 @@
-/*  plunit tests of the DDC engine (prolog/ddc.pl): language, inference,
+/*  plunit tests of the DDC system (prolog/ddc.pl): language, inference,
     errors, loading, and the particle-filter API.  Probabilistic checks use
     fixed seeds and tolerances of about 5 standard errors.
 */

@@ -34,7 +34,7 @@ from probanchor.percepts import read_percepts
 from probanchor.resources import scenario_file
 
 SHIPPED = ("shell_game", "can_under_box", "ball_under_box_two_balls", "transitive")
-#: Reasoning with each shipped theory of occlusion (app.theories): the hand-written one, the one
+#: Reasoning with each shipped theory of occlusion (loop.theories): the hand-written one, the one
 #: learned from ground-truth labels, the one learned from hindsight labels.
 REASONING = {"reasoning": "hand", "learned": "learned", "learned-hindsight": "hindsight"}
 METHODS = ("reasoning", "no-reasoning", *BASELINES)
