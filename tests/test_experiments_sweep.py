@@ -10,7 +10,7 @@ import yaml
 from probanchor.evaluation import results_table
 from probanchor.experiments.sweep import game_scenarios, run_method
 from probanchor.loop.sources import percept_stream
-from test_app_runner import SCENARIO
+from test_loop_runner import SCENARIO
 
 
 def test_generated_games_have_3_to_5_containers_and_3_to_10_swaps(tmp_path: Path) -> None:
