@@ -86,6 +86,11 @@ class OcclusionReasoner:
             return np.full((self.particles, 3), np.nan)
         return values
 
+    def position_values(self, symbol: str) -> list[object]:
+        """Per particle, ``symbol``'s position as Prolog gave it (an (x, y, z) tuple), None
+        where the particle has none (:meth:`positions` as an array)."""
+        return self.filter.values("P", f"pos({self.atom(symbol)}):t ~= P")
+
     def particle_occluders(self, symbol: str) -> list[str | None]:
         """Per particle, the atom of the occluder it has ``symbol`` under (None: none)."""
         return [None if o is None else str(o)

@@ -105,7 +105,7 @@ def particle_rows(loop: AnchoringLoop) -> tuple[np.ndarray, list[tuple[int, str]
     facts: list[tuple[int, str]] = []
     for anchor in loop.manager.anchors:
         facts.extend(anchor_particle_facts(symbol_atom(anchor.symbol),
-                                           reasoner.positions(anchor.symbol),
+                                           reasoner.position_values(anchor.symbol),
                                            reasoner.particle_occluders(anchor.symbol)))
     return reasoner.weights(), facts
 
