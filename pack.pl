@@ -1,5 +1,5 @@
-% The DDC engine as a SWI-Prolog pack: prolog/ is the pack's library folder, so that with
-% `swipl -p library=prolog` (or the pack attached) library(ddc) loads the engine (prolog/ddc.pl)
+% The DDC system as a SWI-Prolog pack: prolog/ is the pack's library folder, so that with
+% `swipl -p library=prolog` (or the pack attached) library(ddc) loads the DDC system (prolog/ddc.pl)
 % and library(ddc/learn) the structure learner (prolog/ddc/learn.pl). The rest of prolog/ is
 % the application's: the theories of occlusion (prolog/too*.pl and the parts they include, prolog/too/) and the world-model shell
 % (prolog/shell/).

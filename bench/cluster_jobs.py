@@ -103,8 +103,9 @@ def main(argv: list[str] | None = None) -> int:
                         help="where the percept streams are cached")
     args = parser.parse_args(argv)
 
-    from probanchor.app.experiment import percept_stream, run_unit
+    from probanchor.experiments.sweep import run_unit
     from probanchor.jobs import Job, parse_cluster
+    from probanchor.loop.sources import percept_stream
 
     cache = args.out / "percepts"
     units = [(name, ROOT / "scenarios" / f"{name}.yaml", seed)

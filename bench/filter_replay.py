@@ -35,8 +35,8 @@ sys.path.insert(0, str(HERE.parent / "python"))
 
 from bridge import DEFAULT_THREADS, Filter  # noqa: E402
 from bridge.engines import ENGINES  # noqa: E402
-from probanchor.app.reasoning import DEFAULT_THEORY  # noqa: E402
-from probanchor.app.runner import RunOptions, run  # noqa: E402
+from probanchor.loop.reasoning import DEFAULT_THEORY  # noqa: E402
+from probanchor.loop.runner import RunOptions, run  # noqa: E402
 
 Frame = tuple[list[str], list[str]]
 

@@ -3,7 +3,7 @@
     .venv/bin/python bench/filter_too.py            # N in {100, 1000} x M in {4, 10}
     .venv/bin/python bench/filter_too.py --json     # + last line {"ms_per_step": x} (N=1000, M=10)
 
-Each step gets what ``OcclusionReasoner.step`` (python/probanchor/app/reasoning.py) sends: facts
+Each step gets what ``OcclusionReasoner.step`` (python/probanchor/loop/reasoning.py) sends: facts
 ``object(a)``, ``category(a, C)`` for every object; for perceived ones ``observed(a)`` and
 ``observation(pos(a)) ~= (X,Y,Z)``.  Scene: M mugs/boxes/balls spread over a 0.6 m x 0.4 m
 table, moving slowly; balls are hidden for a few frames at times (occluder picking and

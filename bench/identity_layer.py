@@ -23,9 +23,9 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "python"))
 
-from probanchor.app.loop import AnchoringLoop, LoopConfig, run_frames  # noqa: E402
-from probanchor.app.sources import SourceFrame, perceive_scenario  # noqa: E402
 from probanchor.evaluation import evaluate  # noqa: E402
+from probanchor.loop.loop import AnchoringLoop, LoopConfig, run_frames  # noqa: E402
+from probanchor.loop.sources import SourceFrame, perceive_scenario  # noqa: E402
 from probanchor.tabletop import load_scenario  # noqa: E402
 
 TARGET = 0.20

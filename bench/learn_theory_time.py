@@ -26,9 +26,9 @@ TARGET_S = 120.0
 
 
 def main(argv: list[str] | None = None) -> int:
-    from probanchor.app.collect import CollectOptions, collect
-    from probanchor.app.learned_theory import learn_theory
-    from probanchor.app.occlusion_data import LabelOptions
+    from probanchor.learning.collect import CollectOptions, collect
+    from probanchor.learning.learned_theory import learn_theory
+    from probanchor.learning.occlusion_data import LabelOptions
 
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--games", type=int, default=80)

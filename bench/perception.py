@@ -51,7 +51,7 @@ def open3d_reference(frame, back: Backprojector, voxel: float) -> int:
 
 def accuracy(tables: int, seed: int) -> None:
     """Percepts against ground truth on random tables (any yaw, every category)."""
-    from probanchor.app.classifier_data import random_scene
+    from probanchor.learning.classifier_data import random_scene
     from probanchor.tabletop import parse_scenario
 
     rng = np.random.default_rng(seed)

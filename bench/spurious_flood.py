@@ -20,8 +20,8 @@ import time
 import numpy as np
 
 from anchoring.synthetic import observe, random_object, spurious
-from probanchor.app.loop import AnchoringLoop, LoopConfig
-from probanchor.app.sources import SourceFrame
+from probanchor.loop.loop import AnchoringLoop, LoopConfig
+from probanchor.loop.sources import SourceFrame
 from probanchor.percepts import PerceptFrame
 
 FPS = 15.0

@@ -1,4 +1,4 @@
-"""Microseconds per sample of the DDC engine on the original DC system's example1 workload.
+"""Microseconds per sample of the DDC system on the original DC system's example1 workload.
 
 The workload (the original's README test): P(drawn(1) = 1), P(drawn(1) = 2), P(drawn(1) = 3)
 and E[g], 10,000 samples each, in ``prolog/examples/example1.pl``. The original system (YAP
@@ -73,7 +73,7 @@ def main(argv: list[str] | None = None) -> int:
     us = best / total * 1e6
     numpy_us = numpy_best / total * 1e6
     print(f"example1 workload: {QUERIES} queries x {args.samples} samples, best of {args.repeat}")
-    print(f"  DDC engine (SWI-Prolog)      {best:8.3f} s   {us:8.2f} us/sample")
+    print(f"  DDC system (SWI-Prolog)      {best:8.3f} s   {us:8.2f} us/sample")
     print(f"  original DC (YAP + C++)      {ORIGINAL_SECONDS:8.3f} s   {ORIGINAL_US:8.2f} us/sample"
           "  (published figure)")
     print(f"  numpy Monte Carlo (same run) {numpy_best:8.3f} s   {numpy_us:8.2f} us/sample")

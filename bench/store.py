@@ -22,9 +22,9 @@ sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__)
 
 import numpy as np  # noqa: E402
 
-from probanchor.app import store as store_module  # noqa: E402
-from probanchor.app.loop import AnchoringLoop  # noqa: E402
-from probanchor.app.runner import RunOptions, run  # noqa: E402
+from probanchor.loop import store as store_module  # noqa: E402
+from probanchor.loop.loop import AnchoringLoop  # noqa: E402
+from probanchor.loop.runner import RunOptions, run  # noqa: E402
 
 
 def main() -> None:

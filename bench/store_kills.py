@@ -25,7 +25,7 @@ sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__)
 
 ROOT = Path(__file__).resolve().parent.parent
 
-from probanchor.app.runner import RunOptions, run  # noqa: E402
+from probanchor.loop.runner import RunOptions, run  # noqa: E402
 
 SCENARIO = """\
 name: store_kills

@@ -38,8 +38,8 @@ SHIPPED = ("shell_game", "can_under_box", "ball_under_box_two_balls", "transitiv
 
 
 def _run(theory: str, scenario: str, seed: int, particles: int, cache: str) -> dict[str, Any]:
-    from probanchor.app.experiment import percept_stream
-    from probanchor.app.runner import RunOptions, run
+    from probanchor.loop.runner import RunOptions, run
+    from probanchor.loop.sources import percept_stream
 
     stream = percept_stream(ROOT / "scenarios" / f"{scenario}.yaml", seed, Path(cache))
     out = run(RunOptions(percepts=stream, particles=particles, seed=seed, theory=Path(theory),
@@ -95,10 +95,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
 
-    from probanchor.app.collect import CollectOptions, collect
-    from probanchor.app.learned_theory import learn_theory
-    from probanchor.app.occlusion_data import LabelOptions
-    from probanchor.app.reasoning import DEFAULT_THEORY
+    from probanchor.learning.collect import CollectOptions, collect
+    from probanchor.learning.learned_theory import learn_theory
+    from probanchor.learning.occlusion_data import LabelOptions
+    from probanchor.loop.reasoning import DEFAULT_THEORY
 
     args.out.mkdir(parents=True, exist_ok=True)
     rows: list[dict[str, Any]] = []

@@ -1,6 +1,6 @@
 /*  ddc.pl -- Dynamic Distributional Clauses for SWI-Prolog.
 
-    The engine of the project: the DC language of section 2.2 of the paper
+    The DDC system of the project: the DC language of section 2.2 of the paper
     (distributional clauses, derived atoms, time-indexed terms), compiled
     into Prolog, with likelihood-weighted backward sampling for static
     queries and the particle filter over time.  This is the module users

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 tabletop = pytest.importorskip("probanchor.tabletop")
-sources = pytest.importorskip("probanchor.app.sources")
+sources = pytest.importorskip("probanchor.loop.sources")
 
 from anchoring import AnchorManager  # noqa: E402
 

@@ -13,7 +13,6 @@ from rosbags.rosbag1 import Writer as Writer1
 from rosbags.rosbag2 import StoragePlugin
 from rosbags.rosbag2 import Writer as Writer2
 
-from probanchor.app.runner import RunOptions, run
 from probanchor.bags import BagError, BagTopics, bag_topics, read_bag, write_bag
 from probanchor.bags.messages import (
     CAMERA_INFO,
@@ -25,6 +24,7 @@ from probanchor.bags.messages import (
 )
 from probanchor.bags.read import TRUTH_TOPIC
 from probanchor.cli.anchoring_cli import main as anchoring
+from probanchor.loop.runner import RunOptions, run
 from probanchor.perception import CameraIntrinsics
 from probanchor.tabletop import Simulation, load_scenario
 from scenario_helpers import scenario_file
@@ -273,7 +273,7 @@ def test_a_ground_truth_that_is_not_json_names_file_topic_and_frame(tmp_path: Pa
 
 def test_a_bag_run_resumes_from_its_store_alone_with_its_topics_and_bytes(
         tmp_path: Path, frames: list) -> None:
-    from probanchor.app.store import StoreError
+    from probanchor.loop.store import StoreError
 
     base = 1_700_000_000 * 10**9
     path = _stamped_bag(tmp_path / "kept.mcap", frames[:4],

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 from plunit_runner import ROOT
-from probanchor.app.loop import AnchoringLoop, FrameOutcome, run_frames
-from probanchor.app.runner import RunOptions
-from probanchor.app.sources import scenario_frames
 from probanchor.evaluation import evaluate, make_summary
+from probanchor.loop.loop import AnchoringLoop, FrameOutcome, run_frames
+from probanchor.loop.runner import RunOptions
+from probanchor.loop.sources import scenario_frames
 
 
 def test_a_ball_removed_unseen_beside_an_upright_can_is_never_under_it() -> None:
@@ -42,7 +42,7 @@ def test_look_alikes_swapped_unseen_are_reported_ambiguous() -> None:
     the mugs swapped while the camera is covered. Nothing seen tells the balls apart: the run
     names them (by where the mugs are believed) and reports the mugs' and a ball's
     re-acquisition as ambiguous, each candidate equally likely."""
-    from probanchor.app.runner import run
+    from probanchor.loop.runner import run
 
     output = run(RunOptions(scenario=ROOT / "scenarios" / "lookalikes_swapped_unseen.yaml",
                             particles=200, seed=0, threads=1, progress=False))
@@ -56,7 +56,7 @@ def test_look_alikes_swapped_unseen_are_reported_ambiguous() -> None:
 def test_a_look_alike_uncovered_while_the_original_is_hidden_is_a_new_object() -> None:
     """scenarios/lookalike_while_hidden.yaml: ball_2 appears 33 cm from where every particle of
     the boxed ball_1 is; it gets a symbol of its own, and ball_1 keeps its symbol."""
-    from probanchor.app.runner import run
+    from probanchor.loop.runner import run
 
     output = run(RunOptions(scenario=ROOT / "scenarios" / "lookalike_while_hidden.yaml",
                             particles=200, seed=0, threads=1, progress=False))
@@ -71,7 +71,7 @@ def test_the_world_model_answers_the_probability_of_an_identity(tmp_path) -> Non
     import subprocess
 
     from plunit_runner import swipl_executable
-    from probanchor.app.runner import run
+    from probanchor.loop.runner import run
 
     output = run(RunOptions(scenario=ROOT / "scenarios" / "lookalikes_swapped_unseen.yaml",
                             particles=100, seed=0, threads=1, progress=False, out=tmp_path,
@@ -101,7 +101,7 @@ def test_what_a_container_hides_revises_which_container_it_is() -> None:
     been (wrongly); lifting the left one shows the blue ball, put under the other mug: the
     mugs' symbols are revised, and at the end every object has its own symbol. Without the
     identity hypotheses (decided once), they end with each other's symbols."""
-    from probanchor.app.runner import run
+    from probanchor.loop.runner import run
 
     scenario = ROOT / "scenarios" / "identity_revealed.yaml"
     output = run(RunOptions(scenario=scenario, particles=500, seed=0, threads=1,

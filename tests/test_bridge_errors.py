@@ -1,6 +1,6 @@
-"""The engine's errors in Python: one base class (bridge.errors.EngineError, also known as
-bridge.FilterError and bridge.DDCError), a subclass per cause picked from the Prolog error
-term, the message the engine's (file:line where there is one)."""
+"""The DDC system's errors in Python: one base class (bridge.errors.DDCError, also known as
+bridge.FilterError and by its earlier name bridge.DDCError), a subclass per cause picked
+from the Prolog error term, the message the DDC system's (file:line where there is one)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import pytest
 import bridge
 from bridge.errors import (
     BadArgumentError,
-    EngineError,
+    DDCError,
     FrameFileError,
     LearningDataError,
     NotPermittedError,
@@ -29,10 +29,11 @@ PIT_WORLD = ROOT / "prolog" / "examples" / "filter" / "pit_world.pl"
 
 
 def test_the_old_names_are_the_base_class() -> None:
-    assert bridge.FilterError is EngineError and bridge.DDCError is EngineError
+    assert bridge.FilterError is DDCError and bridge.DDCError is DDCError
+    assert bridge.DDCError is DDCError and DDCError.__name__ == "DDCError"
     for cls in (ProgramError, LearningDataError, FrameFileError, UnknownObjectError,
                 BadArgumentError, NotPermittedError):
-        assert issubclass(cls, EngineError)
+        assert issubclass(cls, DDCError)
     assert issubclass(FrameFileError, ValueError) and issubclass(BadArgumentError, ValueError)
 
 
@@ -41,7 +42,7 @@ def test_causes_pick_the_class() -> None:
     assert error_class("existence_error") is UnknownObjectError
     assert error_class("instantiation_error") is BadArgumentError
     assert error_class("permission_error") is NotPermittedError
-    assert error_class("resource_error") is EngineError
+    assert error_class("resource_error") is DDCError
 
 
 def test_filter_errors_by_cause(tmp_path: Path) -> None:
@@ -51,7 +52,7 @@ def test_filter_errors_by_cause(tmp_path: Path) -> None:
         assert caught.value.cause == "bad_input"
         with pytest.raises(BadArgumentError, match="query"):
             f.probability("maze(1,1):t ~=")
-        with pytest.raises(EngineError, match="rename"):
+        with pytest.raises(DDCError, match="rename"):
             f.rename({"wall": "free"})
     with pytest.raises(UnknownObjectError, match="does not exist") as unknown:
         call_helper("bridge_time", K="no_such_filter", T=OUT)
@@ -90,7 +91,7 @@ def test_frame_file_errors(tmp_path: Path) -> None:
 
 def test_learner_errors_arrive_by_cause_naming_file_and_line(tmp_path: Path) -> None:
     """The learner is called through the same adapter as the filter (bridge.prolog): its
-    Prolog errors arrive as the EngineError subclass of their cause, the message the data's
+    Prolog errors arrive as the DDCError subclass of their cause, the message the data's
     file:line."""
     bad = tmp_path / "bad.pl"
     bad.write_text("p(a) ~= 1.\nq(a ~= 2.\n")
@@ -121,9 +122,9 @@ def test_the_adapter_calls_named_predicates_with_data() -> None:
     from bridge import prolog
 
     assert prolog.call("lists:sum_list", Xs=[1, 2, 3.5], S=OUT)["S"] == 6.5
-    with pytest.raises(EngineError, match="lists:member/2 failed") as failed:
+    with pytest.raises(DDCError, match="lists:member/2 failed") as failed:
         prolog.call("lists:member", X=4, L=[1, 2])
-    assert type(failed.value) is EngineError
+    assert type(failed.value) is DDCError
     with pytest.raises(BadArgumentError) as bad:
         prolog.call("error:must_be", T="positive_integer", X=-1)
     assert bad.value.cause == "type_error"

@@ -1,4 +1,4 @@
-"""Conformance of the DDC engine with the original DC system's static examples.
+"""Conformance of the DDC system with the original DC system's static examples.
 
 The programs in ``prolog/examples/`` restate, in our own words, the original's tutorial,
 example1, church-dc, indian-gpa and probabilistic-graph examples (see

@@ -1,4 +1,4 @@
-"""The DDC engine from Python: bridge.load and Program.query/expectation/distribution."""
+"""The DDC system from Python: bridge.load and Program.query/expectation/distribution."""
 
 from __future__ import annotations
 

@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 from plunit_runner import ROOT
-from probanchor.app.loop import AnchoringLoop, FrameOutcome, run_frames
-from probanchor.app.runner import RunOptions
-from probanchor.app.sources import scenario_frames
-from probanchor.app.theories import THEORIES
 from probanchor.evaluation import evaluate, make_summary
+from probanchor.loop.loop import AnchoringLoop, FrameOutcome, run_frames
+from probanchor.loop.runner import RunOptions
+from probanchor.loop.sources import scenario_frames
+from probanchor.loop.theories import THEORIES
 
 
 def play(name: str, theory: str = "hand", particles: int = 200):

@@ -104,7 +104,7 @@ def test_without_ray_the_ray_back_end_says_how_to_install_it(monkeypatch) -> Non
 
 
 def test_an_evaluation_with_a_failed_unit_keeps_the_finished_ones(tmp_path, monkeypatch) -> None:
-    import probanchor.app.experiment as experiment
+    import probanchor.experiments.sweep as experiment
 
     ran: list[int] = []
 
@@ -145,7 +145,7 @@ def test_ray_jobs_come_back_raising_ones_reported_dead_workers_retried(
 
 def test_a_small_evaluation_on_ray_gives_the_local_table(ray_two_workers,
                                                          tmp_path: Path) -> None:
-    from probanchor.app.experiment import ExperimentOptions, read_summaries, run_experiment
+    from probanchor.experiments.sweep import ExperimentOptions, read_summaries, run_experiment
 
     tables, summaries = {}, {}
     for cluster in ("local", "ray"):

@@ -10,13 +10,13 @@ import re
 import numpy as np
 import pytest
 
-from probanchor.app.learned_theory import TheoryError, learn_theory
-from probanchor.app.motion_grip import gate, release, signed_gate, threshold
-from probanchor.app.motion_keep import ar1
-from probanchor.app.motion_parameters import DESCRIPTIONS, fit, parameter_clauses
-from probanchor.app.motion_samples import MotionSamples, samples_path
-from probanchor.app.motion_variances import STILL, isotropic_variance, lost_var, obs_var
-from probanchor.app.theories import THEORIES
+from probanchor.learning.learned_theory import TheoryError, learn_theory
+from probanchor.learning.motion_grip import gate, release, signed_gate, threshold
+from probanchor.learning.motion_keep import ar1
+from probanchor.learning.motion_parameters import DESCRIPTIONS, fit, parameter_clauses
+from probanchor.learning.motion_samples import MotionSamples, samples_path
+from probanchor.learning.motion_variances import STILL, isotropic_variance, lost_var, obs_var
+from probanchor.loop.theories import THEORIES
 from probanchor.tabletop.scenario import CameraSpec, NoiseSpec, Scenario
 
 # ------------------------------------------------------------------ the estimators

@@ -13,8 +13,8 @@ import pytest
 
 import bridge
 from ddc_cli_helpers import Run
-from probanchor.app.collect import CollectError, CollectOptions, collect
-from probanchor.app.learned_theory import (
+from probanchor.learning.collect import CollectError, CollectOptions, collect
+from probanchor.learning.learned_theory import (
     AFTER,
     BEFORE,
     GLUE,
@@ -24,9 +24,9 @@ from probanchor.app.learned_theory import (
     probability_at,
     theory_text,
 )
-from probanchor.app.motion_parameters import DESCRIPTIONS, Fitted
-from probanchor.app.motion_samples import samples_path
-from probanchor.app.occlusion_affordances import (
+from probanchor.learning.motion_parameters import DESCRIPTIONS, Fitted
+from probanchor.learning.motion_samples import samples_path
+from probanchor.learning.occlusion_affordances import (
     MIN_SHARE,
     Affordance,
     affordance_clauses,
@@ -34,10 +34,10 @@ from probanchor.app.occlusion_affordances import (
     affordances,
     never_occluders,
 )
-from probanchor.app.occlusion_data import LabelOptions
-from probanchor.app.occlusion_reach import OnsetReach, onset_reach
-from probanchor.app.reasoning import DEFAULT_THEORY
-from probanchor.app.theories import THEORIES, theory_path
+from probanchor.learning.occlusion_data import LabelOptions
+from probanchor.learning.occlusion_reach import OnsetReach, onset_reach
+from probanchor.loop.reasoning import DEFAULT_THEORY
+from probanchor.loop.theories import THEORIES, theory_path
 
 ROOT = Path(__file__).resolve().parents[1]
 PROLOG = DEFAULT_THEORY.parent / "too"

@@ -12,8 +12,8 @@ import time
 
 import pytest
 
-from probanchor.app import live
-from probanchor.app.live import LiveError, LiveWorld, ask
+from probanchor.loop import live
+from probanchor.loop.live import LiveError, LiveWorld, ask
 
 
 def facts(frame: int) -> list[str]:

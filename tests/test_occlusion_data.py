@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 from bridge.learning import LearningData
-from probanchor.app.experience import AnchorView, Episode, EpisodeFrame
-from probanchor.app.occlusion_data import (
+from probanchor.learning.experience import AnchorView, Episode, EpisodeFrame
+from probanchor.learning.occlusion_data import (
     Collection,
     LabelOptions,
     data_text,

@@ -22,7 +22,7 @@ import pytest
 
 import bridge.resources
 import probanchor.resources
-from probanchor.app.theories import DEFAULT_THEORY, THEORIES
+from probanchor.loop.theories import DEFAULT_THEORY, THEORIES
 
 ROOT = Path(__file__).resolve().parents[1]
 

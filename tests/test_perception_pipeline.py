@@ -8,7 +8,7 @@ import cv2
 import numpy as np
 import pytest
 
-from probanchor.app.sources import perceive_scenario
+from probanchor.loop.sources import perceive_scenario
 from probanchor.perception import Pipeline
 from probanchor.perception.colour import DEFAULT_BINS, colour_names, histogram, hsv_image
 from probanchor.percepts import read_percepts, write_percepts

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from rerun.chunk import RrdReader
 
-from probanchor.app.runner import RunOptions, run
+from probanchor.loop.runner import RunOptions, run
 from probanchor.visualise.rerun_log import RerunLog
 from scenario_helpers import scenario_file
 

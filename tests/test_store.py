@@ -15,8 +15,8 @@ from pathlib import Path
 import pytest
 
 from plunit_runner import ROOT
-from probanchor.app.runner import RunOptions, run
-from probanchor.app.store import StoreError
+from probanchor.loop.runner import RunOptions, run
+from probanchor.loop.store import StoreError
 from scenario_helpers import scenario_file
 
 PARTICLES = 60

@@ -19,11 +19,11 @@ from pathlib import Path
 import pytest
 
 from plunit_runner import ROOT
-from probanchor.app import reasoning
-from probanchor.app import store as store_module
-from probanchor.app.naming import symbol_atom
-from probanchor.app.runner import RunOptions, run
-from probanchor.app.store import StoreError, WorldStore
+from probanchor.loop import reasoning
+from probanchor.loop import store as store_module
+from probanchor.loop.naming import symbol_atom
+from probanchor.loop.runner import RunOptions, run
+from probanchor.loop.store import StoreError, WorldStore
 from scenario_helpers import BALL_UNDER_MUG_MOVED, scenario_file
 
 PARTICLES = 60
@@ -186,7 +186,7 @@ def test_a_resume_after_the_scenario_file_changed_is_refused_naming_it(
 
 def test_a_resume_after_the_percept_stream_changed_is_refused(tmp_path: Path,
                                                               scenario: Path) -> None:
-    from probanchor.app.sources import perceive_scenario
+    from probanchor.loop.sources import perceive_scenario
     from probanchor.percepts import write_percepts
 
     stream = tmp_path / "game.jsonl"
@@ -313,7 +313,7 @@ def test_a_run_is_asked_while_it_runs_from_the_store_the_shell_and_python(
     """Readers of the store (Python, `anchoring shell --store`) and the run's own query
     server (`--serve`, asked from Python and from `anchoring shell --connect`) answer for a
     named frame, consistently with the history the run stored for that frame."""
-    from probanchor.app.live import ask
+    from probanchor.loop.live import ask
 
     db = tmp_path / "world.db"
     err = tmp_path / "run.err"

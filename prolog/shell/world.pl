@@ -5,7 +5,7 @@ Usage:  swipl prolog/shell/world.pl OUT/world.pl      (or: anchoring shell OUT)
 The world file (written by `anchoring run`) holds plain facts in module user: anchors
 (anchor/5), their attributes (attribute/3) and the particle set of the filter
 (particle/2, particle_fact/2), and which frame it is after (world_frame(Frame, Time));
-see python/probanchor/app/world_file.py.  Both files
+see python/probanchor/loop/world_file.py.  Both files
 given to swipl are loaded, so the facts can also be asked directly
 (?- anchor(A, S, C, Seen, T).).
 Examples:
@@ -20,7 +20,7 @@ Examples:
     ?- ambiguous(Percept, Dist).
 */
 
-:- module(world,
+:- module(anchoring_world,
           [ load_world/1,       % +File
             anchors/1,          % -Atoms
             prob/2,             % :Goal, -P

@@ -6,7 +6,7 @@
     run's last whole frame and the queries that come in over its query server.
 */
 
-:- module(world_ask,
+:- module(anchoring_world_ask,
           [ ask_json/3,         % +QueryText, +Options, -Dict
             print_answers/2,    % +QueryText, +Options
             serve/0
@@ -51,7 +51,7 @@ sandbox:safe_primitive(user:particle_fact(_, _)).
 sandbox:safe_primitive(user:identity(_, _, _)).
 sandbox:safe_primitive(user:world_frame(_, _)).
 %   prob/2 calls the tests of its goal (X > 0.1) in module user: they must be safe.
-sandbox:safe_meta(world:prob(G, _), Called) :-
+sandbox:safe_meta(anchoring_world:prob(G, _), Called) :-
     phrase(prob_tests(G), Called).
 
 prob_tests(V) --> { var(V) }, !, [user:V].

@@ -1,7 +1,7 @@
 """The only place that talks to Prolog (janus-swi): the DDC filter and static programs.
 
 Importing the package does not start Prolog: :data:`DEFAULT_THREADS` (:mod:`bridge.threads`),
-the engines' names (:mod:`bridge.engines`) and the places of the Prolog files
+the filter engines' names (:mod:`bridge.engines`) and the places of the Prolog files
 (:mod:`bridge.resources`) come from pure modules, and the names that need Prolog
 (:class:`Filter`, :func:`load`, ...) are imported when first used, so that a command line can
 be parsed (``anchoring --help``) without starting Prolog.
@@ -21,8 +21,8 @@ _LAZY = {
     "FilterError": "bridge.filter",
     "StepResult": "bridge.filter",
     "ZeroWeightWarning": "bridge.filter",
-    "DDCError": "bridge.program",
-    "EngineError": "bridge.errors",  # the base of the engine's errors; a subclass per cause
+    "DDCError": "bridge.errors",  # the base of the DDC system's errors; a subclass per cause
+    "EngineError": "bridge.errors",  # (DDCError's earlier name)
     "errors": "bridge.errors",
     "Program": "bridge.program",
     "QueryResult": "bridge.program",
@@ -44,6 +44,6 @@ def __getattr__(name: str) -> Any:
 
 if TYPE_CHECKING:
     from bridge import errors, terms
-    from bridge.errors import EngineError
+    from bridge.errors import DDCError, EngineError
     from bridge.filter import Filter, FilterError, StepResult, ZeroWeightWarning
-    from bridge.program import DDCError, Program, QueryResult, load
+    from bridge.program import Program, QueryResult, load

@@ -1,8 +1,8 @@
-"""The errors of the DDC engine, as Python sees them: one base class, a subclass per cause.
+"""The errors of the DDC system, as Python sees them: one base class, a subclass per cause.
 
 Every error that comes from Prolog (a call through the adapter :mod:`bridge.prolog`, or a
-message the filter's Prolog helper returns) is an :class:`EngineError`; its class says what
-kind of thing went wrong, read from the Prolog error term's formal part (:attr:`EngineError.cause`):
+message the filter's Prolog helper returns) is a :class:`DDCError`; its class says what
+kind of thing went wrong, read from the Prolog error term's formal part (:attr:`DDCError.cause`):
 
 - :class:`ProgramError`: ``ddc(Cause, File:Line)``, a DC program (what a clause says, or a
   clause that misbehaved as it ran);
@@ -19,10 +19,10 @@ kind of thing went wrong, read from the Prolog error term's formal part (:attr:`
 - :class:`NotPermittedError`: ``permission_error/3``, e.g. a second undo.
 
 Anything else (a Prolog goal that failed, a resource error) is the base class itself. The
-message is the engine's, one line, naming ``file:line`` where there is one. The names the
-bridge used before, :class:`bridge.DDCError` (static programs, the learner) and
-:class:`bridge.FilterError` (the filter), are the base class. A pure module: it does not
-start Prolog.
+message is the DDC system's, one line, naming ``file:line`` where there is one. The names the
+bridge used before, :class:`bridge.FilterError` (the filter) and :class:`EngineError`, are the
+base class ("engine" names the filter's batched or per-particle implementation alone:
+docs/architecture.md, Words). A pure module: it does not start Prolog.
 """
 
 from __future__ import annotations
@@ -30,8 +30,8 @@ from __future__ import annotations
 from typing import Any
 
 
-class EngineError(RuntimeError):
-    """An error of the DDC engine; :attr:`cause` is the Prolog error's formal name
+class DDCError(RuntimeError):
+    """An error of the DDC system; :attr:`cause` is the Prolog error's formal name
     (``"ddc"``, ``"existence_error"``, ...; ``""`` when there is no Prolog error term)."""
 
     def __init__(self, message: str, cause: str = "") -> None:
@@ -39,33 +39,37 @@ class EngineError(RuntimeError):
         self.cause = cause
 
 
-class ProgramError(EngineError):
+#: The base class's earlier name (kept for code that catches it by that name)
+EngineError = DDCError
+
+
+class ProgramError(DDCError):
     """An error in a DC program (its text, or one of its clauses as it ran): ``file:line``."""
 
 
-class LearningDataError(EngineError):
+class LearningDataError(DDCError):
     """An error in learning data (facts, background knowledge, declarative bias)."""
 
 
-class FrameFileError(EngineError, ValueError):
+class FrameFileError(DDCError, ValueError):
     """A frame file that cannot be read; the message is ``file:line: cause``."""
 
 
-class UnknownObjectError(EngineError, LookupError):
+class UnknownObjectError(DDCError, LookupError):
     """Something named does not exist: a filter freed or never made, a program, a file."""
 
 
-class BadArgumentError(EngineError, ValueError):
-    """An argument the engine cannot take: a text that does not parse, a term that is not
+class BadArgumentError(DDCError, ValueError):
+    """An argument the DDC system cannot take: a text that does not parse, a term that is not
     ground, a value of the wrong type or outside its domain."""
 
 
-class NotPermittedError(EngineError):
-    """An operation the engine refuses in the state it is in (e.g. a second undo)."""
+class NotPermittedError(DDCError):
+    """An operation the DDC system refuses in the state it is in (e.g. a second undo)."""
 
 
 #: the Prolog error's formal name -> the class of its Python error
-CAUSES: dict[str, type[EngineError]] = {
+CAUSES: dict[str, type[DDCError]] = {
     "ddc": ProgramError,
     "ddc_learn": LearningDataError,
     "ddc_belief": FrameFileError,
@@ -77,19 +81,19 @@ CAUSES: dict[str, type[EngineError]] = {
 }
 
 
-def error_class(cause: str) -> type[EngineError]:
+def error_class(cause: str) -> type[DDCError]:
     """The class of an error whose Prolog formal name is ``cause`` (the base for others)."""
-    return CAUSES.get(cause, EngineError)
+    return CAUSES.get(cause, DDCError)
 
 
-def engine_error(cause: str, message: str) -> EngineError:
+def ddc_error(cause: str, message: str) -> DDCError:
     """The error of class :func:`error_class` (``cause``) with ``message``."""
     return error_class(cause)(message, cause)
 
 
-def from_helper(err: Any, prefix: str = "") -> EngineError:
+def from_helper(err: Any, prefix: str = "") -> DDCError:
     """The error of a reply ``Err`` of the bridge's Prolog helper (``Cause-Text``, which
     janus gives as a tuple; a plain text counts as cause unknown), its message ``prefix`` and
     the text."""
     cause, text = (str(err[0]), str(err[1])) if isinstance(err, tuple) else ("", str(err))
-    return engine_error(cause, prefix + text)
+    return ddc_error(cause, prefix + text)

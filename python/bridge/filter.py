@@ -68,7 +68,7 @@ import numpy as np
 
 from bridge import prolog
 from bridge.engines import ENGINES, Engine
-from bridge.errors import EngineError, from_helper
+from bridge.errors import DDCError, from_helper
 from bridge.particle_data import ParticleData
 from bridge.prolog import OUT
 from bridge.terms import Compound, Text, item_text, to_term
@@ -83,8 +83,8 @@ _MAX_ROW_WIDTH = 16
 
 
 #: A step or query the filter could not carry out (the filter itself is unchanged): the base
-#: class of the engine's errors, :class:`bridge.errors.EngineError`, whose subclasses say why
-FilterError = EngineError
+#: class of the DDC system's errors, :class:`bridge.errors.DDCError`, whose subclasses say why
+FilterError = DDCError
 
 
 class ZeroWeightWarning(RuntimeWarning):

@@ -1,4 +1,4 @@
-"""Frame files (the observations and actions of ``ddc filter``, JSON Lines) read by the engine.
+"""Frame files (the observations and actions of ``ddc filter``, JSON Lines) read by the DDC system.
 
 The format has one reader, ``read_frame_file/2`` in ``prolog/ddc/filter/ddc_belief.pl`` (swipl users
 filter with it through ``belief_run/2``); this module asks it, through the bridge's helper

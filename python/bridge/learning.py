@@ -18,7 +18,7 @@ Every call goes through the adapter :mod:`bridge.prolog` to a named predicate of
 a dict), with data as its arguments. Errors of the data (a value outside its declared domain, a
 mode naming an unknown predicate, a target without facts, ...) raise
 :class:`bridge.errors.LearningDataError`, other errors of the engine their subclass of
-:class:`bridge.errors.EngineError` (:class:`bridge.DDCError`), the message naming file:line and
+:class:`bridge.errors.DDCError`, the message naming file:line and
 the cause.
 """
 
@@ -33,15 +33,12 @@ from typing import Any
 import numpy as np
 
 from bridge import prolog
-from bridge.errors import EngineError, UnknownObjectError
+from bridge.errors import UnknownObjectError
 from bridge.prolog import OUT
 
 #: The learner's API (library(ddc/learn)) and its predicates that take dicts of options
 LEARNER: Path = prolog.PROLOG_DIR / "ddc/learn.pl"
 LEARNER_BRIDGE: Path = prolog.PROLOG_DIR / "ddc/learn/ddc_learn_bridge.pl"
-
-#: (the name the learner's errors had before; the base class of the engine's errors)
-DDCError = EngineError
 
 _lock = threading.Lock()
 

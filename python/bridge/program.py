@@ -8,9 +8,9 @@ Example::
     result.probability, result.stderr, result.ess   # ~0.3833, its standard error, its ESS
 
 Queries and evidence are Prolog text in the DC syntax (``coin ~= true``,
-``(g ~= A, A > 0)``, ``pos(1):3 > 0``). Every error of the engine (a bad program file, an
+``(g ~= A, A > 0)``, ``pos(1):3 > 0``). Every error of the DDC system (a bad program file, an
 unknown distribution, invalid parameters, impossible evidence, a query that does not parse)
-raises :class:`DDCError` whose message is the engine's, naming file:line and the cause.
+raises :class:`DDCError` whose message is the DDC system's, naming file:line and the cause.
 """
 
 from __future__ import annotations
@@ -20,18 +20,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from bridge import prolog
-from bridge.errors import EngineError
+from bridge.errors import DDCError
 from bridge.prolog import OUT
 
-ENGINE: Path = prolog.PROLOG_DIR / "ddc.pl"
+DDC_FILE: Path = prolog.PROLOG_DIR / "ddc.pl"
 DEFAULT_SAMPLES = 10_000
 
 _lock = threading.Lock()
 
-
-#: An error reported by the DDC engine (the message names file:line and the cause): the base
-#: class of the engine's errors, :class:`bridge.errors.EngineError`, whose subclasses say why
-DDCError = EngineError
 
 
 @dataclass(frozen=True)
@@ -48,15 +44,15 @@ class QueryResult:
     samples: int
 
 
-def _engine() -> None:
-    prolog.ensure_loaded(ENGINE)
+def _load_ddc() -> None:
+    prolog.ensure_loaded(DDC_FILE)
 
 
 def _call(predicate: str, **arguments: object) -> dict[str, object]:
-    """Call the engine's ``predicate`` once through :func:`bridge.prolog.call` (one static
-    call at a time, from any thread); a Prolog error, loading the engine's included, is a
+    """Call the DDC system's ``predicate`` once through :func:`bridge.prolog.call` (one static
+    call at a time, from any thread); a Prolog error, loading the DDC system's included, is a
     :class:`DDCError` (the subclass of its cause)."""
-    _engine()
+    _load_ddc()
     with _lock:
         return prolog.call(predicate, **arguments)
 
@@ -120,7 +116,7 @@ class Program:
 
         ``goal`` is a DC goal (``between(1, 100, I), a(I) ~= A, y(I) ~= Y``) read together with
         ``template`` (``I-A-Y``): they share variables. Every random variable the goal reads is
-        drawn once in the world (by the engine's backward sampler, ``ddc_sample_world/4``), so
+        drawn once in the world (by the DDC system's backward sampler, ``ddc_sample_world/4``), so
         the solutions are one joint sample of the program; the same seed gives the same world.
         Each solution is returned as Prolog term text (``term_string/2``: atoms quoted when
         needed, floats in full precision), e.g. ``"1-p-0.25"``.

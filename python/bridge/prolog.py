@@ -13,9 +13,9 @@ predicates with data, never Prolog source written in Python strings::
 The arguments are given by name, in the predicate's order; each name is the name of the
 argument's variable (the key of its value in the answer), an input's value a Python value that
 janus converts (numbers, ``str`` as an atom, lists, dicts, tuples), an output's value
-:data:`OUT`. A Prolog error arrives as the :class:`bridge.errors.EngineError` subclass of its
+:data:`OUT`. A Prolog error arrives as the :class:`bridge.errors.DDCError` subclass of its
 cause (read from the error term's formal part), its message the engine's one line (naming
-``file:line`` where there is one); a goal that fails is an :class:`~bridge.errors.EngineError`
+``file:line`` where there is one); a goal that fails is an :class:`~bridge.errors.DDCError`
 naming the predicate. This module also starts SWI-Prolog (through janus-swi) and loads the
 engine's files, once each.
 """
@@ -29,7 +29,7 @@ from typing import Any
 
 import janus_swi as janus
 
-from bridge.errors import EngineError, engine_error
+from bridge.errors import DDCError, ddc_error
 from bridge.resources import prolog_dir
 
 #: The project's Prolog files (package resources, see :mod:`bridge.resources`)
@@ -75,7 +75,7 @@ def call(predicate: str, /, **arguments: Any) -> dict[str, Any]:
 
     Raises
     ------
-    EngineError
+    DDCError
         The subclass of the Prolog error's cause (:mod:`bridge.errors`), or the base class
         when the goal fails.
     ValueError
@@ -93,12 +93,12 @@ def call(predicate: str, /, **arguments: Any) -> dict[str, Any]:
     except janus.PrologError as error:
         raise prolog_error(error) from None
     if not result.get("truth", False):
-        raise EngineError(f"{predicate}/{len(arguments)} failed")
+        raise DDCError(f"{predicate}/{len(arguments)} failed")
     return result
 
 
-def prolog_error(error: Exception, prefix: str = "") -> EngineError:
-    """The :class:`~bridge.errors.EngineError` of a ``janus.PrologError``: its class picked by
+def prolog_error(error: Exception, prefix: str = "") -> DDCError:
+    """The :class:`~bridge.errors.DDCError` of a ``janus.PrologError``: its class picked by
     the name of the error term's formal part, its message ``prefix`` and the engine's."""
     cause = ""
     term = getattr(error, "term", None)
@@ -106,7 +106,7 @@ def prolog_error(error: Exception, prefix: str = "") -> EngineError:
         found = janus.query_once("( E = error(_F, _), callable(_F) -> functor(_F, _N, _), "
                                  "atom_string(_N, C) ; C = \"\" )", {"E": term})
         cause = str(found.get("C", "")) if found.get("truth") else ""
-    return engine_error(cause, prefix + str(error).strip())
+    return ddc_error(cause, prefix + str(error).strip())
 
 
 def query_once(goal: str, bindings: dict[str, Any] | None = None) -> dict[str, Any]:

@@ -1,6 +1,6 @@
 """Where the project's Prolog files are: package resources of :mod:`bridge`.
 
-The repository's ``prolog/`` folder (the engine, the theories of occlusion, ``world.pl``, the
+The repository's ``prolog/`` folder (the DDC system, the theories of occlusion, ``world.pl``, the
 examples) is the package folder ``bridge/engine``: in the source tree ``python/bridge/engine``
 is a link to ``../../prolog``, and an installed distribution carries the files themselves
 there (package data). Either way they are found through :mod:`importlib.resources`, relative to

@@ -1,4 +1,4 @@
-/*  ddc_batch.pl -- the batched particle filter of the DDC engine.
+/*  ddc_batch.pl -- the batched particle filter of the DDC system.
 
     The engine's other filter (ddc_particles.pl) proves each particle's
     clauses one particle at a time.  This one evaluates each clause once

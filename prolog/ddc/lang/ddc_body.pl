@@ -1,6 +1,6 @@
 /*  ddc_body.pl -- compiling the bodies of DC clauses.
 
-    Part of the DDC engine (ddc.pl is the module users load).  Turns a
+    Part of the DDC system (ddc.pl is the module users load).  Turns a
     clause body, a query or evidence (DC literals, derived atoms, Prolog
     goals) into the Prolog goal that proves it in a world: reads of random
     variables become calls of the world runtime (ddc_world.pl), derived

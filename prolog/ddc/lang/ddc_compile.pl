@@ -1,6 +1,6 @@
 /*  ddc_compile.pl -- compiling DC programs into Prolog clauses.
 
-    Part of the DDC engine (ddc.pl is the module users load).  Turns a
+    Part of the DDC system (ddc.pl is the module users load).  Turns a
     program's items (ddc_read.pl) into the clauses of its module: one
     '$rv'/9 clause per random variable clause, one clause per derived
     clause with a dispatcher per derived predicate, the sweep's tables and

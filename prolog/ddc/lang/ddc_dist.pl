@@ -1,4 +1,4 @@
-/*  ddc_dist.pl -- the probability distributions of the DDC engine.
+/*  ddc_dist.pl -- the probability distributions of the DDC system.
 
     Every distribution of the Distributional Clauses language has here a
     parameter check, a sampler that uses only SWI-Prolog's own random
@@ -38,7 +38,7 @@
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 
-/** <module> Distributions of the DDC engine
+/** <module> Distributions of the DDC system
 
 Term forms (parameters are evaluated numbers; integers are accepted
 wherever a float is):

@@ -1,6 +1,6 @@
-/** <module> The DDC engine's errors: at run time, and as messages
+/** <module> The DDC system's errors: at run time, and as messages
 
-Part of the DDC engine (ddc.pl is the module users load).  Every error
+Part of the DDC system (ddc.pl is the module users load).  Every error
 of a program is error(ddc(Cause, Where), _) (a file that cannot be read
 at all, the reader's ISO error, ddc_source.pl); this module names the
 program's clause in an error raised while it runs, and renders the

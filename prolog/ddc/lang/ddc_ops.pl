@@ -1,6 +1,6 @@
 /** <module> The operators of the DC language
 
-Part of the DDC engine (ddc.pl is the module users load, and exports
+Part of the DDC system (ddc.pl is the module users load, and exports
 them to its users).  The engine's and the learner's modules that read
 or write DC terms import them from here.
 */

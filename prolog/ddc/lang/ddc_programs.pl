@@ -1,6 +1,6 @@
 /** <module> The DC programs loaded into modules
 
-Part of the DDC engine (ddc.pl is the module users load).  Loads a
+Part of the DDC system (ddc.pl is the module users load).  Loads a
 program file (read by ddc_read.pl, compiled by ddc_compile.pl) into a
 module of its own, atomically: a program with an error leaves the
 module as it was.  Keeps which file each program module holds and

@@ -1,6 +1,6 @@
 /** <module> The filters' worker threads and group split
 
-Part of the DDC engine (ddc.pl is the module users load).  With
+Part of the DDC system (ddc.pl is the module users load).  With
 threads(K), K > 1, a filter's particles are split into K contiguous
 groups, each with a random stream of its own seeded from the filter's,
 and a step runs the groups at the same time: the first in the calling

@@ -1,6 +1,6 @@
-/** <module> Static queries of the DDC engine
+/** <module> Static queries of the DDC system
 
-Part of the DDC engine (ddc.pl is the module users load).  Answers
+Part of the DDC system (ddc.pl is the module users load).  Answers
 probability, expectation and distribution queries on a loaded
 program by likelihood weighting over sampled worlds, and samples a
 single world (ddc_sample_world/4).

@@ -1,6 +1,6 @@
 /*  ddc_rename.pl -- renaming constants in the values a particle holds.
 
-    Part of the DDC engine (ddc.pl is the module users load).  The filter
+    Part of the DDC system (ddc.pl is the module users load).  The filter
     API's filter_rename/3 (ddc_filter.pl) renames constants in chosen
     particles; each engine renames its own stores (ddc_particles.pl) or
     columns (ddc_filter_batched.pl, ddc_batch_tables.pl) with the term

@@ -1,6 +1,6 @@
 /** <module> A filter's values as rows of floats
 
-Part of the DDC engine (ddc.pl is the module users load): the row code
+Part of the DDC system (ddc.pl is the module users load): the row code
 of filter_rows/6, used by the filter API (ddc_filter.pl) on the values
 of any engine and by the per-particle engine on its stores.
 */

@@ -1,4 +1,4 @@
-/*  ddc_store.pl -- the per-world store of the DDC engine.
+/*  ddc_store.pl -- the per-world store of the DDC system.
 
     A world (one sample of the static engine, one particle of the filter)
     records every random variable it has sampled, every memoised derived

@@ -1,6 +1,6 @@
-/*  ddc_world.pl -- the world runtime of the DDC engine.
+/*  ddc_world.pl -- the world runtime of the DDC system.
 
-    Part of the DDC engine (ddc.pl is the module users load).  A world is
+    Part of the DDC system (ddc.pl is the module users load).  A world is
     one sample of a static query or one particle of the filter: it holds
     the values drawn so far.  This module holds what compiled program
     clauses call at run time (reading, sampling and weighing random
@@ -54,7 +54,7 @@
 %   file; see ddc.pl).
 :- set_prolog_flag(optimise, true).
 
-/** <module> The world runtime of the DDC engine
+/** <module> The world runtime of the DDC system
 
 A world is the record
 

@@ -94,9 +94,9 @@ def _json_float(value: Any) -> float | None:
 
 
 def read_frames(path: Path) -> list[Any]:
-    """The frames (``bridge.frames.Frame``) of an observations file, read by the engine's
-    reader of the format (prolog/ddc/filter/ddc_belief.pl, the one swipl users run); CliError naming
-    file:line on a bad line."""
+    """The frames (``bridge.frames.Frame``) of an observations file, read by the DDC system's
+    reader of the format (prolog/ddc/filter/ddc_belief.pl, the one swipl users run); CliError
+    naming file:line on a bad line."""
     from bridge.frames import FrameFileError
     from bridge.frames import read_frames as read_frame_file
 

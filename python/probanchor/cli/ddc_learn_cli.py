@@ -10,21 +10,20 @@
     ddc cross-validate DATA.pl [MORE.pl ...] --out DIR [--folds K] [--seed S] [--unit TYPE]
               [--jobs N] [--cluster local|ray|auto|ray://HOST:PORT] [learn's search options]
 
-``ddc learn`` reads background knowledge, training facts and declarative bias from the data
-files, learns one distributional logic tree per target and writes the DC program they make
-(``--out`` is replaced only once the program is complete and loads in the engine): one clause per
-path of a tree (``--form clauses``, the default) or one clause per tree, its body the tree as
-nested if-then-else goals (``--form tree``: the same program, faster in the filter). It prints per
-target the clauses, groundings, seconds and training log-likelihood (``--json``: one JSON object
-keyed by target). ``ddc evaluate`` scores a DC program on held-out facts: per target the number of
-test groundings, the mean log-likelihood per grounding (natural log) and the accuracy (discrete)
-or RMSE (continuous); test files of facts only (DreaML's held-out files) are read in the dialect
-and with the declarations of the data the program was learned from, or of ``--bias`` files.
-``ddc split`` writes a training and a test file whose test facts form worlds of their own
-(docs/learning.md, "Held-out data"). ``ddc cross-validate`` splits the data into K folds of
-separate worlds and, one fold per job (local processes or Ray, docs/cluster.md), learns on the
-other folds and scores the held-out one: per fold and over all folds, the columns of ``ddc
-evaluate``.
+``ddc learn`` reads background knowledge, training facts and declarative bias from the data files,
+learns one distributional logic tree per target and writes the DC program they make (``--out`` is
+replaced only once the program is complete and loads in the DDC system): one clause per path of a
+tree (``--form clauses``, the default) or one clause per tree, its body the tree as nested
+if-then-else goals (``--form tree``: the same program, faster in the filter). It prints per target
+the clauses, groundings, seconds and training log-likelihood (``--json``: one JSON object keyed by
+target). ``ddc evaluate`` scores a DC program on held-out facts: per target the number of test
+groundings, the mean log-likelihood per grounding (natural log) and the accuracy (discrete) or RMSE
+(continuous); test files of facts only (DreaML's held-out files) are read in the dialect and with
+the declarations of the data the program was learned from, or of ``--bias`` files. ``ddc split``
+writes a training and a test file whose test facts form worlds of their own (docs/learning.md,
+"Held-out data"). ``ddc cross-validate`` splits the data into K folds of separate worlds and, one
+fold per job (local processes or Ray, docs/cluster.md), learns on the other folds and scores the
+held-out one: per fold and over all folds, the columns of ``ddc evaluate``.
 """
 
 from __future__ import annotations

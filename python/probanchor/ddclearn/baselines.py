@@ -418,7 +418,7 @@ class LinearBaseline(Baseline):
 
     def _proba(self, X: np.ndarray) -> np.ndarray:
         if self.fallback is not None:
-            return self.fallback._proba(X)
+            return self.fallback._proba(X)  # noqa: SLF001 (a Baseline hook, of its fallback)
         p = self.model.predict_proba(self._design(X))
         return _full_proba(p, self.model.classes_, int(self.n_classes or 0))
 
@@ -465,7 +465,7 @@ class BoostingBaseline(Baseline):
 
     def _proba(self, X: np.ndarray) -> np.ndarray:
         if self.fallback is not None:
-            return self.fallback._proba(X)
+            return self.fallback._proba(X)  # noqa: SLF001 (a Baseline hook, of its fallback)
         with threadpool_limits(limits=THREADS, user_api="openmp"):
             p = self.model.predict_proba(self._input(X))
         return _full_proba(p, self.model.classes_, int(self.n_classes or 0))

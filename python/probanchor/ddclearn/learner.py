@@ -21,8 +21,8 @@ from typing import Any, Literal
 import numpy as np
 from threadpoolctl import threadpool_limits
 
+from bridge.errors import DDCError
 from bridge.learning import LearningData
-from bridge.program import DDCError
 from probanchor.ddclearn.files import write_atomically
 from probanchor.ddclearn.search import LeafRecord, SearchOptions, TargetResult, learn_target
 
@@ -105,7 +105,7 @@ class LearnResult:
     def write(self, path: str | Path, check: bool = True, form: Form = "clauses") -> Path:
         """Write the program (in ``form``, see :meth:`program_text`) to ``path`` atomically.
 
-        With ``check`` the program is first compiled by the DDC engine (a program that does not
+        With ``check`` the program is first compiled by the DDC system (a program that does not
         load is an error, and ``path`` keeps what it held).
         """
         def loads(tmp: Path) -> None:

@@ -1,4 +1,4 @@
-"""Learning data sampled from a DC program with the project's own engine.
+"""Learning data sampled from a DC program with the project's own DDC system.
 
 A *generator* is an ordinary DC program that defines the features' priors and the target's
 clauses, e.g. (``tests/data/learn/discrete_tree.pl``)::
@@ -7,7 +7,7 @@ clauses, e.g. (``tests/data/learn/discrete_tree.pl``)::
     y(X) ~ finite([0.9:t, 0.1:f]) := a(X) ~= p, b(X) ~= r.
     ...
 
-:func:`sample_data` draws ONE world of it (``bridge.Program.sample``, the engine's backward
+:func:`sample_data` draws ONE world of it (``bridge.Program.sample``, the DDC system's backward
 sampler) over ``entities`` entities and writes the facts that world holds as a data file of the
 learner's own dialect (``docs/learning.md``), followed by the declarative bias::
 

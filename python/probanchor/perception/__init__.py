@@ -10,7 +10,7 @@ camera_pose (4x4 world-from-camera, OpenCV axes)``; ``truth``, ``segmentation`` 
 ``body_names`` are optional and used only to fill ``Percept.truth_id``. A frame that cannot be
 perceived (images of different sizes, intrinsics of another size) is a :class:`FrameError`.
 Where frames come from (the simulator, a recorded bag) is the caller's business: see
-``probanchor.app.sources``.
+``probanchor.loop.sources``.
 """
 
 from probanchor.perception.camera import CameraIntrinsics, FrameError, RGBDFrame, check_frame

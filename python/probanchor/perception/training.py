@@ -2,8 +2,8 @@
 
 A small MLP (scikit-learn) is trained on 60 % of the scenes of a :class:`Dataset`, its softmax
 temperature fitted on 20 % and it is tested on the last 20 %; its weights are saved as JSON. The
-shipped model's data are random simulated tables (``probanchor.app.classifier_data``); any camera's
-labelled segments will do.
+shipped model's data are random simulated tables (``probanchor.learning.classifier_data``); any
+camera's labelled segments will do.
 """
 
 from __future__ import annotations
@@ -41,8 +41,8 @@ def train(data: Dataset, seed: int = 0, hidden: int = 32,
     Parameters
     ----------
     data:
-        Labelled shape features (``probanchor.app.classifier_data.build_dataset`` for the shipped
-        model).
+        Labelled shape features (``probanchor.learning.classifier_data.build_dataset`` for the
+        shipped model).
     seed:
         Seeds the MLP.
     hidden:

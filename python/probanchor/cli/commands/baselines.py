@@ -102,7 +102,8 @@ def tune(args: argparse.Namespace) -> int:
         if not path.is_file():
             raise FileNotFoundError(f"{path}: no such percept stream")
     if not streams:
-        from probanchor.app.experiment import game_scenarios, percept_stream
+        from probanchor.experiments.sweep import game_scenarios
+        from probanchor.loop.sources import percept_stream
 
         if args.games < 1:
             raise ValueError(f"--games: {args.games} is not a positive number of games")

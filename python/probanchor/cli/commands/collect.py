@@ -43,8 +43,8 @@ def register(sub: Any) -> None:
 
 
 def main(args: argparse.Namespace) -> int:
-    from probanchor.app.collect import CollectOptions, collect
-    from probanchor.app.occlusion_data import LabelOptions
+    from probanchor.learning.collect import CollectOptions, collect
+    from probanchor.learning.occlusion_data import LabelOptions
 
     labels = LabelOptions(source=args.labels, steady_stride=args.steady_stride)
     command = "anchoring " + " ".join(shlex.quote(a) for a in sys.argv[1:])

@@ -22,7 +22,7 @@ def register(sub: Any) -> None:
 
 
 def main(args: argparse.Namespace) -> int:
-    from probanchor.app.runner import RunOptions, format_summary, run
+    from probanchor.loop.runner import RunOptions, format_summary, run
     from probanchor.resources import scenario_file
 
     scenario = scenario_file("shell_game")

@@ -35,7 +35,7 @@ def register(sub: Any) -> None:
 
 
 def main(args: argparse.Namespace) -> int:
-    from probanchor.app.experiment import (
+    from probanchor.experiments.sweep import (
         ALL_METHODS,
         METHODS,
         SHIPPED,

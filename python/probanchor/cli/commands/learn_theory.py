@@ -50,8 +50,8 @@ def register(sub: Any) -> None:
 
 
 def main(args: argparse.Namespace) -> int:
-    from probanchor.app.learned_theory import learn_theory, plot_theory
     from probanchor.ddclearn import SearchOptions
+    from probanchor.learning.learned_theory import learn_theory, plot_theory
 
     command = "anchoring " + " ".join(shlex.quote(a) for a in sys.argv[1:])
     result = learn_theory(args.data, args.out, seed=args.seed,

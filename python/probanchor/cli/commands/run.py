@@ -8,8 +8,8 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from probanchor.app.theories import DEFAULT_THEORY, theory_path
 from probanchor.cli.options import add_engine_option, add_threads_option
+from probanchor.loop.theories import DEFAULT_THEORY, theory_path
 
 
 def add_run_options(parser: argparse.ArgumentParser, particles: int = 1000) -> None:
@@ -124,7 +124,7 @@ def register(sub: Any) -> None:
 
 
 def main(args: argparse.Namespace) -> int:
-    from probanchor.app.runner import RunOptions, format_summary, run
+    from probanchor.loop.runner import RunOptions, format_summary, run
 
     output = run(RunOptions(
         scenario=args.scenario, percepts=args.percepts, bag=args.bag,

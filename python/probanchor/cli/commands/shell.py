@@ -41,7 +41,7 @@ def main(args: argparse.Namespace) -> int:
     if args.connect is not None:
         return _connected(args.connect, args.query)
     if args.store is not None:
-        from probanchor.app.store import WorldStore
+        from probanchor.loop.store import WorldStore
 
         store = WorldStore.open(args.store)
         try:
@@ -57,13 +57,13 @@ def main(args: argparse.Namespace) -> int:
         world = args.dir / "world.pl" if args.dir.is_dir() else args.dir
     if not world.exists():
         raise FileNotFoundError(f"{world}: no world file (run `anchoring run ... --out DIR`)")
-    from probanchor.app.live import prolog_string, swipl_path
+    from probanchor.loop.live import prolog_string, swipl_path
 
     swipl = swipl_path()
     if args.query is not None:
+        query = prolog_string(args.query.strip().removesuffix("."))
         goal = (f"consult({prolog_string(str(prolog_file('shell', 'world_ask.pl')))}), "
-                f"world_ask:print_answers({prolog_string(args.query.strip().removesuffix('.'))}"
-                ", [])")
+                f"anchoring_world_ask:print_answers({query}, [])")
         done = subprocess.run([swipl, "-q", "-g", goal, "-t", "halt",
                                str(prolog_file("shell/world.pl")), str(world)],
                               capture_output=True, text=True)
@@ -72,14 +72,14 @@ def main(args: argparse.Namespace) -> int:
             raise RuntimeError(f"{world}: swipl failed: {done.stderr.strip()}")
         print(line.strip())
         return 1 if "error" in json.loads(line) else 0
-    argv = [swipl, "-g", "world:banner", str(prolog_file("shell/world.pl")), str(world)]
+    argv = [swipl, "-g", "anchoring_world:banner", str(prolog_file("shell/world.pl")), str(world)]
     os.execv(swipl, argv)
     return 0  # pragma: no cover - execv does not return
 
 
 def _connected(port: int, query: str | None) -> int:
     """Ask a run's query server: one query as JSON, or a prompt that asks each query typed."""
-    from probanchor.app.live import LiveError, ask
+    from probanchor.loop.live import LiveError, ask
 
     if query is not None:
         try:

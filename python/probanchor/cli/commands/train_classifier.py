@@ -29,7 +29,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from probanchor.app.classifier_data import build_dataset
+    from probanchor.learning.classifier_data import build_dataset
     from probanchor.perception.classifier import DEFAULT_MODEL, CategoryModel
     from probanchor.perception.training import train
 

@@ -384,7 +384,7 @@ def scenes_wanted(args: argparse.Namespace) -> bool:
 
 def _perceive(what: Path | int, seed: int) -> list[PerceptFrame]:
     """Simulate and perceive a scenario file, or random scene number ``what``."""
-    from probanchor.app.sources import perceive_scenario
+    from probanchor.loop.sources import perceive_scenario
     from probanchor.tabletop.generate import random_scene
 
     scenario = what if isinstance(what, Path) else random_scene(1000 * seed + what)

@@ -1,0 +1,403 @@
+"""``anchoring learn-theory``: the theory of occlusion with rules learned from experience.
+
+The structure learner (:func:`probanchor.ddclearn.learn`) learns, from the data ``anchoring
+collect`` writes, one distributional logic tree for ``occluder(A, O):t+1``: whether O covers (or
+holds) the hidden object A at t+1. Its branch where A was known to be under O at t is the *tracking
+rule* (does the occlusion go on?), the other branch the *occluder rule* (may O start hiding A?),
+both with statistical models (a logistic regression on a distance, ...) in their leaves.
+
+The theory written includes the hand-written parts it shares with ``prolog/too.pl`` rather than
+copying them (``:- include(File).``, relative to the theory written, from ``prolog/too/``):
+``too_base.pl`` (the vocabulary and the filter's frame) and, after the learned rules,
+``too_motion.pl`` (the transitive clause of section 5.3, the carriers' rules, the motion of
+hidden objects: structure whose constants are learned). In place of ``too.pl``'s parameters it
+has those it reads fitted from the motion samples beside the data
+(:mod:`probanchor.learning.motion_parameters`); in place of its affordances those read from the data
+with their probabilities (:mod:`probanchor.learning.occlusion_affordances`); in place of its
+occlusion rules the learned clauses and the hand-written glue that uses them as the paper's
+theory does (section 2.3; ``too_learned_glue.pl``, shared by every learned theory): a hidden
+object's candidate occluders are the perceived objects O for which a particle draws
+``occluder(A, O):t+1 ~= true``; it picks one uniformly (or ``behind``, when it has just
+vanished, as in ``too.pl``); an occlusion goes on while the particle draws
+``occluder(A, O):t+1 ~= true`` and O is perceived.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from bridge.resources import prolog_dir
+from probanchor.ddclearn import LearnResult, SearchOptions, learn
+from probanchor.ddclearn.files import write_atomically
+from probanchor.ddclearn.learner import Form
+from probanchor.learning.motion_parameters import (
+    Fitted,
+    fit,
+    hand_written,
+    parameter_clauses,
+    parameter_rows,
+)
+from probanchor.learning.motion_samples import MotionSamples, read_samples
+from probanchor.learning.occlusion_affordances import (
+    Affordance,
+    affordance_clauses,
+    affordance_table,
+    affordances,
+    never_occluders,
+)
+from probanchor.learning.occlusion_reach import MARGIN, QUANTILE, OnsetReach, onset_reach
+
+__all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError",
+           "along_distance", "coefficient_table", "parameter_table",
+           "learn_theory", "logistic_leaves", "plot_theory", "probability_at", "theory_text"]
+
+#: The hand-written parts (in ``prolog/too/``) a learned theory includes before its learned
+#: parameters (the vocabulary and the frame), before its learned tree (the glue that uses it) and
+#: after it (carriers, motion of hidden objects).
+BEFORE = ("too_base.pl",)
+GLUE = "too_learned_glue.pl"
+AFTER = ("too_motion.pl",)
+
+#: The paper's learned clause, P1 = sigmoid(0.8 - 16.9 d) (section 4).
+PAPER = (-16.9, 0.8)
+#: The original system's deployed model, sigmoid(1.948 - 16.488 d) (ProbAnch).
+DEPLOYED = (-16.488, 1.948)
+
+class TheoryError(ValueError):
+    """A theory that cannot be written: a hand-written part to include is missing, or the result
+    does not load (the message names the file, line and cause)."""
+
+
+@dataclass
+class LearnedTheory:
+    """What ``learn-theory`` wrote and learned."""
+
+    out: Path
+    result: LearnResult
+    text: str
+    reach: OnsetReach | None = None
+    base: Path | None = None
+    affordances: dict[str, dict[str, Affordance]] | None = None
+    parameters: list[Fitted] | None = None
+    samples: MotionSamples | None = None
+
+    @property
+    def logistic(self) -> list[dict[str, object]]:
+        """The leaves whose model is a logistic regression on the distance: their path, the
+        regressors' names and weights (the bias last), their groundings."""
+        return logistic_leaves(self.result)
+
+
+def theory_text(learned_program: str, header: str, *, base: str | Path,
+                out: str | Path, reach: OnsetReach,
+                found: dict[str, dict[str, Affordance]], fitted: Sequence[Fitted]) -> str:
+    """The theory: ``header``, the hand-written parts of ``base`` (a folder) included, the
+    parameters fitted from the data (``fitted``), the affordances read from it (``found``), the
+    glue included, the onset reach fitted from the data and the learned program (the learner's
+    output: background knowledge and clauses).
+
+    The includes name the parts relative to the folder of ``out``, the file the theory is
+    written to (the DC reader resolves an include relative to the including file).
+
+    Raises
+    ------
+    TheoryError
+        ``base`` lacks one of the hand-written parts.
+    """
+    folder = Path(base)
+    missing = [name for name in (*BEFORE, GLUE, *AFTER) if not (folder / name).is_file()]
+    if missing:
+        raise TheoryError(f"{folder}: no hand-written part {', '.join(missing)} to include")
+    here = Path(out).resolve().parent
+
+    def include(name: str) -> str:
+        rel = os.path.relpath((folder / name).resolve(), here)
+        quoted = rel.replace("\\", "\\\\").replace("'", "\\'")
+        return f":- include('{quoted}').\n"
+
+    body = _program_body(learned_program)
+    onset = (f"% The onset reach (m): {QUANTILE:.0%} of the {reach.onsets} onsets in the data "
+              f"were within {reach.quantile:.4g} m; times {MARGIN}.\n"
+              f"onset_reach({reach.reach:.4g}).\n")
+    return (header + "".join(include(n) for n in BEFORE) + "\n" + parameter_clauses(fitted)
+            + "\n" + affordance_clauses(found) + "\n" + include(GLUE) + onset + "\n"
+            + body.rstrip()
+            + "\n\n" + "".join(include(n) for n in AFTER))
+
+
+def _program_body(program: str) -> str:
+    """The learned program without its own header comment (the theory's header says it)."""
+    lines = program.splitlines()
+    k = 0
+    while k < len(lines) and (lines[k].startswith("%") or not lines[k].strip()):
+        k += 1
+    intro = ("% The learned rules (ddc learn): a distributional logic tree for occluder/2 (each "
+             "path from its\n% root to a leaf is one clause of the tree), with the background "
+             "knowledge it reads.\n")
+    return intro + "\n".join(lines[k:]) + "\n"
+
+
+def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
+                 options: SearchOptions | None = None, base: str | Path | None = None,
+                 command: str | None = None, progress: bool = False,
+                 form: Form = "tree") -> LearnedTheory:
+    """Learn the occlusion rules from ``data`` and write the complete theory to ``out``.
+
+    Without ``options``, the learner's defaults but for its root model (``never``): a root model
+    is a regression over every root feature that every leaf reads, so each draw of
+    ``occluder(A, O):t+1`` in the filter would compute every feature (1.5 times the CPU of a
+    plain tree, which reads only the features on its path).
+
+    The tree goes into the theory in its tree form (``form="tree"``: one clause whose body is
+    the tree, each test evaluated once per particle, as fast in the filter as the hand-written
+    rules) or as one clause per path (``form="clauses"``, the paper's form; the same program).
+
+    ``out`` is replaced only once the theory is complete and loads in the engine (a failed run
+    leaves the previous file as it was).
+
+    Raises
+    ------
+    TheoryError
+        A hand-written part is missing from ``base`` (default ``prolog/too/``), the motion
+        samples beside the data are missing, or the theory written does not load. (A parameter
+        the samples cannot fit keeps too_parameters.pl's value, marked NOT FITTED in the
+        theory.)
+    bridge.DDCError
+        The data has an error (its message names the file and line).
+    """
+    import bridge
+
+    out = Path(out)
+    folder = Path(base) if base is not None else prolog_dir() / "too"
+    if options is None:
+        options = SearchOptions(root_model="never")
+    try:
+        samples = read_samples(list(data))
+        fitted = fit(samples, hand_written(folder))
+    except (ValueError, FileNotFoundError) as error:
+        raise TheoryError(str(error)) from None
+    result = learn(data, ["occluder:t+1"], seed=seed, options=options, progress=progress)
+    target = result.targets[0]
+    names = ", ".join(Path(d).name for d in data)
+    parts = ", ".join((*BEFORE, GLUE, *AFTER))
+    header = [
+        f"/*  {out.name} -- the theory of occlusion with rules learned from experience.",
+        "",
+        "    Written by `anchoring learn-theory`: a tree learned (ddc learn) from",
+        f"    {names}: {target.groundings} groundings of occluder(A, O):t+1,",
+        f"    {target.clauses} clauses, training log-likelihood {target.log_likelihood:.6g};",
+        f"    search seed {seed}.",
+    ]
+    if command:
+        header.append(f"    Command: {command}")
+    header += [
+        f"    The hand-written parts are included from {folder.parent.name}/{folder.name}/ "
+        f"({parts}):",
+        "    regenerate this file rather than edit it; edit those for the rest.  The",
+        "    parameters are fitted from the motion samples beside the data.",
+        "*/",
+        "",
+    ]
+    found = affordances(data)
+    try:
+        reach = onset_reach(data, exclude=never_occluders(found))
+    except ValueError as error:
+        raise TheoryError(str(error)) from None
+    text = theory_text(result.program_text(form), "\n".join(header) + "\n", base=folder,
+                       out=out, reach=reach, found=found, fitted=fitted)
+
+    def loads(tmp: Path) -> None:
+        try:
+            bridge.load(str(tmp))
+        except bridge.DDCError as error:
+            raise TheoryError(f"the learned theory does not load: {error}") from None
+
+    write_atomically(out, text, loads)
+    return LearnedTheory(out, result, text, reach, folder, found, fitted, samples)
+
+
+def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:
+    """The leaves of the learned tree whose model is a logistic regression with a distance
+    among its regressors (see :func:`along_distance`): path (the tested literals), regressors
+    (their variables' names), weights (one per regressor, the bias last), rows, weight."""
+    out: list[dict[str, object]] = []
+    for leaf in result.targets[0].leaves:
+        lf = leaf.leaf
+        if lf.family != "logistic" or lf.weights is None:
+            continue
+        m = re.search(r"logistic\(\[([^\]]*)\]", leaf.clause)
+        names = [n.strip() for n in m.group(1).split(",")] if m else []
+        if not any(_is_distance(n) for n in names):
+            continue
+        body = leaf.clause.split(":=", 1)[1]
+        path = [line.strip().rstrip(",") for line in body.splitlines()
+                if line.strip() and "logistic(" not in line and " is 1-" not in line
+                and not line.strip().startswith("pair(")]
+        out.append({"path": path, "regressors": names, "weights": [float(w) for w in lf.weights],
+                    "rows": leaf.rows, "weight": leaf.weight})
+    return out
+
+
+def along_distance(leaf: dict[str, object]) -> tuple[float, float]:
+    """A logistic leaf as sigmoid(bias + slope d) along the table-plane distance d, at equal
+    heights (its 3-D distance is then d too) and its other regressors at 0 (e.g. lift 0: an
+    occluder that does not move up or down): (slope, bias), comparable with the paper's
+    (-16.9, 0.8)."""
+    names = list(leaf["regressors"])  # type: ignore[arg-type]
+    w = [float(x) for x in leaf["weights"]]  # type: ignore[union-attr]
+    slope = sum(wi for n, wi in zip(names, w, strict=False) if _is_distance(n))
+    return slope, w[-1]
+
+
+def _is_distance(name: str) -> bool:
+    """A regressor's variable for distance/2 (Distance, Distance2, ...) or distance3/2
+    (Distance3, Distance32, ...)."""
+    return re.fullmatch(r"Distance\d*", name) is not None
+
+
+def probability_at(leaf: dict[str, object], distance: np.ndarray) -> np.ndarray:
+    """P1 of a logistic leaf along the table-plane ``distance`` (see :func:`along_distance`)."""
+    slope, bias = along_distance(leaf)
+    return 1.0 / (1.0 + np.exp(-(bias + slope * np.asarray(distance, dtype=float))))
+
+
+#: The tree's picture shows this many levels (a deeper subtree is one box: its leaves' count).
+TREE_PICTURE_DEPTH = 3
+
+
+def plot_theory(theory: LearnedTheory, folder: str | Path, name: str) -> list[Path]:
+    """The learned tree (``<name>_tree.png``, its first levels), P(occluder | distance) of its
+    heaviest logistic leaves beside the paper's sigmoid(0.8 - 16.9 d) and the original system's
+    deployed sigmoid(1.948 - 16.488 d) (``<name>_distance.png``), and their coefficients
+    (``<name>_coefficients.md``, :func:`coefficient_table`)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from probanchor.ddclearn.plot import plot_trees
+
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    tree = plot_trees([t.tree for t in theory.result.targets], folder / f"{name}_tree.png",
+                      max_depth=TREE_PICTURE_DEPTH)
+    d = np.linspace(0.0, 0.35, 200)
+    fig = Figure(figsize=(7.5, 4.2))
+    ax = fig.add_subplot()
+    for label, (w, b), style in (("paper: sigmoid(0.8 - 16.9 d)", PAPER, "k--"),
+                                 ("original system: sigmoid(1.948 - 16.488 d)", DEPLOYED, "k:")):
+        ax.plot(d, 1.0 / (1.0 + np.exp(-(w * d + b))), style, label=label)
+    for leaf in _heaviest(theory):
+        ax.plot(d, probability_at(leaf, d),
+                label=f"learned ({leaf['rows']} rows): {_path_label(leaf)}")
+    ax.set_xlabel("distance d in the table plane (m)")
+    ax.set_ylabel("P(occluder)")
+    ax.set_ylim(0, 1)
+    ax.legend(fontsize=6, loc="upper right")
+    ax.set_title("P(O hides A | distance), the learned leaves beside the paper's")
+    curve = folder / f"{name}_distance.png"
+    fig.tight_layout()
+    fig.savefig(curve, dpi=110)
+    table = folder / f"{name}_coefficients.md"
+    table.write_text(coefficient_table(theory), encoding="utf-8")
+    written = [tree, curve, table]
+    if theory.reach is not None and theory.base is not None:
+        parameters = folder / f"{name}_parameters.md"
+        parameters.write_text(parameter_table(theory.reach, theory.base)
+                              + ("\n" + parameter_rows(theory.parameters, theory.base)
+                                 if theory.parameters else "")
+                              + ("\n" + affordance_table(theory.affordances)
+                                 if theory.affordances else ""), encoding="utf-8")
+        written.append(parameters)
+    if theory.parameters and theory.samples is not None:
+        written.append(plot_motion(theory.samples, theory.parameters,
+                                   folder / f"{name}_motion.png"))
+    return written
+
+
+def plot_motion(samples: MotionSamples, fitted: Sequence[Fitted], path: Path) -> Path:
+    """Histograms of the samples of three fitted variances (a perceived object's true
+    displacement per frame, a reappearance around its belief, the same after the camera saw
+    nothing; per axis, log counts) with the fitted Gaussians' expected counts."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    value = {f.name: f.value for f in fitted}
+    panels = (("motion_var", "a perceived object's step (true)",
+               [r[4] for r in samples.rows["displacement"] if r[4] is not None]),
+              ("reappear_var", "a reappearance around its belief", samples.rows["reappear"]),
+              ("lost_var", "lost while blind (the Gaussian: moved anywhere)",
+               samples.rows["lost"]))
+    fig = Figure(figsize=(11, 3.4))
+    for i, (name, title, rows) in enumerate(panels):
+        ax = fig.add_subplot(1, 3, i + 1)
+        x = np.asarray(rows, dtype=float).reshape(-1)
+        if x.size == 0:
+            continue
+        sd = float(np.sqrt(value[name]))
+        edge = max(4 * sd, float(np.quantile(np.abs(x), 0.999)))
+        bins = np.linspace(-edge, edge, 61)
+        ax.hist(x, bins=bins, color="0.6", label=f"samples ({x.size:,} per-axis values)")
+        centre = 0.5 * (bins[1:] + bins[:-1])
+        width = bins[1] - bins[0]
+        expected = x.size * width * np.exp(-centre ** 2 / (2 * sd * sd)) / (sd * np.sqrt(2 * np.pi))
+        ax.plot(centre, expected, "k-", label=f"fitted N(0, {value[name]:.2g})")
+        ax.set_yscale("log")
+        ax.set_ylim(0.5, None)
+        ax.set_xlabel("m")
+        ax.set_title(f"{name}: {title}", fontsize=8)
+        ax.legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    return path
+
+
+def parameter_table(reach: OnsetReach, base: str | Path) -> str:
+    """A Markdown table: the parameters fitted from the data beside the hand-written values of
+    ``base``'s too_parameters.pl that play their part in too.pl."""
+    text = (Path(base) / "too_parameters.pl").read_text(encoding="utf-8")
+    m = re.search(r"^occluder_reach\(([\d.eE+-]+)\)", text, re.M)
+    hand = f"{float(m.group(1)):.3g} (`occluder_reach`)" if m else "-"
+    return ("| parameter | learned | hand-written | fitted from |\n|---|---:|---:|---|\n"
+            f"| onset reach (m): how far from where a hidden object was an occluder may start "
+            f"hiding it | {reach.reach:.3g} | {hand} | {reach.onsets} onsets, {QUANTILE:.0%} "
+            f"within {reach.quantile:.3g} m, times {MARGIN:g} |\n")
+
+
+def _heaviest(theory: LearnedTheory, k: int = 6) -> list[dict[str, object]]:
+    """The ``k`` logistic leaves with the most (weighted) groundings."""
+    return sorted(theory.logistic, key=lambda leaf: -float(leaf["weight"]))[:k]  # type: ignore[arg-type]
+
+
+def _path_label(leaf: dict[str, object]) -> str:
+    path = [p for p in leaf["path"] if "~= Distance" not in p]  # type: ignore[union-attr]
+    return ", ".join(p.replace("(Occluded, Occluder)", "").replace("(Occluded)", "(A)")
+                     .replace("(Occluder)", "(O)") for p in path)
+
+
+def coefficient_table(theory: LearnedTheory, k: int = 6) -> str:
+    """A Markdown table: the paper's and the original system's P(occluder | distance) and the
+    ``k`` heaviest learned logistic leaves as sigmoid(bias + slope d) (:func:`along_distance`),
+    with P at 0, 5 and 10 cm."""
+    def row(name: str, n: str, slope: float, bias: float) -> str:
+        ps = " | ".join(f"{1.0 / (1.0 + np.exp(-(bias + slope * d))):.2f}"
+                        for d in (0.0, 0.05, 0.1))
+        return f"| {name} | {n} | {slope:.1f} | {bias:.2f} | {ps} |"
+
+    lines = ["| clause | groundings | slope | bias | P(0 cm) | P(5 cm) | P(10 cm) |",
+             "|---|---:|---:|---:|---:|---:|---:|",
+             row("paper (section 4)", "", *PAPER),
+             row("original system (deployed)", "", *DEPLOYED)]
+    for leaf in _heaviest(theory, k):
+        slope, bias = along_distance(leaf)
+        lines.append(row(f"learned: {_path_label(leaf) or '(root)'}".replace("|", "\\|"),
+                         str(leaf["rows"]), slope, bias))
+    return "\n".join(lines) + "\n"

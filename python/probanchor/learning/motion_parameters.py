@@ -1,0 +1,151 @@
+"""The motion and carrying parameters a learned theory of occlusion reads, fitted from the samples
+``anchoring collect`` keeps, and written into the theory as facts.
+
+Which estimator fits which parameter (each in a module of its own):
+
+- the variances (:mod:`probanchor.learning.motion_variances`): maximum likelihood;
+- the kept fractions and their jitter (:mod:`probanchor.learning.motion_keep`): least squares of a
+  first-order autoregression;
+- the carriers' gates, thresholds, offset and release probability
+  (:mod:`probanchor.learning.motion_grip`): quantiles, a mean and Laplace's rule.
+
+The learned theory reads no other parameter: the hand-written theory's ``occluder_reach``,
+``cover_height``, ``lowering_speed``, ``lowered_reach`` and ``behind_when_covered`` belong to
+its hand-written occlusion rules, which the learned tree (with the fitted onset reach and the
+learned affordances) replaces.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from probanchor.learning import motion_grip, motion_keep, motion_variances
+from probanchor.learning.motion_samples import MotionSamples
+
+__all__ = ["DESCRIPTIONS", "Fitted", "fit", "hand_written", "parameter_clauses",
+           "parameter_rows"]
+
+#: Every parameter a learned theory reads, what it is, and how it is fitted.
+DESCRIPTIONS: dict[str, tuple[str, str]] = {
+    "obs_var": ("the measurement noise of a perceived position (m², per axis)",
+                "ML variance: half the mean square of the perceived displacement of objects "
+                "that stood still"),
+    "motion_var": ("how far a perceived object moves in a frame (m², per axis)",
+                   "ML variance of the true displacements"),
+    "reappear_var": ("where a hidden object is seen again, around its belief (m²)",
+                     "ML variance of the reappearances against an ideal particle's belief"),
+    "lost_var": ("the same for an object lost while the camera saw nothing (m²)",
+                 "moved anywhere: 2 x the variance of where objects stand (longer axis)"),
+    "follow_keep": ("the fraction of its offset from its occluder a hidden object keeps",
+                    "least-squares AR(1) coefficient of the true offsets"),
+    "follow_var": ("the jitter of that offset per frame (m²)", "the AR(1)'s residual variance"),
+    "coast_keep": ("the fraction of its velocity a hidden object under nothing keeps",
+                   "least-squares AR(1) coefficient of the true velocities"),
+    "wander_var": ("how far such an object may move besides (m²)",
+                   "the AR(1)'s residual variance"),
+    "grip_reach": ("how far (table plane) a hand's grip may be from what it takes (m)",
+                   "2 x the 90 % quantile"),
+    "grip_height": ("how far above it (m)", "90 % quantile, moved off the median by its distance"),
+    "occluder_rise": ("how far below its centre (m; negative: above)",
+                      "10 % quantile, moved off the median by its distance"),
+    "grip_drop": ("how far what a hand holds is below its grip (m)", "mean"),
+    "lift_margin": ("how high a carried object is lifted before it counts as picked up (m)",
+                    "the 10 % quantile of the carries' highest lift, / 2"),
+    "release_margin": ("how near where it stood it counts as put down (m)",
+                       "2 x the 90 % quantile of the heights at release"),
+    "release_p": ("the probability per frame that the hand lets go there",
+                  "releases / frames held there, Laplace's rule"),
+    "grip_rise": ("how far a hand's grip rises in a frame when it lifts (m)",
+                  "the 10 % quantile of the rises while lifting, / 2"),
+}
+
+
+@dataclass(frozen=True)
+class Fitted:
+    """One fitted parameter: its value and the number of samples it was fitted from."""
+
+    name: str
+    value: float
+    samples: int
+
+
+def fit(samples: MotionSamples, hand: dict[str, float]) -> list[Fitted]:
+    """Every parameter of :data:`DESCRIPTIONS`, fitted from ``samples``.
+
+    A parameter whose samples the data lack (a collection without hands has no carry) keeps
+    its value of ``hand`` (too_parameters.pl's, :func:`hand_written`) with 0 samples: the
+    theory's comment and the table say it was not fitted.
+
+    Raises
+    ------
+    ValueError
+        A parameter that cannot be fitted and has no value in ``hand``.
+    """
+    r = samples.rows
+    out: dict[str, tuple[float, int]] = {}
+    groups = (
+        (("obs_var",), lambda: [motion_variances.obs_var(r["displacement"])]),
+        (("motion_var",), lambda: [motion_variances.motion_var(r["displacement"])]),
+        (("reappear_var",), lambda: [motion_variances.reappear_var(r["reappear"])]),
+        (("lost_var",), lambda: [motion_variances.lost_var(r["places"])]),
+        (("follow_keep", "follow_var"), lambda: _pair(motion_keep.follow(r["follow"]))),
+        (("coast_keep", "wander_var"), lambda: _pair(motion_keep.coast(r["coast"]))),
+        (("grip_reach", "grip_height", "occluder_rise", "grip_drop"),
+         lambda: list(motion_grip.grip(r["grasp"], r["hold"]).values())),
+        (("lift_margin", "release_margin", "release_p", "grip_rise"),
+         lambda: list(motion_grip.release(r["carries"]).values())),
+    )
+    for names, fitter in groups:
+        try:
+            values = fitter()
+        except ValueError as error:
+            missing = [n for n in names if n not in hand]
+            if missing:
+                raise ValueError(f"the motion samples cannot fit {', '.join(missing)}: "
+                                 f"{error}") from None
+            values = [(hand[n], 0) for n in names]
+        out.update(zip(names, values, strict=True))
+    return [Fitted(name, out[name][0], out[name][1]) for name in DESCRIPTIONS]
+
+
+def _pair(kvn: tuple[float, float, int]) -> list[tuple[float, int]]:
+    k, v, n = kvn
+    return [(k, n), (v, n)]
+
+
+def parameter_clauses(fitted: Sequence[Fitted]) -> str:
+    """The parameters as facts, each with the samples it was fitted from in a comment."""
+    lines = ["% " + "-" * 66 + " learned parameters",
+             "% Fitted from the motion samples beside the data (python/probanchor/learning/",
+             "% motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept",
+             "% fractions, quantiles for reaches and heights, Laplace's rule for a probability);",
+             "% variances per axis in square metres, one step is one camera frame."]
+    for f in fitted:
+        how = (f"{f.samples:,} samples" if f.samples else
+               "NOT FITTED: no samples in the data, too_parameters.pl's value")
+        lines.append(f"{f.name}({f.value:.4g}).  % {DESCRIPTIONS[f.name][0]}; {how}")
+    return "\n".join(lines) + "\n"
+
+
+def hand_written(base: str | Path) -> dict[str, float]:
+    """The hand-written parameters of ``base``'s too_parameters.pl."""
+    text = (Path(base) / "too_parameters.pl").read_text(encoding="utf-8")
+    return {m[1]: float(m[2]) for m in re.finditer(r"^(\w+)\(([-\d.eE+]+)\)\.", text, re.M)}
+
+
+def parameter_rows(fitted: Sequence[Fitted], base: str | Path) -> str:
+    """A Markdown table: each fitted parameter beside the hand-written value of ``base``'s
+    too_parameters.pl, its meaning, its estimator and its sample count."""
+    hand = hand_written(base)
+    lines = ["| parameter | learned | hand-written | what it is | fitted as | samples |",
+             "|---|---:|---:|---|---|---:|"]
+    for f in fitted:
+        what, how = DESCRIPTIONS[f.name]
+        h = hand.get(f.name)
+        n = f"{f.samples:,}" if f.samples else "none: not fitted"
+        lines.append(f"| `{f.name}` | {f.value:.3g} | {'-' if h is None else f'{h:.3g}'} | "
+                     f"{what} | {how} | {n} |")
+    return "\n".join(lines) + "\n"
