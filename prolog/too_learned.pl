@@ -13,7 +13,7 @@
 :- include('too/too_base.pl').
 
 % ------------------------------------------------------------------ learned parameters
-% Fitted from the motion samples beside the data (python/probanchor/app/
+% Fitted from the motion samples beside the data (python/probanchor/learning/
 % motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
 % fractions, quantiles for reaches and heights, Laplace's rule for a probability);
 % variances per axis in square metres, one step is one camera frame.
@@ -35,7 +35,7 @@ release_p(0.6866).  % the probability per frame that the hand lets go there; 65 
 grip_rise(0.00179).  % how far a hand's grip rises in a frame when it lifts (m); 538 samples
 
 % ------------------------------------------------------------------ learned affordances
-% Read from the data (python/probanchor/app/occlusion_affordances.py): the share
+% Read from the data (python/probanchor/learning/occlusion_affordances.py): the share
 % of the hidden objects a kind hides, of the pairs in which it is hidden itself,
 % and of the occlusions going on in which it still holds what it hid when lifted
 % off (Laplace's rule; the data points' weight in the comment).  A kind is asked
