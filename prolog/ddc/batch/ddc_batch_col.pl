@@ -70,7 +70,8 @@
             col_select_unify/4,         % +Ps, +Column, +Pattern, -Out
             col_with_arity/4,           % +Ps, +Column, +K, -Out
             col_sets_each/3,            % +Ps, +ListColumn, !Column
-            col_weights_update/6        % +LW0, +Step, -LW, -Inc, -ESS, -Infinite
+            col_weights_update/6,       % +LW0, +Step, -LW, -Inc, -ESS, -Infinite
+            col_systematic_indices/3    % +LogWeights, +U, -Indices
           ]).
 
 :- use_module(library(ordsets)).
@@ -99,7 +100,7 @@ cell (docs/batched-filter.md, "Columns in C").
 
 %   The interface version the Prolog side expects of the library
 %   (DDC_COLUMNS_VERSION in prolog/ddc/batch/c/ddc_columns.c).
-columns_version(3).
+columns_version(4).
 
 %!  ps_all(+N, -Ps) is det.
 %!  ps_list(+Ps, -List:list(integer)) is det.
@@ -321,6 +322,12 @@ col_floats_list(_, _) :- fail.
 %   Fast path of ddc_weights:weights_update/6 (the same operations in the
 %   same order, in C; fails here).
 col_weights_update(_, _, _, _, _, _) :- fail.
+
+%!  col_systematic_indices(+LogWeights, +U, -Indices) is semidet.
+%
+%   Fast path of ddc_weights:resample_log_weights/5 for the systematic
+%   scheme (the same operations in the same order, in C; fails here).
+col_systematic_indices(_, _, _) :- fail.
 
 %!  col_row_width(+Column, -Width) is semidet.
 %

@@ -158,10 +158,9 @@ belief_step(B, Obs, Acts, Step) :-
                     log_likelihood: Inc, zero_weight: true}
     ;   LL is LL0 + Inc,
         (   resample_needed(ESS, Th, N)
-        ->  weights_normalised(LWs1, Ws),
-            length(Us, N),
+        ->  length(Us, N),
             with_random_stream(state(R0), maplist(random_float_, Us), R),
-            resample_indices(Scheme, Ws, Us, Is),
+            resample_log_weights(Scheme, LWs1, Us, _, Is),
             filter_resample(F, Is),
             weights_uniform(N, LWs),
             Resampled = true

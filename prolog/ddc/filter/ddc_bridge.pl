@@ -114,9 +114,9 @@ to_float(X, F) :- ( float(X) -> F = X ; F is float(X) ).
 %   weights) by weights_update/6 (LogWeights the new ones, Increment the log of the step's
 %   weighted mean likelihood, ESS the effective sample size, Infinite whether only
 %   particles of infinite likelihood were kept), and, when resample_needed/3 says so with
-%   Threshold, the resampling by Scheme: Ancestors are the indices resample_indices/4 picks
+%   Threshold, the resampling by Scheme: Ancestors are the indices resample_log_weights/5 picks
 %   (0-based; `none` when not resampled), from the first Drawn of Uniforms (the caller's
-%   draws: resample_draws/3 of them are used, at most 1 for systematic, N for the other
+%   draws: Drawn of them are used (resample_draws/3), 1 for systematic, N for the other
 %   schemes), and LogWeights is [] (uniform).  When every particle gets weight 0
 %   (Increment -inf) the step is undone (filter_undo/1) and LogWeights is [].  Outputs
 %   are empty or none when Err is not "".
@@ -130,9 +130,7 @@ bridge_weighted_step(Key, ObsTexts, ActTexts, LW0, Th, Scheme, Us, LW, Inc, ESS,
               ->  filter_undo(F),
                   LW = [], Drawn = 0, Ancestors = none
               ;   resample_needed(ESS, Th, N)
-              ->  weights_normalised(LW1, Ws),
-                  resample_draws(Scheme, Ws, Drawn),
-                  resample_indices(Scheme, Ws, Us, Ancestors),
+              ->  resample_log_weights(Scheme, LW1, Us, Drawn, Ancestors),
                   filter_resample(F, Ancestors),
                   LW = []
               ;   LW = LW1, Drawn = 0, Ancestors = none

@@ -21,13 +21,15 @@
             resample_needed/3,          % +ESS, +Threshold, +N
             resample_draws/3,           % +Scheme, +Weights, -K
             resample_indices/4,         % +Scheme, +Weights, +Uniforms, -Indices
+            resample_log_weights/5,     % +Scheme, +LogWeights, +Uniforms, -K, -Indices
             numpy_sum/2                 % +Xs, -Sum
           ]).
 
 :- use_module(library(apply)).
 :- use_module(library(lists)).
 :- use_module(library(error)).
-:- use_module('../batch/ddc_batch_col', [col_weights_update/6]).  % (the passes in C)
+:- use_module('../batch/ddc_batch_col', [col_weights_update/6, col_systematic_indices/3]).
+%   (the passes over the particles in C where the column library is loaded)
 
 %   Arithmetic compiled to virtual-machine instructions (local to this
 %   file; see ddc.pl): a step's weights are a few passes over N floats.
@@ -180,6 +182,22 @@ exp_weight(L, W) :-
 %   True when the particles are to be resampled: ESS < Threshold*N.
 resample_needed(ESS, Th, N) :-
     ESS < Th * N.
+
+%!  resample_log_weights(+Scheme, +LogWeights:list(float), +Uniforms:list(float),
+%!                       -K:integer, -Indices:list(integer)) is det.
+%
+%   resample_indices/4 of the weights of the normalised LogWeights
+%   (weights_normalised/2), K the uniforms it used (resample_draws/3).  A
+%   systematic resampling runs in the column library where it is loaded
+%   (the same operations in the same order: the same indices).
+resample_log_weights(systematic, LWs, [U|_], 1, Is) :-
+    col_systematic_indices(LWs, U, Is0),
+    !,
+    Is = Is0.
+resample_log_weights(Scheme, LWs, Us, K, Is) :-
+    weights_normalised(LWs, Ws),
+    resample_draws(Scheme, Ws, K),
+    resample_indices(Scheme, Ws, Us, Is).
 
 %!  resample_draws(+Scheme, +Weights:list(float), -K:integer) is det.
 %

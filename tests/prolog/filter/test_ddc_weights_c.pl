@@ -1,6 +1,7 @@
-/*  plunit: the column library's pass of the weights (col_weights_update/6) gives what
-    ddc_weights.pl's Prolog passes give, bit for bit, on random weights with -inf, NaN and
-    +inf among them; without the library it fails and the Prolog passes run.
+/*  plunit: the column library's pass of the weights (col_weights_update/6) and its
+    systematic resampling (col_systematic_indices/3) give what ddc_weights.pl's Prolog passes
+    give, bit for bit, on random weights with -inf, NaN and +inf among them; without the
+    library they fail and the Prolog passes run.
 */
 :- use_module('../../../prolog/ddc/filter/ddc_weights').
 :- use_module('../../../prolog/ddc/batch/ddc_batch_col').
@@ -38,6 +39,24 @@ test(the_c_pass_gives_the_prolog_passes_results, [condition(col_backend(foreign)
                col_weights_update(LW0, Step, LW, Inc, ESS, Inf),
                prolog_passes(LW0, Step, Expected),
                assertion(LW-Inc-ESS-Inf =@= Expected)
+           )).
+
+test(the_c_systematic_resampling_picks_the_prolog_rules_indices,
+     [condition(col_backend(foreign))]) :-
+    set_random(seed(5)),
+    forall(between(1, 300, _),
+           (   N is 1 + random(60),
+               length(Step, N), length(LW0, N),
+               maplist(step_weight, Step), maplist(prior_weight(N), LW0),
+               weights_update(LW0, Step, LW, Inc, _, _),
+               (   Inc > -inf
+               ->  U is random_float,
+                   (   col_systematic_indices(LW, U, Is) -> true ; Is = failed ),
+                   weights_normalised(LW, Ws),
+                   resample_indices(systematic, Ws, [U], Expected),
+                   assertion(Is == Expected)
+               ;   true
+               )
            )).
 
 test(lists_of_other_lengths_are_left_to_the_prolog_passes, [condition(col_backend(foreign))]) :-

@@ -37,7 +37,7 @@
 #include <stdint.h>
 #include <math.h>
 
-#define DDC_COLUMNS_VERSION 3
+#define DDC_COLUMNS_VERSION 4
 
 #define T_U      0                      /* '$u': not drawn yet */
 #define T_UNDEF  1                      /* '$undef': no clause applies */
@@ -1151,6 +1151,45 @@ col_weights_update(term_t tl0, term_t ts, term_t tlw, term_t tinc, term_t tess, 
        PL_unify_atom_chars(tinf, infinite ? "true" : "false");
 out:
   free(l0);
+  return rc;
+}
+
+/* col_systematic_indices(+LogWeights, +U, -Indices): the fast path of a systematic
+   resampling by ddc_weights.pl's rules (resample_log_weights/5 there: the weights exp(L),
+   0.0 for -inf, the positions (U+k)/N, the walk over the cumulative weights), the same
+   operations in the same order, so the same indices; fails where LogWeights is not a list
+   of numbers or U not a number. */
+static foreign_t
+col_systematic_indices(term_t tlw, term_t tu, term_t out)
+{ size_t n;
+  double *w, u, c0 = 0.0;
+  int rc = FALSE;
+  if ( PL_skip_list(tlw, 0, &n) != PL_LIST || n == 0 || !PL_get_float(tu, &u) ) return FALSE;
+  if ( !(w = malloc(n*sizeof(double))) ) return PL_resource_error("memory");
+  if ( get_float_list(tlw, n, w) )
+  { size_t *idx = malloc(n*sizeof(size_t)), i = 0, last = n-1;
+    if ( !idx ) { free(w); return PL_resource_error("memory"); }
+    for(size_t j=0; j<n; j++) w[j] = w[j] == -INFINITY ? 0.0 : exp(w[j]);
+    for(size_t k=0; k<n; k++)
+    { double p = (u + (double)k) / (double)n;
+      for(;;)
+      { double c;
+        if ( i == last ) { idx[k] = last; break; }
+        c = c0 + w[i];
+        if ( c > p ) { idx[k] = i; break; }
+        i++; c0 = c;
+      }
+    }
+    { term_t l = PL_new_term_ref(), h = PL_new_term_ref();
+      PL_put_nil(l);
+      rc = TRUE;
+      for(size_t j=n; j-- > 0 && rc; )
+        rc = PL_put_int64(h, (int64_t)idx[j]) && PL_cons_list(l, h, l);
+      rc = rc && PL_unify(out, l);
+    }
+    free(idx);
+  }
+  free(w);
   return rc;
 }
 
@@ -3087,6 +3126,7 @@ install_ddc_columns(void)
   PL_register_foreign("col_floats_into", 4, col_floats_into, 0);
   PL_register_foreign("col_floats_list", 2, col_floats_list, 0);
   PL_register_foreign("col_weights_update", 6, col_weights_update, 0);
+  PL_register_foreign("col_systematic_indices", 3, col_systematic_indices, 0);
   PL_register_foreign("col_row_width",   2, col_row_width,   0);
   PL_register_foreign("col_all_same",    3, col_all_same,    0);
   PL_register_foreign("col_num_arity",   2, col_num_arity,   0);
