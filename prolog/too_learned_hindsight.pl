@@ -25,7 +25,7 @@ follow_keep(0.9556).  % the fraction of its offset from its occluder a hidden ob
 follow_var(3.008e-06).  % the jitter of that offset per frame (m²); 12,844 samples
 coast_keep(0.9643).  % the fraction of its velocity a hidden object under nothing keeps; 27,694 samples
 wander_var(1.096e-06).  % how far such an object may move besides (m²); 27,694 samples
-grip_reach(0.03669).  % how far (table plane) a hand's grip may be from what it takes (m); 38 samples
+grip_reach(0.1018).  % how far (table plane) a hand's grip may be from what it takes (m); 38 samples
 grip_height(0.1281).  % how far above it (m); 38 samples
 occluder_rise(0.01008).  % how far below its centre (m; negative: above); 38 samples
 grip_drop(0.01771).  % how far what a hand holds is below its grip (m); 1,928 samples

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from probanchor.learning.learned_theory import TheoryError, learn_theory
-from probanchor.learning.motion_grip import gate, release, signed_gate, threshold
+from probanchor.learning.motion_grip import gate, grip, reach, release, signed_gate, threshold
 from probanchor.learning.motion_keep import ar1
 from probanchor.learning.motion_parameters import DESCRIPTIONS, fit, parameter_clauses
 from probanchor.learning.motion_samples import MotionSamples, samples_path
@@ -75,6 +75,15 @@ def test_gates_and_thresholds_are_quantiles_with_the_margin() -> None:
     assert threshold(xs) == pytest.approx(0.1 / 2)
     low, high = signed_gate(xs)
     assert (low, high) == (pytest.approx(0.5 - 2 * 0.4), pytest.approx(0.5 + 2 * 0.4))
+    assert reach(np.array([0.01, 0.02, 0.05])) == pytest.approx(2 * 0.05)  # every grasp within
+
+
+def test_the_grip_reach_holds_every_grasp_seen() -> None:
+    """One grasp 5 cm off among tight ones: the hand's reach still takes it (a quantile of the
+    grasps would leave that carry out, and its object lost)."""
+    grasps = [[0.005 + 0.0005 * i, 0.09, 0.02] for i in range(30)] + [[0.05, 0.09, 0.02]]
+    fitted = grip(grasps, [0.02])
+    assert fitted["grip_reach"][0] >= 0.05
 
 
 def test_release_counts_the_frames_held_where_the_object_stood() -> None:

@@ -6,8 +6,12 @@ The carriers' rules (``prolog/too/too_motion.pl``) test thresholds. Two kinds, e
 from quantiles so that one odd carry does not move it, with the margin of the onset reach
 (:data:`probanchor.learning.occlusion_reach.MARGIN`, 2):
 
-- a *gate* the events must fall within: a non-negative one (``grip_reach``,
-  ``release_margin``) is the margin times the 90 % quantile of the events; a signed one (how
+- a *reach* every event seen falls within (``grip_reach``, how far from what it takes a hand's
+  grip may be): the margin times the largest event, since a grasp outside it is a carry the
+  particles do not follow (the object is lost), and the grasps of the generated games are
+  tighter than others' (a quantile of them left a hand that grips 5 cm off out);
+- a *gate* the events must fall within: a non-negative one (``release_margin``) is the margin
+  times the 90 % quantile of the events; a signed one (how
   high the grip is over the object it takes) runs from the 10 % quantile to the 90 % one,
   each moved away from the median by its own distance from it (``grip_height`` above,
   ``occluder_rise``, how far the grip may be below the object's centre, below);
@@ -32,7 +36,7 @@ import numpy as np
 
 from probanchor.learning.occlusion_reach import MARGIN
 
-__all__ = ["GATE", "THRESHOLD", "gate", "grip", "release", "signed_gate", "threshold"]
+__all__ = ["GATE", "THRESHOLD", "gate", "grip", "reach", "release", "signed_gate", "threshold"]
 
 #: The quantile of a gate (and, 1 - GATE, of a signed gate's lower end).
 GATE = 0.9
@@ -50,6 +54,11 @@ def _values(xs: Sequence[float]) -> np.ndarray:
 def gate(xs: Sequence[float]) -> float:
     """The margin times the 90 % quantile of the non-negative ``xs``."""
     return MARGIN * float(np.quantile(_values(xs), GATE))
+
+
+def reach(xs: Sequence[float]) -> float:
+    """The margin times the largest of the non-negative ``xs``: every event seen within it."""
+    return MARGIN * float(np.max(_values(xs)))
 
 
 def signed_gate(xs: Sequence[float]) -> tuple[float, float]:
@@ -78,7 +87,7 @@ def grip(grasps: Sequence[Sequence[float]], holds: Sequence[float]
     _, high = signed_gate(g[:, 1])                     # as the object vanishes under the grip
     low, _ = signed_gate(g[:, 2])                      # as the hand closes on it
     n = len(g)
-    return {"grip_reach": (gate(g[:, 0]), n), "grip_height": (high, n),
+    return {"grip_reach": (reach(g[:, 0]), n), "grip_height": (high, n),
             "occluder_rise": (-low, n), "grip_drop": (float(np.mean(_values(holds))), len(holds))}
 
 

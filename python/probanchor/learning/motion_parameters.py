@@ -47,7 +47,7 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
     "wander_var": ("how far such an object may move besides (m²)",
                    "the AR(1)'s residual variance"),
     "grip_reach": ("how far (table plane) a hand's grip may be from what it takes (m)",
-                   "2 x the 90 % quantile"),
+                   "2 x the largest grasp seen"),
     "grip_height": ("how far above it (m)", "90 % quantile, moved off the median by its distance"),
     "occluder_rise": ("how far below its centre (m; negative: above)",
                       "10 % quantile, moved off the median by its distance"),
