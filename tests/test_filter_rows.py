@@ -51,23 +51,31 @@ def test_samples_are_the_values_as_rows(tmp_path: Path, threads: int, engine: st
             assert np.array_equal(pairs, f.samples("p:t")[0][:, :2], equal_nan=True)
 
 
-def test_the_column_library_copies_the_rows_into_the_array(
-        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def recorded_replies(monkeypatch: pytest.MonkeyPatch, helper: str, output: str) -> list:
+    """What the bridge's Prolog helper ``helper`` gives back as ``output``, call by call, from
+    here on."""
     from bridge import filter as bridge_filter
-    from bridge import prolog as bridge_prolog
 
-    program = tmp_path / "rows.pl"
-    program.write_text(PROGRAM)
     replies = []
     call = bridge_filter._call
 
     def recording(name: str, /, **arguments: object) -> dict:
         result = call(name, **arguments)
-        if name == "bridge_rows_into":
-            replies.append(result["F"])
+        if name == helper:
+            replies.append(result[output])
         return result
 
     monkeypatch.setattr(bridge_filter, "_call", recording)
+    return replies
+
+
+def test_the_column_library_copies_the_rows_into_the_array(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from bridge import prolog as bridge_prolog
+
+    program = tmp_path / "rows.pl"
+    program.write_text(PROGRAM)
+    replies = recorded_replies(monkeypatch, "bridge_rows_into", "F")
     with Filter(program, particles=50, seed=4, threads=2, engine="batched") as f:
         f.step([])
         backend = bridge_prolog.query_once("ddc_batch_col:col_backend(B)")["B"]
@@ -104,21 +112,11 @@ def test_indices_are_the_positions_of_the_values_in_the_list(
 
 def test_the_column_library_copies_the_indices_into_the_array(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    from bridge import filter as bridge_filter
     from bridge import prolog as bridge_prolog
 
     program = tmp_path / "indices.pl"
     program.write_text(INDEX_PROGRAM)
-    replies = []
-    call = bridge_filter._call
-
-    def recording(name: str, /, **arguments: object) -> dict:
-        result = call(name, **arguments)
-        if name == "bridge_indices_into":
-            replies.append(result["I"])
-        return result
-
-    monkeypatch.setattr(bridge_filter, "_call", recording)
+    replies = recorded_replies(monkeypatch, "bridge_indices_into", "I")
     with Filter(program, particles=50, seed=4, threads=2, engine="batched") as f:
         f.step([])
         backend = bridge_prolog.query_once("ddc_batch_col:col_backend(B)")["B"]
