@@ -90,37 +90,20 @@ def digest_run(tree: Path, particles: int, threads: int, engine: str,
     log_weights: list[np.ndarray] = []
     from bridge.filter import Filter  # the bridge of `tree` (its python/ is first on the path)
 
-    values, holds, samples, step = Filter.values, Filter.holds, Filter.samples, Filter.step
-    indices = Filter.indices
+    step = Filter.step
     dumping = [False]  # (in step_and_dump's own queries)
 
-    def digested() -> bool:
-        return dumping[0] or not particles_only
-
-    def recorded_values(self, *args, **kwargs):
-        result = values(self, *args, **kwargs)
-        if digested():
-            particles_digest.update(b"values:" + _bytes(result))
-        return result
-
-    def recorded_holds(self, *args, **kwargs):
-        result = holds(self, *args, **kwargs)
-        if digested():
-            particles_digest.update(b"holds:" + _bytes(result))
-        return result
-
-    def recorded_samples(self, *args, **kwargs):
-        found, weights = samples(self, *args, **kwargs)
-        if digested():
-            particles_digest.update(b"samples:" + _bytes(found))
-            weights_digest.update(b"samples:" + _bytes(weights))
-        return found, weights
-
-    def recorded_indices(self, *args, **kwargs):
-        result = indices(self, *args, **kwargs)
-        if digested():
-            particles_digest.update(b"indices:" + _bytes(result))
-        return result
+    def recorded(method, tag: bytes):
+        """``method`` with its answer digested (unless ``particles_only`` and the run asked)."""
+        def answer(self, *args, **kwargs):
+            result = method(self, *args, **kwargs)
+            if dumping[0] or not particles_only:
+                found, weights = result if tag == b"samples:" else (result, None)
+                particles_digest.update(tag + _bytes(found))
+                if weights is not None:
+                    weights_digest.update(tag + _bytes(weights))
+            return result
+        return answer
 
     def step_and_dump(self, *args, **kwargs):
         result = step(self, *args, **kwargs)
@@ -135,8 +118,8 @@ def digest_run(tree: Path, particles: int, threads: int, engine: str,
         log_weights.append(self.log_weights)
         return result
 
-    Filter.values, Filter.holds, Filter.samples = recorded_values, recorded_holds, recorded_samples
-    Filter.indices = recorded_indices
+    for name in ("values", "holds", "samples", "indices"):
+        setattr(Filter, name, recorded(getattr(Filter, name), name.encode() + b":"))
     Filter.step = step_and_dump
     module, function = _entry_point(tree)
     main = getattr(__import__(module, fromlist=[function]), function)

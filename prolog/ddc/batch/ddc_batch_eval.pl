@@ -237,17 +237,15 @@ fact_keys(F, [N/A-F|Ps], Ps0) :-
     functor(F, N, A),
     (   A > 0, arg(1, F, X), atomic(X) -> Ps = [k(N/A, X)-F|Ps0] ; Ps = Ps0 ).
 
-%   indexed_fact(?G, +Facts): G is one of the facts (an index of
-%   fact_index/2, or a list).
-indexed_fact(G, '$facts'(Assoc)) :- !,
+%   indexed_fact(?G, +Index): G is one of the facts of an index of
+%   fact_index/2.
+indexed_fact(G, '$facts'(Assoc)) :-
     functor(G, N, A),
     (   A > 0, arg(1, G, X), atomic(X)
     ->  get_assoc(k(N/A, X), Assoc, Fs)
     ;   get_assoc(N/A, Assoc, Fs)
     ),
     member(G, Fs).
-indexed_fact(G, Facts) :-
-    member(G, Facts).
 
 %   model_goal(+G): G is one of library ddc_models' (without asking
 %   predicate_property/2, which looks for G in the autoload index when the

@@ -1057,27 +1057,7 @@ col_floats_into(term_t tr, term_t ta, term_t tcap, term_t tn)
   return PL_unify_int64(tn, (int64_t)r->n);
 }
 
-/* col_floats_list(+Rows, -Floats): the doubles of Rows as a list */
-static foreign_t
-col_floats_list(term_t tr, term_t out)
-{ void *data; PL_blob_t *type;
-  frows *r;
-  if ( !PL_get_blob(tr, &data, NULL, &type) || type != &frows_blob )
-    return PL_type_error("ddc_floats", tr);
-  r = data;
-  { term_t l = PL_new_term_ref(), h = PL_new_term_ref();
-    PL_put_nil(l);
-    for(size_t j=r->n; j-- > 0; )
-      if ( !PL_put_float(h, r->v[j]) || !PL_cons_list(l, h, l) ) return FALSE;
-    return PL_unify(out, l);
-  }
-}
-
-/* col_weights_update(+LW0, +Step, -LW, -Inc, -ESS, -Infinite): the fast path of
-   ddc_weights:weights_update/6 (prolog/ddc/filter/ddc_weights.pl, where the rules are
-   written and commented), the same operations in the same order on doubles, so the same
-   results; it fails, and the Prolog passes run (and raise what they raise), where the lists
-   are not of numbers of the same length or a sum of two finite weights overflows. */
+/* Lists of floats to and from C arrays (the weights' passes, rows read as a list). */
 static int
 get_float_list(term_t l, size_t n, double *v)
 { term_t tail = PL_copy_term_ref(l), h = PL_new_term_ref();
@@ -1098,6 +1078,22 @@ unify_float_list(term_t out, const double *v, size_t n)
   return PL_unify(out, l);
 }
 
+/* col_floats_list(+Rows, -Floats): the doubles of Rows as a list */
+static foreign_t
+col_floats_list(term_t tr, term_t out)
+{ void *data; PL_blob_t *type;
+  frows *r;
+  if ( !PL_get_blob(tr, &data, NULL, &type) || type != &frows_blob )
+    return PL_type_error("ddc_floats", tr);
+  r = data;
+  return unify_float_list(out, r->v, r->n);
+}
+
+/* col_weights_update(+LW0, +Step, -LW, -Inc, -ESS, -Infinite): the fast path of
+   ddc_weights:weights_update/6 (prolog/ddc/filter/ddc_weights.pl, where the rules are
+   written and commented), the same operations in the same order on doubles, so the same
+   results; it fails, and the Prolog passes run (and raise what they raise), where the lists
+   are not of numbers of the same length or a sum of two finite weights overflows. */
 static foreign_t
 col_weights_update(term_t tl0, term_t ts, term_t tlw, term_t tinc, term_t tess, term_t tinf)
 { size_t n;
