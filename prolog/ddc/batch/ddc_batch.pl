@@ -9,7 +9,7 @@
     column reference; goals whose inputs agree across the batch run once,
     arithmetic, comparisons, draws and densities run in one loop over the
     batch, and a goal that needs a particle's value as a term (a key
-    argument such as pos(H), a static call) splits the batch by that value.
+    argument such as pos(H), a static call) partitions the batch by that value.
 
     ddc_filter.pl's filter_new/5 (option engine(batched)) loads the
     program and hands its items here through the engine interface's
@@ -23,7 +23,7 @@
 
       ddc_batch_program.pl  the fragment check and the compiled program
       ddc_batch_tables.pl   the tables of columns of a time, resampling
-      ddc_batch_columns.pl  goals over columns: loops, splits, unification
+      ddc_batch_columns.pl  goals over columns: loops, partitions, unification
       ddc_batch_rv.pl       draws and densities over a batch
       ddc_batch_eval.pl     clause bodies, random variables' values, the sweep
       ddc_batch_state.pl    a group's state record, kept across queries
@@ -78,7 +78,7 @@
 :- use_module(ddc_batch_program).
 :- use_module(ddc_batch_tables).
 :- use_module(ddc_batch_col).
-:- use_module(ddc_batch_columns, [plan/3, bind/2, split/4]).
+:- use_module(ddc_batch_columns, [plan/3, bind/2, partition_batch/4]).
 :- use_module(ddc_batch_rv, [weigh_branch/5]).
 :- use_module(ddc_batch_eval).
 :- use_module(ddc_batch_state).
@@ -457,9 +457,9 @@ group_index_column(TG, Atoms, G, C) :-
     with_state(G, forall(eval_body(Goal, E, All, Ps), set_index(Template, Atoms, Ps, C))).
 
 %   (A solution's Template is one atom for all of its particles, or a
-%   column of them, split into the groups of particles that agree.)
+%   column of them, partitioned into the groups of particles that agree.)
 set_index(Template, Atoms, Ps, C) :-
-    forall(split(Template, Ps, Value, Ps1), set_index_value(Value, Atoms, Ps1, C)).
+    forall(partition_batch(Template, Ps, Value, Ps1), set_index_value(Value, Atoms, Ps1, C)).
 
 set_index_value(Value, Atoms, Ps, C) :-
     atom(Value),

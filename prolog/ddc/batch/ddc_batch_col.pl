@@ -61,7 +61,7 @@
             col_copy_each/3,            % +Ps, +From, !Column
             col_test/3,                 % +Ps, +Goal, -Out
             col_instance/3,             % +Ps, +Template, !Column
-            col_split/3,                % +Ps, +Columns, -Groups
+            col_partition/3,                % +Ps, +Columns, -Groups
             col_draw_uniform/4,         % +Ps, +ListColumn, !Column, +Seed
             col_select_eq/5,            % +Ps, +Column, +Value, +Eq, -Out
             col_sources/3,              % +Indices, +Sizes, -Pairs
@@ -100,7 +100,7 @@ cell (docs/batched-filter.md, "Columns in C").
 
 %   The interface version the Prolog side expects of the library
 %   (DDC_COLUMNS_VERSION in prolog/ddc/batch/c/ddc_columns.c).
-columns_version(4).
+columns_version(5).
 
 %!  ps_all(+N, -Ps) is det.
 %!  ps_list(+Ps, -List:list(integer)) is det.
@@ -402,12 +402,12 @@ col_instance(_, _, _) :- fail.
 col_vm_instance(_, _, _, _, _) :- fail.
 col_copy_each(_, _, _) :- fail.
 
-%!  col_split(+Ps, +Columns, -Groups) is semidet.
+%!  col_partition(+Ps, +Columns, -Groups) is semidet.
 %!  col_draw_uniform(+Ps, +ListColumn, !Column, +Seed) is semidet.
 %
-%   Fast paths of a split of a batch by its values and of uniform draws
+%   Fast paths of a partition of a batch by its values and of uniform draws
 %   from lists (fail here).
-col_split(_, _, _) :- fail.
+col_partition(_, _, _) :- fail.
 col_draw_uniform(_, _, _, _) :- fail.
 
 %!  col_select_eq(+Ps, +Column, +Value, +Eq, -Out) is semidet.

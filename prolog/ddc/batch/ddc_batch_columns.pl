@@ -5,7 +5,7 @@
     between particles (column references, deferred expressions), and the
     loops that run a goal over a batch of particles: tests, arithmetic,
     instances of a template (compiled to virtual-machine clauses for large
-    batches), splits of a batch by value, unification with a column.
+    batches), partitions of a batch by value, unification with a column.
 */
 
 :- module(ddc_batch_columns,
@@ -19,8 +19,8 @@
             test_loop/3,                % +Goal, +Ps0, -Ps
             compiled_instance/4,        % +Ps, +Binds, +Template, !Column
             vm_finite/4,                % +Ps, +Binds, +Entries, !Column
-            split/4,                    % +Term, +Ps0, -Term1, -Ps
-            split_column/4,             % +Column, +Ps0, -V, -Ps
+            partition_batch/4,                    % +Term, +Ps0, -Term1, -Ps
+            partition_column/4,             % +Column, +Ps0, -V, -Ps
             groups_by_values/3,         % +Ps, +Columns, -Groups
             unify_value/4,              % ?P, +V, +Ps0, -Ps
             unify_column/4,             % ?P, +Column, +Ps0, -Ps
@@ -55,7 +55,7 @@ columns is not computed into a column of its own but evaluated in the
 loop of each goal that reads V (a comparison, a draw, a head's value),
 so that X1 is X + DX, Y1 is ..., then val((X1, Y1, Z1)) costs one loop
 over the batch, not four.  A goal that needs V's value as a term (a
-split) gets it computed into a column first (materialise/3).
+partition) gets it computed into a column first (materialise/3).
 */
 
 %!  plan(+T, -Tmpl, -Binds:list) is det.
@@ -114,7 +114,7 @@ column_ref(C, V, '$c'(C, V, V)).
 %!  has_column(+T) is semidet.
 %
 %   T holds a column reference or a deferred expression.  (A reference
-%   may be ground: a split binds its pattern to the value of the branch's
+%   may be ground: a partition binds its pattern to the value of the branch's
 %   particles, and the reference still reads the column, so no ground(T)
 %   short cut.)
 has_column(T) :-
@@ -474,13 +474,13 @@ test_each([I|Is], Bs, G, Ps) :-
     (   \+ \+ ( bind(Bs, I), call(G) ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
     test_each(Is, Bs, G, Ps1).
 
-%!  split(+T, +Ps0:list(integer), -T1, -Ps:list(integer)) is nondet.
+%!  partition_batch(+T, +Ps0:list(integer), -T1, -Ps:list(integer)) is nondet.
 %
 %   T1 is T with its column references replaced by
 %   the particles' values, for each group of particles that share them.
 %   (Only the columns' values are grouped: T's own unbound variables stay
 %   T1's, for the goals after it.)
-split(T0, Ps0, T1, Ps) :-
+partition_batch(T0, Ps0, T1, Ps) :-
     (   has_column(T0)
     ->  materialise(T0, Ps0, T),
         plan(T, Tmpl, Bs),
@@ -498,18 +498,18 @@ split(T0, Ps0, T1, Ps) :-
 %   Vs (each group's particles in the order of Ps).
 groups_by_values(Ps, Cs, Groups) :-
     col_backend(foreign),
-    col_split(Ps, Cs, Groups0), !,
+    col_partition(Ps, Cs, Groups0), !,
     keysort(Groups0, Groups).
 groups_by_values(Ps0, Cs, Groups) :-
     ps_list(Ps0, Ps),
-    split_pairs(Ps, Cs, Pairs),
+    value_pairs(Ps, Cs, Pairs),
     keysort(Pairs, Sorted),
     group_pairs_by_key(Sorted, Groups).
 
-split_pairs([], _, []).
-split_pairs([I|Is], Cs, [Vs-I|Ps]) :-
+value_pairs([], _, []).
+value_pairs([I|Is], Cs, [Vs-I|Ps]) :-
     args_at(Cs, I, Vs),
-    split_pairs(Is, Cs, Ps).
+    value_pairs(Is, Cs, Ps).
 
 args_at([], _, []).
 args_at([C|Cs], I, [V|Vs]) :- col_arg(I, C, V), args_at(Cs, I, Vs).
@@ -555,7 +555,7 @@ unify_column(P, C, Arity, Ps0, Ps) :-
         ps_list(Ps0, L),
         unifiable_at(L, C, Bs, Tmpl, Ps1),
         Ps1 \== [],
-        split_column(C, Ps1, V, Ps),
+        partition_column(C, Ps1, V, Ps),
         unify_value(P, V, Ps, _)
     ).
 
@@ -587,11 +587,11 @@ unifiable_at([I|Is], C, Bs, Tmpl, Ps) :-
     (   \+ \+ ( bind(Bs, I), Tmpl = V ) -> Ps = [I|Ps1] ; Ps = Ps1 ),
     unifiable_at(Is, C, Bs, Tmpl, Ps1).
 
-%!  split_column(+C, +Ps0:list(integer), -V, -Ps:list(integer)) is nondet.
+%!  partition_column(+C, +Ps0:list(integer), -V, -Ps:list(integer)) is nondet.
 %
 %   For each value V that particles of Ps0 hold in column C, Ps those
 %   particles (in the standard order of the values).
-split_column(C, Ps0, V, Ps) :-
+partition_column(C, Ps0, V, Ps) :-
     groups_by_values(Ps0, [C], Groups),
     member([V]-Ps, Groups).
 

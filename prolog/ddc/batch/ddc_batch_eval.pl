@@ -47,9 +47,9 @@ indices, with its variables bound to values the batch agrees on or to
 column references and deferred expressions (ddc_batch_columns.pl): goals
 whose inputs agree run once; comparisons, arithmetic, draws and densities
 run in one loop over the batch; a goal that needs a particle's value as a
-term splits the batch by that value.  The evaluation is nondeterministic
+term partitions the batch by that value.  The evaluation is nondeterministic
 over branches: each solution of a goal the batch agrees on, each group
-of a split, gives a branch with its own particles.
+of a partition, gives a branch with its own particles.
 
 A random variable's value at a time is drawn when a body first reads it,
 for the particles that lack it, by its clauses in order (h:0 or h:t+1,
@@ -127,7 +127,7 @@ read_time(0, _, 0).
 %
 %   Body for the particles Ps0 (a sorted list of indices, not empty):
 %   nondeterministic over branches (solutions
-%   of goals the batch agrees on, splits by value), Ps the particles of the
+%   of goals the batch agrees on, partitions by value), Ps the particles of the
 %   branch, each in at most one branch per solution of their own.
 eval_body(_, _, [], _) :- !, fail.
 eval_body(G, _, _, _) :- var(G), !,
@@ -152,20 +152,20 @@ eval_body(findall(T, G, L), E, Ps0, Ps) :- !,
     collect(T, G, L, E, Ps0, Ps).
 eval_body(X:TE ~= P, E, Ps0, Ps) :- !,
     read_time(TE, E, T),
-    split(X, Ps0, X1, Ps1),
+    partition_batch(X, Ps0, X1, Ps1),
     read_key(X1, T, E, Ps1, K, Entry, Ps2),
     unify_read(P, K, Entry, Ps2, Ps).
 eval_body(R0 ~= P, E, Ps0, Ps) :-                    % the original's current(h) = h:t, ...
     timed_read(R0, X, TE), !,
     eval_body(X:TE ~= P, E, Ps0, Ps).
 eval_body(X ~= P, E, Ps0, Ps) :- !,                   % an observation of the step
-    split(X, Ps0, X1, Ps1),
+    partition_batch(X, Ps0, X1, Ps1),
     env_observations(E, Obs),
     member(X1-V, Obs),
     unify_value(P, V, Ps1, Ps).
 eval_body(G:TE, E, Ps0, Ps) :- !,                     % a derived atom at a time
     read_time(TE, E, T),
-    split(G, Ps0, G1, Ps1),
+    partition_batch(G, Ps0, G1, Ps1),
     derived(G1, T, E, Ps1, Ps).
 eval_body(V is Ex, _, Ps0, Ps) :- !,
     arith_value(V, Ex, Ps0, Ps).
@@ -183,7 +183,7 @@ eval_body(G, E, Ps0, Ps) :-
     (   has_column(G)
     ->  (   test_goal(G), \+ has_free_var(G)
         ->  test_loop(G, Ps0, Ps)
-        ;   split(G, Ps0, G1, Ps1),
+        ;   partition_batch(G, Ps0, G1, Ps1),
             call_static(G1, E),
             Ps = Ps1
         )
@@ -389,7 +389,7 @@ append_grouped(Ps, Bs, Tmpl, LC) :-
     col_backend(foreign),
     \+ memberchk('$e'(_, _, _), Bs),
     pairs_keys_values(Bs, Cs, Pats),
-    col_split(Ps, Cs, Groups),
+    col_partition(Ps, Cs, Groups),
     forall(member(Vs-GPs, Groups),
            (   copy_term(Pats-Tmpl, Vs-T1),
                col_append_each(GPs, LC, T1)
@@ -623,14 +623,14 @@ derived(G, T, E, Ps0, Ps) :-
     ;   true
     ).
 
-%   instance_group(+C, +Ps0, -L, -Ps) is nondet: split_column/4 of the
+%   instance_group(+C, +Ps0, -L, -Ps) is nondet: partition_column/4 of the
 %   column C of a lookback predicate's instances: for each list of
 %   instances L that particles of Ps0 hold, Ps those particles (in the
 %   standard order of the lists).  A settled column of instances is not
 %   changed, and a body reads it once per grounding, over the same few
 %   sets of particles (occluded_by(A, O):t for each pair of objects: on a
 %   table of 12 objects and a learned theory, 268 reads a step of 29
-%   column and particle sets), so with the column library a split is
+%   column and particle sets), so with the column library a partition is
 %   made once per step or query (forget_collected/0) and thread.
 instance_group(C, Ps0, L, Ps) :-
     col_backend(foreign), !,
@@ -641,7 +641,7 @@ instance_group(C, Ps0, L, Ps) :-
     ),
     member([L]-Ps, Groups).
 instance_group(C, Ps0, L, Ps) :-
-    split_column(C, Ps0, L, Ps).
+    partition_column(C, Ps0, L, Ps).
 
                  /*******************************
                  *            SWEEP             *
@@ -679,7 +679,7 @@ sweep_head(M, K, E, All, X, Ps) :-
     (   static_conj(P, M)
     ->  prefix_solutions(P, E), Ps = all, X = X0
     ;   eval_body(P, E, All, Ps0),
-        split(X0, Ps0, X, Ps)
+        partition_batch(X0, Ps0, X, Ps)
     ),
     (   ground(X)
     ->  true

@@ -130,8 +130,8 @@ test(operands_parameters_and_statistical_models) :-
              filter_free(F) )).
 
 %   A key computed by arithmetic over a column (the key's argument is a
-%   deferred expression: computed into a column to split the batch by it).
-test(a_computed_key_splits_the_batch) :-
+%   deferred expression: computed into a column to partition the batch by it).
+test(a_computed_key_partitions_the_batch) :-
     program([ 'x:0 ~ uniform([1, 2]).', 'x:t+1 ~ val(X) := x:t ~= X.',
               'y(2):t+1 ~ val(a).', 'y(3):t+1 ~ val(b).',
               'z:t+1 ~ val(V) := x:t ~= X, J is X + 1, y(J):t+1 ~= V.' ], File),

@@ -61,12 +61,12 @@ test(gather_from_groups) :-
     col_gather([C1, '$none', C2], [3-2, 1-3, 2-1, 1-1, 1-2], C),
     col_list(C, L), L == [c, [x], '$u', a, (1.0, 2.0)].
 
-test(splits_in_the_standard_order_of_the_values) :-
+test(partitions_in_the_standard_order_of_the_values) :-
     col_from_list([b, a, c, a, b, (1.0, 2.0)], C1),
     col_from_list([1.0, 1.0, 1.0, 2.0, 1.0, 1.0], C2),
-    findall(V-Ps, split_column(C1, [1, 2, 3, 4, 5, 6], V, Ps), G1),
+    findall(V-Ps, partition_column(C1, [1, 2, 3, 4, 5, 6], V, Ps), G1),
     G1 == [a-[2, 4], b-[1, 5], c-[3], (1.0, 2.0)-[6]],
-    findall(T-Ps, split('$c'(C1, V1, V1)-'$c'(C2, V2, V2), [1, 2, 3, 4, 5], T, Ps), G2),
+    findall(T-Ps, partition_batch('$c'(C1, V1, V1)-'$c'(C2, V2, V2), [1, 2, 3, 4, 5], T, Ps), G2),
     G2 == [(a-1.0)-[2], (a-2.0)-[4], (b-1.0)-[1, 5], (c-1.0)-[3]].
 
 test(a_comparison_over_tuples) :-
@@ -201,7 +201,7 @@ test(a_column_of_one_value_reads_and_writes_as_any_other) :-
     col_status(C, S0), S0 == same((1.0, 2.0)),
     col_arg(3, C, V3), V3 == (1.0, 2.0),
     col_all_same([1, 4], C, 2),
-    findall(V-Ps, split_column(C, [1, 2, 5], V, Ps), G0), G0 == [(1.0, 2.0)-[1, 2, 5]],
+    findall(V-Ps, partition_column(C, [1, 2, 5], V, Ps), G0), G0 == [(1.0, 2.0)-[1, 2, 5]],
     col_gather([C, C], [2-5, 1-1], G), col_list(G, GL), GL == [(1.0, 2.0), (1.0, 2.0)],
     col_setarg(2, C, x),
     col_list(C, L), L == [(1.0, 2.0), x, (1.0, 2.0), (1.0, 2.0), (1.0, 2.0)],
@@ -237,13 +237,13 @@ test(columns_read_as_rows_of_floats) :-
     ;   col_from_list([(1.0, 2.0)], C), \+ col_rows(C, _, _, [])
     ).
 
-%   A split binds a reference's pattern to its branch's value: the reference
-%   is ground, and still reads its column (a goal after the split filters by
+%   A partition binds a reference's pattern to its branch's value: the reference
+%   is ground, and still reads its column (a goal after the partition filters by
 %   it).
-test(a_reference_made_ground_by_a_split_still_reads_its_column) :-
+test(a_reference_made_ground_by_a_partition_still_reads_its_column) :-
     col_from_list([a, b, a], C),
     R = '$c'(C, V, V),
-    once(split(R, [1, 2, 3], T, Ps)),
+    once(partition_batch(R, [1, 2, 3], T, Ps)),
     T == a, Ps == [1, 3], ground(R),
     has_column(R).
 

@@ -37,7 +37,7 @@
 #include <stdint.h>
 #include <math.h>
 
-#define DDC_COLUMNS_VERSION 4
+#define DDC_COLUMNS_VERSION 5
 
 #define T_U      0                      /* '$u': not drawn yet */
 #define T_UNDEF  1                      /* '$undef': no clause applies */
@@ -48,7 +48,7 @@
 #define N_TAGS   6
 
 /* A list of ground terms, as a cell holds it: appending is cheap
-   (findall's lists of instances), and a split or a uniform draw reads it
+   (findall's lists of instances), and a partition or a uniform draw reads it
    without making the list.  An item is an atom (registered) or a record
    (rec set). */
 typedef struct item { uintptr_t v; int rec; } item;
@@ -1960,7 +1960,7 @@ col_copy_each(term_t ps, term_t tf, term_t tc)
    reference '$c'(C, P, V) (the particle's value V in column C: P is V, or
    a tuple of distinct variables one of which is V), a deferred expression
    '$x'(E), or one of the loop's operations over expressions.  Anything
-   else (a variable, an atom, a reference whose pattern a split bound)
+   else (a variable, an atom, a reference whose pattern a partition bound)
    makes the compilation fail, and the caller takes the Prolog path. */
 
 #define MAX_CODE 256
@@ -2241,7 +2241,7 @@ col_instance(term_t ps, term_t tmpl, term_t tc)
 }
 
 		 /*******************************
-		 *            SPLITS            *
+		 *          PARTITIONS          *
 		 *******************************/
 
 /* The key of particle i in the columns cs: a hash of its cells (FALSE for
@@ -2375,12 +2375,12 @@ same_class(column **cs, int nc, size_t i, size_t j)
   return TRUE;
 }
 
-/* col_split(+Ps, +Cols, -Groups) is semidet: Groups, a list of Vs-Ps, the
+/* col_partition(+Ps, +Cols, -Groups) is semidet: Groups, a list of Vs-Ps, the
    particles of Ps grouped by their values Vs in the columns Cols (a group
    per distinct list of values, in the order of their first particle, its
    particles in the order of Ps); fails if a value is not ground */
 static foreign_t
-col_split(term_t ps, term_t tcols, term_t out)
+col_partition(term_t ps, term_t tcols, term_t out)
 { column *cs[MAX_COLS];
   int nc = 0;
   size_t np, ng = 0, cap;
@@ -3135,7 +3135,7 @@ install_ddc_columns(void)
   PL_register_foreign("col_copy_each",   3, col_copy_each,   0);
   PL_register_foreign("col_test",        3, col_test,        0);
   PL_register_foreign("col_instance",    3, col_instance,    0);
-  PL_register_foreign("col_split",       3, col_split,       0);
+  PL_register_foreign("col_partition",       3, col_partition,       0);
   PL_register_foreign("col_draw_uniform",4, col_draw_uniform,0);
   PL_register_foreign("col_select_eq",   5, col_select_eq,   0);
   PL_register_foreign("col_sources",     3, col_sources,     0);
