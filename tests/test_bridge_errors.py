@@ -49,7 +49,7 @@ def test_filter_errors_by_cause(tmp_path: Path) -> None:
     with Filter(PIT_WORLD, particles=50, seed=1) as f:
         with pytest.raises(BadArgumentError, match="not ground") as caught:
             f.step(["observation(breeze) ~= X"], actions=["action(up)"])
-        assert caught.value.cause == "bad_input"
+        assert caught.value.cause == "instantiation_error"
         with pytest.raises(BadArgumentError, match="query"):
             f.probability("maze(1,1):t ~=")
         with pytest.raises(DDCError, match="rename"):

@@ -1,8 +1,8 @@
 """The errors of the DDC system, as Python sees them: one base class, a subclass per cause.
 
-Every error that comes from Prolog (a call through the adapter :mod:`bridge.prolog`, or a
-message the filter's Prolog helper returns) is a :class:`DDCError`; its class says what
-kind of thing went wrong, read from the Prolog error term's formal part (:attr:`DDCError.cause`):
+Every error that comes from Prolog (an exception a call through the adapter
+:mod:`bridge.prolog` raises) is a :class:`DDCError`; its class says what kind of thing went
+wrong, read from the Prolog error term's formal part (:attr:`DDCError.cause`):
 
 - :class:`ProgramError`: ``ddc(Cause, File:Line)``, a DC program (what a clause says, or a
   clause that misbehaved as it ran);
@@ -13,7 +13,9 @@ kind of thing went wrong, read from the Prolog error term's formal part (:attr:`
   not loaded;
 - :class:`BadArgumentError`: ``instantiation_error``, ``type_error/2``, ``domain_error/2``,
   ``syntax_error/1``, ...: what was asked (a text that does not parse or is not ground, a value
-  of the wrong type; also a ``ValueError``); a program or data file that does not parse is
+  of the wrong type; also a ``ValueError``: the filter's input texts, ``ddc_bridge.pl``, raise
+  ``syntax_error/1``, ``instantiation_error`` and ``type_error(weighed_observation, Obs)``
+  with a message naming the item); a program or data file that does not parse is
   ``syntax_error/1`` too (the reader of DC files, ``ddc/lang/ddc_source.pl``), its message
   ``file:line: syntax error: ...``;
 - :class:`NotPermittedError`: ``permission_error/3``, e.g. a second undo.
@@ -26,8 +28,6 @@ docs/architecture.md, Words). A pure module: it does not start Prolog.
 """
 
 from __future__ import annotations
-
-from typing import Any
 
 
 class DDCError(RuntimeError):
@@ -76,7 +76,7 @@ CAUSES: dict[str, type[DDCError]] = {
     "existence_error": UnknownObjectError,
     "permission_error": NotPermittedError,
     **dict.fromkeys(("instantiation_error", "uninstantiation_error", "type_error",
-                     "domain_error", "representation_error", "syntax_error", "bad_input"),
+                     "domain_error", "representation_error", "syntax_error"),
                     BadArgumentError),
 }
 
@@ -91,9 +91,10 @@ def ddc_error(cause: str, message: str) -> DDCError:
     return error_class(cause)(message, cause)
 
 
-def from_helper(err: Any, prefix: str = "") -> DDCError:
-    """The error of a reply ``Err`` of the bridge's Prolog helper (``Cause-Text``, which
-    janus gives as a tuple; a plain text counts as cause unknown), its message ``prefix`` and
-    the text."""
-    cause, text = (str(err[0]), str(err[1])) if isinstance(err, tuple) else ("", str(err))
-    return ddc_error(cause, prefix + text)
+def prefixed(error: BaseException, prefix: str) -> DDCError:
+    """``error`` with ``prefix`` before its message (what was being done: ``"query: "``), of
+    the same class and cause; an exception that is no :class:`DDCError` (janus could not
+    convert a value) becomes the base class."""
+    if isinstance(error, DDCError):
+        return type(error)(prefix + str(error), error.cause)
+    return DDCError(prefix + str(error))

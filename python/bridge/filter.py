@@ -68,7 +68,7 @@ import numpy as np
 
 from bridge import prolog
 from bridge.engines import ENGINES, Engine
-from bridge.errors import DDCError, from_helper
+from bridge.errors import DDCError, prefixed
 from bridge.particle_data import ParticleData
 from bridge.prolog import OUT
 from bridge.terms import Compound, Text, item_text, to_term
@@ -264,15 +264,15 @@ class Filter:
         #: one call on the filter at a time (a step is several Prolog calls)
         self._lock = threading.RLock()
         _ensure_engine()
-        result = _call("bridge_new", P=str(self.program_path), N=self.particles, S=self.seed,
-                       Sh="true" if self.share else "false", Th=self.threads, E=engine,
-                       K=OUT, Used=OUT, Err=OUT)
-        if result["Err"]:
-            error = from_helper(result["Err"])  # usually "file:line: cause" already
+        try:
+            result = _call("bridge_new", P=str(self.program_path), N=self.particles,
+                           S=self.seed, Sh="true" if self.share else "false", Th=self.threads,
+                           E=engine, K=OUT, Used=OUT)
+        except DDCError as error:  # (usually "file:line: cause" already)
             text = str(error)
             if str(path) not in text and str(self.program_path) not in text:
-                error = from_helper(result["Err"], f"{self.program_path}: ")
-            raise error
+                raise prefixed(error, f"{self.program_path}: ") from None
+            raise
         self._key = str(result["K"])
         #: the engine that steps the particles: "batched" or "per_particle" (``auto`` resolved)
         self.engine = str(result["Used"])
@@ -369,14 +369,12 @@ class Filter:
                            LW0=[] if self._uniform else self._log_weights.tolist(),
                            Th=self.resample_threshold, Sch=self.resampling,
                            Us=uniforms.tolist(), LW=OUT, Inc=OUT, ESS=OUT, Inf=OUT,
-                           Drawn=OUT, Is=OUT, Err=OUT)
-        except Exception as exc:  # janus-level failure: treat like an engine error
-            result = {"Err": (getattr(exc, "cause", ""), str(exc)), "LW": []}
+                           Drawn=OUT, Is=OUT)
+        except Exception as exc:  # (a DDCError, or a value janus could not convert)
+            self._restore(time_before)
+            raise prefixed(exc, f"{self.program_path.name}: step {self.frames + 1}: ") from None
         prolog_seconds = _time.perf_counter() - call_started
         frame = self.frames + 1
-        if result["Err"]:
-            self._restore(time_before)
-            raise from_helper(result["Err"], f"{self.program_path.name}: step {frame}: ")
         self.frames = frame
         if result["Inf"] in (True, "true"):
             logger.warning("step %d: infinite likelihoods; keeping only those particles", frame)
@@ -433,10 +431,10 @@ class Filter:
         indices = self._particle_indices("rename", particles)
         if not olds or indices.size == 0:
             return
-        result = _call("bridge_rename", K=key, O=olds, N=news, I=(indices + 1).tolist(),
-                       Err=OUT)
-        if result["Err"]:
-            raise from_helper(result["Err"], "rename: ")
+        try:
+            _call("bridge_rename", K=key, O=olds, N=news, I=(indices + 1).tolist())
+        except DDCError as error:
+            raise prefixed(error, "rename: ") from None
 
     def _particle_indices(
         self, what: str, particles: np.ndarray | Sequence[int] | None
@@ -538,7 +536,7 @@ class Filter:
         )
         logger.warning(message)
         warnings.warn(message, ZeroWeightWarning, stacklevel=4)  # the caller of step
-        # (the step was undone and the weights made uniform by bridge_weighted_step/14)
+        # (the step was undone and the weights made uniform by bridge_weighted_step/13)
         return self._finish(
             StepResult(self.time, frame, 0.0, False, -math.inf, True, 0.0, prolog_seconds),
             started,
@@ -556,9 +554,11 @@ class Filter:
     @_locked
     def holds(self, goal: Any) -> np.ndarray:
         """Per particle, 1 if ``goal`` holds in it, else 0 (int8 array of N)."""
-        result = _call("bridge_holds", K=self._handle(), G=_as_term_text(goal), F=OUT, Err=OUT)
-        if result["Err"]:
-            raise from_helper(result["Err"], "query: ")
+        key = self._handle()
+        try:
+            result = _call("bridge_holds", K=key, G=_as_term_text(goal), F=OUT)
+        except DDCError as error:
+            raise prefixed(error, "query: ") from None
         return np.asarray(result["F"], dtype=np.int8)
 
     @_locked
@@ -569,19 +569,20 @@ class Filter:
     @_locked
     def values(self, template: Any, goal: Any) -> list[Any]:
         """Per particle, ``template`` at the first solution of ``goal`` (None: no solution)."""
-        return list(self._query("bridge_values", template, goal, V=OUT, Err=OUT)["V"])
+        return list(self._query("bridge_values", template, goal, V=OUT)["V"])
 
     def _query(self, name: str, template: Any, goal: Any, **rest: Any) -> dict[str, Any]:
         """One bridge query ``name`` over the particles: the filter as ``K``, ``template`` at
-        the first solution of ``goal`` (as a pair, ``P``), then the arguments ``rest``; ``Err``
-        raised."""
+        the first solution of ``goal`` (as a pair, ``P``), then the arguments ``rest``; an
+        error names the query."""
         template_text = _as_term_text(template)
         goal_text = _as_term_text(goal)
-        result = _call(name, K=self._handle(),
-                       P=f"ddc_bridge_pair(({template_text}),({goal_text}))", **rest)
-        if result["Err"]:
-            raise from_helper(result["Err"], f"query {template_text!r} for {goal_text!r}: ")
-        return result
+        key = self._handle()
+        try:
+            return _call(name, K=key, P=f"ddc_bridge_pair(({template_text}),({goal_text}))",
+                         **rest)
+        except DDCError as error:
+            raise prefixed(error, f"query {template_text!r} for {goal_text!r}: ") from None
 
     @staticmethod
     def _template_goal(term: Any, goal: Any | None) -> tuple[Any, Any]:
@@ -627,8 +628,7 @@ class Filter:
         # _-named: janus gives back no such binding.)
         buffer = np.empty(self.particles * _MAX_ROW_WIDTH, dtype=float)
         result = self._query("bridge_rows_into", *self._template_goal(term, goal),
-                             _A=buffer.ctypes.data, _C=buffer.size, W=OUT, F=OUT, V=OUT,
-                             Err=OUT)
+                             _A=buffer.ctypes.data, _C=buffer.size, W=OUT, F=OUT, V=OUT)
         width = int(result["W"])
         if width == 0:
             return _as_array(result["V"]), self.weights
@@ -648,7 +648,7 @@ class Filter:
         buffer = np.empty(self.particles, dtype=float)
         result = self._query("bridge_indices_into", template, goal,
                              L=[str(a) for a in atoms], _A=buffer.ctypes.data, _C=buffer.size,
-                             I=OUT, Err=OUT)
+                             I=OUT)
         found = result["I"]
         if isinstance(found, int):
             values = buffer[:found]
