@@ -122,3 +122,39 @@ def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypat
     methods_run.clear()
     experiment.run_experiment(options)
     assert methods_run == [("transitive", s, ["reasoning", "no-reasoning"]) for s in range(3)]
+
+
+def test_the_theory_digest_covers_the_files_the_theory_includes(tmp_path, monkeypatch) -> None:
+    """A reasoning method's runs are run again when a file its theory includes changes, not
+    only the theory's own file (the shipped theories include prolog/too/*.pl)."""
+    import probanchor.experiments.sweep as experiment
+
+    (tmp_path / "parts").mkdir()
+    part = tmp_path / "parts" / "motion.pl"
+    part.write_text("step:0 ~ val(1).\n")
+    theory = tmp_path / "theory.pl"
+    theory.write_text(":- include('parts/motion').\nx:0 ~ val(0).\n")
+    monkeypatch.setitem(experiment.REASONING, "reasoning", str(theory))
+    before = experiment.theory_digest("reasoning")
+
+    calls: list[int] = []
+
+    def fake_unit(label, scenario, seed, methods, particles, cache, threads, engine):
+        calls.append(seed)
+        return [{"scenario": scenario.stem, "group": label, "seed": seed, "method": m,
+                 "particles": particles, "threads": threads, "engine": engine,
+                 "theory": experiment.theory_digest(m),
+                 "summary": {"objects": [], "id_switches": 0, "idf1": 1.0, "hota": 1.0}}
+                for m in methods]
+
+    monkeypatch.setattr(experiment, "run_unit", fake_unit)
+    options = experiment.ExperimentOptions(out=tmp_path / "out", seeds=1, games=0,
+                                           particles=50, methods=("reasoning",),
+                                           scenarios=("transitive",))
+    experiment.run_experiment(options)
+    experiment.run_experiment(options)
+    assert calls == [0]                        # recorded with this theory: kept
+    part.write_text("step:0 ~ val(2).\n")     # the included file edited
+    assert experiment.theory_digest("reasoning") != before
+    experiment.run_experiment(options)
+    assert calls == [0, 0]                     # run again

@@ -27,7 +27,8 @@
             bridge_numeric_rows/5,      % +Key, +PairText, -Width, -Floats, -Values
             bridge_rows_into/7,         % +Key, +PairText, +Address, +Capacity, -W, -F, -V
             bridge_indices_into/6,      % +Key, +PairText, +Atoms, +Address, +Capacity, -I
-            bridge_frames/2             % +File, -Frames
+            bridge_frames/2,            % +File, -Frames
+            bridge_with_includes/2       % +File, -Files
           ]).
 
 :- use_module(library(apply)).
@@ -39,8 +40,9 @@
 :- use_module(ddc_filter, [filter_packed_rows/6, filter_packed_indices/5]).
 :- use_module('../batch/ddc_batch_col', [col_floats_into/4, col_floats_list/2]).
 :- use_module('../lang/ddc_nesting', [check_text_nesting/2]).
+:- use_module('../lang/ddc_source', [source_file/3, source_terms/3]).
 :- autoload(ddc_belief, [read_frame_file/2]).    % (loaded when a frame file is first read)
-:- use_module(library(lists), [nth1/3]).
+:- use_module(library(lists), [member/2, nth1/3, list_to_set/2]).
 :- use_module(ddc_observation_types, [observation_type_error/4]).
 :- use_module(ddc_weights).
 
@@ -264,6 +266,23 @@ bridge_frames(File, Frames) :-
 frame_texts(frame(Line, Obs, Acts), -(Line, ObsTexts, ActTexts)) :-
     maplist(term_text, Obs, ObsTexts),
     maplist(term_text, Acts, ActTexts).
+
+%!  bridge_with_includes(+File, -Files:list(atom)) is det.
+%
+%   The absolute names of the DC file File and of every file it includes (`:- include/1`,
+%   transitively, each found relative to the file that includes it), in the order the one
+%   reader of DC files (ddc_source.pl) reads them, File first.  An included file that holds
+%   no clause or directive (comments only) is not among them: it changes nothing read.
+%
+%   @error as source_file/3 and source_terms/3: existence_error(source_sink, Spec) for a
+%          file (or an included file) that does not exist, syntax_error(Message) naming
+%          File:Line, permission_error(include, source_sink, F) for a file that includes
+%          itself.
+bridge_with_includes(Spec, Files) :-
+    source_file(Spec, [], File),
+    source_terms(File, [module(ddc), variable_names(false)], Terms),
+    findall(F, member(src(_, _, F, _), Terms), Fs),
+    list_to_set([File|Fs], Files).
 
 %   term_text(+Term, -Text): Text reads back (in module ddc) as Term.
 term_text(Term, Text) :-

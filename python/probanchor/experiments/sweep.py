@@ -13,7 +13,6 @@ again. The table is made from those lines, so it is the same whichever back end 
 
 from __future__ import annotations
 
-import hashlib
 import json
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -23,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from bridge.engines import Engine
+from bridge.includes import digest_with_includes
 from probanchor.evaluation import evaluate, make_summary, results_table
 from probanchor.evaluation.baselines import BASELINES, run_baseline
 from probanchor.jobs import Job, JobsFailed, parse_cluster, run_jobs
@@ -74,11 +74,13 @@ def game_scenarios(out: Path, games: int, first_seed: int = 0) -> list[Path]:
 
 
 def theory_digest(method: str) -> str | None:
-    """The SHA-1 of the theory a reasoning method runs (None for the others): a run recorded
-    with another version of the theory is run again."""
+    """The SHA-1 of the theory a reasoning method runs (None for the others): of its file and
+    of every file it includes (``:- include/1``, followed as the DDC system's reader follows
+    them: :func:`bridge.includes.digest_with_includes`), so that a run recorded with another
+    version of the theory or of any part of it is run again."""
     if method not in REASONING:
         return None
-    return hashlib.sha1(theory_path(REASONING[method]).read_bytes()).hexdigest()[:12]
+    return digest_with_includes(theory_path(REASONING[method]))[:12]
 
 
 def run_method(method: str, stream: Path, particles: int, seed: int,

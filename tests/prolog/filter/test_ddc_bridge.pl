@@ -243,6 +243,15 @@ test(a_bad_frame_file_raises_file_line_and_cause) :-
     atom_concat(Frames, ':2: observations[1]: ', Start),
     assertion(sub_string(M, 0, _, _, Start)).
 
+test(with_includes_gives_the_file_and_the_files_it_includes) :-
+    module_property(ddc_bridge, file(F)),
+    file_directory_name(F, Dir),
+    atomic_list_concat([Dir, '/../../too.pl'], Too),
+    bridge_with_includes(Too, [First|Included]),
+    assertion(file_base_name(First, 'too.pl')),
+    maplist(file_base_name, Included, Names),
+    assertion((memberchk('too_base.pl', Names), memberchk('too_motion.pl', Names))).
+
 :- end_tests(ddc_bridge).
 
 same_frame(frame(Line, Obs, Acts), -(Line, ObsTexts, ActTexts)) :-
