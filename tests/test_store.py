@@ -111,7 +111,16 @@ def test_a_store_from_another_theory_or_run_is_not_resumed(scenario: Path, whole
                                                             tmp_path: Path) -> None:
     _, db = whole
     theory = tmp_path / "too.pl"
+    shutil.copytree(ROOT / "prolog" / "too", tmp_path / "too")
     theory.write_text((ROOT / "prolog" / "too.pl").read_text() + "\n% edited\n")
+    with pytest.raises(StoreError, match=r"world\.db: a store from another theory"):
+        run(RunOptions(scenario=scenario, particles=PARTICLES, progress=False, resume=db,
+                       theory=theory))
+    # the same theory file, one of the files it includes edited
+    theory.write_text((ROOT / "prolog" / "too.pl").read_text())
+    motion = tmp_path / "too" / "too_motion.pl"
+    motion.write_text(motion.read_text().replace("follow_var(V), VZ is V / 100.",
+                                                 "follow_var(V), VZ is V / 50.", 1))
     with pytest.raises(StoreError, match=r"world\.db: a store from another theory"):
         run(RunOptions(scenario=scenario, particles=PARTICLES, progress=False, resume=db,
                        theory=theory))

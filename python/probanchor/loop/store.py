@@ -47,6 +47,7 @@ import numpy as np
 
 from anchoring.identity import AmbiguousPercept, Revision
 from anchoring.manager import AnchorManagerError
+from bridge.includes import digest_with_includes
 from probanchor.evaluation import TrackingRecord
 from probanchor.loop.loop import AnchoringLoop, FrameOutcome
 from probanchor.loop.naming import symbol_atom
@@ -137,8 +138,10 @@ class StoreError(ValueError):
 
 
 def theory_digest(path: Path) -> str:
-    """The SHA-1 of a theory file's bytes."""
-    return hashlib.sha1(path.read_bytes()).hexdigest()
+    """The SHA-1 of a theory: of its file's bytes and of every file it includes
+    (:func:`bridge.includes.digest_with_includes`: editing ``prolog/too/too_motion.pl`` makes
+    another theory of ``prolog/too.pl``)."""
+    return digest_with_includes(path)
 
 
 def source_digest(path: Path) -> str:
