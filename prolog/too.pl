@@ -1,7 +1,7 @@
 /*  too.pl -- the theory of occlusion: which object may hide which, and where a hidden object is.
 
     An ordinary DDC program, filtered over time by the particle filter (prolog/ddc.pl);
-    edit it freely.  It is made of five parts, each a file of its own (the four included ones
+    edit it freely.  It is made of six parts, each a file of its own (the five included ones
     in too/) so that the theories `anchoring learn-theory` writes share what they do not learn:
 
       too_base.pl       the vocabulary and the frame (what the runner asserts at every step,
@@ -12,6 +12,7 @@
       (here)            the occlusion rules: which object hides a hidden one, how long for
       too_motion.pl     the transitive clause, the carriers' rules and the motion of hidden
                         objects
+      too_release.pl    when a hand lets go of what it carries
 */
 
 :- include('too/too_base').
@@ -111,3 +112,4 @@ behind_or_under(Os, [W:behind | Ws]) :-
     findall(WO:O, member(O, Os), Ws).
 
 :- include('too/too_motion').
+:- include('too/too_release').

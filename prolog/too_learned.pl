@@ -3,6 +3,8 @@
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
     data_truth.pl: 63861 groundings of occluder(A, O):t+1,
     70 clauses, training log-likelihood -25205.3;
+    and one for released(A):t+1 from 1928 frames a hand held an object
+    (3 clauses, training log-likelihood -70.2959);
     search seed 0.
     Command: anchoring learn-theory out/learn/data_truth.pl --seed 0 --out prolog/too_learned.pl --plots docs/images
     The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
@@ -29,9 +31,6 @@ grip_reach(0.1018).  % how far (table plane) a hand's grip may be from what it t
 grip_height(0.1281).  % how far above it (m); 38 samples
 occluder_rise(0.01008).  % how far below its centre (m; negative: above); 38 samples
 grip_drop(0.01771).  % how far what a hand holds is below its grip (m); 1,928 samples
-lift_margin(0.074).  % how high a carried object is lifted before it counts as picked up (m); 46 samples
-release_margin(0.00952).  % how near where it stood it counts as put down (m); 46 samples
-release_p(0.6866).  % the probability per frame that the hand lets go there; 65 samples
 grip_rise(0.00179).  % how far a hand's grip rises in a frame when it lifts (m); 538 samples
 
 % ------------------------------------------------------------------ learned affordances
@@ -428,6 +427,44 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
             P1 = 0.0774147,
             P2 = 0.9225853
         )
+    ).
+
+% When a hand lets go of what it carries (ddc learn, from the carries beside the data): a
+% distributional logic tree for released/1, with the background knowledge it reads.
+learned_from(own, ['data_truth.release.pl'],
+    [released(_):t+1],
+    [ type(released(obj):t+1),
+      type(carried(obj):t+1),
+      type(height(obj):t+1),
+      type(highest(obj):t+1),
+      rv(released(_):t+1, boolean),
+      rv(height(_):t+1, continuous),
+      rv(highest(_):t+1, continuous),
+      examples(released(A):t+1, carried(A):t+1)]).
+
+% Background knowledge from the data that the learned clauses call.
+height(A):t+1 ~ val(H) :=
+    pos(A):t ~= (_, _, Z),
+    rest_z(A):t ~= R,
+    H is Z-R.
+highest(A):t+1 ~ val(H) :=
+    top(A):t ~= H.
+
+% released(Held):t+1: 3 clauses, 1928 groundings, training log-likelihood -70.2959 (mean -0.0364605 per grounding), 6 parameters.
+released(Held):t+1 ~ finite([P1:true, P2:false]) :=
+    carried(Held):t+1,
+    (   height(Held):t+1 ~= Height
+    ->  (   highest(Held):t+1 ~= Highest
+        ->  % n = 1928, log-likelihood -70.2959, logistic
+            logistic([Height, Highest], [-90.9747, 32.2868, -4.7466], P1),
+            P2 is 1-P1
+        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+            logistic([Height], [-74.8804, -1.1015], P1),
+            P2 is 1-P1
+        )
+    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+        P1 = 0.0243523,
+        P2 = 0.9756477
     ).
 
 :- include('too/too_motion.pl').

@@ -1,8 +1,10 @@
 /*  too_learned_hindsight.pl -- the theory of occlusion with rules learned from experience.
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
-    data_hindsight.pl: 26103 groundings of occluder(A, O):t+1,
-    28 clauses, training log-likelihood -9359.52;
+    data_hindsight.pl: 25909 groundings of occluder(A, O):t+1,
+    29 clauses, training log-likelihood -9173.66;
+    and one for released(A):t+1 from 1928 frames a hand held an object
+    (3 clauses, training log-likelihood -70.2959);
     search seed 0.
     Command: anchoring learn-theory out/learn/data_hindsight.pl --seed 0 --out prolog/too_learned_hindsight.pl --plots docs/images
     The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
@@ -29,9 +31,6 @@ grip_reach(0.1018).  % how far (table plane) a hand's grip may be from what it t
 grip_height(0.1281).  % how far above it (m); 38 samples
 occluder_rise(0.01008).  % how far below its centre (m; negative: above); 38 samples
 grip_drop(0.01771).  % how far what a hand holds is below its grip (m); 1,928 samples
-lift_margin(0.074).  % how high a carried object is lifted before it counts as picked up (m); 46 samples
-release_margin(0.00952).  % how near where it stood it counts as put down (m); 46 samples
-release_p(0.6866).  % the probability per frame that the hand lets go there; 65 samples
 grip_rise(0.00179).  % how far a hand's grip rises in a frame when it lifts (m); 538 samples
 
 % ------------------------------------------------------------------ learned affordances
@@ -44,19 +43,19 @@ grip_rise(0.00179).  % how far a hand's grip rises in a frame when it lifts (m);
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.001167).  % 3,425
-hides(box, 0.1865).  % 13,333
-hides(can, 0.0003084).  % 3,241
-hides(cup, 0.2313).  % 10,137
-hides(mug, 0.2615).  % 10,461
-hides(skin, 0.1052).  % 1,509
-hidden_share(ball, 0.2257).  % 30,281
-hidden_share(box, 0.002671).  % 2,619
-hidden_share(can, 0.1809).  % 2,829
-hidden_share(cup, 0.01064).  % 1,877
-hidden_share(mug, 0.1082).  % 3,308
+hides(ball, 0.001136).  % 3,520
+hides(box, 0.1805).  % 12,513
+hides(can, 0.0002791).  % 3,581
+hides(cup, 0.2209).  % 10,197
+hides(mug, 0.2581).  % 10,271
+hides(skin, 0.09828).  % 1,514
+hidden_share(ball, 0.2162).  % 29,921
+hidden_share(box, 0.002656).  % 2,634
+hidden_share(can, 0.1765).  % 2,689
+hidden_share(cup, 0.01036).  % 1,832
+hidden_share(mug, 0.1042).  % 3,328
 hidden_share(skin, 0.0008375).  % 1,192
-carries(box, 0.9677).  % 29
+carries(box, 0.9744).  % 37
 carries(skin, 0.9851).  % 65
 carrier(skin).
 can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
@@ -65,8 +64,8 @@ hand_known := object(O), is_carrier(O).
 can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= 0.01.
 
 :- include('too/too_learned_glue.pl').
-% The onset reach (m): 90% of the 66 onsets in the data were within 0.09137 m; times 2.0.
-onset_reach(0.1827).
+% The onset reach (m): 90% of the 66 onsets in the data were within 0.05346 m; times 2.0.
+onset_reach(0.1069).
 
 % The learned rules (ddc learn): a distributional logic tree for occluder/2 (each path from its
 % root to a leaf is one clause of the tree), with the background knowledge it reads.
@@ -102,118 +101,123 @@ rise(A, O):t+1 ~ val(H) :=
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 28 clauses, 26103 groundings, training log-likelihood -9359.52 (mean -0.136853 per grounding), 45 parameters.
+% occluder(Occluded, Occluder):t+1: 29 clauses, 25909 groundings, training log-likelihood -9173.66 (mean -0.134984 per grounding), 47 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   occluded_by(Occluded, Occluder):t
-        ->  % n = 2246 (weight 7634), log-likelihood -0.999804, finite
-            P1 = 0.999869041,
-            P2 = 0.000130959
+        ->  % n = 2127 (weight 7219), log-likelihood -0.999792, finite
+            P1 = 0.999861515,
+            P2 = 0.000138485
         ;   (   kind(Occluded):t+1 ~= ball
             ->  (   kind(Occluder):t+1 ~= ball
                 ->  (   rise(Occluded, Occluder):t+1 ~= Rise
                     ->  (   Rise < 0.0
-                        ->  % n = 539 (weight 1899), log-likelihood -0.999211, finite
-                            P1 = 0.000526039,
-                            P2 = 0.999473961
+                        ->  % n = 548 (weight 1944), log-likelihood -0.999229, finite
+                            P1 = 0.000513875,
+                            P2 = 0.999486125
                         ;   Rise < 0.1
-                        ->  % n = 427 (weight 1435), log-likelihood -3.78558, logistic
-                            logistic([Distance], [-46.3561, 2.40104], P1),
+                        ->  % n = 435 (weight 1475), log-likelihood -3.77719, logistic
+                            logistic([Distance], [-46.4231, 2.40628], P1),
                             P2 is 1-P1
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-36.4706, 0.0885668], P1),
+                            logistic([Distance], [-36.505, 0.0900576], P1),
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-36.4706, 0.0885668], P1),
+                        logistic([Distance], [-36.505, 0.0900576], P1),
                         P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= box
                 ->  (   lost_anywhere(Occluded):t
                     ->  (   seen(Occluder):t
-                        ->  % n = 243 (weight 967), log-likelihood -0.998451, finite
-                            P1 = 0.00103199,
-                            P2 = 0.99896801
-                        ;   % n = 14 (weight 30), log-likelihood -4.5939, logistic
-                            logistic([Distance], [-14.7634, 0.71021], P1),
+                        ->  % n = 188 (weight 692), log-likelihood -0.997837, finite
+                            P1 = 0.00144092,
+                            P2 = 0.99855908
+                        ;   % n = 13 (weight 25), log-likelihood -4.54755, logistic
+                            logistic([Distance], [-14.7079, 0.727959], P1),
                             P2 is 1-P1
                         )
-                    ;   % n = 4844 (weight 13200), log-likelihood -1743.04, logistic
-                        logistic([Distance], [-23.508, 1.43466], P1),
+                    ;   % n = 4800 (weight 12980), log-likelihood -1748.57, logistic
+                        logistic([Distance], [-23.6996, 1.42683], P1),
                         P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= can
-                ->  % n = 1129 (weight 4613), log-likelihood -0.999675, finite
-                    P1 = 0.000216685,
-                    P2 = 0.999783315
+                ->  % n = 1193 (weight 4933), log-likelihood -0.999696, finite
+                    P1 = 0.000202634,
+                    P2 = 0.999797366
                 ;   kind(Occluder):t+1 ~= cup
-                ->  % n = 5007 (weight 11755), log-likelihood -3987.04, logistic
-                    logistic([Distance], [-12.2546, 0.918993], P1),
-                    P2 is 1-P1
+                ->  (   seen(Occluded):t
+                    ->  % n = 98, log-likelihood -7.94443, logistic
+                        logistic([Distance], [-34.7722, 2.01006], P1),
+                        P2 is 1-P1
+                    ;   % n = 4889 (weight 11841), log-likelihood -3815.49, logistic
+                        logistic([Distance], [-12.7232, 0.905301], P1),
+                        P2 is 1-P1
+                    )
                 ;   kind(Occluder):t+1 ~= mug
                 ->  (   lost_anywhere(Occluded):t
                     ->  (   seen(Occluder):t
-                        ->  % n = 191 (weight 687), log-likelihood -0.997822, finite
-                            P1 = 0.00145138,
-                            P2 = 0.99854862
-                        ;   % n = 14 (weight 22), log-likelihood -6.71177, logistic
-                            logistic([Distance], [-18.0297, 2.53124], P1),
+                        ->  % n = 184 (weight 652), log-likelihood -0.997705, finite
+                            P1 = 0.00152905,
+                            P2 = 0.99847095
+                        ;   % n = 14 (weight 22), log-likelihood -5.42227, logistic
+                            logistic([Distance], [-18.255, 3.22144], P1),
                             P2 is 1-P1
                         )
-                    ;   % n = 4815 (weight 10887), log-likelihood -2977.3, logistic
-                        logistic([Distance], [-18.4878, 1.64759], P1),
+                    ;   % n = 4789 (weight 10833), log-likelihood -2973.13, logistic
+                        logistic([Distance], [-18.4185, 1.64392], P1),
                         P2 is 1-P1
                     )
                 ;   kind(Occluder):t+1 ~= skin
-                ->  % n = 1064 (weight 1380), log-likelihood -315.543, logistic
-                    logistic([Distance], [-11.0131, -0.335431], P1),
+                ->  % n = 1065 (weight 1385), log-likelihood -315.554, logistic
+                    logistic([Distance], [-11.0194, -0.334481], P1),
                     P2 is 1-P1
                 ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-17.1858, 1.0578], P1),
+                    logistic([Distance], [-17.5105, 1.0551], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 1035 (weight 2631), log-likelihood -30.014, logistic
-                logistic([Distance], [-34.2758, -1.5906], P1),
+            ->  % n = 1038 (weight 2646), log-likelihood -29.8094, logistic
+                logistic([Distance], [-34.808, -1.54843], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 1460 (weight 3756), log-likelihood -66.593, logistic
-                logistic([Distance], [-83.8892, 5.43526], P1),
+            ->  % n = 1465 (weight 3781), log-likelihood -64.3195, logistic
+                logistic([Distance], [-86.5233, 5.47533], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= cup
-            ->  % n = 877 (weight 1913), log-likelihood -64.7934, logistic
-                logistic([Distance], [-19.1048, -2.17832], P1),
+            ->  % n = 867 (weight 1863), log-likelihood -61.7069, logistic
+                logistic([Distance], [-18.5503, -2.30772], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= mug
             ->  (   kind(Occluder):t+1 ~= ball
-                ->  % n = 226 (weight 722), log-likelihood -0.997927, finite
-                    P1 = 0.00138122,
-                    P2 = 0.99861878
+                ->  % n = 224 (weight 712), log-likelihood -0.997898, finite
+                    P1 = 0.00140056,
+                    P2 = 0.99859944
                 ;   kind(Occluder):t+1 ~= box
-                ->  % n = 774 (weight 1598), log-likelihood -22.551, logistic
-                    logistic([Distance], [-109.289, 4.74875], P1),
+                ->  % n = 771 (weight 1583), log-likelihood -15.0573, logistic
+                    logistic([Distance], [-117.34, 4.8919], P1),
                     P2 is 1-P1
                 ;   kind(Occluder):t+1 ~= can
-                ->  % n = 51 (weight 119), log-likelihood -0.987558, finite
-                    P1 = 0.00826446,
-                    P2 = 0.99173554
+                ->  % n = 53 (weight 129), log-likelihood -0.988511, finite
+                    P1 = 0.00763359,
+                    P2 = 0.99236641
                 ;   kind(Occluder):t+1 ~= cup
-                ->  % n = 245 (weight 697), log-likelihood -51.9538, logistic
-                    logistic([Distance], [-27.8168, 0.923398], P1),
+                ->  % n = 244 (weight 692), log-likelihood -51.9469, logistic
+                    logistic([Distance], [-27.9901, 0.94222], P1),
                     P2 is 1-P1
                 ;   kind(Occluder):t+1 ~= mug
-                ->  % n = 384 (weight 1008), log-likelihood -7.91792, logistic
-                    logistic([Distance], [-61.8614, 3.53325], P1),
+                ->  % n = 386 (weight 1018), log-likelihood -7.86785, logistic
+                    logistic([Distance], [-62.3765, 3.56427], P1),
                     P2 is 1-P1
                 ;   kind(Occluder):t+1 ~= skin
-                ->  % n = 206 (weight 246), log-likelihood -69.7027, logistic
-                    logistic([Distance], [-16.565, 1.69037], P1),
+                ->  % n = 206 (weight 246), log-likelihood -60.5457, logistic
+                    logistic([Distance], [-15.7469, 1.11947], P1),
                     P2 is 1-P1
                 ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-48.0383, 2.84919], P1),
+                    logistic([Distance], [-52.605, 3.03894], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= skin
@@ -222,13 +226,51 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                 P2 = 0.999162479
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-18.6373, 1.01157], P1),
+                logistic([Distance], [-19.0095, 1.00986], P1),
                 P2 is 1-P1
             )
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.217318,
-        P2 = 0.782682
+        P1 = 0.210879,
+        P2 = 0.789121
+    ).
+
+% When a hand lets go of what it carries (ddc learn, from the carries beside the data): a
+% distributional logic tree for released/1, with the background knowledge it reads.
+learned_from(own, ['data_hindsight.release.pl'],
+    [released(_):t+1],
+    [ type(released(obj):t+1),
+      type(carried(obj):t+1),
+      type(height(obj):t+1),
+      type(highest(obj):t+1),
+      rv(released(_):t+1, boolean),
+      rv(height(_):t+1, continuous),
+      rv(highest(_):t+1, continuous),
+      examples(released(A):t+1, carried(A):t+1)]).
+
+% Background knowledge from the data that the learned clauses call.
+height(A):t+1 ~ val(H) :=
+    pos(A):t ~= (_, _, Z),
+    rest_z(A):t ~= R,
+    H is Z-R.
+highest(A):t+1 ~ val(H) :=
+    top(A):t ~= H.
+
+% released(Held):t+1: 3 clauses, 1928 groundings, training log-likelihood -70.2959 (mean -0.0364605 per grounding), 6 parameters.
+released(Held):t+1 ~ finite([P1:true, P2:false]) :=
+    carried(Held):t+1,
+    (   height(Held):t+1 ~= Height
+    ->  (   highest(Held):t+1 ~= Highest
+        ->  % n = 1928, log-likelihood -70.2959, logistic
+            logistic([Height, Highest], [-90.9747, 32.2868, -4.7466], P1),
+            P2 is 1-P1
+        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+            logistic([Height], [-74.8804, -1.1015], P1),
+            P2 is 1-P1
+        )
+    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+        P1 = 0.0243523,
+        P2 = 0.9756477
     ).
 
 :- include('too/too_motion.pl').

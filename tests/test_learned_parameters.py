@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from probanchor.learning.learned_theory import TheoryError, learn_theory
-from probanchor.learning.motion_grip import gate, grip, reach, release, signed_gate, threshold
+from probanchor.learning.motion_grip import grip, reach, rise, signed_gate, threshold
 from probanchor.learning.motion_keep import ar1
 from probanchor.learning.motion_parameters import DESCRIPTIONS, fit, parameter_clauses
 from probanchor.learning.motion_samples import MotionSamples, samples_path
@@ -69,9 +69,8 @@ def test_ar1_recovers_the_kept_fraction_and_the_jitter() -> None:
         ar1([[0.0, 0.0, 0.0, 0.0]])
 
 
-def test_gates_and_thresholds_are_quantiles_with_the_margin() -> None:
+def test_a_gate_and_a_threshold_are_quantiles_with_the_margin() -> None:
     xs = np.linspace(0.0, 1.0, 101)
-    assert gate(xs) == pytest.approx(2 * 0.9)
     assert threshold(xs) == pytest.approx(0.1 / 2)
     low, high = signed_gate(xs)
     assert (low, high) == (pytest.approx(0.5 - 2 * 0.4), pytest.approx(0.5 + 2 * 0.4))
@@ -86,19 +85,15 @@ def test_the_grip_reach_holds_every_grasp_seen() -> None:
     assert fitted["grip_reach"][0] >= 0.05
 
 
-def test_release_counts_the_frames_held_where_the_object_stood() -> None:
-    """Two carries up to 15 cm and back; one let go after 2 frames down there, one after 4 (3
-    frames held on, 2 releases: (2 + 1) / (6 + 2)); a third ran to the episode's end."""
+def test_the_grip_rise_is_read_from_the_frames_a_carried_object_went_up() -> None:
+    """Three frames the object rose with the grip seen (5 cm each), one without a grip seen."""
     up = [0.0, 0.05, 0.1, 0.15, 0.1, 0.05]
     carries = [{"heights": [*up, 0.0, 0.0], "released": True, "grips": [None] * 8},
                {"heights": [*up, 0.0, 0.0, 0.0, 0.0], "released": True,
-                "grips": [0.02, 0.07, 0.12, 0.17, None, None, None, None, None, None]},
-               {"heights": [*up, 0.0], "released": False, "grips": [None] * 7}]
-    fitted = release(carries)
-    assert fitted["lift_margin"][0] == pytest.approx(0.15 / 2)
-    assert fitted["release_margin"][0] == pytest.approx(0.0)
-    assert fitted["release_p"] == (pytest.approx(3 / 8), 6)
-    assert fitted["grip_rise"] == (pytest.approx(0.05 / 2), 3)
+                "grips": [0.02, 0.07, 0.12, 0.17, None, None, None, None, None, None]}]
+    assert rise(carries) == (pytest.approx(0.05 / 2), 3)
+    with pytest.raises(ValueError, match="no rise"):
+        rise([{"heights": [0.0, 0.0], "released": True, "grips": [0.1, 0.1]}])
 
 
 def test_a_parameter_without_samples_keeps_the_hand_written_value_marked() -> None:
@@ -169,8 +164,4 @@ def test_the_learned_parameters_are_within_the_simulator_s_ranges(name: str) -> 
     assert 0.005 < p["grip_reach"] < 0.15
     assert 0.02 < p["grip_height"] < 0.2 and -0.1 < p["occluder_rise"] < 0.05
     assert 0.0 < p["grip_drop"] < 0.05
-    # a carry lifts the object LIFT high and puts it back down where it stood
-    assert 0.005 < p["lift_margin"] < LIFT
-    assert 0.0 < p["release_margin"] < p["lift_margin"]
-    assert 0.05 < p["release_p"] < 1.0
     assert 0.0 < p["grip_rise"] < step

@@ -36,6 +36,7 @@ from probanchor.learning.occlusion_affordances import (
 )
 from probanchor.learning.occlusion_data import LabelOptions
 from probanchor.learning.occlusion_reach import OnsetReach, onset_reach
+from probanchor.learning.release_data import release_path
 from probanchor.loop.reasoning import DEFAULT_THEORY
 from probanchor.loop.theories import THEORIES, theory_path
 
@@ -61,14 +62,25 @@ occluder(A, O):t+1 ~ finite([0.2:true, 0.8:false]) :=
     pair(A, O):t+1, \\+ occluded_by(A, O):t.
 """
 
+RELEASE = """% learned (a header of the learner's)
+
+released(A):t+1 ~ finite([0.7:true, 0.3:false]) :=
+    carried(A):t+1.
+"""
+
 
 def test_the_theory_includes_the_hand_written_parts(tmp_path: Path) -> None:
     out = tmp_path / "sub" / "too_learned.pl"
     text = theory_text(LEARNED, "% header\n", base=PROLOG, out=out, reach=REACH, found=FOUND,
-                       fitted=FITTED)
+                       fitted=FITTED, release_program=RELEASE)
     hand = DEFAULT_THEORY.read_text()
     for name in (*BEFORE, *AFTER):
         assert f":- include('too/{name.removesuffix('.pl')}')." in hand    # too.pl's parts
+    # too.pl's hand-written release, the learned theory's learned one
+    assert ":- include('too/too_release')." in hand and "too_release" not in text
+    assert "released(A):t+1 ~ finite([0.7:true" in text
+    for gone in ("release_p(", "release_margin(", "lift_margin(", "raised(A)"):
+        assert gone not in text
     includes = [line for line in text.splitlines() if line.startswith(":- include(")]
     assert len(includes) == len(BEFORE) + 1 + len(AFTER)
     for line, name in zip(includes, (*BEFORE, GLUE, *AFTER), strict=True):
@@ -82,8 +94,13 @@ def test_the_theory_includes_the_hand_written_parts(tmp_path: Path) -> None:
     assert "occluder_candidate(A, O):t+1 :=\n    pair(A, O):t+1" in (PROLOG / GLUE).read_text()
     for name in DESCRIPTIONS:            # every parameter the theory reads, as a fact
         assert re.search(rf"^{name}\([-\d.e]+\)\.", text, re.M), name
-    assert text.index(includes[-1]) > text.index("occluder(A, O):t+1 ~ finite([0.9:true")
-    assert text.index("occluder(A, O):t+1 ~ finite([0.9:true") > text.index(includes[1])
+    assert text.index(includes[-1]) > text.index("released(A):t+1 ~ finite([0.7:true") \
+        > text.index("occluder(A, O):t+1 ~ finite([0.9:true") > text.index(includes[1])
+    # without carries in the data: no release, and a comment says why
+    bare = theory_text(LEARNED, "% header\n", base=PROLOG, out=out, reach=REACH, found=FOUND,
+                       fitted=FITTED, release_program=None)
+    assert "released(" not in bare.replace("released(A):t+1 ~= true", "")
+    assert "no release learned" in bare
 
 
 def test_a_base_without_the_hand_written_parts_is_an_error(tmp_path: Path) -> None:
@@ -91,13 +108,13 @@ def test_a_base_without_the_hand_written_parts_is_an_error(tmp_path: Path) -> No
         (tmp_path / "too_base.pl").write_text("x ~ val(1).\n")
         (tmp_path / GLUE).write_text("y ~ val(1).\n")
         theory_text(LEARNED, "", base=tmp_path, out=tmp_path / "t.pl", reach=REACH, found=FOUND,
-                    fitted=FITTED)
+                    fitted=FITTED, release_program=RELEASE)
 
 
 def test_the_assembled_theory_loads_and_filters(tmp_path: Path) -> None:
     path = tmp_path / "too_learned.pl"
     path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH, found=FOUND,
-                                fitted=FITTED))
+                                fitted=FITTED, release_program=RELEASE))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)", "object(ball_2)", "category(ball_2, ball)"]
@@ -163,6 +180,9 @@ def test_a_failed_learn_theory_keeps_the_previous_file(game_data: Path, tmp_path
     bad.write_text(game_data.read_text() + "category(ball_1_e0_f3, ball, extra).\n"
                    "distance(x, y):t+1 ~= near.\n")
     samples_path(bad).write_text(samples_path(game_data).read_text())
+    with pytest.raises(TheoryError, match=rf"{release_path(bad)}: no release data"):
+        learn_theory([bad], out)
+    release_path(bad).write_text(release_path(game_data).read_text())
     with pytest.raises(bridge.DDCError, match=rf"{bad}:\d+: .*not a number"):
         learn_theory([bad], out)
     assert out.read_text() == "% the previous theory\n"
@@ -272,7 +292,8 @@ def test_pairs_beyond_the_reach_draw_nothing(tmp_path: Path) -> None:
     within it, it is one in about 0.2 x 1/2 of them."""
     path = tmp_path / "too_learned.pl"
     path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path,
-                                reach=OnsetReach(0.1, 0.08, 1), found=FOUND, fitted=FITTED))
+                                reach=OnsetReach(0.1, 0.08, 1), found=FOUND, fitted=FITTED,
+                                release_program=RELEASE))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)", "object(mug_2)", "category(mug_2, mug)"]
@@ -302,7 +323,7 @@ def test_an_occluder_back_in_view_still_hides_what_it_hid(tmp_path: Path) -> Non
     take it.)"""
     path = tmp_path / "too_learned.pl"
     path.write_text(theory_text(ENDS_AT_ONCE, "", base=PROLOG, out=path, reach=REACH, found=FOUND,
-                                fitted=FITTED))
+                                fitted=FITTED, release_program=RELEASE))
     f = bridge.Filter(path, particles=200, seed=1, threads=1)
     actions = ["object(ball_1)", "category(ball_1, ball)", "object(mug_1)",
                "category(mug_1, mug)"]

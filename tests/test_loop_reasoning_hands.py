@@ -66,8 +66,11 @@ def test_a_hand_carries_the_ball_it_closes_over_and_puts_it_down(theory: str) ->
                 # from it and it stayed unseen (the learned rules put some under the mug, 21
                 # cm away, meanwhile)
                 assert belief.weights[inside].sum() > (0.95 if theory == "hand" else 0.7)
-        # put down and the hand rises: let go (it no longer moves with the hand), on the table
-        assert reasoner.probability("occluded_by(ball_1, skin_1):t") < 0.1
+        # put down and the hand rises: let go (it no longer moves with the hand), on the table,
+        # in nine particles in ten or more (up to the sampling noise of n particles: the
+        # theories let go with a probability of about 0.7 per frame at the bottom)
+        held = reasoner.probability("occluded_by(ball_1, skin_1):t")
+        assert held < 0.1 + 3 * np.sqrt(0.1 * 0.9 / n), held
         belief = reasoner.belief("ball-1")
         assert belief is not None
         near = np.linalg.norm(belief.positions - np.array(PUT), axis=1) < 0.05

@@ -69,6 +69,37 @@ def test_hindsight_labels_the_whole_interval_from_where_it_emerged() -> None:
     assert n == 6 and agree == pytest.approx(6.0)
 
 
+def _approach_episode(mug_x: list[float]) -> Episode:
+    """The ball seen in frames 0-1 and 7, hidden in 2-6 while the mug comes over it along
+    ``mug_x`` (perceived all along) and is lifted off it in 6."""
+    frames = []
+    for k, x in enumerate(mug_x):
+        z = 0.12 if k == 6 else 0.05
+        frames.append(frame(k, {"ball-1": (k not in range(2, 7), BALL),
+                                "mug-1": (True, (x, 0.0, z))}, {}))
+    return Episode("approach", frames, {})
+
+
+def test_hindsight_covers_from_when_the_occluder_arrives() -> None:
+    """While the mug is still on its way (15 and 10 cm off where the ball was last seen) the
+    ball is behind it, not under it; from the frame the mug is within arrival_reach on, under
+    it."""
+    ep = _approach_episode([0.4, 0.3, 0.15, 0.1, 0.02, 0.0, 0.0, 0.0])
+    lab = labels(ep, LabelOptions(source="hindsight"))
+    assert [lab[k]["ball-1"] for k in range(2, 7)] == [{}, {}] + [{"mug-1": 1.0}] * 3
+    wide = labels(ep, LabelOptions(source="hindsight", arrival_reach=0.12))
+    assert [wide[k]["ball-1"] for k in range(2, 7)] == [{}] + [{"mug-1": 1.0}] * 4
+
+
+def test_hindsight_covers_the_whole_interval_when_the_occluder_never_comes_near() -> None:
+    """An occluder whose percept never comes within arrival_reach of where the object was (a
+    hand's grip point may stand 15 cm off what it holds) covers it from the start."""
+    ep = _approach_episode([0.4, 0.3, 0.15, 0.12, 0.1, 0.1, 0.1, 0.1])
+    ep.frames[7].anchors["ball-1"] = AnchorView("ball-1", "ball", True, (0.1, 0.0, 0.03))
+    lab = labels(ep, LabelOptions(source="hindsight"))
+    assert all(lab[k]["ball-1"] == {"mug-1": 1.0} for k in range(2, 7))
+
+
 def test_an_anchor_never_seen_again_has_no_hindsight_label() -> None:
     ep = covered_ball_episode()
     ep.frames[8].anchors["ball-1"] = AnchorView("ball-1", "ball", False, BALL)

@@ -1,10 +1,11 @@
-/*  too_learned_glue.pl -- how a learned theory of occlusion uses its learned occluder/2.
+/*  too_learned_glue.pl -- how a learned theory of occlusion uses its learned trees.
 
     Hand-written, and included by the theories `anchoring learn-theory` writes (after their
-    learned affordances and parameters, before their learned tree): which pairs the learned
+    learned affordances and parameters, before their learned trees): which pairs the learned
     occluder(A, O):t+1 is drawn for, how a particle picks among the candidates it gives, and
-    how an occlusion goes on.  Reads onset_reach/1, fitted from the data and written into the
-    theory (python/probanchor/app/occlusion_reach.py), and the affordances can_occlude/1 and
+    how an occlusion goes on; for which objects the learned released(A):t+1 is drawn, and the
+    state it reads.  Reads onset_reach/1, fitted from the data and written into the theory
+    (python/probanchor/learning/occlusion_reach.py), and the affordances can_occlude/1 and
     can_be_occluded/1, learned too.
 */
 
@@ -51,3 +52,19 @@ occluded_by(A, O):t+1 :=
 % while the camera was covered); from the next frame on, the tree decides again.
 occluded_by(A, O):t+1 :=
     occluded_by(A, O):t, hidden(A):t+1, observed(O), \+ seen(O):t.
+
+% ------------------------------------------------------------------ learned release
+% How the learned released/1 (the second tree below) is used: it is drawn for what a carrier
+% holds (carried/1, the data's examples: A under a carrier at t that is perceived at t+1, A
+% still hidden), and too/too_motion.pl's carriers' rules hold A until a particle draws
+% released(A):t+1 ~= true.  The tree reads how high A is above where it stood (rest_z/1,
+% too_motion.pl) and top/1: the highest A has been above it since the hand took it.
+carried(A):t+1 :=
+    object(O), is_carrier(O), occluded_by(A, O):t, observed(O), hidden(A):t+1.
+top(A):t+1 ~ val(H) :=
+    object(O), is_carrier(O), occluded_by(A, O):t+1, rest_z(A):t+1 ~= R,
+    pos(A):t+1 ~= (_, _, Z),
+    (   top(A):t ~= H0
+    ->  H is max(H0, Z - R)
+    ;   H is Z - R
+    ).

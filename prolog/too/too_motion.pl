@@ -1,9 +1,10 @@
 /*  too_motion.pl -- the hand-written rules of carrying and of the motion of hidden objects.
 
     Included by too.pl and by the theories `anchoring learn-theory` writes, after the
-    occlusion rules: the transitive clause, the carriers' rules (a hand picks an object up,
-    carries it, puts it down), where a hidden object is (with its occluder, in place,
-    coasting) and the variance of where an object reappears.  These rules are structure (the
+    occlusion rules: the transitive clause, the carriers' rules (a hand picks an object up and
+    carries it until it lets go: when it does is too_release.pl's in too.pl, learned in a
+    learned theory), where a hidden object is (with its occluder, in place, coasting) and the
+    variance of where an object reappears.  These rules are structure (the
     vocabulary and frame of carrying and of motion); the constants they read are
     too_parameters.pl's in too.pl and fitted from the data in a learned theory.
 */
@@ -66,21 +67,9 @@ rest_z(A):t+1 ~ val(Z) :=
 rest_z(A):t+1 ~ val(Z) :=
     hand_known, hidden(A):t+1, rest_z(A):t ~= Z,
     \+ (object(O), is_carrier(O), occluded_by(A, O):t+1, \+ occluded_by(A, O):t).
-% A has been carried up (the hand rising with it, lift_margin above where it stood) since it
-% was taken ...
-raised(A):t+1 ~ val(true) :=
-    object(O), is_carrier(O), occluded_by(A, O):t+1,
-    (   raised(A):t ~= true
-    ->  true
-    ;   pos(O):t ~= (_, _, ZO0), pos(O):t+1 ~= (_, _, ZO1), ZO1 > ZO0,
-        pos(A):t+1 ~= (_, _, Z), rest_z(A):t+1 ~= R, lift_margin(M), Z > R + M
-    ).
-% ... and carried back down to within release_margin of that height: put down.  The hand lets
-% it go with probability release_p per frame there (it stays where it is; the hand leaves).
-released(A):t+1 ~ finite([P:true, Q:false]) :=
-    object(O), is_carrier(O), occluded_by(A, O):t, observed(O), hidden(A):t+1,
-    raised(A):t ~= true, pos(A):t ~= (_, _, Z), rest_z(A):t ~= R, release_margin(M),
-    Z =< R + M, release_p(P), Q is 1 - P.
+% When the hand lets go of A (released(A):t+1 ~= true, drawn while it holds A: the carrier
+% is perceived and A hidden) is too/too_release.pl's rule in too.pl and a tree learned from the
+% carries in a learned theory (its vocabulary in too/too_learned_glue.pl).
 
 % ------------------------------------------------------------------ positions of hidden objects
 % Hidden under the same occluder as before: moves with it (in the table plane; a carrier

@@ -9,7 +9,8 @@ of a process that has janus loaded can hang) or on a Ray cluster, combined in th
 episodes whichever finished first. The data file is written only once every episode is done
 (atomically), and an empty collection (no occlusion happened) is an error that writes nothing.
 Beside the data file, ``DATA.motion.json`` holds the samples the theory's motion and carrying
-parameters are fitted from (:mod:`probanchor.learning.motion_samples`).
+parameters are fitted from (:mod:`probanchor.learning.motion_samples`), and ``DATA.release.pl``
+the data of when a hand lets go of what it carries (:mod:`probanchor.learning.release_data`).
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from probanchor.jobs import Job, parse_cluster, raise_failures, run_jobs
 from probanchor.learning.motion_samples import MotionSamples, episode_samples, samples_path
 from probanchor.learning.occlusion_data import Collection, LabelOptions, data_text, episode_facts
 from probanchor.learning.occlusion_data import hindsight_agreement as _agreement
+from probanchor.learning.release_data import release_path, release_text
 
 __all__ = ["CollectError", "CollectOptions", "CollectReport", "collect", "game_files"]
 
@@ -189,6 +191,8 @@ def collect(options: CollectOptions,
                            "hidden while another was perceived; nothing written")
     text = data_text(total, [s.stem for s in scenarios], options.labels, options.command)
     write_atomically(samples_path(options.out), motion.to_json())
+    write_atomically(release_path(options.out), release_text(motion.rows["carries"],
+                                                             options.command))
     write_atomically(options.out, text)
     return CollectReport(
         episodes=total.episodes, pairs=total.pairs, positive=total.positive,

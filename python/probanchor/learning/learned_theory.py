@@ -4,7 +4,10 @@ The structure learner (:func:`probanchor.ddclearn.learn`) learns, from the data 
 collect`` writes, one distributional logic tree for ``occluder(A, O):t+1``: whether O covers (or
 holds) the hidden object A at t+1. Its branch where A was known to be under O at t is the *tracking
 rule* (does the occlusion go on?), the other branch the *occluder rule* (may O start hiding A?),
-both with statistical models (a logistic regression on a distance, ...) in their leaves.
+both with statistical models (a logistic regression on a distance, ...) in their leaves. And a
+second tree, for ``released(A):t+1``: when a hand lets go of what it carries, learned from the
+carries ``anchoring collect`` keeps (``DATA.release.pl`` beside the data,
+:mod:`probanchor.learning.release_data`).
 
 The theory written includes the hand-written parts it shares with ``prolog/too.pl`` rather than
 copying them (``:- include(File).``, relative to the theory written, from ``prolog/too/``):
@@ -52,6 +55,7 @@ from probanchor.learning.occlusion_affordances import (
     never_occluders,
 )
 from probanchor.learning.occlusion_reach import MARGIN, QUANTILE, OnsetReach, onset_reach
+from probanchor.learning.release_data import release_path, release_points
 
 __all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError",
            "along_distance", "coefficient_table", "parameter_table",
@@ -86,6 +90,7 @@ class LearnedTheory:
     affordances: dict[str, dict[str, Affordance]] | None = None
     parameters: list[Fitted] | None = None
     samples: MotionSamples | None = None
+    release: LearnResult | None = None
 
     @property
     def logistic(self) -> list[dict[str, object]]:
@@ -96,11 +101,13 @@ class LearnedTheory:
 
 def theory_text(learned_program: str, header: str, *, base: str | Path,
                 out: str | Path, reach: OnsetReach,
-                found: dict[str, dict[str, Affordance]], fitted: Sequence[Fitted]) -> str:
+                found: dict[str, dict[str, Affordance]], fitted: Sequence[Fitted],
+                release_program: str | None) -> str:
     """The theory: ``header``, the hand-written parts of ``base`` (a folder) included, the
     parameters fitted from the data (``fitted``), the affordances read from it (``found``), the
-    glue included, the onset reach fitted from the data and the learned program (the learner's
-    output: background knowledge and clauses).
+    glue included, the onset reach fitted from the data and the learned programs (the learner's
+    output: background knowledge and clauses) of the occluder and of the release (None: no hand
+    carried anything in the data, the theory has no carrier and no release).
 
     The includes name the parts relative to the folder of ``out``, the file the theory is
     written to (the DC reader resolves an include relative to the including file).
@@ -121,7 +128,8 @@ def theory_text(learned_program: str, header: str, *, base: str | Path,
         quoted = rel.replace("\\", "\\\\").replace("'", "\\'")
         return f":- include('{quoted}').\n"
 
-    body = _program_body(learned_program)
+    body = _program_body(learned_program, OCCLUDER_INTRO) + "\n" + (
+        NO_RELEASE if release_program is None else _program_body(release_program, RELEASE_INTRO))
     onset = (f"% The onset reach (m): {QUANTILE:.0%} of the {reach.onsets} onsets in the data "
               f"were within {reach.quantile:.4g} m; times {MARGIN}.\n"
               f"onset_reach({reach.reach:.4g}).\n")
@@ -131,15 +139,31 @@ def theory_text(learned_program: str, header: str, *, base: str | Path,
             + "\n\n" + "".join(include(n) for n in AFTER))
 
 
-def _program_body(program: str) -> str:
+OCCLUDER_INTRO = ("% The learned rules (ddc learn): a distributional logic tree for occluder/2 "
+                  "(each path from its\n% root to a leaf is one clause of the tree), with the "
+                  "background knowledge it reads.\n")
+RELEASE_INTRO = ("% When a hand lets go of what it carries (ddc learn, from the carries beside "
+                 "the data): a\n% distributional logic tree for released/1, with the background "
+                 "knowledge it reads.\n")
+
+NO_RELEASE = ("% No hand carried an object in the data: no release learned (and no carrier, "
+              "so none is asked).\n")
+
+
+def _release_header(release: LearnResult | None) -> list[str]:
+    if release is None:
+        return ["    no hand carried an object in the data: no release learned;"]
+    t = release.targets[0]
+    return [f"    and one for released(A):t+1 from {t.groundings} frames a hand held an object",
+            f"    ({t.clauses} clauses, training log-likelihood {t.log_likelihood:.6g});"]
+
+
+def _program_body(program: str, intro: str) -> str:
     """The learned program without its own header comment (the theory's header says it)."""
     lines = program.splitlines()
     k = 0
     while k < len(lines) and (lines[k].startswith("%") or not lines[k].strip()):
         k += 1
-    intro = ("% The learned rules (ddc learn): a distributional logic tree for occluder/2 (each "
-             "path from its\n% root to a leaf is one clause of the tree), with the background "
-             "knowledge it reads.\n")
     return intro + "\n".join(lines[k:]) + "\n"
 
 
@@ -165,9 +189,9 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     ------
     TheoryError
         A hand-written part is missing from ``base`` (default ``prolog/too/``), the motion
-        samples beside the data are missing, or the theory written does not load. (A parameter
-        the samples cannot fit keeps too_parameters.pl's value, marked NOT FITTED in the
-        theory.)
+        samples or the release data beside the data are missing, or the theory written does
+        not load. (A parameter the samples cannot fit keeps too_parameters.pl's value, marked
+        NOT FITTED in the theory.)
     bridge.DDCError
         The data has an error (its message names the file and line).
     """
@@ -182,7 +206,16 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
         fitted = fit(samples, hand_written(folder))
     except (ValueError, FileNotFoundError) as error:
         raise TheoryError(str(error)) from None
+    releases = [release_path(d) for d in data]
+    absent = [str(r) for r in releases if not r.is_file()]
+    if absent:
+        raise TheoryError(f"{', '.join(absent)}: no release data beside the data (`anchoring "
+                          "collect` writes DATA.release.pl; collect again)")
     result = learn(data, ["occluder:t+1"], seed=seed, options=options, progress=progress)
+    release = None
+    if sum(release_points(r) for r in releases):
+        release = learn(releases, ["released:t+1"], seed=seed, options=options,
+                        progress=progress)
     target = result.targets[0]
     names = ", ".join(Path(d).name for d in data)
     parts = ", ".join((*BEFORE, GLUE, *AFTER))
@@ -192,6 +225,7 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
         "    Written by `anchoring learn-theory`: a tree learned (ddc learn) from",
         f"    {names}: {target.groundings} groundings of occluder(A, O):t+1,",
         f"    {target.clauses} clauses, training log-likelihood {target.log_likelihood:.6g};",
+        *_release_header(release),
         f"    search seed {seed}.",
     ]
     if command:
@@ -210,7 +244,8 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     except ValueError as error:
         raise TheoryError(str(error)) from None
     text = theory_text(result.program_text(form), "\n".join(header) + "\n", base=folder,
-                       out=out, reach=reach, found=found, fitted=fitted)
+                       out=out, reach=reach, found=found, fitted=fitted,
+                       release_program=None if release is None else release.program_text(form))
 
     def loads(tmp: Path) -> None:
         try:
@@ -219,7 +254,7 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
             raise TheoryError(f"the learned theory does not load: {error}") from None
 
     write_atomically(out, text, loads)
-    return LearnedTheory(out, result, text, reach, folder, found, fitted, samples)
+    return LearnedTheory(out, result, text, reach, folder, found, fitted, samples, release)
 
 
 def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:

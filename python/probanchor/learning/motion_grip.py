@@ -1,8 +1,9 @@
-"""The carrying parameters of the theory of occlusion (a hand takes an object, carries it,
-puts it down), fitted from the samples ``anchoring collect`` keeps
-(:mod:`probanchor.learning.motion_samples`).
+"""The carrying parameters of the theory of occlusion (a hand takes an object and carries it),
+fitted from the samples ``anchoring collect`` keeps (:mod:`probanchor.learning.motion_samples`).
+When the hand lets go is no parameter but a tree the structure learner learns
+(:mod:`probanchor.learning.release_data`).
 
-The carriers' rules (``prolog/too/too_motion.pl``) test thresholds. Two kinds, each fitted
+The carriers' rules (``prolog/too/too_motion.pl``) test thresholds. Three kinds, each fitted
 from quantiles so that one odd carry does not move it, with the margin of the onset reach
 (:data:`probanchor.learning.occlusion_reach.MARGIN`, 2):
 
@@ -10,21 +11,16 @@ from quantiles so that one odd carry does not move it, with the margin of the on
   grip may be): the margin times the largest event, since a grasp outside it is a carry the
   particles do not follow (the object is lost), and the grasps of the generated games are
   tighter than others' (a quantile of them left a hand that grips 5 cm off out);
-- a *gate* the events must fall within: a non-negative one (``release_margin``) is the margin
-  times the 90 % quantile of the events; a signed one (how
-  high the grip is over the object it takes) runs from the 10 % quantile to the 90 % one,
-  each moved away from the median by its own distance from it (``grip_height`` above,
-  ``occluder_rise``, how far the grip may be below the object's centre, below);
-- a *threshold* an event must exceed (``lift_margin``, ``grip_rise``): the 10 % quantile of
-  the events divided by the margin (nine events in ten exceed twice the threshold).
+- a signed *gate* the events must fall within (how high the grip is over the object it
+  takes): from the 10 % quantile to the 90 % one, each moved away from the median by its own
+  distance from it (``grip_height`` above, ``occluder_rise``, how far the grip may be below
+  the object's centre, below);
+- a *threshold* an event must exceed (``grip_rise``): the 10 % quantile of the events divided
+  by the margin (nine events in ten exceed twice the threshold).
 
-And two that are no thresholds:
-
-- ``grip_drop``, how far what a hand holds is below its grip point: the mean over the frames
-  a hand holds something out of view (the maximum-likelihood location);
-- ``release_p``, the probability per frame that a hand lets go of what it carried back down to
-  where it stood: of the frames it held the object there, the share after which it let go,
-  with Laplace's rule ((releases + 1) / (frames + 2)).
+And one that is no threshold: ``grip_drop``, how far what a hand holds is below its grip
+point: the mean over the frames a hand holds something out of view (the maximum-likelihood
+location).
 """
 
 from __future__ import annotations
@@ -36,9 +32,9 @@ import numpy as np
 
 from probanchor.learning.occlusion_reach import MARGIN
 
-__all__ = ["GATE", "THRESHOLD", "gate", "grip", "reach", "release", "signed_gate", "threshold"]
+__all__ = ["GATE", "THRESHOLD", "grip", "reach", "rise", "signed_gate", "threshold"]
 
-#: The quantile of a gate (and, 1 - GATE, of a signed gate's lower end).
+#: The quantile of a signed gate's upper end (1 - GATE: of its lower end).
 GATE = 0.9
 #: The quantile of a threshold.
 THRESHOLD = 0.1
@@ -49,11 +45,6 @@ def _values(xs: Sequence[float]) -> np.ndarray:
     if a.size == 0:
         raise ValueError("no samples")
     return a
-
-
-def gate(xs: Sequence[float]) -> float:
-    """The margin times the 90 % quantile of the non-negative ``xs``."""
-    return MARGIN * float(np.quantile(_values(xs), GATE))
 
 
 def reach(xs: Sequence[float]) -> float:
@@ -91,35 +82,16 @@ def grip(grasps: Sequence[Sequence[float]], holds: Sequence[float]
             "occluder_rise": (-low, n), "grip_drop": (float(np.mean(_values(holds))), len(holds))}
 
 
-def release(carries: Sequence[dict[str, Any]]) -> dict[str, tuple[float, int]]:
-    """lift_margin, release_margin, release_p and grip_rise with their sample counts, from the
-    ``carries`` (heights above where the object stood, released or not, grip heights)."""
-    if not carries:
-        raise ValueError("no hand carried an object: no carrying to fit")
-    lifts = [max(c["heights"]) for c in carries]
-    lift = threshold(lifts)
-    raised = [c for c in carries if max(c["heights"]) > lift]
-    put_down = [c["heights"][-1] for c in raised if c["released"]]
-    margin = gate(put_down)
-    frames = releases = 0
-    for c in raised:
-        up = False
-        hs = c["heights"]
-        for i, h in enumerate(hs):
-            up = up or h > lift
-            if not up or h > margin:
-                continue
-            last = i == len(hs) - 1
-            if last and not c["released"]:
-                continue                      # the episode ended: censored
-            frames += 1
-            releases += int(last)
+def rise(carries: Sequence[dict[str, Any]]) -> tuple[float, int]:
+    """grip_rise with its sample count, from the ``carries`` (heights above where the object
+    stood, grip heights): the threshold of the grip's rises in the frames the carried object
+    went up."""
     rises = []
     for c in carries:
         hs, gs = c["heights"], c["grips"]
         for i in range(len(hs) - 1):
             if hs[i + 1] > hs[i] + 0.001 and gs[i] is not None and gs[i + 1] is not None:
                 rises.append(gs[i + 1] - gs[i])
-    return {"lift_margin": (lift, len(lifts)), "release_margin": (margin, len(put_down)),
-            "release_p": ((releases + 1) / (frames + 2), frames),
-            "grip_rise": (threshold(rises), len(rises))}
+    if not rises:
+        raise ValueError("no hand lifted what it carried: no rise to fit")
+    return threshold(rises), len(rises)

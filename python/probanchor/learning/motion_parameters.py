@@ -6,13 +6,15 @@ Which estimator fits which parameter (each in a module of its own):
 - the variances (:mod:`probanchor.learning.motion_variances`): maximum likelihood;
 - the kept fractions and their jitter (:mod:`probanchor.learning.motion_keep`): least squares of a
   first-order autoregression;
-- the carriers' gates, thresholds, offset and release probability
-  (:mod:`probanchor.learning.motion_grip`): quantiles, a mean and Laplace's rule.
+- the carriers' gates, thresholds and offset (:mod:`probanchor.learning.motion_grip`):
+  quantiles and a mean.
 
 The learned theory reads no other parameter: the hand-written theory's ``occluder_reach``,
 ``cover_height``, ``lowering_speed``, ``lowered_reach`` and ``behind_when_covered`` belong to
 its hand-written occlusion rules, which the learned tree (with the fitted onset reach and the
-learned affordances) replaces.
+learned affordances) replaces; its ``lift_margin``, ``release_margin`` and ``release_p`` to its
+hand-written release (``too/too_release.pl``), which a learned tree replaces
+(:mod:`probanchor.learning.release_data`).
 """
 
 from __future__ import annotations
@@ -52,12 +54,6 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
     "occluder_rise": ("how far below its centre (m; negative: above)",
                       "10 % quantile, moved off the median by its distance"),
     "grip_drop": ("how far what a hand holds is below its grip (m)", "mean"),
-    "lift_margin": ("how high a carried object is lifted before it counts as picked up (m)",
-                    "the 10 % quantile of the carries' highest lift, / 2"),
-    "release_margin": ("how near where it stood it counts as put down (m)",
-                       "2 x the 90 % quantile of the heights at release"),
-    "release_p": ("the probability per frame that the hand lets go there",
-                  "releases / frames held there, Laplace's rule"),
     "grip_rise": ("how far a hand's grip rises in a frame when it lifts (m)",
                   "the 10 % quantile of the rises while lifting, / 2"),
 }
@@ -95,8 +91,7 @@ def fit(samples: MotionSamples, hand: dict[str, float]) -> list[Fitted]:
         (("coast_keep", "wander_var"), lambda: _pair(motion_keep.coast(r["coast"]))),
         (("grip_reach", "grip_height", "occluder_rise", "grip_drop"),
          lambda: list(motion_grip.grip(r["grasp"], r["hold"]).values())),
-        (("lift_margin", "release_margin", "release_p", "grip_rise"),
-         lambda: list(motion_grip.release(r["carries"]).values())),
+        (("grip_rise",), lambda: [motion_grip.rise(r["carries"])]),
     )
     for names, fitter in groups:
         try:
