@@ -1,8 +1,8 @@
 /*  too_learned.pl -- the theory of occlusion with rules learned from experience.
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
-    data_truth.pl: 63861 groundings of occluder(A, O):t+1,
-    70 clauses, training log-likelihood -25205.3;
+    data_truth.pl: 64040 groundings of occluder(A, O):t+1,
+    50 clauses, training log-likelihood -24840.8;
     and one for released(A):t+1 from 1928 frames a hand held an object
     (3 clauses, training log-likelihood -70.2959);
     search seed 0.
@@ -21,7 +21,7 @@
 % variances per axis in square metres, one step is one camera frame.
 obs_var(2.377e-06).  % the measurement noise of a perceived position (m², per axis); 87,816 samples
 motion_var(2.595e-05).  % how far a perceived object moves in a frame (m², per axis); 102,633 samples
-reappear_var(0.003261).  % where a hidden object is seen again, around its belief (m²); 492 samples
+reappear_var(0.003262).  % where a hidden object is seen again, around its belief (m²); 492 samples
 lost_var(0.0664).  % the same for an object lost while the camera saw nothing (m²); 6,854 samples
 follow_keep(0.9556).  % the fraction of its offset from its occluder a hidden object keeps; 12,844 samples
 follow_var(3.008e-06).  % the jitter of that offset per frame (m²); 12,844 samples
@@ -43,21 +43,21 @@ grip_rise(0.00179).  % how far a hand's grip rises in a frame when it lifts (m);
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.000409).  % 17,115
-hides(box, 0.1175).  % 33,417
-hides(can, 8.074e-05).  % 12,384
-hides(cup, 0.1176).  % 32,401
-hides(mug, 0.1104).  % 32,372
-hides(skin, 0.4688).  % 4,554
-hidden_share(ball, 0.2026).  % 50,647
-hidden_share(box, 7.912e-05).  % 12,637
-hidden_share(can, 0.1151).  % 25,126
-hidden_share(cup, 6.968e-05).  % 14,349
-hidden_share(mug, 0.03581).  % 8,320
-hidden_share(skin, 4.725e-05).  % 21,164
+hides(ball, 0.0004068).  % 17,205
+hides(box, 0.1117).  % 33,417
+hides(can, 8.609e-05).  % 11,614
+hides(cup, 0.1242).  % 31,436
+hides(mug, 0.1026).  % 33,427
+hides(skin, 0.5011).  % 4,744
+hidden_share(ball, 0.2016).  % 50,771
+hidden_share(box, 7.959e-05).  % 12,563
+hidden_share(can, 0.1175).  % 24,797
+hidden_share(cup, 6.934e-05).  % 14,419
+hidden_share(mug, 0.03535).  % 8,429
+hidden_share(skin, 4.792e-05).  % 20,864
 carries(box, 0.25).  % 2
 carries(cup, 0.3333).  % 1
-carries(skin, 0.9918).  % 1,220
+carries(skin, 0.9916).  % 1,434
 carrier(skin).
 can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
 is_carrier(O) := category(O, C), carrier(C).
@@ -106,75 +106,29 @@ lift(O):t+1 ~ val(H) :=
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 70 clauses, 63861 groundings, training log-likelihood -25205.3 (mean -0.138414 per grounding), 112 parameters.
+% occluder(Occluded, Occluder):t+1: 50 clauses, 64040 groundings, training log-likelihood -24840.8 (mean -0.13641 per grounding), 86 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
-    (   occluded_by(Occluded, Occluder):t
-    ->  (   lift(Occluder):t+1 ~= Lift
-        ->  (   kind(Occluder):t+1 ~= ball
-            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Lift], [-76.9098, 5.07428], P1),
+    (   distance(Occluded, Occluder):t+1 ~= Distance
+    ->  (   occluded_by(Occluded, Occluder):t
+        ->  (   lift(Occluder):t+1 ~= Lift
+            ->  % n = 4840 (weight 13424), log-likelihood -455.478, logistic
+                logistic([Distance, Lift], [10.1981, -134.36, 5.45625], P1),
                 P2 is 1-P1
-            ;   kind(Occluder):t+1 ~= box
-            ->  (   distance(Occluded, Occluder):t+1 ~= Distance
-                ->  % n = 1119 (weight 3927), log-likelihood -123.443, logistic
-                    logistic([Lift, Distance], [-446.7, 844.796, 5.3287], P1),
-                    P2 is 1-P1
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Lift], [-312.408, 5.34929], P1),
-                    P2 is 1-P1
-                )
-            ;   kind(Occluder):t+1 ~= can
-            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Lift], [-76.9098, 5.07428], P1),
-                P2 is 1-P1
-            ;   kind(Occluder):t+1 ~= cup
-            ->  % n = 1164 (weight 3804), log-likelihood -105.384, logistic
-                logistic([Lift], [-119.282, 5.52355], P1),
-                P2 is 1-P1
-            ;   kind(Occluder):t+1 ~= mug
-            ->  (   distance(Occluded, Occluder):t+1 ~= Distance2
-                ->  % n = 998 (weight 3570), log-likelihood -84.8291, logistic
-                    logistic([Lift, Distance2], [-389.749, 689.662, 5.10854], P1),
-                    P2 is 1-P1
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Lift], [-188.759, 5.49195], P1),
-                    P2 is 1-P1
-                )
-            ;   kind(Occluder):t+1 ~= skin
-            ->  % n = 1490 (weight 2126), log-likelihood -176.552, logistic
-                logistic([Lift], [-52.3047, 4.35799], P1),
-                P2 is 1-P1
-            ;   \+ kind(Occluder):t+1 ~= _
-            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Lift], [-76.9098, 5.07428], P1),
-                P2 is 1-P1
+            ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                P1 = 0.99083867,
+                P2 = 0.00916133
             )
-        ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-            P1 = 0.99084072,
-            P2 = 0.00915928
-        )
-    ;   (   distance(Occluded, Occluder):t+1 ~= Distance4
-        ->  (   kind(Occluder):t+1 ~= ball
-            ->  (   seen(Occluder):t
-                ->  % n = 5566 (weight 20650), log-likelihood -0.999927, finite
-                    P1 = 4.84215e-5,
-                    P2 = 0.9999515785
-                ;   (   lift(Occluder):t+1 ~= Lift2
-                    ->  % n = 196 (weight 276), log-likelihood -31.0311, logistic
-                        logistic([Distance4, Lift2], [-3.48301, 45.2234, -2.7762], P1),
-                        P2 is 1-P1
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                        P1 = 0.0467626,
-                        P2 = 0.9532374
-                    )
-                )
-            ;   kind(Occluder):t+1 ~= box
-            ->  (   kind(Occluded):t+1 ~= ball
+        ;   (   kind(Occluded):t+1 ~= ball
+            ->  (   kind(Occluder):t+1 ~= ball
+                ->  % n = 2135 (weight 7411), log-likelihood -0.999798, finite
+                    P1 = 0.000134898,
+                    P2 = 0.999865102
+                ;   kind(Occluder):t+1 ~= box
                 ->  (   rise(Occluded, Occluder):t+1 ~= Rise
                     ->  (   Rise < 0.0
                         ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance4], [-13.6774, 0.269046], P1),
+                            logistic([Distance], [-13.3431, 0.194924], P1),
                             P2 is 1-P1
                         ;   Rise < 0.1
                         ->  (   seen(Occluded):t
@@ -182,251 +136,209 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                                 P1 = 0.00862069,
                                 P2 = 0.99137931
                             ;   (   lost_anywhere(Occluded):t
-                                ->  % n = 55 (weight 247), log-likelihood -1.23131, logistic
-                                    logistic([Distance4], [-40.3902, 3.97825], P1),
+                                ->  % n = 55 (weight 247), log-likelihood -1.24872, logistic
+                                    logistic([Distance], [-39.9308, 3.90535], P1),
                                     P2 is 1-P1
-                                ;   % n = 7071 (weight 20839), log-likelihood -4502.66, logistic
-                                    logistic([Distance4], [-13.5582, 0.303063], P1),
+                                ;   % n = 7061 (weight 20789), log-likelihood -4584, logistic
+                                    logistic([Distance], [-13.2081, 0.224528], P1),
                                     P2 is 1-P1
                                 )
                             )
-                        ;   (   lift(Occluder):t+1 ~= Lift4
-                            ->  % n = 515 (weight 699), log-likelihood -85.713, logistic
-                                logistic([Distance4, Lift4], [-22.7454, -40.874, -0.154984], P1),
+                        ;   (   lift(Occluder):t+1 ~= Lift2
+                            ->  % n = 519 (weight 719), log-likelihood -85.7047, logistic
+                                logistic([Distance, Lift2], [-22.6107, -40.7645, -0.158582], P1),
                                 P2 is 1-P1
                             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Distance4], [-19.4787, -0.475447], P1),
+                                logistic([Distance], [-19.3652, -0.480469], P1),
                                 P2 is 1-P1
                             )
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance4], [-13.6774, 0.269046], P1),
+                        logistic([Distance], [-13.3431, 0.194924], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 1374 (weight 4002), log-likelihood -0.999625, finite
-                    P1 = 0.00024975,
-                    P2 = 0.99975025
-                ;   kind(Occluded):t+1 ~= can
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise4
-                    ->  (   Rise4 < 0.0
-                        ->  % n = 471 (weight 955), log-likelihood -26.3998, logistic
-                            logistic([Distance4], [-55.6664, 4.23835], P1),
-                            P2 is 1-P1
-                        ;   Rise4 < 0.1
-                        ->  (   lost_anywhere(Occluded):t
-                            ->  % n = 63 (weight 159), log-likelihood -12.0234, logistic
-                                logistic([Distance4], [-19.6314, 0.509587], P1),
-                                P2 is 1-P1
-                            ;   % n = 2153 (weight 4965), log-likelihood -2085.91, logistic
-                                logistic([Distance4], [-8.99996, 0.682798], P1),
-                                P2 is 1-P1
-                            )
-                        ;   % n = 402 (weight 478), log-likelihood -48.6087, finite
-                            P1 = 0.0229167,
-                            P2 = 0.9770833
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance4], [-11.3496, 0.992303], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 1112 (weight 3748), log-likelihood -0.9996, finite
-                    P1 = 0.000266667,
-                    P2 = 0.999733333
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 1214 (weight 3290), log-likelihood -25.037, logistic
-                    logistic([Distance4], [-154.774, 4.64838], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 1446 (weight 4582), log-likelihood -0.999673, finite
-                    P1 = 0.00021815,
-                    P2 = 0.99978185
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance4], [-13.2399, -0.0548848], P1),
-                    P2 is 1-P1
-                )
-            ;   kind(Occluder):t+1 ~= can
-            ->  % n = 3762 (weight 15490), log-likelihood -0.999903, finite
-                P1 = 6.45494e-5,
-                P2 = 0.9999354506
-            ;   kind(Occluder):t+1 ~= cup
-            ->  (   kind(Occluded):t+1 ~= ball
+                ;   kind(Occluder):t+1 ~= can
+                ->  % n = 1738 (weight 7054), log-likelihood -0.999787, finite
+                    P1 = 0.000141723,
+                    P2 = 0.999858277
+                ;   kind(Occluder):t+1 ~= cup
                 ->  (   lost_anywhere(Occluded):t
                     ->  (   seen(Occluder):t
-                        ->  % n = 41 (weight 197), log-likelihood -0.992445, finite
-                            P1 = 0.00502513,
-                            P2 = 0.99497487
+                        ->  % n = 50 (weight 242), log-likelihood -0.993841, finite
+                            P1 = 0.00409836,
+                            P2 = 0.99590164
                         ;   % n = 13 (weight 25), log-likelihood -13.8015, finite
                             P1 = 0.259259,
                             P2 = 0.740741
                         )
-                    ;   (   seen(Occluded):t
-                        ->  % n = 118, log-likelihood -9.0791, logistic
-                            logistic([Distance4], [-41.9972, 2.30251], P1),
-                            P2 is 1-P1
-                        ;   (   rise(Occluded, Occluder):t+1 ~= Rise8
-                            ->  (   Rise8 < 0.0
-                                ->  % n = 353 (weight 905), log-likelihood -387.737, logistic
-                                    logistic([Distance4], [-8.05152, -0.0263108], P1),
+                    ;   (   rise(Occluded, Occluder):t+1 ~= Rise4
+                        ->  (   Rise4 < 0.0
+                            ->  % n = 369 (weight 929), log-likelihood -352.666, logistic
+                                logistic([Distance], [-11.3695, 0.821599], P1),
+                                P2 is 1-P1
+                            ;   Rise4 < 0.1
+                            ->  (   seen(Occluded):t
+                                ->  % n = 90, log-likelihood -4.14141, logistic
+                                    logistic([Distance], [-33.8381, 2.49258], P1),
                                     P2 is 1-P1
-                                ;   Rise8 < 0.1
-                                ->  % n = 7159 (weight 18419), log-likelihood -7860.27, logistic
-                                    logistic([Distance4], [-5.0341, -0.451174], P1),
-                                    P2 is 1-P1
-                                ;   % n = 418 (weight 478), log-likelihood -87.5141, logistic
-                                    logistic([Distance4], [-10.7366, -0.669748], P1),
+                                ;   % n = 7206 (weight 18654), log-likelihood -7876.12, logistic
+                                    logistic([Distance], [-5.25176, -0.418674], P1),
                                     P2 is 1-P1
                                 )
-                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Distance4], [-5.15066, -0.452483], P1),
+                            ;   % n = 438 (weight 522), log-likelihood -97.6927, logistic
+                                logistic([Distance], [-12.2049, -0.430327], P1),
                                 P2 is 1-P1
                             )
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-5.50569, -0.388962], P1),
+                            P2 is 1-P1
                         )
                     )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 648 (weight 2304), log-likelihood -0.999349, finite
-                    P1 = 0.000433651,
-                    P2 = 0.999566349
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 2430 (weight 9070), log-likelihood -0.999835, finite
-                    P1 = 0.000110229,
-                    P2 = 0.999889771
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 979 (weight 3291), log-likelihood -0.999544, finite
-                    P1 = 0.000303674,
-                    P2 = 0.999696326
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 484 (weight 1596), log-likelihood -0.999061, finite
-                    P1 = 0.000625782,
-                    P2 = 0.999374218
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 1410 (weight 4998), log-likelihood -0.9997, finite
-                    P1 = 0.0002,
-                    P2 = 0.9998
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance4], [-6.68081, -0.909845], P1),
-                    P2 is 1-P1
-                )
-            ;   kind(Occluder):t+1 ~= mug
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
-                    ->  (   Rise12 < 0.0
-                        ->  % n = 193 (weight 645), log-likelihood -7.33232, logistic
-                            logistic([Distance4], [19.902, -12.6057], P1),
+                ;   kind(Occluder):t+1 ~= mug
+                ->  (   rise(Occluded, Occluder):t+1 ~= Rise8
+                    ->  (   Rise8 < 0.0
+                        ->  % n = 220 (weight 780), log-likelihood -6.50984, logistic
+                            logistic([Distance], [27.627, -16.2347], P1),
                             P2 is 1-P1
-                        ;   Rise12 < 0.1
+                        ;   Rise8 < 0.1
                         ->  (   lost_anywhere(Occluded):t
-                            ->  % n = 121 (weight 389), log-likelihood -4.94206, logistic
-                                logistic([Distance4], [-28.6839, 1.90042], P1),
+                            ->  % n = 114 (weight 354), log-likelihood -4.90048, logistic
+                                logistic([Distance], [-28.8458, 1.91844], P1),
                                 P2 is 1-P1
                             ;   (   seen(Occluded):t
                                 ->  % n = 93, log-likelihood -7.52216, logistic
-                                    logistic([Distance4], [-27.187, 2.06956], P1),
+                                    logistic([Distance], [-27.187, 2.06956], P1),
                                     P2 is 1-P1
-                                ;   % n = 7348 (weight 18260), log-likelihood -7320.25, logistic
-                                    logistic([Distance4], [-7.65045, 0.111207], P1),
+                                ;   % n = 7287 (weight 17955), log-likelihood -7155.36, logistic
+                                    logistic([Distance], [-7.92665, 0.212344], P1),
                                     P2 is 1-P1
                                 )
                             )
-                        ;   % n = 341 (weight 409), log-likelihood -42.6782, logistic
-                            logistic([Distance4], [-15.4096, -0.419017], P1),
+                        ;   % n = 341 (weight 409), log-likelihood -42.6772, logistic
+                            logistic([Distance], [-15.4052, -0.419447], P1),
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance4], [-8.00257, 0.099568], P1),
+                        logistic([Distance], [-8.31822, 0.207997], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 1176 (weight 3392), log-likelihood -0.999558, finite
-                    P1 = 0.000294638,
-                    P2 = 0.999705362
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 2267 (weight 7763), log-likelihood -0.999807, finite
-                    P1 = 0.000128783,
-                    P2 = 0.999871217
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 1101 (weight 3737), log-likelihood -0.999599, finite
-                    P1 = 0.000267451,
-                    P2 = 0.999732549
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 735 (weight 2027), log-likelihood -0.999261, finite
-                    P1 = 0.000492854,
-                    P2 = 0.999507146
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 1419 (weight 4627), log-likelihood -0.999676, finite
-                    P1 = 0.000216029,
-                    P2 = 0.999783971
-                ;   \+ kind(Occluded):t+1 ~= _
+                ;   kind(Occluder):t+1 ~= skin
+                ->  % n = 2122 (weight 2486), log-likelihood -1258.82, logistic
+                    logistic([Distance], [-7.19555, 0.738381], P1),
+                    P2 is 1-P1
+                ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance4], [-9.87146, -0.280181], P1),
+                    logistic([Distance], [-8.82591, -0.104788], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluder):t+1 ~= skin
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  % n = 2059 (weight 2511), log-likelihood -1466.78, logistic
-                    logistic([Distance4], [-3.47721, 0.092319], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 319 (weight 423), log-likelihood -0.996467, finite
-                    P1 = 0.00235294,
-                    P2 = 0.99764706
-                ;   kind(Occluded):t+1 ~= can
+            ;   kind(Occluded):t+1 ~= box
+            ->  % n = 4275 (weight 12563), log-likelihood -0.999881, finite
+                P1 = 7.95862e-5,
+                P2 = 0.9999204138
+            ;   kind(Occluded):t+1 ~= can
+            ->  (   kind(Occluder):t+1 ~= ball
+                ->  (   seen(Occluder):t
+                    ->  % n = 1056 (weight 4516), log-likelihood -0.999668, finite
+                        P1 = 0.000221337,
+                        P2 = 0.999778663
+                    ;   (   lift(Occluder):t+1 ~= Lift4
+                        ->  % n = 54 (weight 74), log-likelihood -20.6741, logistic
+                            logistic([Distance, Lift4], [-6.95313, 43.8021, -0.726311], P1),
+                            P2 is 1-P1
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                            P1 = 0.171053,
+                            P2 = 0.828947
+                        )
+                    )
+                ;   kind(Occluder):t+1 ~= box
+                ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
+                    ->  (   Rise12 < 0.0
+                        ->  % n = 472 (weight 960), log-likelihood -26.4003, logistic
+                            logistic([Distance], [-55.6646, 4.23831], P1),
+                            P2 is 1-P1
+                        ;   Rise12 < 0.1
+                        ->  (   lost_anywhere(Occluded):t
+                            ->  % n = 63 (weight 159), log-likelihood -12.0234, logistic
+                                logistic([Distance], [-19.6305, 0.509502], P1),
+                                P2 is 1-P1
+                            ;   % n = 2202 (weight 5210), log-likelihood -2124.26, logistic
+                                logistic([Distance], [-9.45809, 0.707409], P1),
+                                P2 is 1-P1
+                            )
+                        ;   % n = 406 (weight 498), log-likelihood -49.023, finite
+                            P1 = 0.022,
+                            P2 = 0.978
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance], [-11.9366, 1.05152], P1),
+                        P2 is 1-P1
+                    )
+                ;   kind(Occluder):t+1 ~= can
+                ->  % n = 628 (weight 2804), log-likelihood -0.999465, finite
+                    P1 = 0.000356379,
+                    P2 = 0.999643621
+                ;   kind(Occluder):t+1 ~= cup
+                ->  % n = 2277 (weight 8305), log-likelihood -0.999819, finite
+                    P1 = 0.00012038,
+                    P2 = 0.99987962
+                ;   kind(Occluder):t+1 ~= mug
+                ->  % n = 2379 (weight 8323), log-likelihood -0.99982, finite
+                    P1 = 0.00012012,
+                    P2 = 0.99987988
+                ;   kind(Occluder):t+1 ~= skin
                 ->  (   lift(Occluder):t+1 ~= Lift6
                     ->  (   rise(Occluded, Occluder):t+1 ~= Rise16
                         ->  (   Rise16 < 0.0
-                            ->  % n = 30 (weight 38), log-likelihood -0.962077, finite
-                                P1 = 0.025,
-                                P2 = 0.975
+                            ->  % n = 33 (weight 37), log-likelihood -0.961093, finite
+                                P1 = 0.025641,
+                                P2 = 0.974359
                             ;   Rise16 < 0.1
-                            ->  % n = 598 (weight 602), log-likelihood -179.859, logistic
-                                logistic([Distance4, Lift6], [-6.9022, -91.6123, 4.20956], P1),
+                            ->  % n = 418, log-likelihood -144.281, logistic
+                                logistic([Distance, Lift6], [-5.55309, -40.538, 3.0097], P1),
                                 P2 is 1-P1
                             ;   (   lost_anywhere(Occluded):t
-                                ->  % n = 28, log-likelihood -9.62223, finite
-                                    P1 = 0.133333,
-                                    P2 = 0.866667
-                                ;   % n = 1139 (weight 1159), log-likelihood -478.125, logistic
-                                    logistic([Distance4, Lift6], [-6.66907, -26.9532, 3.55097], P1),
+                                ->  % n = 33 (weight 37), log-likelihood -12.7441, finite
+                                    P1 = 0.128205,
+                                    P2 = 0.871795
+                                ;   % n = 1321 (weight 1337), log-likelihood -453.602, logistic
+                                    logistic([Distance, Lift6], [-7.97585, -60.1664, 3.53919], P1),
                                     P2 is 1-P1
                                 )
                             )
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance4, Lift6], [-6.29963, -28.6624, 3.37805], P1),
+                            logistic([Distance, Lift6], [-7.09987, -45.4514, 3.07544], P1),
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance4], [-5.74118, 3.09609], P1),
+                        logistic([Distance], [-6.34233, 2.78286], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 365 (weight 457), log-likelihood -0.996729, finite
-                    P1 = 0.00217865,
-                    P2 = 0.99782135
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 191 (weight 219), log-likelihood -0.993199, finite
-                    P1 = 0.00452489,
-                    P2 = 0.99547511
-                ;   kind(Occluded):t+1 ~= skin
+                ;   \+ kind(Occluder):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance4], [-3.27759, 0.504332], P1),
-                    P2 is 1-P1
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance4], [-3.27759, 0.504332], P1),
+                    logistic([Distance], [-12.5838, 0.256381], P1),
                     P2 is 1-P1
                 )
-            ;   \+ kind(Occluder):t+1 ~= _
+            ;   kind(Occluded):t+1 ~= cup
+            ->  % n = 4439 (weight 14419), log-likelihood -0.999896, finite
+                P1 = 6.93433e-5,
+                P2 = 0.9999306567
+            ;   kind(Occluded):t+1 ~= mug
+            ->  % n = 3231 (weight 9283), log-likelihood -39.2145, logistic
+                logistic([Distance], [-206.746, 4.40099], P1),
+                P2 is 1-P1
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 5948 (weight 20864), log-likelihood -0.999928, finite
+                P1 = 4.79249e-5,
+                P2 = 0.9999520751
+            ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance4], [-8.88638, -0.547184], P1),
+                logistic([Distance], [-10.2246, -0.36136], P1),
                 P2 is 1-P1
             )
-        ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-            P1 = 0.0774147,
-            P2 = 0.9225853
         )
+    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+        P1 = 0.144751,
+        P2 = 0.855249
     ).
 
 % When a hand lets go of what it carries (ddc learn, from the carries beside the data): a

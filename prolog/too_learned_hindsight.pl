@@ -1,8 +1,8 @@
 /*  too_learned_hindsight.pl -- the theory of occlusion with rules learned from experience.
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
-    data_hindsight.pl: 25909 groundings of occluder(A, O):t+1,
-    29 clauses, training log-likelihood -9173.66;
+    data_hindsight.pl: 26752 groundings of occluder(A, O):t+1,
+    42 clauses, training log-likelihood -9484.71;
     and one for released(A):t+1 from 1928 frames a hand held an object
     (3 clauses, training log-likelihood -70.2959);
     search seed 0.
@@ -21,7 +21,7 @@
 % variances per axis in square metres, one step is one camera frame.
 obs_var(2.377e-06).  % the measurement noise of a perceived position (m², per axis); 87,816 samples
 motion_var(2.595e-05).  % how far a perceived object moves in a frame (m², per axis); 102,633 samples
-reappear_var(0.003261).  % where a hidden object is seen again, around its belief (m²); 492 samples
+reappear_var(0.003262).  % where a hidden object is seen again, around its belief (m²); 492 samples
 lost_var(0.0664).  % the same for an object lost while the camera saw nothing (m²); 6,854 samples
 follow_keep(0.9556).  % the fraction of its offset from its occluder a hidden object keeps; 12,844 samples
 follow_var(3.008e-06).  % the jitter of that offset per frame (m²); 12,844 samples
@@ -43,20 +43,20 @@ grip_rise(0.00179).  % how far a hand's grip rises in a frame when it lifts (m);
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.001136).  % 3,520
-hides(box, 0.1805).  % 12,513
-hides(can, 0.0002791).  % 3,581
-hides(cup, 0.2209).  % 10,197
-hides(mug, 0.2581).  % 10,271
-hides(skin, 0.09828).  % 1,514
-hidden_share(ball, 0.2162).  % 29,921
-hidden_share(box, 0.002656).  % 2,634
-hidden_share(can, 0.1765).  % 2,689
-hidden_share(cup, 0.01036).  % 1,832
-hidden_share(mug, 0.1042).  % 3,328
+hides(ball, 0.001147).  % 3,485
+hides(box, 0.1849).  % 12,568
+hides(can, 0.0002619).  % 3,816
+hides(cup, 0.2192).  % 10,252
+hides(mug, 0.2534).  % 10,401
+hides(skin, 0.4047).  % 1,604
+hidden_share(ball, 0.2312).  % 30,337
+hidden_share(box, 0.002674).  % 2,616
+hidden_share(can, 0.181).  % 2,816
+hidden_share(cup, 0.00813).  % 1,843
+hidden_share(mug, 0.09537).  % 3,322
 hidden_share(skin, 0.0008375).  % 1,192
 carries(box, 0.9744).  % 37
-carries(skin, 0.9851).  % 65
+carries(skin, 0.9969).  % 316
 carrier(skin).
 can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
 is_carrier(O) := category(O, C), carrier(C).
@@ -101,138 +101,195 @@ rise(A, O):t+1 ~ val(H) :=
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 29 clauses, 25909 groundings, training log-likelihood -9173.66 (mean -0.134984 per grounding), 47 parameters.
+% occluder(Occluded, Occluder):t+1: 42 clauses, 26752 groundings, training log-likelihood -9484.71 (mean -0.136212 per grounding), 62 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   occluded_by(Occluded, Occluder):t
-        ->  % n = 2127 (weight 7219), log-likelihood -0.999792, finite
-            P1 = 0.999861515,
-            P2 = 0.000138485
-        ;   (   kind(Occluded):t+1 ~= ball
-            ->  (   kind(Occluder):t+1 ~= ball
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise
-                    ->  (   Rise < 0.0
-                        ->  % n = 548 (weight 1944), log-likelihood -0.999229, finite
-                            P1 = 0.000513875,
-                            P2 = 0.999486125
-                        ;   Rise < 0.1
-                        ->  % n = 435 (weight 1475), log-likelihood -3.77719, logistic
-                            logistic([Distance], [-46.4231, 2.40628], P1),
-                            P2 is 1-P1
-                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-36.505, 0.0900576], P1),
-                            P2 is 1-P1
-                        )
+        ->  % n = 2471 (weight 7759), log-likelihood -0.999807, finite
+            P1 = 0.999871151,
+            P2 = 0.000128849
+        ;   (   kind(Occluder):t+1 ~= ball
+            ->  (   rise(Occluded, Occluder):t+1 ~= Rise
+                ->  (   Rise < 0.0
+                    ->  % n = 1117 (weight 3297), log-likelihood -0.999545, finite
+                        P1 = 0.000303122,
+                        P2 = 0.999696878
+                    ;   Rise < 0.1
+                    ->  % n = 594 (weight 2102), log-likelihood -3.5711, logistic
+                        logistic([Distance], [-51.5064, 2.61982], P1),
+                        P2 is 1-P1
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-36.505, 0.0900576], P1),
+                        logistic([Distance], [-37.1808, -0.579868], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluder):t+1 ~= box
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-37.1808, -0.579868], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluder):t+1 ~= box
+            ->  (   kind(Occluded):t+1 ~= ball
                 ->  (   lost_anywhere(Occluded):t
                     ->  (   seen(Occluder):t
-                        ->  % n = 188 (weight 692), log-likelihood -0.997837, finite
-                            P1 = 0.00144092,
-                            P2 = 0.99855908
+                        ->  % n = 190 (weight 702), log-likelihood -0.997868, finite
+                            P1 = 0.00142045,
+                            P2 = 0.99857955
                         ;   % n = 13 (weight 25), log-likelihood -4.54755, logistic
                             logistic([Distance], [-14.7079, 0.727959], P1),
                             P2 is 1-P1
                         )
-                    ;   % n = 4800 (weight 12980), log-likelihood -1748.57, logistic
-                        logistic([Distance], [-23.6996, 1.42683], P1),
+                    ;   % n = 4892 (weight 13328), log-likelihood -1764.61, logistic
+                        logistic([Distance], [-23.9705, 1.41833], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluder):t+1 ~= can
-                ->  % n = 1193 (weight 4933), log-likelihood -0.999696, finite
-                    P1 = 0.000202634,
-                    P2 = 0.999797366
-                ;   kind(Occluder):t+1 ~= cup
+                ;   kind(Occluded):t+1 ~= box
+                ->  % n = 242 (weight 650), log-likelihood -28.0454, logistic
+                    logistic([Distance], [-36.2609, -1.26867], P1),
+                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= can
+                ->  % n = 651 (weight 1227), log-likelihood -53.5439, logistic
+                    logistic([Distance], [-72.7401, 4.76722], P1),
+                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= cup
+                ->  % n = 276 (weight 676), log-likelihood -7.82009, finite
+                    P1 = 0.00294985,
+                    P2 = 0.99705015
+                ;   kind(Occluded):t+1 ~= mug
+                ->  % n = 769 (weight 1585), log-likelihood -15.0628, logistic
+                    logistic([Distance], [-117.219, 4.89118], P1),
+                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= skin
+                ->  % n = 49 (weight 141), log-likelihood -0.989478, finite
+                    P1 = 0.00699301,
+                    P2 = 0.99300699
+                ;   \+ kind(Occluded):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-24.1648, 0.942878], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluder):t+1 ~= can
+            ->  % n = 1523 (weight 6035), log-likelihood -0.999752, finite
+                P1 = 0.000165645,
+                P2 = 0.999834355
+            ;   kind(Occluder):t+1 ~= cup
+            ->  (   kind(Occluded):t+1 ~= ball
                 ->  (   seen(Occluded):t
                     ->  % n = 98, log-likelihood -7.94443, logistic
                         logistic([Distance], [-34.7722, 2.01006], P1),
                         P2 is 1-P1
-                    ;   % n = 4889 (weight 11841), log-likelihood -3815.49, logistic
-                        logistic([Distance], [-12.7232, 0.905301], P1),
+                    ;   % n = 4973 (weight 12125), log-likelihood -3801.23, logistic
+                        logistic([Distance], [-12.8758, 0.936728], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluder):t+1 ~= mug
+                ;   kind(Occluded):t+1 ~= box
+                ->  % n = 222 (weight 690), log-likelihood -0.997831, finite
+                    P1 = 0.00144509,
+                    P2 = 0.99855491
+                ;   kind(Occluded):t+1 ~= can
+                ->  % n = 221 (weight 845), log-likelihood -5.74148, logistic
+                    logistic([Distance], [-60.5621, 2.94554], P1),
+                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= cup
+                ->  % n = 66 (weight 126), log-likelihood -0.98824, finite
+                    P1 = 0.0078125,
+                    P2 = 0.9921875
+                ;   kind(Occluded):t+1 ~= mug
+                ->  % n = 234 (weight 642), log-likelihood -52.3119, logistic
+                    logistic([Distance], [-26.288, 0.741892], P1),
+                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= skin
+                ->  % n = 151 (weight 607), log-likelihood -0.997535, finite
+                    P1 = 0.00164204,
+                    P2 = 0.99835796
+                ;   \+ kind(Occluded):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-13.6795, 0.825467], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluder):t+1 ~= mug
+            ->  (   kind(Occluded):t+1 ~= ball
                 ->  (   lost_anywhere(Occluded):t
                     ->  (   seen(Occluder):t
-                        ->  % n = 184 (weight 652), log-likelihood -0.997705, finite
-                            P1 = 0.00152905,
-                            P2 = 0.99847095
+                        ->  % n = 183 (weight 647), log-likelihood -0.997687, finite
+                            P1 = 0.00154083,
+                            P2 = 0.99845917
                         ;   % n = 14 (weight 22), log-likelihood -5.42227, logistic
                             logistic([Distance], [-18.255, 3.22144], P1),
                             P2 is 1-P1
                         )
-                    ;   % n = 4789 (weight 10833), log-likelihood -2973.13, logistic
-                        logistic([Distance], [-18.4185, 1.64392], P1),
+                    ;   % n = 4865 (weight 11037), log-likelihood -2949.75, logistic
+                        logistic([Distance], [-18.5574, 1.67578], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluder):t+1 ~= skin
-                ->  % n = 1065 (weight 1385), log-likelihood -315.554, logistic
-                    logistic([Distance], [-11.0194, -0.334481], P1),
+                ;   kind(Occluded):t+1 ~= box
+                ->  % n = 270 (weight 634), log-likelihood -0.99764, finite
+                    P1 = 0.00157233,
+                    P2 = 0.99842767
+                ;   kind(Occluded):t+1 ~= can
+                ->  % n = 396 (weight 1172), log-likelihood -5.7227, logistic
+                    logistic([Distance], [-81.4757, 6.49308], P1),
                     P2 is 1-P1
-                ;   \+ kind(Occluder):t+1 ~= _
+                ;   kind(Occluded):t+1 ~= cup
+                ->  % n = 206 (weight 490), log-likelihood -5.00591, logistic
+                    logistic([Distance], [-50.4883, 3.64425], P1),
+                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= mug
+                ->  % n = 381 (weight 993), log-likelihood -7.77371, logistic
+                    logistic([Distance], [-62.4628, 3.58639], P1),
+                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= skin
+                ->  % n = 15 (weight 59), log-likelihood -0.975229, finite
+                    P1 = 0.0163934,
+                    P2 = 0.9836066
+                ;   \+ kind(Occluded):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-17.5105, 1.0551], P1),
+                    logistic([Distance], [-20.7937, 1.64285], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluded):t+1 ~= box
-            ->  % n = 1038 (weight 2646), log-likelihood -29.8094, logistic
-                logistic([Distance], [-34.808, -1.54843], P1),
-                P2 is 1-P1
-            ;   kind(Occluded):t+1 ~= can
-            ->  % n = 1465 (weight 3781), log-likelihood -64.3195, logistic
-                logistic([Distance], [-86.5233, 5.47533], P1),
-                P2 is 1-P1
-            ;   kind(Occluded):t+1 ~= cup
-            ->  % n = 867 (weight 1863), log-likelihood -61.7069, logistic
-                logistic([Distance], [-18.5503, -2.30772], P1),
-                P2 is 1-P1
-            ;   kind(Occluded):t+1 ~= mug
-            ->  (   kind(Occluder):t+1 ~= ball
-                ->  % n = 224 (weight 712), log-likelihood -0.997898, finite
-                    P1 = 0.00140056,
-                    P2 = 0.99859944
-                ;   kind(Occluder):t+1 ~= box
-                ->  % n = 771 (weight 1583), log-likelihood -15.0573, logistic
-                    logistic([Distance], [-117.34, 4.8919], P1),
-                    P2 is 1-P1
-                ;   kind(Occluder):t+1 ~= can
-                ->  % n = 53 (weight 129), log-likelihood -0.988511, finite
-                    P1 = 0.00763359,
-                    P2 = 0.99236641
-                ;   kind(Occluder):t+1 ~= cup
-                ->  % n = 244 (weight 692), log-likelihood -51.9469, logistic
-                    logistic([Distance], [-27.9901, 0.94222], P1),
-                    P2 is 1-P1
-                ;   kind(Occluder):t+1 ~= mug
-                ->  % n = 386 (weight 1018), log-likelihood -7.86785, logistic
-                    logistic([Distance], [-62.3765, 3.56427], P1),
-                    P2 is 1-P1
-                ;   kind(Occluder):t+1 ~= skin
-                ->  % n = 206 (weight 246), log-likelihood -60.5457, logistic
-                    logistic([Distance], [-15.7469, 1.11947], P1),
-                    P2 is 1-P1
-                ;   \+ kind(Occluder):t+1 ~= _
+            ;   kind(Occluder):t+1 ~= skin
+            ->  (   kind(Occluded):t+1 ~= ball
+                ->  (   lost_anywhere(Occluded):t
+                    ->  % n = 101 (weight 113), log-likelihood -0.986906, finite
+                        P1 = 0.00869565,
+                        P2 = 0.99130435
+                    ;   % n = 1142 (weight 1298), log-likelihood -739.938, logistic
+                        logistic([Distance], [-7.24139, 1.30175], P1),
+                        P2 is 1-P1
+                    )
+                ;   kind(Occluded):t+1 ~= box
+                ->  % n = 58, log-likelihood -0.974813, finite
+                    P1 = 0.0166667,
+                    P2 = 0.9833333
+                ;   kind(Occluded):t+1 ~= can
+                ->  % n = 42 (weight 50), log-likelihood -0.970904, finite
+                    P1 = 0.0192308,
+                    P2 = 0.9807692
+                ;   kind(Occluded):t+1 ~= cup
+                ->  % n = 120 (weight 152), log-likelihood -0.990232, finite
+                    P1 = 0.00649351,
+                    P2 = 0.99350649
+                ;   kind(Occluded):t+1 ~= mug
+                ->  % n = 207 (weight 247), log-likelihood -11.8074, finite
+                    P1 = 0.0120482,
+                    P2 = 0.9879518
+                ;   kind(Occluded):t+1 ~= skin
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-52.605, 3.03894], P1),
+                    logistic([Distance], [-6.96518, 0.584911], P1),
+                    P2 is 1-P1
+                ;   \+ kind(Occluded):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-6.96518, 0.584911], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 312 (weight 1192), log-likelihood -0.998743, finite
-                P1 = 0.000837521,
-                P2 = 0.999162479
-            ;   \+ kind(Occluded):t+1 ~= _
+            ;   \+ kind(Occluder):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-19.0095, 1.00986], P1),
+                logistic([Distance], [-17.8635, 0.970169], P1),
                 P2 is 1-P1
             )
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.210879,
-        P2 = 0.789121
+        P1 = 0.219893,
+        P2 = 0.780107
     ).
 
 % When a hand lets go of what it carries (ddc learn, from the carries beside the data): a

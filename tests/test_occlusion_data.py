@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from bridge.learning import LearningData
@@ -260,3 +261,22 @@ def test_the_covering_anchor_does_not_depend_on_dictionary_order() -> None:
     a = labels(episode(["mug-2", "box-1"]), LabelOptions(source="truth"))
     b = labels(episode(["box-1", "mug-2"]), LabelOptions(source="truth"))
     assert a[1]["ball-1"] == b[1]["ball-1"] == {"box-1": 1.0}
+
+
+def test_a_hand_is_where_its_grip_is_in_the_data_as_in_the_filter() -> None:
+    """An arm seen from the side: its segment's centre is 20 cm off its hand; the episode
+    (and so the data's pos/1 and hindsight's distances) has the hand at its grip point, the
+    position the runner tells the filter."""
+    from probanchor.learning.experience import play
+    from probanchor.percepts import Percept, PerceptFrame
+
+    hist = np.zeros(216)
+    hist[3] = 1.0
+    grip = (0.1, 0.0, 0.12)
+    frames = [PerceptFrame(k, k / 15, [Percept(
+        time=k / 15, position=np.array([0.3, 0.0, 0.12]), size=np.array([0.5, 0.09, 0.08]),
+        colour_histogram=hist, category={"skin": 1.0}, bbox=(100, 90, 320, 130),
+        grip=np.array(grip))]) for k in range(3)]
+    episode = play(frames, "arm")
+    (view,) = episode.frames[-1].anchors.values()
+    assert view.perceived and view.position == pytest.approx(grip)

@@ -48,9 +48,14 @@ object it most probably is, and the frames since the group opened are answered a
 evaluation's "identity at the end").
 
 **Pruning.** Resampling prunes the answers that later evidence made improbable (their
-particles die). A group whose answer as given holds ``1 - close_tolerance`` of the weight is
-closed (its labels are no longer tracked); the ambiguous percepts' own identity columns stay
-for the world model's ``prob(identity(Percept, Symbol), P)``.
+particles die). A group is closed (its labels are no longer tracked) once the other answers
+hold no more than ``close_tolerance`` of the weight: by default none, i.e. once no particle
+holds one. An answer with a thousandth of the weight can still be the one later evidence
+confirms (two look-alike mugs swapped 60 cm apart while the camera was covered: where they
+are seen again makes the swap improbable, what one of them hides then makes it certain, by a
+likelihood ratio of e^50), so a question stays open while its answers live in the particles.
+The ambiguous percepts' own identity columns stay for the world model's
+``prob(identity(Percept, Symbol), P)``.
 
 Cost: per ambiguity group and frame it opens, ``k!`` proposals per particle (``k`` <= 5 is
 enumerated; larger groups only consider the answers that move one perceived label), one
@@ -163,14 +168,15 @@ class IdentityHypotheses:
     revise_odds : float
         ... and how many times the weight of the answer as given it must have.
     close_tolerance : float
-        A group whose answer as given holds at least ``1 - close_tolerance`` is closed.
+        A group whose other answers hold at most this much of the weight is closed (0: once
+        no particle holds one).
     seed : int
         Of the random stream the answers are drawn from.
     """
 
     def __init__(self, worlds: ParticleWorlds, kernel: float = 0.05,
                  revise_probability: float = 0.5, revise_odds: float = 2.0,
-                 close_tolerance: float = 1e-3, seed: int = 0) -> None:
+                 close_tolerance: float = 0.0, seed: int = 0) -> None:
         if not kernel > 0:
             raise ValueError(f"kernel must be positive, not {kernel!r}")
         if not 0.0 < revise_probability <= 1.0:
@@ -334,7 +340,7 @@ class IdentityHypotheses:
                     g.labels = sorted(mapping.get(s, s) for s in g.labels)
                     g.since = {mapping.get(s, s): f for s, f in g.since.items()}
                     p_given = p_best
-            if p_given < 1.0 - self.close_tolerance:
+            if float(mass.sum()) - p_given > self.close_tolerance:
                 still.append(g)
         self.groups = still
         self.revisions.extend(out)

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from anchoring import AnchorManager
+from anchoring.hands import reasoning_position
 from probanchor.percepts import PerceptFrame
 
 __all__ = ["AnchorView", "Episode", "EpisodeFrame", "play"]
@@ -38,7 +39,9 @@ class AnchorView:
     symbol: str
     category: str
     perceived: bool
-    position: tuple[float, float, float]  # perceived now, or where it was last perceived
+    #: where the reasoning is told it is (a hand's grip point) when perceived now, or where it
+    #: was last perceived
+    position: tuple[float, float, float]
     #: a perceived hand's grip point (where the reasoning is told it is), else None
     grip: tuple[float, float, float] | None = None
 
@@ -117,7 +120,9 @@ def play(frames: Iterable[PerceptFrame], name: str) -> Episode:
             percept = perceived.get(anchor.symbol)
             grip = None
             if percept is not None:
-                position = tuple(float(v) for v in percept.position)
+                # where the reasoning is told it is (a hand's grip point): the data's positions
+                # mean what the filter's do
+                position = tuple(float(v) for v in reasoning_position(percept))
                 if percept.grip is not None:
                     grip = tuple(float(v) for v in percept.grip)
                 if percept.truth_id is not None:
