@@ -70,3 +70,21 @@ def test_no_two_objects_stand_in_each_other_after_the_lifts(seed):
                 d = float(np.linalg.norm(state.positions[a][:2] - state.positions[b][:2]))
                 reach = specs[a].footprint_radius() + specs[b].footprint_radius()
                 assert d >= 0.9 * reach, (t, a, b, d, reach)
+
+
+def test_occlusion_games_hide_containers_under_boxes_too():
+    """Balls go under any container, cans, cups and mugs under boxes only (a cup turned over
+    does not fit over a can or another cup); a container that covers something, or is covered,
+    is neither swapped nor put under another."""
+    from probanchor.tabletop.generate import occlusion_game
+
+    kinds = set()
+    for seed in range(20):
+        b = occlusion_game(seed)
+        b.build()                                     # a valid scenario
+        for ev in b.data["events"]:
+            if ev.get("do") == "put_under":
+                obj, cover = ev["object"].split("_")[0], ev["container"].split("_")[0]
+                kinds.add((obj, cover))
+                assert obj == "ball" or cover == "box", (seed, ev)
+    assert {("cup", "box"), ("mug", "box"), ("ball", "mug")} <= kinds

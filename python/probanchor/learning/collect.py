@@ -92,15 +92,22 @@ class CollectReport:
 
 
 def game_files(folder: Path, games: int, first_seed: int) -> list[Path]:
-    """``games`` occlusion games (YAML in ``folder``), seeds ``first_seed`` on."""
+    """``games`` occlusion games (YAML in ``folder``), seeds ``first_seed`` on.
+
+    A game file that is not the game the generator makes now (written by an earlier version)
+    is written again, and the percept streams cached beside ``folder`` (``../percepts``) for
+    it are removed: they are of the old game."""
     from probanchor.tabletop.generate import occlusion_game
 
     folder.mkdir(parents=True, exist_ok=True)
     paths = []
     for seed in range(first_seed, first_seed + games):
         path = folder / f"occlusion_game_{seed:03d}.yaml"
-        if not path.exists():
-            occlusion_game(seed).save(path)
+        text = occlusion_game(seed).to_yaml()
+        if not path.exists() or path.read_text(encoding="utf-8") != text:
+            for stale in (folder.parent / "percepts").glob(f"{path.stem}_seed*.jsonl"):
+                stale.unlink()
+            path.write_text(text, encoding="utf-8")
         paths.append(path)
     return paths
 

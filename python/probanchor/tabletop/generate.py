@@ -237,7 +237,8 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
 
     Three to six objects (balls, cans, mugs, cups, boxes; balls and cans are small and cannot
     hide anything) and five to nine events of: an object covered by a container (carried over
-    it, with other containers near and far), a container carried with what it covers, two
+    it, with other containers near and far; a ball under a mug, cup or box, a can, a mug or a
+    cup under a box), a container carried with what it covers, two
     containers swapped, a container lifted off what it covers, an object grasped by a hand,
     carried and put down elsewhere, a container passing in front of an object (it is only
     behind, not under), the camera covered (sometimes while an object goes under a container),
@@ -266,12 +267,14 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
                    "cover_under", "move"]
         for _ in range(events):
             what = str(rng.choice(choices))
-            free_c = [c for c in containers if c not in hidden.values()]
+            # a container that covers something or is covered itself stays where it is
+            free_c = [c for c in containers if c not in hidden.values() and c not in hidden]
             visible_small = [o for o in small if o not in hidden]
-            if what in ("under", "cover_under") and visible_small and free_c:
-                obj = str(rng.choice(visible_small))
-                box = str(rng.choice(free_c))
-                if obj.startswith("can") and not box.startswith("box"):
+            coverable = visible_small + [c for c in free_c if not c.startswith("box")]
+            if what in ("under", "cover_under") and coverable and free_c:
+                obj = str(rng.choice(coverable))
+                box = str(rng.choice([c for c in free_c if c != obj] or [obj]))
+                if box == obj or (not obj.startswith("ball") and not box.startswith("box")):
                     continue
                 if what == "cover_under":
                     b.cover_camera(t, duration=2.6)
@@ -289,8 +292,8 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
                 b.move(t, box, to=to, speed=float(rng.uniform(0.08, 0.18)))
                 where[box] = where[obj] = to
                 t += float(rng.uniform(3.0, 4.5))
-            elif what == "swap" and len(containers) >= 2:
-                t = _swap(b, rng, t, containers, where)
+            elif what == "swap" and len([c for c in containers if c not in hidden]) >= 2:
+                t = _swap(b, rng, t, [c for c in containers if c not in hidden], where)
             elif what == "lift" and hidden:
                 t = _lift(b, rng, t, hidden, where, free)
             elif what == "grasp" and visible_small and held is None:
@@ -300,8 +303,8 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
                 where[obj] = free(0.12)
                 b.put_down(t, obj, to=where[obj], duration=float(rng.uniform(2.0, 3.0)))
                 t += 3.5
-            elif what == "front" and containers:
-                t = _pass_in_front(b, rng, t, free_c or containers, ids, hidden, where, spots)
+            elif what == "front" and free_c:
+                t = _pass_in_front(b, rng, t, free_c, ids, hidden, where, spots)
             elif what == "cover":
                 t = _cover(b, rng, t)
             else:
