@@ -1,10 +1,10 @@
 /*  too_learned_hindsight.pl -- the theory of occlusion with rules learned from experience.
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
-    data_hindsight.pl: 26752 groundings of occluder(A, O):t+1,
-    42 clauses, training log-likelihood -9484.71;
-    and one for released(A):t+1 from 1928 frames a hand held an object
-    (3 clauses, training log-likelihood -70.2959);
+    data_hindsight.pl: 23602 groundings of occluder(A, O):t+1,
+    60 clauses, training log-likelihood -3100.08;
+    and one for released(A):t+1 from 1654 frames a hand held an object
+    (3 clauses, training log-likelihood -31.628);
     search seed 0.
     Command: anchoring learn-theory out/learn/data_hindsight.pl --seed 0 --out prolog/too_learned_hindsight.pl --plots docs/images
     The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
@@ -19,19 +19,19 @@
 % motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
 % fractions, quantiles for reaches and heights, Laplace's rule for a probability);
 % variances per axis in square metres, one step is one camera frame.
-obs_var(2.377e-06).  % the measurement noise of a perceived position (m², per axis); 87,816 samples
-motion_var(2.595e-05).  % how far a perceived object moves in a frame (m², per axis); 102,633 samples
-reappear_var(0.003262).  % where a hidden object is seen again, around its belief (m²); 492 samples
-lost_var(0.0664).  % the same for an object lost while the camera saw nothing (m²); 6,854 samples
-follow_keep(0.9556).  % the fraction of its offset from its occluder a hidden object keeps; 12,844 samples
-follow_var(3.008e-06).  % the jitter of that offset per frame (m²); 12,844 samples
-coast_keep(0.9643).  % the fraction of its velocity a hidden object under nothing keeps; 27,694 samples
-wander_var(1.096e-06).  % how far such an object may move besides (m²); 27,694 samples
-grip_reach(0.1018).  % how far (table plane) a hand's grip may be from what it takes (m); 38 samples
-grip_height(0.1281).  % how far above it (m); 38 samples
-occluder_rise(0.01008).  % how far below its centre (m; negative: above); 38 samples
-grip_drop(0.01771).  % how far what a hand holds is below its grip (m); 1,928 samples
-grip_rise(0.00179).  % how far a hand's grip rises in a frame when it lifts (m); 538 samples
+obs_var(2.625e-06).  % the measurement noise of a perceived position (m², per axis); 80,927 samples
+motion_var(3.13e-05).  % how far a perceived object moves in a frame (m², per axis); 95,157 samples
+reappear_var(0.002333).  % where a hidden object is seen again, around its belief (m²); 465 samples
+lost_var(0.0662).  % the same for an object lost while the camera saw nothing (m²); 6,422 samples
+follow_keep(0.8296).  % the fraction of its offset from its occluder a hidden object keeps; 11,318 samples
+follow_var(2.596e-05).  % the jitter of that offset per frame (m²); 11,318 samples
+coast_keep(0.966).  % the fraction of its velocity a hidden object under nothing keeps; 23,357 samples
+wander_var(9.458e-07).  % how far such an object may move besides (m²); 23,357 samples
+grip_reach(0.04778).  % how far (table plane) a hand's grip may be from what it takes (m); 38 samples
+grip_height(0.1249).  % how far above it (m); 38 samples
+occluder_rise(-0.008699).  % how far below its centre (m; negative: above); 38 samples
+grip_drop(0.01763).  % how far what a hand holds is below its grip (m); 1,654 samples
+grip_rise(0.001853).  % how far a hand's grip rises in a frame when it lifts (m); 467 samples
 
 % ------------------------------------------------------------------ learned affordances
 % Read from the data (python/probanchor/learning/occlusion_affordances.py): the share
@@ -43,20 +43,20 @@ grip_rise(0.00179).  % how far a hand's grip rises in a frame when it lifts (m);
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.001147).  % 3,485
-hides(box, 0.1849).  % 12,568
-hides(can, 0.0002619).  % 3,816
-hides(cup, 0.2192).  % 10,252
-hides(mug, 0.2534).  % 10,401
-hides(skin, 0.4047).  % 1,604
-hidden_share(ball, 0.2312).  % 30,337
-hidden_share(box, 0.002674).  % 2,616
-hidden_share(can, 0.181).  % 2,816
-hidden_share(cup, 0.00813).  % 1,843
-hidden_share(mug, 0.09537).  % 3,322
-hidden_share(skin, 0.0008375).  % 1,192
-carries(box, 0.9744).  % 37
-carries(skin, 0.9969).  % 316
+hides(ball, 0.0007968).  % 5,018
+hides(box, 0.2662).  % 10,667
+hides(can, 0.002185).  % 3,202
+hides(cup, 0.1858).  % 6,792
+hides(mug, 0.1238).  % 8,583
+hides(skin, 0.4561).  % 1,855
+hidden_share(ball, 0.2002).  % 16,563
+hidden_share(box, 0.03905).  % 3,020
+hidden_share(can, 0.1297).  % 4,409
+hidden_share(cup, 0.1791).  % 4,783
+hidden_share(mug, 0.1878).  % 6,171
+hidden_share(skin, 0.0008525).  % 1,171
+carries(box, 0.9773).  % 42
+carries(skin, 0.9974).  % 386
 carrier(skin).
 can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
 is_carrier(O) := category(O, C), carrier(C).
@@ -64,8 +64,8 @@ hand_known := object(O), is_carrier(O).
 can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= 0.01.
 
 :- include('too/too_learned_glue.pl').
-% The onset reach (m): 90% of the 66 onsets in the data were within 0.05346 m; times 2.0.
-onset_reach(0.1069).
+% The onset reach (m): 90% of the 81 onsets in the data were within 0.0675 m; times 2.0.
+onset_reach(0.135).
 
 % The learned rules (ddc learn): a distributional logic tree for occluder/2 (each path from its
 % root to a leaf is one clause of the tree), with the background knowledge it reads.
@@ -98,198 +98,285 @@ rise(A, O):t+1 ~ val(H) :=
     pos(A):t ~= (_, _, Z),
     pos(O):t+1 ~= (_, _, ZO),
     H is ZO-Z.
+lift(O):t+1 ~ val(H) :=
+    pos(O):t ~= (_, _, Z0),
+    pos(O):t+1 ~= (_, _, Z1),
+    H is Z1-Z0.
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 42 clauses, 26752 groundings, training log-likelihood -9484.71 (mean -0.136212 per grounding), 62 parameters.
+% occluder(Occluded, Occluder):t+1: 60 clauses, 23602 groundings, training log-likelihood -3100.08 (mean -0.053031 per grounding), 88 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
-    ->  (   occluded_by(Occluded, Occluder):t
-        ->  % n = 2471 (weight 7759), log-likelihood -0.999807, finite
-            P1 = 0.999871151,
-            P2 = 0.000128849
-        ;   (   kind(Occluder):t+1 ~= ball
-            ->  (   rise(Occluded, Occluder):t+1 ~= Rise
-                ->  (   Rise < 0.0
-                    ->  % n = 1117 (weight 3297), log-likelihood -0.999545, finite
-                        P1 = 0.000303122,
-                        P2 = 0.999696878
-                    ;   Rise < 0.1
-                    ->  % n = 594 (weight 2102), log-likelihood -3.5711, logistic
-                        logistic([Distance], [-51.5064, 2.61982], P1),
-                        P2 is 1-P1
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-37.1808, -0.579868], P1),
+    ->  (   kind(Occluder):t+1 ~= ball
+        ->  (   rise(Occluded, Occluder):t+1 ~= Rise
+            ->  (   Rise < 0.0
+                ->  % n = 1441 (weight 4245), log-likelihood -0.999647, finite
+                    P1 = 0.00023546,
+                    P2 = 0.99976454
+                ;   Rise < 0.1
+                ->  % n = 970 (weight 3618), log-likelihood -4.53959, logistic
+                    logistic([Distance], [-54.8071, 2.53469], P1),
+                    P2 is 1-P1
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-47.1362, 0.522735], P1),
+                    P2 is 1-P1
+                )
+            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-47.1362, 0.522735], P1),
+                P2 is 1-P1
+            )
+        ;   kind(Occluder):t+1 ~= box
+        ->  (   lost_anywhere(Occluded):t
+            ->  (   seen(Occluder):t
+                ->  % n = 335 (weight 1059), log-likelihood -0.998586, finite
+                    P1 = 0.000942507,
+                    P2 = 0.999057493
+                ;   % n = 28 (weight 32), log-likelihood -19.025, finite
+                    P1 = 0.294118,
+                    P2 = 0.705882
+                )
+            ;   (   rise(Occluded, Occluder):t+1 ~= Rise4
+                ->  (   Rise4 < 0.0
+                    ->  (   kind(Occluded):t+1 ~= ball
+                        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-162.733, -0.198693], P1),
+                            P2 is 1-P1
+                        ;   kind(Occluded):t+1 ~= box
+                        ->  % n = 40 (weight 128), log-likelihood -0.988422, finite
+                            P1 = 0.00769231,
+                            P2 = 0.99230769
+                        ;   kind(Occluded):t+1 ~= can
+                        ->  % n = 162 (weight 646), log-likelihood -0.997684, finite
+                            P1 = 0.00154321,
+                            P2 = 0.99845679
+                        ;   kind(Occluded):t+1 ~= cup
+                        ->  % n = 68 (weight 116), log-likelihood -0.749321, logistic
+                            logistic([Distance], [-63.0829, 6.57966], P1),
+                            P2 is 1-P1
+                        ;   kind(Occluded):t+1 ~= mug
+                        ->  % n = 11, log-likelihood -1.28628, logistic
+                            logistic([Distance], [-23.6193, 4.1783], P1),
+                            P2 is 1-P1
+                        ;   kind(Occluded):t+1 ~= skin
+                        ->  % n = 64 (weight 220), log-likelihood -0.99323, finite
+                            P1 = 0.0045045,
+                            P2 = 0.9954955
+                        ;   \+ kind(Occluded):t+1 ~= _
+                        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-162.733, -0.198693], P1),
+                            P2 is 1-P1
+                        )
+                    ;   Rise4 < 0.1
+                    ->  (   kind(Occluded):t+1 ~= ball
+                        ->  (   occluded_by(Occluded, Occluder):t
+                            ->  % n = 96 (weight 296), log-likelihood -0.994959, finite
+                                P1 = 0.9966443,
+                                P2 = 0.0033557
+                            ;   % n = 1849 (weight 5693), log-likelihood -262.443, logistic
+                                logistic([Distance], [-51.7391, 2.64592], P1),
+                                P2 is 1-P1
+                            )
+                        ;   kind(Occluded):t+1 ~= box
+                        ->  % n = 49 (weight 141), log-likelihood -10.6756, finite
+                            P1 = 0.020979,
+                            P2 = 0.979021
+                        ;   kind(Occluded):t+1 ~= can
+                        ->  % n = 1089 (weight 2361), log-likelihood -100.275, logistic
+                            logistic([Distance], [-97.7039, 5.03775], P1),
+                            P2 is 1-P1
+                        ;   kind(Occluded):t+1 ~= cup
+                        ->  % n = 1116 (weight 1984), log-likelihood -32.2837, logistic
+                            logistic([Distance], [-96.9349, 9.33687], P1),
+                            P2 is 1-P1
+                        ;   kind(Occluded):t+1 ~= mug
+                        ->  % n = 1920 (weight 3648), log-likelihood -10.7575, logistic
+                            logistic([Distance], [-157.23, 9.70455], P1),
+                            P2 is 1-P1
+                        ;   kind(Occluded):t+1 ~= skin
+                        ->  % n = 8, too few groundings for a model of its own: the parent's model, log-likelihood -3.62037e-05, logistic
+                            logistic([Distance], [-78.0826, 5.15409], P1),
+                            P2 is 1-P1
+                        ;   \+ kind(Occluded):t+1 ~= _
+                        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-78.0826, 5.15409], P1),
+                            P2 is 1-P1
+                        )
+                    ;   % n = 823 (weight 1015), log-likelihood -98.9096, logistic
+                        logistic([Distance], [-48.8733, 2.91817], P1),
                         P2 is 1-P1
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-37.1808, -0.579868], P1),
+                    logistic([Distance], [-54.6257, 3.14637], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluder):t+1 ~= box
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  (   lost_anywhere(Occluded):t
-                    ->  (   seen(Occluder):t
-                        ->  % n = 190 (weight 702), log-likelihood -0.997868, finite
-                            P1 = 0.00142045,
-                            P2 = 0.99857955
-                        ;   % n = 13 (weight 25), log-likelihood -4.54755, logistic
-                            logistic([Distance], [-14.7079, 0.727959], P1),
+            )
+        ;   kind(Occluder):t+1 ~= can
+        ->  % n = 1412 (weight 5040), log-likelihood -8.63626, logistic
+            logistic([Distance], [-70.6103, 4.51081], P1),
+            P2 is 1-P1
+        ;   kind(Occluder):t+1 ~= cup
+        ->  (   kind(Occluded):t+1 ~= ball
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 380 (weight 1104), log-likelihood -0.998643, finite
+                    P1 = 0.999095841,
+                    P2 = 0.000904159
+                ;   % n = 2531 (weight 6003), log-likelihood -912.294, logistic
+                    logistic([Distance], [-28.2779, 2.99532], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= box
+            ->  (   rise(Occluded, Occluder):t+1 ~= Rise8
+                ->  (   Rise8 < 0.0
+                    ->  % n = 220 (weight 720), log-likelihood -5.62394, logistic
+                        logistic([Distance], [-61.1974, 0.786234], P1),
+                        P2 is 1-P1
+                    ;   Rise8 < 0.1
+                    ->  (   lift(Occluder):t+1 ~= Lift
+                        ->  % n = 194 (weight 346), log-likelihood -36.4644, logistic
+                            logistic([Distance, Lift], [-153.047, -516.105, 14.1114], P1),
+                            P2 is 1-P1
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-128.92, 10.8539], P1),
                             P2 is 1-P1
                         )
-                    ;   % n = 4892 (weight 13328), log-likelihood -1764.61, logistic
-                        logistic([Distance], [-23.9705, 1.41833], P1),
+                    ;   % n = 8, too few groundings for a model of its own: the parent's model, log-likelihood -0.000923912, logistic
+                        logistic([Distance], [-91.4364, 6.4241], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 242 (weight 650), log-likelihood -28.0454, logistic
-                    logistic([Distance], [-36.2609, -1.26867], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 651 (weight 1227), log-likelihood -53.5439, logistic
-                    logistic([Distance], [-72.7401, 4.76722], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 276 (weight 676), log-likelihood -7.82009, finite
-                    P1 = 0.00294985,
-                    P2 = 0.99705015
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 769 (weight 1585), log-likelihood -15.0628, logistic
-                    logistic([Distance], [-117.219, 4.89118], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 49 (weight 141), log-likelihood -0.989478, finite
-                    P1 = 0.00699301,
-                    P2 = 0.99300699
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-24.1648, 0.942878], P1),
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-91.4364, 6.4241], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluder):t+1 ~= can
-            ->  % n = 1523 (weight 6035), log-likelihood -0.999752, finite
-                P1 = 0.000165645,
-                P2 = 0.999834355
-            ;   kind(Occluder):t+1 ~= cup
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  (   seen(Occluded):t
-                    ->  % n = 98, log-likelihood -7.94443, logistic
-                        logistic([Distance], [-34.7722, 2.01006], P1),
-                        P2 is 1-P1
-                    ;   % n = 4973 (weight 12125), log-likelihood -3801.23, logistic
-                        logistic([Distance], [-12.8758, 0.936728], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 222 (weight 690), log-likelihood -0.997831, finite
-                    P1 = 0.00144509,
-                    P2 = 0.99855491
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 221 (weight 845), log-likelihood -5.74148, logistic
-                    logistic([Distance], [-60.5621, 2.94554], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 66 (weight 126), log-likelihood -0.98824, finite
-                    P1 = 0.0078125,
-                    P2 = 0.9921875
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 234 (weight 642), log-likelihood -52.3119, logistic
-                    logistic([Distance], [-26.288, 0.741892], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 151 (weight 607), log-likelihood -0.997535, finite
-                    P1 = 0.00164204,
-                    P2 = 0.99835796
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-13.6795, 0.825467], P1),
+            ;   kind(Occluded):t+1 ~= can
+            ->  % n = 91 (weight 243), log-likelihood -0.993866, finite
+                P1 = 0.00408163,
+                P2 = 0.99591837
+            ;   kind(Occluded):t+1 ~= cup
+            ->  % n = 256 (weight 728), log-likelihood -0.997944, finite
+                P1 = 0.00136986,
+                P2 = 0.99863014
+            ;   kind(Occluded):t+1 ~= mug
+            ->  (   seen(Occluded):t
+                ->  % n = 83, log-likelihood -0.98226, finite
+                    P1 = 0.0117647,
+                    P2 = 0.9882353
+                ;   % n = 331 (weight 1303), log-likelihood -9.36032, logistic
+                    logistic([Distance], [-123.97, 15.9929], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluder):t+1 ~= mug
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  (   lost_anywhere(Occluded):t
-                    ->  (   seen(Occluder):t
-                        ->  % n = 183 (weight 647), log-likelihood -0.997687, finite
-                            P1 = 0.00154083,
-                            P2 = 0.99845917
-                        ;   % n = 14 (weight 22), log-likelihood -5.42227, logistic
-                            logistic([Distance], [-18.255, 3.22144], P1),
-                            P2 is 1-P1
-                        )
-                    ;   % n = 4865 (weight 11037), log-likelihood -2949.75, logistic
-                        logistic([Distance], [-18.5574, 1.67578], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 270 (weight 634), log-likelihood -0.99764, finite
-                    P1 = 0.00157233,
-                    P2 = 0.99842767
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 396 (weight 1172), log-likelihood -5.7227, logistic
-                    logistic([Distance], [-81.4757, 6.49308], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 206 (weight 490), log-likelihood -5.00591, logistic
-                    logistic([Distance], [-50.4883, 3.64425], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 381 (weight 993), log-likelihood -7.77371, logistic
-                    logistic([Distance], [-62.4628, 3.58639], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 15 (weight 59), log-likelihood -0.975229, finite
-                    P1 = 0.0163934,
-                    P2 = 0.9836066
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-20.7937, 1.64285], P1),
-                    P2 is 1-P1
-                )
-            ;   kind(Occluder):t+1 ~= skin
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  (   lost_anywhere(Occluded):t
-                    ->  % n = 101 (weight 113), log-likelihood -0.986906, finite
-                        P1 = 0.00869565,
-                        P2 = 0.99130435
-                    ;   % n = 1142 (weight 1298), log-likelihood -739.938, logistic
-                        logistic([Distance], [-7.24139, 1.30175], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 58, log-likelihood -0.974813, finite
-                    P1 = 0.0166667,
-                    P2 = 0.9833333
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 42 (weight 50), log-likelihood -0.970904, finite
-                    P1 = 0.0192308,
-                    P2 = 0.9807692
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 120 (weight 152), log-likelihood -0.990232, finite
-                    P1 = 0.00649351,
-                    P2 = 0.99350649
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 207 (weight 247), log-likelihood -11.8074, finite
-                    P1 = 0.0120482,
-                    P2 = 0.9879518
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-6.96518, 0.584911], P1),
-                    P2 is 1-P1
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-6.96518, 0.584911], P1),
-                    P2 is 1-P1
-                )
-            ;   \+ kind(Occluder):t+1 ~= _
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 92 (weight 412), log-likelihood -0.996373, finite
+                P1 = 0.00241546,
+                P2 = 0.99758454
+            ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-17.8635, 0.970169], P1),
+                logistic([Distance], [-34.6637, 3.02912], P1),
                 P2 is 1-P1
             )
+        ;   kind(Occluder):t+1 ~= mug
+        ->  (   occluded_by(Occluded, Occluder):t
+            ->  % n = 335 (weight 1027), log-likelihood -0.998542, finite
+                P1 = 0.999028183,
+                P2 = 0.000971817
+            ;   (   kind(Occluded):t+1 ~= ball
+                ->  % n = 2802 (weight 6466), log-likelihood -835.74, logistic
+                    logistic([Distance], [-32.2241, 2.40755], P1),
+                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= box
+                ->  % n = 430 (weight 1394), log-likelihood -0.998925, finite
+                    P1 = 0.000716332,
+                    P2 = 0.999283668
+                ;   kind(Occluded):t+1 ~= can
+                ->  % n = 626 (weight 1854), log-likelihood -41.8249, logistic
+                    logistic([Distance], [-30.6378, -0.291126], P1),
+                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= cup
+                ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
+                    ->  (   Rise12 < 0.0
+                        ->  % n = 76 (weight 180), log-likelihood -32.7344, logistic
+                            logistic([Distance], [-24.0567, 2.5437], P1),
+                            P2 is 1-P1
+                        ;   Rise12 < 0.1
+                        ->  % n = 483 (weight 1499), log-likelihood -49.5081, logistic
+                            logistic([Distance], [-21.4682, -1.07436], P1),
+                            P2 is 1-P1
+                        ;   % n = 26, log-likelihood -0.945559, finite
+                            P1 = 0.0357143,
+                            P2 = 0.9642857
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance], [-20.424, -0.370749], P1),
+                        P2 is 1-P1
+                    )
+                ;   kind(Occluded):t+1 ~= mug
+                ->  % n = 462 (weight 1562), log-likelihood -23.2335, logistic
+                    logistic([Distance], [-28.5997, -1.11986], P1),
+                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= skin
+                ->  % n = 22 (weight 86), log-likelihood -0.982868, finite
+                    P1 = 0.0113636,
+                    P2 = 0.9886364
+                ;   \+ kind(Occluded):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-37.3772, 2.17644], P1),
+                    P2 is 1-P1
+                )
+            )
+        ;   kind(Occluder):t+1 ~= skin
+        ->  (   kind(Occluded):t+1 ~= ball
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 616 (weight 824), log-likelihood -0.998183, finite
+                    P1 = 0.99878935,
+                    P2 = 0.00121065
+                ;   (   lost_anywhere(Occluded):t
+                    ->  % n = 54 (weight 62), log-likelihood -0.976398, finite
+                        P1 = 0.015625,
+                        P2 = 0.984375
+                    ;   (   seen(Occluded):t
+                        ->  % n = 32, log-likelihood -3.09204, logistic
+                            logistic([Distance], [-51.3374, 3.57285], P1),
+                            P2 is 1-P1
+                        ;   % n = 1127 (weight 1175), log-likelihood -557.084, logistic
+                            logistic([Distance], [-6.9719, 2.29969], P1),
+                            P2 is 1-P1
+                        )
+                    )
+                )
+            ;   kind(Occluded):t+1 ~= box
+            ->  % n = 25 (weight 33), log-likelihood -4.7451, finite
+                P1 = 0.0571429,
+                P2 = 0.9428571
+            ;   kind(Occluded):t+1 ~= can
+            ->  % n = 62 (weight 74), log-likelihood -0.980147, finite
+                P1 = 0.0131579,
+                P2 = 0.9868421
+            ;   kind(Occluded):t+1 ~= cup
+            ->  % n = 240 (weight 308), log-likelihood -0.995154, finite
+                P1 = 0.00322581,
+                P2 = 0.99677419
+            ;   kind(Occluded):t+1 ~= mug
+            ->  % n = 478 (weight 598), log-likelihood -19.0119, finite
+                P1 = 0.00666667,
+                P2 = 0.99333333
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 39 (weight 47), log-likelihood -0.969106, finite
+                P1 = 0.0204082,
+                P2 = 0.9795918
+            ;   \+ kind(Occluded):t+1 ~= _
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-12.9105, 2.31297], P1),
+                P2 is 1-P1
+            )
+        ;   \+ kind(Occluder):t+1 ~= _
+        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+            logistic([Distance], [-31.0491, 2.26825], P1),
+            P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.219893,
-        P2 = 0.780107
+        P1 = 0.214967,
+        P2 = 0.785033
     ).
 
 % When a hand lets go of what it carries (ddc learn, from the carries beside the data): a
@@ -313,21 +400,21 @@ height(A):t+1 ~ val(H) :=
 highest(A):t+1 ~ val(H) :=
     top(A):t ~= H.
 
-% released(Held):t+1: 3 clauses, 1928 groundings, training log-likelihood -70.2959 (mean -0.0364605 per grounding), 6 parameters.
+% released(Held):t+1: 3 clauses, 1654 groundings, training log-likelihood -31.628 (mean -0.0191221 per grounding), 6 parameters.
 released(Held):t+1 ~ finite([P1:true, P2:false]) :=
     carried(Held):t+1,
     (   height(Held):t+1 ~= Height
     ->  (   highest(Held):t+1 ~= Highest
-        ->  % n = 1928, log-likelihood -70.2959, logistic
-            logistic([Height, Highest], [-90.9747, 32.2868, -4.7466], P1),
+        ->  % n = 1654, log-likelihood -31.628, logistic
+            logistic([Height, Highest], [-172.327, 34.7062, -4.39297], P1),
             P2 is 1-P1
         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Height], [-74.8804, -1.1015], P1),
+            logistic([Height], [-109.242, -0.713546], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.0243523,
-        P2 = 0.9756477
+        P1 = 0.0247585,
+        P2 = 0.9752415
     ).
 
 :- include('too/too_motion.pl').

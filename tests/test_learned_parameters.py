@@ -149,8 +149,9 @@ def test_the_shipped_learned_theories_have_no_hand_written_constant(name: str) -
 def test_the_learned_parameters_are_within_the_simulator_s_ranges(name: str) -> None:
     p = _facts(name)
     step = FASTEST / FPS                  # the farthest an object moves in a frame (m)
-    # perception averages many depth points: its noise is below one point's, not far below
-    assert (DEPTH_SIGMA / 10) ** 2 < p["obs_var"] < DEPTH_SIGMA ** 2
+    # perception averages many depth points (its depth noise is below one point's, not far
+    # below); a segment's outline adds a jitter of the same order to its centre
+    assert (DEPTH_SIGMA / 10) ** 2 < p["obs_var"] < (3 * DEPTH_SIGMA) ** 2
     # most objects stand still most of the time; none moves faster than the fastest
     assert (step / 30) ** 2 < p["motion_var"] < step ** 2
     # a reappearance is centimetres off its belief, less than the table is wide
