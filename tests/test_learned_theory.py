@@ -403,3 +403,15 @@ def test_the_shipped_learned_theories_have_no_hand_written_affordance(name: str)
     assert probability[("hides", "can")] < MIN_SHARE
     assert probability[("hides", "box")] > 10 * MIN_SHARE
     assert probability[("carries", "skin")] > 0.9
+
+
+def test_without_a_carrier_in_the_data_nothing_is_one(tmp_path: Path, capfd) -> None:
+    """Data without hands (no kind carries): the affordances say so, and the theory loads
+    without a warning of an undefined carrier/1."""
+    found = {**FOUND, "carries": {}}
+    path = tmp_path / "affordances.pl"
+    path.write_text(affordance_clauses(found) + "category(h, skin). object(h).\n")
+    program = bridge.load(path)
+    assert program.query("\\+ is_carrier(h)", samples=1, seed=0).probability == 1.0
+    assert program.query("\\+ hand_known", samples=1, seed=0).probability == 1.0
+    assert "carrier/1" not in capfd.readouterr().err

@@ -123,10 +123,12 @@ def affordance_clauses(found: dict[str, dict[str, Affordance]]) -> str:
     for name, key in (("hides", "hides"), ("hidden_share", "hidden"), ("carries", "carries")):
         out += [f"{name}({k}, {a.probability:.4g}).  % {a.points:,.0f}"
                 for k, a in found[key].items()]
-    out += [f"carrier({k})." for k in carriers(found)]
+    kinds = carriers(found)
+    out += [f"carrier({k})." for k in kinds]
     out += [f"can_occlude(O) := category(O, C), hides(C, P), P >= {MIN_SHARE:g}, "
             "\\+ is_carrier(O).",
-            "is_carrier(O) := category(O, C), carrier(C).",
+            "is_carrier(O) := category(O, C), carrier(C)." if kinds else
+            "is_carrier(_) := false.  % no kind carries in the data",
             "hand_known := object(O), is_carrier(O).",
             f"can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= {MIN_SHARE:g}."]
     return "\n".join(out) + "\n"
