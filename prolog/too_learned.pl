@@ -6,7 +6,7 @@
     and one for released(A):t+1 from 1654 frames a hand held an object
     (3 clauses, training log-likelihood -31.628);
     search seed 0.
-    Command: anchoring learn-theory out/learn/data_truth.pl --seed 0 --out prolog/too_learned.pl --plots docs/images --json
+    Command: anchoring learn-theory out/learn/data_truth.pl --seed 0 --out prolog/too_learned.pl --plots docs/images
     The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
     regenerate this file rather than edit it; edit those for the rest.  The
     parameters are fitted from the motion samples beside the data.
@@ -29,7 +29,7 @@ coast_keep(0.966).  % the fraction of its velocity a hidden object under nothing
 wander_var(9.458e-07).  % how far such an object may move besides (m²); 23,357 samples
 grip_reach(0.04778).  % how far (table plane) a hand's grip may be from what it takes (m); 38 samples
 grip_height(0.1249).  % how far above it (m); 38 samples
-occluder_rise(-0.008699).  % how far below its centre (m; negative: above); 38 samples
+occluder_rise(0).  % how far below its centre (m); 38 samples
 grip_drop(0.01763).  % how far what a hand holds is below its grip (m); 1,654 samples
 grip_rise(0.001853).  % how far a hand's grip rises in a frame when it lifts (m); 467 samples
 

@@ -108,10 +108,17 @@ pos(A):t+1 ~ gaussian([XO, YO, Z], C) :=
 % It coasts on with the velocity it had when it vanished, slowing down (coast_keep per frame,
 % so at most 1 / (1 - coast_keep) frames' worth of its last motion: a static object stays),
 % and its belief spreads by wander_var per frame in the table plane; a reappearance then
-% weights the particles by where they had it, and matching finds the particles near it.
-pos(A):t+1 ~ gaussian([MX, MY, Z], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
+% weights the particles by where they had it, and matching finds the particles near it.  One a
+% hand has let go of (it has rest_z/1) is on the table, at the height it stood at: a hand may
+% let go a centimetre or two above it, and an object left in the air would be under the grip
+% again as the hand rises, which would take it again.
+pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
     hidden(A):t+1, \+ is_carrier(A), \+ occluded_by(A, _):t+1, pos(A):t ~= (X, Y, Z),
     velocity(A, VX, VY):t+1, MX is X + VX, MY is Y + VY,
+    (   hand_known, rest_z(A):t+1 ~= R
+    ->  MZ = R
+    ;   MZ = Z
+    ),
     wander_var(V), VZ is V / 100.
 % A hand out of view is believed where it was last seen, the same point in every particle, so
 % that when it comes back its position weighs every particle alike (a hand's position says

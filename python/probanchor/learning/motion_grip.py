@@ -14,7 +14,9 @@ from quantiles so that one odd carry does not move it, with the margin of the on
 - a signed *gate* the events must fall within (how high the grip is over the object it
   takes): from the 10 % quantile to the 90 % one, each moved away from the median by its own
   distance from it (``grip_height`` above, ``occluder_rise``, how far the grip may be below
-  the object's centre, below);
+  the object's centre, below: 0 when the gate's lower end lies above the centre, since the
+  rules ask that the grip be "not below" the object, and a clearance above it would make a
+  hand lowering an object to the table let go of it and take it again as it rises);
 - a *threshold* an event must exceed (``grip_rise``): the 10 % quantile of the events divided
   by the margin (nine events in ten exceed twice the threshold).
 
@@ -79,7 +81,8 @@ def grip(grasps: Sequence[Sequence[float]], holds: Sequence[float]
     low, _ = signed_gate(g[:, 2])                      # as the hand closes on it
     n = len(g)
     return {"grip_reach": (reach(g[:, 0]), n), "grip_height": (high, n),
-            "occluder_rise": (-low, n), "grip_drop": (float(np.mean(_values(holds))), len(holds))}
+            "occluder_rise": (max(-low, 0.0), n),
+            "grip_drop": (float(np.mean(_values(holds))), len(holds))}
 
 
 def rise(carries: Sequence[dict[str, Any]]) -> tuple[float, int]:
