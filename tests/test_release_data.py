@@ -37,6 +37,8 @@ def test_the_data_has_a_point_per_frame_held_and_a_release_after_the_last() -> N
     assert "top(held_0_f2):t ~= 0.10000." in text       # the highest it had been
     assert "pos(held_0_f1):t ~= (0.0, 0.0, 0.10000)." in text
     assert release_path("out/data.pl").name == "data.release.pl"
+    # a collection's own constants, so that several can be learned from together
+    assert "carried(held_games_b_0_f0):t+1." in release_text(carries, name="held_games_b")
 
 
 def test_no_carry_gives_no_data_point(tmp_path) -> None:

@@ -26,6 +26,7 @@ from probanchor.learning.motion_samples import MotionSamples, episode_samples, s
 from probanchor.learning.occlusion_data import Collection, LabelOptions, data_text, episode_facts
 from probanchor.learning.occlusion_data import hindsight_agreement as _agreement
 from probanchor.learning.release_data import release_path, release_text
+from probanchor.loop.naming import symbol_atom
 
 __all__ = ["CollectError", "CollectOptions", "CollectReport", "collect", "game_files"]
 
@@ -198,8 +199,8 @@ def collect(options: CollectOptions,
                            "hidden while another was perceived; nothing written")
     text = data_text(total, [s.stem for s in scenarios], options.labels, options.command)
     write_atomically(samples_path(options.out), motion.to_json())
-    write_atomically(release_path(options.out), release_text(motion.rows["carries"],
-                                                             options.command))
+    write_atomically(release_path(options.out), release_text(
+        motion.rows["carries"], options.command, name="held_" + symbol_atom(options.out.stem)))
     write_atomically(options.out, text)
     return CollectReport(
         episodes=total.episodes, pairs=total.pairs, positive=total.positive,

@@ -12,7 +12,7 @@ as a particle of the theory holds it (``pos(A):t``, its height above ``rest_z(A)
 stood, and ``top(A):t``, the highest it has been above it since it was taken), and the label,
 whether the hand let go of it at t+1 (the object no longer held). A carry that runs to the end
 of its episode gives no data point for its last frame (censored). Each data point has constants
-of its own (``held_3_f12``), so that data points are independent worlds.
+of its own (``held_data_truth_3_f12``), so that data points are independent worlds.
 
 The background knowledge the learned clauses read (``FEATURES``) is written into the data file
 and the learned theory carries the same text; ``prolog/too/too_learned_glue.pl`` defines the
@@ -59,12 +59,15 @@ def release_path(data: str | Path) -> Path:
     return p.with_name(p.stem + ".release.pl")
 
 
-def release_text(carries: Sequence[dict[str, Any]], command: str | None = None) -> str:
+def release_text(carries: Sequence[dict[str, Any]], command: str | None = None,
+                 name: str = "held") -> str:
     """The data file of the release (see the module docstring) from the motion samples'
     ``carries`` rows (``heights`` above where the object stood, one per frame held;
     ``released``, whether the hand let go after the last). Without carries it has no data
     points (:func:`release_points` is 0): no hand carried anything, there is no release to
-    learn."""
+    learn. ``name`` begins every constant (``NAME_3_f12``): data files of several collections
+    learned from together need names of their own (`anchoring collect` gives each the name of
+    its data file)."""
     lines: list[str] = []
     points = releases = 0
     for n, carry in enumerate(carries):
@@ -75,7 +78,7 @@ def release_text(carries: Sequence[dict[str, Any]], command: str | None = None) 
             last = i == len(heights) - 1
             if last and not carry["released"]:
                 break                                  # the episode ended: censored
-            c = f"held_{n}_f{i}"
+            c = f"{name}_{n}_f{i}"
             lines += [f"pos({c}):t ~= (0.0, 0.0, {h:.5f}).", f"rest_z({c}):t ~= 0.0.",
                       f"top({c}):t ~= {top:.5f}.", f"carried({c}):t+1."]
             if last:
