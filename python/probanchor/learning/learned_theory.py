@@ -146,8 +146,8 @@ RELEASE_INTRO = ("% When a hand lets go of what it carries (ddc learn, from the 
                  "the data): a\n% distributional logic tree for released/1, with the background "
                  "knowledge it reads.\n")
 
-NO_RELEASE = ("% No hand carried an object in the data: no release learned (and no carrier, "
-              "so none is asked).\n")
+NO_RELEASE = ("% No hand carried an object in the data: no release learned (a carrier, if "
+              "any, holds what it\n% took until that is seen again).\n")
 
 
 def _release_header(release: LearnResult | None) -> list[str]:
