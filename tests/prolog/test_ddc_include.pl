@@ -4,23 +4,8 @@
 */
 :- use_module('../../prolog/ddc').
 :- use_module(library(plunit)).
+:- use_module(temp_files).
 :- use_module(library(lists)).
-:- use_module(library(filesex)).
-
-%   files(+Files, -Dir): the files Name-Lines in a new temporary folder Dir.
-files(Files, Dir) :-
-    tmp_file(ddc_include, Dir),
-    make_directory(Dir),
-    forall(member(Name-Lines, Files),
-           (   directory_file_path(Dir, Name, Path),
-               file_directory_name(Path, Sub), make_directory_path(Sub),
-               setup_call_cleanup(open(Path, write, S),
-                                  forall(member(L, Lines), format(S, "~w~n", [L])),
-                                  close(S)) )).
-
-path(Dir, Name, Path) :-
-    directory_file_path(Dir, Name, Path0),
-    absolute_file_name(Path0, Path).
 
 %   error_where(+Goal, -Cause, -File, -Line): Goal throws a ddc error about File:Line (in an
 %   included file, the error names the included file), or the reader's (ddc_source.pl: a

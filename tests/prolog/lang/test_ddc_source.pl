@@ -6,23 +6,8 @@
 :- use_module('../../../prolog/ddc/lang/ddc_source').
 :- use_module('../../../prolog/ddc/lang/ddc_ops').
 :- use_module(library(plunit)).
+:- use_module('../temp_files').
 :- use_module(library(lists)).
-:- use_module(library(filesex)).
-
-%   files(+Files, -Dir): the files Name-Lines in a new temporary folder Dir.
-files(Files, Dir) :-
-    tmp_file(ddc_source, Dir),
-    make_directory(Dir),
-    forall(member(Name-Lines, Files),
-           (   directory_file_path(Dir, Name, Path),
-               file_directory_name(Path, Sub), make_directory_path(Sub),
-               setup_call_cleanup(open(Path, write, S),
-                                  forall(member(L, Lines), format(S, "~w~n", [L])),
-                                  close(S)) )).
-
-path(Dir, Name, Path) :-
-    directory_file_path(Dir, Name, Path0),
-    absolute_file_name(Path0, Path).
 
 %   read_error(+Goal, -Formal, -Where): Goal throws the reader's error Formal at Where.
 read_error(G, Formal, Where) :-
