@@ -237,6 +237,11 @@ def test_the_commands(game_data: Path, tmp_path: Path) -> None:
     fitted = parameters[6:6 + len(DESCRIPTIONS)]
     assert [row.split(" | ")[0] for row in fitted] == [f"| `{n}`" for n in DESCRIPTIONS]
     assert report["parameters"].keys() == DESCRIPTIONS.keys()
+    # the release: learned from the game's carries, or none when no hand carried anything
+    has_release = "released(Held):t+1 ~ finite(" in theory.read_text()
+    assert (report["release"] is not None) == has_release
+    if has_release:
+        assert report["release"]["clauses"] >= 1 and report["release"]["groundings"] > 0
     assert (tmp_path / "learned_motion.png").stat().st_size > 1000
     k = parameters.index("", 6)
     assert parameters[k + 1].startswith("| kind | P(it hides a hidden object)")

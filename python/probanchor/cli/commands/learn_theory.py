@@ -65,7 +65,11 @@ def main(args: argparse.Namespace) -> int:
                "log_likelihood": target.log_likelihood, "pictures": [str(p) for p in pictures],
                "onset_reach": result.reach.reach if result.reach else None,
                "parameters": {p.name: p.value for p in result.parameters or []},
-               "logistic_leaves": result.logistic}
+               "logistic_leaves": result.logistic,
+               "release": None if result.release is None else {
+                   "clauses": result.release.targets[0].clauses,
+                   "groundings": result.release.targets[0].groundings,
+                   "log_likelihood": result.release.targets[0].log_likelihood}}
     if args.json:
         print(json.dumps(figures))
         return 0
