@@ -170,7 +170,10 @@ def test_answers_of_large_groups_are_limited() -> None:
 
 
 @pytest.mark.parametrize("bad", [dict(kernel=0), dict(revise_probability=0),
-                                 dict(revise_odds=0.5), dict(close_tolerance=1.0)])
+                                 dict(revise_odds=0.5), dict(close_tolerance=1.0),
+                                 dict(refuted=-1e-9), dict(keep_share=0.0),
+                                 dict(keep_share=0.5), dict(max_kept=0),
+                                 dict(max_kept=True)])
 def test_bad_parameters_are_refused(bad: dict) -> None:
     with pytest.raises(ValueError):
         IdentityHypotheses(shell(10), **bad)
@@ -224,3 +227,29 @@ def test_an_improbable_answer_stays_open_while_particles_hold_it() -> None:
     (revision,) = hyp.revise(30, evidence=["ball-2"])
     assert revision.mapping == {"mug-1": "mug-2", "mug-2": "mug-1"}
     assert revision.probability > 0.9
+
+
+def test_strata_keep_each_open_answer_apart_until_it_is_refuted() -> None:
+    """While the mugs' question is open, the filter is told which answer each particle holds
+    (the strata of its resampling): the swap, with a ten-thousandth of the weight, is a stratum
+    of its own; once what a mug hides refutes it (below ``refuted``), it is resampled with the
+    answer as given, and nothing is open any more."""
+    world = shell(n=1000, seed=2)
+    hyp = IdentityHypotheses(world, seed=2)
+    assert hyp.strata() is None                      # nothing open
+    hyp.associate(mugs_seen_again())
+    log_w = world.log_w.copy()
+    strata = hyp.strata()
+    assert strata is not None and set(np.unique(strata)) == {0, 1}
+    swapped = hyp._table()[:, hyp.columns.index("mug-1")] != hyp._index["mug-1"]
+    assert np.array_equal(strata == 1, swapped) or np.array_equal(strata == 0, swapped)
+    assert hyp.keep == 10
+    # the swap made improbable (1e-4), but not refuted: still a stratum of its own, the
+    # heaviest answer (as given) stratum 0
+    world.log_w = log_w + np.where(swapped, math.log(1e-4), 0.0)
+    strata = hyp.strata()
+    assert strata is not None and np.array_equal(strata == 1, swapped)
+    # refuted: one stratum, so no preserving resampling
+    world.log_w = log_w + np.where(swapped, -30.0, 0.0)
+    assert hyp.strata() is None
+    assert IdentityHypotheses(world, keep_share=0.001).keep == 1

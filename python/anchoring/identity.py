@@ -47,13 +47,22 @@ not flip symbols back and forth), the anchors are renamed to it
 object it most probably is, and the frames since the group opened are answered anew (the
 evaluation's "identity at the end").
 
-**Pruning.** Resampling prunes the answers that later evidence made improbable (their
-particles die). A group is closed (its labels are no longer tracked) once the other answers
+**Keeping improbable answers.** An answer with a thousandth of the weight can still be the one
+later evidence confirms (two look-alike mugs swapped 60 cm apart while the camera was covered:
+where they are seen again makes the swap improbable, what one of them hides then makes it
+certain, by a likelihood ratio of e^50). Plain resampling keeps an answer of weight ``p`` in
+about ``N p`` particles, so an answer of 1e-4 among 1,000 particles dies by chance, and with it
+the question. While a group is open, the filter therefore resamples each answer on its own
+(:meth:`strata`: the particles' joint answers to the open groups are the strata of a mixture
+resampling, Vermaak, Doucet and Pérez 2003): every answer with at least ``refuted`` of the
+weight keeps at least ``keep_share`` of the particles, at a weight that keeps its mass, so
+the weights stay a faithful picture of the posterior while the improbable answer keeps enough
+particles to be weighed by what comes. Answers below ``refuted`` (evidence against them of
+e^20 and more) are resampled with the most probable one, where they die out as before.
+
+**Pruning.** A group is closed (its labels are no longer tracked) once the other answers
 hold no more than ``close_tolerance`` of the weight: by default none, i.e. once no particle
-holds one. An answer with a thousandth of the weight can still be the one later evidence
-confirms (two look-alike mugs swapped 60 cm apart while the camera was covered: where they
-are seen again makes the swap improbable, what one of them hides then makes it certain, by a
-likelihood ratio of e^50), so a question stays open while its answers live in the particles.
+holds one, which happens once they fell below ``refuted`` and the resampling let them go.
 The ambiguous percepts' own identity columns stay for the world model's
 ``prob(identity(Percept, Symbol), P)``.
 
@@ -170,13 +179,23 @@ class IdentityHypotheses:
     close_tolerance : float
         A group whose other answers hold at most this much of the weight is closed (0: once
         no particle holds one).
+    refuted : float
+        An answer with less weight than this is let die out by the resampling; one with
+        more keeps particles (:meth:`strata`).
+    keep_share : float
+        The least share of the particles each answer above ``refuted`` keeps at a
+        resampling (at least one particle).
+    max_kept : int
+        The most answers kept apart at a resampling (the heaviest; with ``keep_share`` this
+        bounds the particles given to improbable answers).
     seed : int
         Of the random stream the answers are drawn from.
     """
 
     def __init__(self, worlds: ParticleWorlds, kernel: float = 0.05,
                  revise_probability: float = 0.5, revise_odds: float = 2.0,
-                 close_tolerance: float = 0.0, seed: int = 0) -> None:
+                 close_tolerance: float = 0.0, refuted: float = 1e-9,
+                 keep_share: float = 0.01, max_kept: int = 6, seed: int = 0) -> None:
         if not kernel > 0:
             raise ValueError(f"kernel must be positive, not {kernel!r}")
         if not 0.0 < revise_probability <= 1.0:
@@ -190,6 +209,15 @@ class IdentityHypotheses:
         self.revise_probability = float(revise_probability)
         self.revise_odds = float(revise_odds)
         self.close_tolerance = float(close_tolerance)
+        if not 0.0 <= refuted < 1.0:
+            raise ValueError(f"refuted must be in [0, 1), not {refuted!r}")
+        if not 0.0 < keep_share <= 0.1:
+            raise ValueError(f"keep_share must be in (0, 0.1], not {keep_share!r}")
+        if isinstance(max_kept, bool) or not isinstance(max_kept, int) or max_kept < 1:
+            raise ValueError(f"max_kept must be a positive integer, not {max_kept!r}")
+        self.refuted = float(refuted)
+        self.keep_share = float(keep_share)
+        self.max_kept = max_kept
         self._rng = np.random.default_rng(seed)
         self.names: list[str] = []          # identity index -> the name it was first given
         self._index: dict[str, int] = {}
@@ -303,6 +331,38 @@ class IdentityHypotheses:
                 keep.append(g)
         merged.labels.sort()
         self.groups = [*keep, merged]
+
+    # --- one frame: the filter's step ---------------------------------------------------
+    @property
+    def keep(self) -> int:
+        """The least number of particles an answer keeps at a resampling (:meth:`strata`)."""
+        return max(1, round(self.keep_share * self.worlds.particles))
+
+    def strata(self) -> np.ndarray | None:
+        """Per particle, the stratum of a resampling that keeps the open groups' answers
+        (the filter's ``strata``; None when no group is open or one answer holds it all).
+
+        A particle's answer is its row of identities over every open group's labels. The
+        :attr:`max_kept` heaviest answers with at least :attr:`refuted` of the weight are
+        strata of their own (0 the heaviest); every other answer is resampled with the
+        heaviest::
+
+            stratum_i = rank(answer_i)  if answer_i is kept,  else 0
+        """
+        if not self.groups:
+            return None
+        labels = [label for g in self.groups for label in g.labels]
+        table = self._table()[:, [self.columns.index(label) for label in labels]]
+        unique, inverse = np.unique(table, axis=0, return_inverse=True)
+        mass = np.bincount(inverse.reshape(-1), weights=self.worlds.weights(),
+                           minlength=len(unique))
+        order = np.argsort(-mass, kind="stable")
+        rank = np.zeros(len(unique), dtype=np.int64)
+        kept = [a for a in order[:self.max_kept] if mass[a] >= self.refuted]
+        if len(kept) < 2:
+            return None
+        rank[kept] = np.arange(len(kept))
+        return rank[inverse.reshape(-1)]
 
     # --- one frame: after the filter's step ----------------------------------------------
     def revise(self, frame: int, evidence: Sequence[str] = (),

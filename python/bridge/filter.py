@@ -350,9 +350,22 @@ class Filter:
     # -- stepping -----------------------------------------------------------------------------
     @_locked
     def step(
-        self, observations: Iterable[Any] = (), actions: Iterable[Any] = ()
+        self, observations: Iterable[Any] = (), actions: Iterable[Any] = (),
+        strata: np.ndarray | None = None, keep: int = 1,
     ) -> StepResult:
-        """Advance t -> t+1 with the frame's observations and actions; weight; maybe resample."""
+        """Advance t -> t+1 with the frame's observations and actions; weight; maybe resample.
+
+        ``strata`` (one integer per particle, or None): a resampling in this step resamples
+        each stratum on its own, keeping its mass with at least ``keep`` particles
+        (``resample_preserving/6`` in prolog/ddc/filter/ddc_weights.pl: mixture resampling,
+        for hypotheses of small weight that later evidence may confirm); the weights after it
+        are then not uniform."""
+        if strata is not None:
+            strata = np.asarray(strata)
+            if strata.shape != (self.particles,) or not np.issubdtype(strata.dtype, np.integer):
+                raise ValueError(f"strata must be {self.particles} integers, one per particle")
+        if isinstance(keep, bool) or not isinstance(keep, (int, np.integer)) or keep < 1:
+            raise ValueError(f"keep must be a positive integer, got {keep!r}")
         started = _time.perf_counter()
         key = self._handle()
         obs_texts = self._texts("observation", observations)
@@ -368,6 +381,7 @@ class Filter:
             result = _call("bridge_weighted_step", K=key, O=obs_texts, A=act_texts,
                            LW0=[] if self._uniform else self._log_weights.tolist(),
                            Th=self.resample_threshold, Sch=self.resampling,
+                           St=[] if strata is None else strata.tolist(), Kp=int(keep),
                            Us=uniforms.tolist(), LW=OUT, Inc=OUT, ESS=OUT, Inf=OUT,
                            Drawn=OUT, Is=OUT)
         except Exception as exc:  # (a DDCError, or a value janus could not convert)
@@ -389,6 +403,8 @@ class Filter:
             self._rng.random(int(result["Drawn"]))
             self.particle_data.resample(np.asarray(result["Is"], dtype=np.int64))
             self.resample_count += 1
+            if not self._uniform:  # (a preserving resampling: its weights' own ESS)
+                self._ess = float(1.0 / np.sum(np.exp(2.0 * self._log_weights)))
         else:
             self._ess = ess
         return self._finish(
@@ -536,7 +552,7 @@ class Filter:
         )
         logger.warning(message)
         warnings.warn(message, ZeroWeightWarning, stacklevel=4)  # the caller of step
-        # (the step was undone and the weights made uniform by bridge_weighted_step/13)
+        # (the step was undone and the weights made uniform by bridge_weighted_step/15)
         return self._finish(
             StepResult(self.time, frame, 0.0, False, -math.inf, True, 0.0, prolog_seconds),
             started,

@@ -18,6 +18,7 @@
             bridge_weighted_step/13,    % +Key, +ObsTexts, +ActTexts, +LogWeights0, +Threshold,
                                         % +Scheme, +Uniforms, -LogWeights, -Increment, -ESS,
                                         % -Infinite, -Drawn, -Ancestors
+            bridge_weighted_step/15,    % ... as /13, with +Strata, +Keep after +Scheme
             bridge_undo/1,              % +Key
             bridge_rename/4,            % +Key, +Olds, +News, +Indices
             bridge_time/2,              % +Key, -T
@@ -124,7 +125,33 @@ text_step(PI, Key, ObsTexts, ActTexts, F, LW) :-
 %          (a clause that misbehaves: ddc(Cause, File:Line)).
 bridge_weighted_step(Key, ObsTexts, ActTexts, LW0, Th, Scheme, Us, LW, Inc, ESS, Inf, Drawn,
                      Ancestors) :-
-    text_step(bridge_weighted_step/13, Key, ObsTexts, ActTexts, F, StepLW),
+    weighted_step(bridge_weighted_step/13, Key, ObsTexts, ActTexts, LW0, Th, Scheme, [], 1, Us,
+                  LW, Inc, ESS, Inf, Drawn, Ancestors).
+
+%!  bridge_weighted_step(+Key, +ObsTexts:list, +ActTexts:list, +LogWeights0:list(float),
+%!                       +Threshold:float, +Scheme, +Strata:list(integer), +Keep:integer,
+%!                       +Uniforms:list(float), -LogWeights:list(float), -Increment:float,
+%!                       -ESS:float, -Infinite:boolean, -Drawn:integer, -Ancestors) is det.
+%
+%   bridge_weighted_step/13, but for Strata other than []: a resampling is then
+%   resample_preserving/6's (each stratum of the particles, one integer per particle, is
+%   resampled on its own and keeps its mass with at least Keep particles; Drawn 1), and
+%   LogWeights are the resampled particles' weights (not uniform).
+%
+%   @error as bridge_weighted_step/13 (context bridge_weighted_step/15);
+%          domain_error(same_length(N), Strata) for Strata of another length than the
+%          particles; type_error for Strata not a list of integers or Keep not a positive
+%          integer.
+bridge_weighted_step(Key, ObsTexts, ActTexts, LW0, Th, Scheme, Strata, Keep, Us, LW, Inc, ESS,
+                     Inf, Drawn, Ancestors) :-
+    must_be(list(integer), Strata),
+    must_be(positive_integer, Keep),
+    weighted_step(bridge_weighted_step/15, Key, ObsTexts, ActTexts, LW0, Th, Scheme, Strata,
+                  Keep, Us, LW, Inc, ESS, Inf, Drawn, Ancestors).
+
+weighted_step(PI, Key, ObsTexts, ActTexts, LW0, Th, Scheme, Strata, Keep, Us, LW, Inc, ESS, Inf,
+              Drawn, Ancestors) :-
+    text_step(PI, Key, ObsTexts, ActTexts, F, StepLW),
     length(StepLW, N),
     (   LW0 == [] -> weights_uniform(N, Uniform) ; Uniform = LW0 ),
     weights_update(Uniform, StepLW, LW1, Inc, ESS, Inf),
@@ -132,9 +159,13 @@ bridge_weighted_step(Key, ObsTexts, ActTexts, LW0, Th, Scheme, Us, LW, Inc, ESS,
     ->  filter_undo(F),
         LW = [], Drawn = 0, Ancestors = none
     ;   resample_needed(ESS, Th, N)
-    ->  resample_log_weights(Scheme, LW1, Us, Drawn, Ancestors),
-        filter_resample(F, Ancestors),
-        LW = []
+    ->  (   Strata == []
+        ->  resample_log_weights(Scheme, LW1, Us, Drawn, Ancestors),
+            LW = []
+        ;   resample_preserving(LW1, Strata, Keep, Us, Ancestors, LW),
+            Drawn = 1
+        ),
+        filter_resample(F, Ancestors)
     ;   LW = LW1, Drawn = 0, Ancestors = none
     ).
 

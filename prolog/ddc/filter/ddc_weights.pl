@@ -22,12 +22,15 @@
             resample_draws/3,           % +Scheme, +Weights, -K
             resample_indices/4,         % +Scheme, +Weights, +Uniforms, -Indices
             resample_log_weights/5,     % +Scheme, +LogWeights, +Uniforms, -K, -Indices
+            resample_preserving/6,      % +LogWeights, +Strata, +Keep, +Uniforms, -Indices,
+                                        % -LogWeights1
             numpy_sum/2                 % +Xs, -Sum
           ]).
 
 :- use_module(library(apply)).
 :- use_module(library(lists)).
 :- use_module(library(error)).
+:- use_module(library(pairs)).
 :- use_module('../batch/ddc_batch_col', [col_weights_update/6, col_systematic_indices/3]).
 %   (the passes over the particles in C where the column library is loaded)
 
@@ -334,6 +337,144 @@ walk([P|Ps], Ws, I, C0, Last, Is) :-
 last_index([], _, []).
 last_index([_|Ps], Last, [Last|Is]) :-
     last_index(Ps, Last, Is).
+
+%!  resample_preserving(+LogWeights:list(float), +Strata:list(integer), +Keep:integer,
+%!                      +Uniforms:list(float), -Indices:list(integer),
+%!                      -LogWeights1:list(float)) is det.
+%
+%   Resampling that keeps every stratum of the particles alive with its mass (the mixture
+%   resampling of Vermaak, Doucet and Perez 2003, "Maintaining multi-modality through
+%   mixture tracking"): Strata gives each particle a stratum (an integer; the caller's
+%   hypotheses: e.g. which of two look-alike objects is which), and each stratum k of mass
+%
+%       M_k = sum_{i in k} w_i > 0
+%
+%   is resampled on its own, systematically (the first uniform U, positions (U+j)/n_k among
+%   its particles' weights w_i/M_k), to n_k copies, each of weight M_k/n_k: the weighted
+%   particles represent the same mixture, but a stratum of small mass (a hypothesis that
+%   later evidence may yet confirm) keeps at least Keep particles instead of dying out by
+%   the resampling's chance.  The counts: n_k = Keep for every stratum whose share
+%   R M_k / M_big of the particles the others leave (R = N - Keep |small|, M_big the mass
+%   of the others) is below Keep, found by repetition; the others share R in proportion to
+%   their masses, rounded by largest remainders (ties to the lower stratum id).  When there
+%   are more strata than N / Keep, Keep is taken as N // K.  Strata of mass 0 get no
+%   particles.  Indices (0-based) are ascending, LogWeights1 their normalised log weights.
+%
+%   @error domain_error(same_length(N), Strata) if Strata and LogWeights differ in length.
+%   @error type_error(positive_integer, Keep) if Keep is not one.
+resample_preserving(LWs, Strata, Keep, Us, Is, LWs1) :-
+    must_be(positive_integer, Keep),
+    must_be(list(integer), Strata),
+    length(LWs, N),
+    (   length(Strata, N) -> true ; domain_error(same_length(N), Strata) ),
+    first_uniforms(1, Us, [U]),
+    weights_normalised(LWs, Ws),
+    numlist(0, N, [_|Ids1]),
+    maplist(minus_one, Ids1, Ids),
+    foldl(stratum_member, Strata, Ws, Ids, [], Tagged0),
+    msort(Tagged0, Tagged),                         % by stratum, then index
+    group_pairs_by_key(Tagged, Groups0),
+    include(positive_mass, Groups0, Groups),
+    length(Groups, K),
+    Keep1 is max(1, min(Keep, N // max(K, 1))),
+    maplist(group_mass, Groups, Masses),
+    stratum_counts(Masses, N, Keep1, Counts),
+    foldl(resample_stratum(U), Groups, Masses, Counts, Pairs, []),
+    msort(Pairs, Sorted),
+    pairs_keys_values(Sorted, Is, LWs1).
+
+minus_one(I1, I) :- I is I1 - 1.
+
+%   stratum_member(+S, +W, +I, +T0, -T): T0 with S-(I-W) added (a weight-0 particle too:
+%   its stratum may have mass elsewhere).
+stratum_member(S, W, I, T0, [S-(I-W)|T0]).
+
+positive_mass(_-Members) :-
+    group_mass(_-Members, M),
+    M > 0.
+
+group_mass(_-Members, M) :-
+    pairs_values(Members, Ws),
+    sum_list(Ws, M).
+
+%   stratum_counts(+Masses, +N, +Keep, -Counts): the n_k of resample_preserving/6.
+stratum_counts(Masses, N, Keep, Counts) :-
+    length(Masses, K),
+    length(Small0, K),
+    maplist(=(false), Small0),
+    small_strata(Masses, N, Keep, Small0, Small),
+    counts_given_small(Masses, Small, N, Keep, Counts).
+
+small_strata(Masses, N, Keep, Small0, Small) :-
+    share_of_rest(Masses, Small0, N, Keep, Shares),
+    maplist(mark_small(Keep), Small0, Shares, Small1),
+    (   Small1 == Small0
+    ->  Small = Small0
+    ;   small_strata(Masses, N, Keep, Small1, Small)
+    ).
+
+mark_small(_, true, _, true) :- !.
+mark_small(Keep, false, Share, Small) :-
+    (   Share < Keep -> Small = true ; Small = false ).
+
+%   share_of_rest(+Masses, +Small, +N, +Keep, -Shares): R M_k / M_big for the strata not
+%   small (0 for the small ones).
+share_of_rest(Masses, Small, N, Keep, Shares) :-
+    foldl(big_mass, Masses, Small, 0.0, Big),
+    include(==(true), Small, Smalls),
+    length(Smalls, S),
+    R is N - Keep * S,
+    maplist(share(R, Big), Masses, Small, Shares).
+
+big_mass(M, false, B0, B) :- !, B is B0 + M.
+big_mass(_, true, B, B).
+
+share(_, _, _, true, 0.0) :- !.
+share(R, Big, M, false, Share) :-
+    (   Big > 0 -> Share is R * M / Big ; Share = 0.0 ).
+
+counts_given_small(Masses, Small, N, Keep, Counts) :-
+    share_of_rest(Masses, Small, N, Keep, Shares),
+    maplist(floor_count(Keep), Small, Shares, Floors),
+    sum_list(Floors, Given),
+    Left is N - Given,
+    length(Masses, K),
+    numlist(1, K, Ks),
+    remainder_keys(Small, Shares, Floors, Ks, Keyed),
+    keysort(Keyed, ByRemainder),
+    pairs_values(ByRemainder, Order),
+    length(Extra, Left),
+    append(Extra, _, Order),
+    maplist(add_extra(Extra), Ks, Floors, Counts).
+
+floor_count(Keep, true, _, Keep) :- !.
+floor_count(_, false, Share, F) :- F is floor(Share).
+
+%   remainder_keys(+Small, +Shares, +Floors, +Ks, -Keyed): -Remainder-K per stratum, so that
+%   keysort/2 puts the largest remainders first (a small stratum's counts as none).
+remainder_keys([], [], [], [], []).
+remainder_keys([S|Ss], [Sh|Shs], [F|Fs], [K|Ks], [Key-K|Keyed]) :-
+    (   S == true -> Key = 2.0 ; Key is -(Sh - F) ),
+    remainder_keys(Ss, Shs, Fs, Ks, Keyed).
+
+add_extra(Extra, K, F, C) :-
+    (   memberchk(K, Extra) -> C is F + 1 ; C = F ).
+
+%   resample_stratum(+U, +Group, +Mass, +Count, -Pairs, ?Tail): Count systematic copies of
+%   the stratum's particles, each Index-LogWeight with weight Mass/Count.
+resample_stratum(_, _, _, 0, Pairs, Pairs) :- !.
+resample_stratum(U, _-Members, M, Count, Pairs, Tail) :-
+    pairs_keys_values(Members, Ids, Ws0),
+    maplist(divide(M), Ws0, Ws),
+    systematic_positions(0, Count, U, Ps),
+    walk(Ws, Ps, Local),
+    L is log(M / Count),
+    Array =.. [ids|Ids],
+    foldl(copy_of(Array, L), Local, Pairs, Tail).
+
+copy_of(Array, L, J, [I-L|T], T) :-
+    J1 is J + 1,
+    arg(J1, Array, I).
 
 %!  numpy_sum(+Xs:list(float), -Sum:float) is det.
 %

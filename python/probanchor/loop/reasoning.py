@@ -141,7 +141,9 @@ class OcclusionReasoner:
                 x, y, z = (float(v) for v in anchor.position)
                 observations.append(terms.fact("observed", atom))
                 observations.append(terms.observation(terms.fact("pos", atom), (x, y, z)))
-        self.filter.step(observations, actions=facts)
+        # (while identity answers are open, a resampling keeps each of them alive)
+        self.filter.step(observations, actions=facts, strata=self.identity.strata(),
+                         keep=self.identity.keep)
 
     def belief(self, symbol: str, occluders: Sequence[str] = ()) -> Belief | None:
         """The position particles of ``symbol`` (None where no particle knows the anchor),
