@@ -173,6 +173,29 @@ def test_learn_theory_writes_a_theory_that_loads(game_data: Path, tmp_path: Path
     bridge.load(out)
 
 
+def test_data_collected_apart_are_learned_from_together(game_data: Path,
+                                                         tmp_path: Path) -> None:
+    """Two collections of the same game, written to files of other names: their constants
+    (which name the collection) are apart, so learning from both has twice the data points
+    (with the same constants, the second file's facts would be taken for the first's worlds)."""
+    import re
+
+    more = tmp_path / "more.pl"
+    collect(CollectOptions(out=more, games=1, seed=22, cache=game_data.parent / "cache",
+                           labels=LabelOptions(source="truth")))
+    pattern = re.compile(r"^pair\(([a-z0-9_]+), ([a-z0-9_]+)\):t\+1\.$", re.M)
+    first = {a for pair in pattern.findall(game_data.read_text()) for a in pair}
+    second = {a for pair in pattern.findall(more.read_text()) for a in pair}
+    assert first and second and not first & second
+    assert all("_data_e0_" in c for c in first) and all("_more_e0_" in c for c in second)
+    held = re.compile(r"^carried\(([a-z0-9_]+)\):t\+1\.$", re.M)
+    assert not (set(held.findall(release_path(game_data).read_text()))
+                & set(held.findall(release_path(more).read_text())))
+    one = learn_theory([game_data], tmp_path / "one.pl", seed=0)
+    both = learn_theory([game_data, more], tmp_path / "both.pl", seed=0)
+    assert both.result.targets[0].groundings == 2 * one.result.targets[0].groundings
+
+
 def test_a_failed_learn_theory_keeps_the_previous_file(game_data: Path, tmp_path: Path) -> None:
     out = tmp_path / "too_learned.pl"
     out.write_text("% the previous theory\n")

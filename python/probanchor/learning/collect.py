@@ -114,10 +114,11 @@ def game_files(folder: Path, games: int, first_seed: int) -> list[Path]:
 
 
 def _episode(scenario: Path, seed: int, cache: Path, number: int,
-             labels: LabelOptions
+             labels: LabelOptions, collection: str
              ) -> tuple[Collection, float, float, float, int, MotionSamples]:
-    """One episode in a worker: its facts, seconds (perception, facts), hindsight agreement,
-    the samples of the motion parameters."""
+    """One episode (``number`` of the collection named ``collection``) in a worker: its
+    facts, seconds (perception, facts), hindsight agreement, the samples of the motion
+    parameters."""
     from probanchor.learning.experience import play
     from probanchor.loop.sources import percept_stream
     from probanchor.percepts import read_percepts
@@ -127,7 +128,7 @@ def _episode(scenario: Path, seed: int, cache: Path, number: int,
     perceived = time.perf_counter()
     episode = play(read_percepts(stream), scenario.stem)
     part = Collection()
-    episode_facts(episode, number, labels, part)
+    episode_facts(episode, number, labels, part, collection)
     agree, n = _agreement(episode, labels)
     samples = episode_samples(episode)
     done = time.perf_counter()
@@ -168,7 +169,10 @@ def collect(options: CollectOptions,
     if not scenarios:
         raise CollectError("nothing to collect: give scenario files or --games K")
     streams = options.cache / "percepts"
-    work = [Job(s.stem, _episode, (s, options.seed, streams, i, options.labels))
+    # (the data's constants carry the collection's name: data files collected apart can be
+    # learned from together)
+    name = symbol_atom(options.out.stem)
+    work = [Job(s.stem, _episode, (s, options.seed, streams, i, options.labels, name))
             for i, s in enumerate(scenarios)]
     outcomes = {o.job.args[3]: o
                 for o in run_jobs(work, cluster, desc="collect", bar=options.progress)}
@@ -200,7 +204,7 @@ def collect(options: CollectOptions,
     text = data_text(total, [s.stem for s in scenarios], options.labels, options.command)
     write_atomically(samples_path(options.out), motion.to_json())
     write_atomically(release_path(options.out), release_text(
-        motion.rows["carries"], options.command, name="held_" + symbol_atom(options.out.stem)))
+        motion.rows["carries"], options.command, name="held_" + name))
     write_atomically(options.out, text)
     return CollectReport(
         episodes=total.episodes, pairs=total.pairs, positive=total.positive,

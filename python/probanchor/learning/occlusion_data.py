@@ -6,7 +6,9 @@ data point:
 the states of A and O at t and t+1 as DDC facts, and the label, whether O covers or holds A at t+1.
 Both kinds of pairs of the paper are there: A perceived at t (it has just vanished) and A hidden at
 t too (an occlusion that goes on, or not). Each data point gets constants of its own
-(``ball_1_e3_f120``), so that data points are independent worlds.
+(``ball_1_e3_f120``; ``ball_1_NAME_e3_f120`` in a collection named NAME: `anchoring collect`
+names it after its data file, so that data files collected apart can be learned from together),
+so that data points are independent worlds.
 
 The states at t are what a particle of the theory of occlusion can know at t, computed from the
 labels as an ideal particle would hold them:
@@ -359,8 +361,9 @@ class Collection:
 
 
 def episode_facts(episode: Episode, number: int, options: LabelOptions,
-                  out: Collection) -> None:
-    """Append the data points of one episode to ``out`` (see the module docstring).
+                  out: Collection, collection: str = "") -> None:
+    """Append the data points of one episode to ``out`` (see the module docstring):
+    episode ``number`` of the collection named ``collection`` (an atom's text, or "").
 
     Besides the ideal particle's state, a hidden anchor known to be under O at t also gets a
     data point as a particle that has lost it holds it (no occluder known, where it was last
@@ -388,13 +391,14 @@ def episode_facts(episode: Episode, number: int, options: LabelOptions,
             if any(p > 0.5 for p in ideal.values()):
                 states.append(("_c", {}, False))
             for suffix, state, is_lost in states:
-                _data_points(out, number, k, a, suffix, state, is_lost, others, target,
-                             written, options, episode)
+                _data_points(out, (collection, number), k, a, suffix, state, is_lost,
+                             others, target, written, options, episode)
     out.episodes += 1
     out.per_episode[episode.name] = out.pairs - before
 
 
-def _data_points(out: Collection, number: int, k: int, a: str, suffix: str, state: Labels,
+def _data_points(out: Collection, number: tuple[str, int], k: int, a: str, suffix: str,
+                 state: Labels,
                  is_lost: bool, others: list[str], target: Labels, written: set[str],
                  options: LabelOptions, episode: Episode) -> None:
     """The data points of hidden anchor ``a`` from frame k to k+1, in one particle state."""
@@ -441,8 +445,11 @@ def _still(v0, v1) -> bool:
     return math.hypot(x1 - x0, y1 - y0) < 0.01 and abs(z1 - z0) < 0.005
 
 
-def _const(symbol: str, episode: int, frame: int) -> str:
-    return f"{symbol_atom(symbol)}_e{episode}_f{frame}"
+def _const(symbol: str, episode: tuple[str, int], frame: int) -> str:
+    """``ball_1_e3_f120``, or ``ball_1_NAME_e3_f120`` for episode 3 of collection NAME."""
+    collection, number = episode
+    where = f"_{collection}" if collection else ""
+    return f"{symbol_atom(symbol)}{where}_e{number}_f{frame}"
 
 
 def _object_facts(out: Collection, c: str, at_t, at_t1, perceived_t1, known: Labels,
