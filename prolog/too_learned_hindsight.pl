@@ -3,8 +3,8 @@
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
     data_hindsight.pl: 23602 groundings of occluder(A, O):t+1,
     60 clauses, training log-likelihood -3100.08;
-    and one for released(A):t+1 from 1654 frames a hand held an object
-    (3 clauses, training log-likelihood -31.628);
+    and one for released(A):t+1 from 803 frames a hand held an object
+    (3 clauses, training log-likelihood -27.7059);
     search seed 0.
     Command: anchoring learn-theory out/learn/data_hindsight.pl --seed 0 --out prolog/too_learned_hindsight.pl --plots docs/images
     The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
@@ -19,19 +19,19 @@
 % motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
 % fractions, quantiles for reaches and heights, Laplace's rule for a probability);
 % variances per axis in square metres, one step is one camera frame.
-obs_var(2.625e-06).  % the measurement noise of a perceived position (m², per axis); 80,927 samples
-motion_var(3.13e-05).  % how far a perceived object moves in a frame (m², per axis); 95,157 samples
-reappear_var(0.002333).  % where a hidden object is seen again, around its belief (m²); 465 samples
+obs_var(2.749e-06).  % the measurement noise of a perceived position (m², per axis); 68,866 samples
+motion_var(3.22e-05).  % how far a perceived object moves in a frame (m², per axis); 95,200 samples
+reappear_var(0.001674).  % where a hidden object is seen again, around its belief (m²); 464 samples
 lost_var(0.0662).  % the same for an object lost while the camera saw nothing (m²); 6,422 samples
-follow_keep(0.8296).  % the fraction of its offset from its occluder a hidden object keeps; 11,318 samples
-follow_var(2.596e-05).  % the jitter of that offset per frame (m²); 11,318 samples
-coast_keep(0.966).  % the fraction of its velocity a hidden object under nothing keeps; 23,357 samples
-wander_var(9.458e-07).  % how far such an object may move besides (m²); 23,357 samples
-grip_reach(0.04778).  % how far (table plane) a hand's grip may be from what it takes (m); 38 samples
-grip_height(0.1249).  % how far above it (m); 38 samples
-occluder_rise(0).  % how far below its centre (m); 38 samples
-grip_drop(0.01763).  % how far what a hand holds is below its grip (m); 1,654 samples
-grip_rise(0.001853).  % how far a hand's grip rises in a frame when it lifts (m); 467 samples
+follow_keep(0.5763).  % the fraction of its offset from its occluder a hidden object keeps; 52 samples
+follow_var(1e-08).  % the jitter of that offset per frame (m²); 52 samples
+coast_keep(0.8936).  % the fraction of its velocity a hidden object under nothing keeps; 269 samples
+wander_var(0.0001389).  % how far such an object may move besides (m²); 269 samples
+grip_reach(0.03524).  % how far (table plane) a hand's grip may be from what it takes (m); 18 samples
+grip_height(0.126).  % how far above it (m); 18 samples
+occluder_rise(0).  % how far below its centre (m); 18 samples
+grip_drop(0.02279).  % how far what a hand holds is below its grip (m); 18 samples
+grip_rise(0.001665).  % how far a hand's grip rises in a frame when it lifts (m); 216 samples
 
 % ------------------------------------------------------------------ learned affordances
 % Read from the data (python/probanchor/learning/occlusion_affordances.py): the share
@@ -400,21 +400,21 @@ height(A):t+1 ~ val(H) :=
 highest(A):t+1 ~ val(H) :=
     top(A):t ~= H.
 
-% released(Held):t+1: 3 clauses, 1654 groundings, training log-likelihood -31.628 (mean -0.0191221 per grounding), 6 parameters.
+% released(Held):t+1: 3 clauses, 803 groundings, training log-likelihood -27.7059 (mean -0.034503 per grounding), 6 parameters.
 released(Held):t+1 ~ finite([P1:true, P2:false]) :=
     carried(Held):t+1,
     (   height(Held):t+1 ~= Height
     ->  (   highest(Held):t+1 ~= Highest
-        ->  % n = 1654, log-likelihood -31.628, logistic
-            logistic([Height, Highest], [-172.327, 34.7062, -4.39297], P1),
+        ->  % n = 803, log-likelihood -27.7059, logistic
+            logistic([Height, Highest], [-72.0515, 34.1173, -6.11895], P1),
             P2 is 1-P1
         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Height], [-109.242, -0.713546], P1),
+            logistic([Height], [-45.272, -2.02445], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.0247585,
-        P2 = 0.9752415
+        P1 = 0.0236025,
+        P2 = 0.9763975
     ).
 
 :- include('too/too_motion.pl').

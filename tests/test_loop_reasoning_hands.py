@@ -68,9 +68,12 @@ def test_a_hand_carries_the_ball_it_closes_over_and_puts_it_down(theory: str) ->
                 assert belief.weights[inside].sum() > (0.95 if theory == "hand" else 0.7)
         # put down and the hand rises: let go (it no longer moves with the hand), on the table,
         # in nine particles in ten or more (up to the sampling noise of n particles: the
-        # theories let go with a probability of about 0.7 per frame at the bottom)
+        # theories let go with a probability of about 0.7 per frame at the bottom); the theory
+        # learned in hindsight, which knows a carried object's height only from its hand's
+        # grip, about 0.5 per frame: in three particles in four or more
+        still = 0.25 if theory == "hindsight" else 0.1
         held = reasoner.probability("occluded_by(ball_1, skin_1):t")
-        assert held < 0.1 + 3 * np.sqrt(0.1 * 0.9 / n), held
+        assert held < still + 3 * np.sqrt(still * (1 - still) / n), held
         belief = reasoner.belief("ball-1")
         assert belief is not None
         near = np.linalg.norm(belief.positions - np.array(PUT), axis=1) < 0.05

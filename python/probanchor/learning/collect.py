@@ -22,6 +22,7 @@ from pathlib import Path
 
 from probanchor.ddclearn.files import write_atomically
 from probanchor.jobs import Job, parse_cluster, raise_failures, run_jobs
+from probanchor.learning.motion_hindsight import hindsight_samples
 from probanchor.learning.motion_samples import MotionSamples, episode_samples, samples_path
 from probanchor.learning.occlusion_data import Collection, LabelOptions, data_text, episode_facts
 from probanchor.learning.occlusion_data import hindsight_agreement as _agreement
@@ -130,7 +131,9 @@ def _episode(scenario: Path, seed: int, cache: Path, number: int,
     part = Collection()
     episode_facts(episode, number, labels, part, collection)
     agree, n = _agreement(episode, labels)
-    samples = episode_samples(episode)
+    # (collected in hindsight, the samples read no simulator truth either)
+    samples = (hindsight_samples(episode) if labels.source == "hindsight"
+               else episode_samples(episode))
     done = time.perf_counter()
     return part, perceived - started, done - perceived, agree, n, samples
 

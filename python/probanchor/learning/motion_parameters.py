@@ -34,18 +34,21 @@ __all__ = ["DESCRIPTIONS", "Fitted", "fit", "hand_written", "parameter_clauses",
 DESCRIPTIONS: dict[str, tuple[str, str]] = {
     "obs_var": ("the measurement noise of a perceived position (m², per axis)",
                 "ML variance: half the mean square of the perceived displacement of objects "
-                "that stood still"),
+                "that stood still (hindsight: still as perception saw them)"),
     "motion_var": ("how far a perceived object moves in a frame (m², per axis)",
-                   "ML variance of the true displacements"),
+                   "ML variance of the true displacements (hindsight: of the perceived ones, "
+                   "less their noise)"),
     "reappear_var": ("where a hidden object is seen again, around its belief (m²)",
                      "ML variance of the reappearances against an ideal particle's belief"),
     "lost_var": ("the same for an object lost while the camera saw nothing (m²)",
                  "moved anywhere: 2 x the variance of where objects stand (longer axis)"),
     "follow_keep": ("the fraction of its offset from its occluder a hidden object keeps",
-                    "least-squares AR(1) coefficient of the true offsets"),
+                    "least-squares AR(1) coefficient of the true offsets (hindsight: ML over "
+                    "the offsets as it vanished and reappeared)"),
     "follow_var": ("the jitter of that offset per frame (m²)", "the AR(1)'s residual variance"),
     "coast_keep": ("the fraction of its velocity a hidden object under nothing keeps",
-                   "least-squares AR(1) coefficient of the true velocities"),
+                   "least-squares AR(1) coefficient of the true velocities (hindsight: ML "
+                   "over how far it went while hidden)"),
     "wander_var": ("how far such an object may move besides (m²)",
                    "the AR(1)'s residual variance"),
     "grip_reach": ("how far (table plane) a hand's grip may be from what it takes (m)",
@@ -53,7 +56,8 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
     "grip_height": ("how far above it (m)", "90 % quantile, moved off the median by its distance"),
     "occluder_rise": ("how far below its centre (m)",
                       "10 % quantile, moved off the median by its distance; 0 if above it"),
-    "grip_drop": ("how far what a hand holds is below its grip (m)", "mean"),
+    "grip_drop": ("how far what a hand holds is below its grip (m)",
+                  "mean (hindsight: of the grip over the object where the hand closed on it)"),
     "grip_rise": ("how far a hand's grip rises in a frame when it lifts (m)",
                   "the 10 % quantile of the rises while lifting, / 2"),
 }
@@ -87,8 +91,12 @@ def fit(samples: MotionSamples, hand: dict[str, float]) -> list[Fitted]:
         (("motion_var",), lambda: [motion_variances.motion_var(r["displacement"])]),
         (("reappear_var",), lambda: [motion_variances.reappear_var(r["reappear"])]),
         (("lost_var",), lambda: [motion_variances.lost_var(r["places"])]),
-        (("follow_keep", "follow_var"), lambda: _pair(motion_keep.follow(r["follow"]))),
-        (("coast_keep", "wander_var"), lambda: _pair(motion_keep.coast(r["coast"]))),
+        (("follow_keep", "follow_var"),
+         lambda: _pair(motion_keep.follow(r["follow"]) if r["follow"]
+                       else motion_keep.follow_gaps(r["follow_gap"]))),
+        (("coast_keep", "wander_var"),
+         lambda: _pair(motion_keep.coast(r["coast"]) if r["coast"]
+                       else motion_keep.coast_gaps(r["coast_gap"]))),
         (("grip_reach", "grip_height", "occluder_rise", "grip_drop"),
          lambda: list(motion_grip.grip(r["grasp"], r["hold"]).values())),
         (("grip_rise",), lambda: [motion_grip.rise(r["carries"])]),

@@ -27,8 +27,10 @@
 - ``places``: where the perceived objects (not hands) stand in the table plane, every
   ``PLACES_EVERY`` frames.
 
-Positions of hidden objects are the simulator's ground truth (a robot without it would have to
-infer them from where the objects reappear); the rest is what perception gave.
+Positions of hidden objects are the simulator's ground truth; the rest is what perception gave.
+For the samples of a collection labelled in hindsight, which read no truth (``follow_gap`` and
+``coast_gap`` instead of ``follow`` and ``coast``), see
+:mod:`probanchor.learning.motion_hindsight`.
 """
 
 from __future__ import annotations
@@ -42,11 +44,12 @@ from typing import Any
 from probanchor.learning.experience import AnchorView, Episode
 from probanchor.learning.occlusion_data import LabelOptions, labels
 
-__all__ = ["KINDS", "MotionSamples", "episode_samples", "read_samples", "samples_path"]
+__all__ = ["KINDS", "MotionSamples", "episode_samples", "read_samples", "reappearances",
+           "samples_path", "told"]
 
 #: The kinds of samples (see the module docstring).
 KINDS = ("displacement", "reappear", "lost", "follow", "coast", "grasp", "hold", "carries",
-         "uncover", "places")
+         "uncover", "places", "follow_gap", "coast_gap")
 
 #: ``places`` keeps where the perceived objects stand every this many frames.
 PLACES_EVERY = 15
@@ -91,7 +94,7 @@ def read_samples(data: list[str | Path] | tuple[str | Path, ...]) -> MotionSampl
     return out
 
 
-def _told(view: AnchorView) -> tuple[float, float, float]:
+def told(view: AnchorView) -> tuple[float, float, float]:
     """Where the theory is told a perceived anchor is (a hand's grip point)."""
     return view.grip if view.grip is not None else view.position
 
@@ -135,7 +138,7 @@ def episode_samples(episode: Episode) -> MotionSamples:
             if v0 is None:
                 continue
             if v0.perceived and v1.perceived:
-                p0, p1 = _told(v0), _told(v1)
+                p0, p1 = told(v0), told(v1)
                 q0, q1 = _true_position(episode, k, a), _true_position(episode, k + 1, a)
                 moved = (None if q0 is None or q1 is None
                          else [round(q1[i] - q0[i], 5) for i in range(3)])
@@ -150,7 +153,7 @@ def episode_samples(episode: Episode) -> MotionSamples:
             o0, o1 = covered_by(k, a), covered_by(k + 1, a)
             if (o1 is not None and o1 == o0 and f0.perceived(o1) and f1.perceived(o1)
                     and not v0.perceived):
-                q0, q1 = _told(f0.anchors[o1]), _told(f1.anchors[o1])
+                q0, q1 = told(f0.anchors[o1]), told(f1.anchors[o1])
                 s.rows["follow"].append([round(t0["position"][0] - q0[0], 5),
                                          round(t0["position"][1] - q0[1], 5),
                                          round(t1["position"][0] - q1[0], 5),
@@ -164,13 +167,13 @@ def episode_samples(episode: Episode) -> MotionSamples:
                                                              t1["position"])
                     s.rows["coast"].append([round(x0 - xm, 5), round(y0 - ym, 5),
                                             round(x1 - x0, 5), round(y1 - y0, 5)])
-    _reappearances(episode, covered_by, s)
+    reappearances(episode, covered_by, s)
     _hands(episode, covered_by, s)
     _uncovering(episode, s)
     return s
 
 
-def _reappearances(episode: Episode, covered_by, s: MotionSamples) -> None:
+def reappearances(episode: Episode, covered_by, s: MotionSamples) -> None:
     frames = episode.frames
     for a in sorted({x for f in frames for x in f.anchors}):
         k, seen_before = 0, False
@@ -190,7 +193,7 @@ def _reappearances(episode: Episode, covered_by, s: MotionSamples) -> None:
             x, y, z = last
             o = covered_by(end, a)
             if o is not None and frames[end].perceived(o):
-                q = _told(frames[end].anchors[o])
+                q = told(frames[end].anchors[o])
                 x, y = q[0], q[1]
                 if frames[end].anchors[o].grip is not None:      # a hand: carried in 3-D
                     z = q[2]
@@ -243,7 +246,7 @@ def _belief(episode: Episode, k: int, a: str, covered_by, hand: str
     o = None if view.perceived else covered_by(k, a)
     if (o is not None and episode.frames[k].perceived(o)
             and episode.truth_of.get(o) != hand):
-        q = _told(episode.frames[k].anchors[o])
+        q = told(episode.frames[k].anchors[o])
         x, y = q[0], q[1]
     return x, y, z
 

@@ -10,6 +10,12 @@ of the samples, over the samples and the three axes.
   true displacement under 1 mm; the difference of two independent noises has twice their
   variance);
 - ``motion_var``: how far a perceived object moves in one frame: its true displacement;
+
+  From what a robot perceives alone (no true displacement, ``--labels hindsight``): the
+  objects that stood still are those perception saw stay within half a centimetre over
+  eleven frames (the row's sixth field, :mod:`probanchor.learning.motion_hindsight`), and
+  ``motion_var`` is the mean square of the perceived displacements less the noise in them
+  (2 obs_var; at least a hundredth of obs_var);
 - ``reappear_var``: where a hidden object is seen again around where an ideal particle
   believed it (under its occluder, or where it was last seen);
 - ``lost_var``: where an object lost while the camera saw nothing (and under nothing since) is
@@ -50,15 +56,28 @@ def isotropic_variance(rows: Sequence[Sequence[float]]) -> float:
     return float(np.mean(a * a))
 
 
+def _without_truth(displacements: Sequence[Sequence[object]]) -> bool:
+    return bool(displacements) and all(r[4] is None for r in displacements)
+
+
 def obs_var(displacements: Sequence[Sequence[object]]) -> tuple[float, int]:
-    """(obs_var, samples) from ``displacement`` rows (dx, dy, dz, category, true or None)."""
+    """(obs_var, samples) from ``displacement`` rows (dx, dy, dz, category, true or None[,
+    still as perceived])."""
+    if _without_truth(displacements):
+        still = [r[:3] for r in displacements if len(r) > 5 and r[5]]
+        return isotropic_variance(still) / 2.0, len(still)   # type: ignore[arg-type]
     still = [r[:3] for r in displacements
              if r[4] is not None and float(np.linalg.norm(r[4])) < STILL]   # type: ignore[arg-type]
     return isotropic_variance(still) / 2.0, len(still)   # type: ignore[arg-type]
 
 
 def motion_var(displacements: Sequence[Sequence[object]]) -> tuple[float, int]:
-    """(motion_var, samples): the true displacements of the perceived objects."""
+    """(motion_var, samples): the true displacements of the perceived objects (without
+    truth: the perceived ones less their noise)."""
+    if _without_truth(displacements):
+        noise, n = obs_var(displacements)
+        perceived = isotropic_variance([r[:3] for r in displacements])  # type: ignore[misc]
+        return max(perceived - 2.0 * noise, noise / 100.0), len(displacements)
     moved = [r[4] for r in displacements if r[4] is not None]
     return isotropic_variance(moved), len(moved)   # type: ignore[arg-type]
 
