@@ -43,13 +43,13 @@ import math
 
 from probanchor.learning.experience import Episode
 from probanchor.learning.motion_samples import (
-    PLACES_EVERY,
     RECENT,
     MotionSamples,
+    covering,
+    places,
     reappearances,
     told,
 )
-from probanchor.learning.occlusion_data import LabelOptions, labels
 
 __all__ = ["hindsight_samples"]
 
@@ -59,15 +59,8 @@ def hindsight_samples(episode: Episode) -> MotionSamples:
     docstring)."""
     s = MotionSamples()
     frames = episode.frames
-    lab = labels(episode, LabelOptions(source="hindsight"))
-
-    def covered_by(k: int, a: str) -> str | None:
-        return next((o for o, p in (lab[k].get(a) or {}).items() if p > 0.5), None)
-
-    for k in range(0, len(frames), PLACES_EVERY):
-        for v in frames[k].anchors.values():
-            if v.perceived and v.grip is None:
-                s.rows["places"].append([round(v.position[0], 4), round(v.position[1], 4)])
+    covered_by = covering(episode, "hindsight")
+    places(episode, s)
     for k in range(len(frames) - 1):
         f0, f1 = frames[k], frames[k + 1]
         for a, v1 in f1.anchors.items():

@@ -37,15 +37,16 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from probanchor.learning.experience import AnchorView, Episode
-from probanchor.learning.occlusion_data import LabelOptions, labels
+from probanchor.learning.occlusion_data import LabelOptions, LabelSource, labels
 
-__all__ = ["KINDS", "MotionSamples", "episode_samples", "read_samples", "reappearances",
-           "samples_path", "told"]
+__all__ = ["KINDS", "MotionSamples", "covering", "episode_samples", "places", "read_samples",
+           "reappearances", "samples_path", "told"]
 
 #: The kinds of samples (see the module docstring).
 KINDS = ("displacement", "reappear", "lost", "follow", "coast", "grasp", "hold", "carries",
@@ -118,19 +119,31 @@ def _true_position(episode: Episode, k: int, a: str) -> list[float] | None:
     return None if info is None else list(info["position"])
 
 
-def episode_samples(episode: Episode) -> MotionSamples:
-    """The samples of one episode (see the module docstring)."""
-    s = MotionSamples()
-    frames = episode.frames
-    lab = labels(episode, LabelOptions(source="truth"))
+def covering(episode: Episode, source: LabelSource) -> Callable[[int, str], str | None]:
+    """``covered_by(k, a)``: the anchor the labels of ``source`` say covers ``a`` in frame
+    ``k`` (more likely than not), or None."""
+    lab = labels(episode, LabelOptions(source=source))
 
     def covered_by(k: int, a: str) -> str | None:
         return next((o for o, p in (lab[k].get(a) or {}).items() if p > 0.5), None)
 
-    for k in range(0, len(frames), PLACES_EVERY):
-        for v in frames[k].anchors.values():
+    return covered_by
+
+
+def places(episode: Episode, s: MotionSamples) -> None:
+    """Where the perceived objects (not hands) stand, every :data:`PLACES_EVERY` frames."""
+    for k in range(0, len(episode.frames), PLACES_EVERY):
+        for v in episode.frames[k].anchors.values():
             if v.perceived and v.grip is None:
                 s.rows["places"].append([round(v.position[0], 4), round(v.position[1], 4)])
+
+
+def episode_samples(episode: Episode) -> MotionSamples:
+    """The samples of one episode (see the module docstring)."""
+    s = MotionSamples()
+    frames = episode.frames
+    covered_by = covering(episode, "truth")
+    places(episode, s)
     for k in range(len(frames) - 1):
         f0, f1 = frames[k], frames[k + 1]
         for a, v1 in f1.anchors.items():
