@@ -87,7 +87,7 @@ from anchoring.matcher import Matcher, load_default_matcher
 from anchoring.reidentify import looks_alike, unique_lookalikes
 from anchoring.similarity import BELIEF_RADIUS
 from anchoring.validation import histogram_bins, invalid_reason
-from anchoring.views import Withheld, merged_views, withheld_views
+from anchoring.views import Withheld, container_views, merged_views, withheld_views
 from probanchor.percepts import Percept, PerceptError
 
 log = logging.getLogger("anchoring")
@@ -356,6 +356,10 @@ class AnchorManager:
                     if accept[r, c]:
                         matched_anchor[int(c)] = int(r)
 
+        if self.withhold_seconds > 0:
+            for j in container_views(anchors, frame, features, matched_anchor, time,
+                                     self.merge_seconds, self.view_margin):
+                del matched_anchor[j]
         lookalikes = unique_lookalikes(anchors, features, matched_anchor, refuse, time,
                                        self.reid_seconds, self.reid_similarity)
         for j, k in lookalikes.items():

@@ -17,6 +17,15 @@ frame: these are views of objects that already have anchors, and a new anchor fo
 give the object's percepts a second symbol. A percept withheld because of one anchor for longer
 than ``withhold_seconds`` in a row is acquired after all (a new object put where a hidden one is
 believed is not refused for ever).
+
+*Views of a container over a hidden object* (:func:`container_views`): a hidden object the
+reasoning has under an occluder is not re-acquired by a percept that overlaps an anchor that
+was perceived within the last ``merge_seconds`` (half a second), is not perceived now, and
+looks more like that percept (colour) than the hidden object does. Under a container that stood
+there a moment ago, the hidden object can be seen only once the container has moved away,
+which would be seen; what is seen there is a partial view of the container (its lower part
+under something carried over it, which the classifier may take for a ball). The percept is
+then left to the withheld views.
 """
 
 from __future__ import annotations
@@ -101,6 +110,29 @@ def withheld_views(anchors: list[Anchor], frame: list[Percept], features: np.nda
         if hits:
             views[j] = hits
     return views, still
+
+
+def container_views(anchors: list[Anchor], frame: list[Percept], features: np.ndarray,
+                    matched_anchor: dict[int, int], time: float, recent_seconds: float,
+                    view_margin: float) -> list[int]:
+    """The percepts (index in ``frame``) that ``matched_anchor`` gives to a hidden anchor under
+    an occluder (its particles' occluded mass at least 1/2) but that are partial views of an
+    anchor perceived within ``recent_seconds`` and not matched now (see the module doc): they
+    are to be unmatched."""
+    taken = set(matched_anchor.values())
+    vanished = [m for m, an in enumerate(anchors)
+                if m not in taken and an.history and time - an.last_seen <= recent_seconds]
+    out = []
+    for j, k in matched_anchor.items():
+        hidden = anchors[k]
+        if not hidden.position.is_probabilistic or hidden.occluded is None:
+            continue
+        if float(np.sum(hidden.position.weights[hidden.occluded])) < 0.5:
+            continue
+        if any(features[m, j, 1] > features[k, j, 1]
+               and boxes_overlap(anchors[m], frame[j], view_margin) for m in vanished):
+            out.append(j)
+    return out
 
 
 def boxes_overlap(anchor: Anchor, percept: Percept, margin: float) -> bool:
