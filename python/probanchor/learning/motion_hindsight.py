@@ -46,6 +46,7 @@ from probanchor.learning.motion_samples import (
     RECENT,
     MotionSamples,
     covering,
+    hidden_runs,
     places,
     reappearances,
     told,
@@ -95,28 +96,12 @@ def _still(episode: Episode, a: str, k: int) -> bool:
     return math.hypot(x1 - x0, y1 - y0) < STILL_SPAN
 
 
-def _hidden_runs(episode: Episode, a: str) -> list[tuple[int, int]]:
-    """(start, end) of each run of frames ``a`` is hidden in, seen just before and after it."""
-    frames = episode.frames
-    runs, k, seen = [], 0, False
-    while k < len(frames):
-        view = frames[k].anchors.get(a)
-        if view is None or view.perceived:
-            seen = seen or view is not None
-            k += 1
-            continue
-        start = k
-        while k < len(frames) and a in frames[k].anchors and not frames[k].perceived(a):
-            k += 1
-        if seen and k < len(frames) and frames[k].perceived(a) and frames[start - 1].perceived(a):
-            runs.append((start, k - 1))
-    return runs
-
-
 def _gaps(episode: Episode, covered_by, s: MotionSamples) -> None:
     frames = episode.frames
     for a in sorted({x for f in frames for x in f.anchors}):
-        for start, end in _hidden_runs(episode, a):
+        for start, end in hidden_runs(episode, a):
+            if not frames[start - 1].perceived(a):
+                continue                           # (seen just before it vanished only)
             n = end - start + 2                    # steps from the last sight to the next
             last = frames[start - 1].anchors[a].position
             back = frames[end + 1].anchors[a].position

@@ -45,8 +45,8 @@ from typing import Any
 from probanchor.learning.experience import AnchorView, Episode
 from probanchor.learning.occlusion_data import LabelOptions, LabelSource, labels
 
-__all__ = ["KINDS", "MotionSamples", "covering", "episode_samples", "places", "read_samples",
-           "reappearances", "samples_path", "told"]
+__all__ = ["KINDS", "MotionSamples", "covering", "episode_samples", "hidden_runs", "places",
+           "read_samples", "reappearances", "samples_path", "told"]
 
 #: The kinds of samples (see the module docstring).
 KINDS = ("displacement", "reappear", "lost", "follow", "coast", "grasp", "hold", "carries",
@@ -186,22 +186,30 @@ def episode_samples(episode: Episode) -> MotionSamples:
     return s
 
 
+def hidden_runs(episode: Episode, a: str) -> list[tuple[int, int]]:
+    """(start, end) of each run of frames anchor ``a`` is hidden in, having been perceived
+    before it and perceived again in frame end + 1."""
+    frames = episode.frames
+    runs, k, seen_before = [], 0, False
+    while k < len(frames):
+        view = frames[k].anchors.get(a)
+        if view is None or view.perceived:
+            seen_before = seen_before or view is not None
+            k += 1
+            continue
+        start = k
+        while k < len(frames) and a in frames[k].anchors and not frames[k].perceived(a):
+            k += 1
+        if seen_before and k < len(frames) and frames[k].perceived(a):
+            runs.append((start, k - 1))
+    return runs
+
+
 def reappearances(episode: Episode, covered_by, s: MotionSamples) -> None:
     frames = episode.frames
     for a in sorted({x for f in frames for x in f.anchors}):
-        k, seen_before = 0, False
-        while k < len(frames):
-            view = frames[k].anchors.get(a)
-            if view is None or view.perceived:
-                seen_before = seen_before or view is not None
-                k += 1
-                continue
-            start = k
-            while k < len(frames) and a in frames[k].anchors and not frames[k].perceived(a):
-                k += 1
-            end = k - 1
-            if not seen_before or k >= len(frames) or not frames[k].perceived(a):
-                continue
+        for start, end in hidden_runs(episode, a):
+            k = end + 1
             last = frames[end].anchors[a].position        # where it was last seen
             x, y, z = last
             o = covered_by(end, a)
