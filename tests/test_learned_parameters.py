@@ -75,6 +75,7 @@ def test_a_gate_and_a_threshold_are_quantiles_with_the_margin() -> None:
     low, high = signed_gate(xs)
     assert (low, high) == (pytest.approx(0.5 - 2 * 0.4), pytest.approx(0.5 + 2 * 0.4))
     assert reach(np.array([0.01, 0.02, 0.05])) == pytest.approx(2 * 0.05)  # every grasp within
+    assert reach(np.array([0.01, 0.012, 0.014, 0.016, 0.02, 0.25])) == pytest.approx(2 * 0.02)
 
 
 def test_the_grip_may_be_below_the_object_by_the_gate_or_not_at_all() -> None:
@@ -88,12 +89,15 @@ def test_the_grip_may_be_below_the_object_by_the_gate_or_not_at_all() -> None:
     assert 0.02 < low < 0.06
 
 
-def test_the_grip_reach_holds_every_grasp_seen() -> None:
-    """One grasp 5 cm off among tight ones: the hand's reach still takes it (a quantile of the
-    grasps would leave that carry out, and its object lost)."""
-    grasps = [[0.005 + 0.0005 * i, 0.09, 0.02] for i in range(30)] + [[0.05, 0.09, 0.02]]
-    fitted = grip(grasps, [0.02])
-    assert fitted["grip_reach"][0] >= 0.05
+def test_the_grip_reach_holds_every_grasp_seen_but_a_far_out_one() -> None:
+    """Grasps 0.5 to 3.4 cm off and one 4.6 cm off: the hand's reach still takes that one (a
+    quantile of the grasps would leave that carry out, and its object lost); one 25 cm off (a
+    grip point put beside a big hand's cup) is far out, and a reach that held it would let a
+    hand take whatever vanishes anywhere near it."""
+    grasps = [[0.005 + 0.001 * i, 0.09, 0.02] for i in range(30)] + [[0.046, 0.09, 0.02]]
+    assert grip(grasps, [0.02])["grip_reach"][0] == pytest.approx(2 * 0.046)
+    fitted = grip([*grasps, [0.25, 0.09, 0.02]], [0.02])
+    assert fitted["grip_reach"][0] == pytest.approx(2 * 0.046)
 
 
 def test_the_grip_rise_is_read_from_the_frames_a_carried_object_went_up() -> None:

@@ -10,7 +10,10 @@ from quantiles so that one odd carry does not move it, with the margin of the on
 - a *reach* every event seen falls within (``grip_reach``, how far from what it takes a hand's
   grip may be): the margin times the largest event, since a grasp outside it is a carry the
   particles do not follow (the object is lost), and the grasps of the generated games are
-  tighter than others' (a quantile of them left a hand that grips 5 cm off out);
+  tighter than others' (a quantile of them left a hand that grips 5 cm off out); but not a
+  far-out event (beyond Tukey's far fence, the upper quartile plus ``FAR`` interquartile
+  ranges): a hand grown to hold a cup had its grip point put 12 and 25 cm off the cup it took,
+  and a reach of 50 cm would let a hand take whatever vanishes anywhere near it;
 - a signed *gate* the events must fall within (how high the grip is over the object it
   takes): from the 10 % quantile to the 90 % one, each moved away from the median by its own
   distance from it (``grip_height`` above, ``occluder_rise``, how far the grip may be below
@@ -34,12 +37,15 @@ import numpy as np
 
 from probanchor.learning.occlusion_reach import MARGIN
 
-__all__ = ["GATE", "THRESHOLD", "grip", "reach", "rise", "signed_gate", "threshold"]
+__all__ = ["FAR", "GATE", "THRESHOLD", "grip", "reach", "rise", "signed_gate", "threshold"]
 
 #: The quantile of a signed gate's upper end (1 - GATE: of its lower end).
 GATE = 0.9
 #: The quantile of a threshold.
 THRESHOLD = 0.1
+#: A reach leaves out events beyond the upper quartile plus this many interquartile ranges
+#: (Tukey's "far out").
+FAR = 3.0
 
 
 def _values(xs: Sequence[float]) -> np.ndarray:
@@ -50,8 +56,11 @@ def _values(xs: Sequence[float]) -> np.ndarray:
 
 
 def reach(xs: Sequence[float]) -> float:
-    """The margin times the largest of the non-negative ``xs``: every event seen within it."""
-    return MARGIN * float(np.max(_values(xs)))
+    """The margin times the largest of the non-negative ``xs`` that is not far out (beyond the
+    upper quartile plus ``FAR`` interquartile ranges): every other event seen within it."""
+    a = _values(xs)
+    q1, q3 = np.quantile(a, [0.25, 0.75])
+    return MARGIN * float(np.max(a[a <= q3 + FAR * (q3 - q1)]))
 
 
 def signed_gate(xs: Sequence[float]) -> tuple[float, float]:
