@@ -43,6 +43,7 @@ from collections.abc import Sequence
 
 import numpy as np
 from scipy.optimize import minimize
+from scipy.special import expit
 
 __all__ = ["ar1", "coast", "coast_gaps", "follow", "follow_gaps"]
 
@@ -76,7 +77,7 @@ def _gap_fit(nll, x_scale: float) -> tuple[float, float, float]:
     """(k, V, C) minimising ``nll(k, V, C)`` over k in [0, K_MAX], V, C > 0 (searched in
     logs), from a few starts."""
     def objective(theta: np.ndarray) -> float:
-        k = K_MAX / (1.0 + math.exp(-theta[0]))
+        k = K_MAX * float(expit(theta[0]))
         return nll(k, V_MIN + math.exp(theta[1]), V_MIN + math.exp(theta[2]))
 
     best = None
@@ -89,7 +90,7 @@ def _gap_fit(nll, x_scale: float) -> tuple[float, float, float]:
             if best is None or r.fun < best.fun:
                 best = r
     assert best is not None
-    return (K_MAX / (1.0 + math.exp(-best.x[0])), V_MIN + math.exp(best.x[1]),
+    return (K_MAX * float(expit(best.x[0])), V_MIN + math.exp(best.x[1]),
             V_MIN + math.exp(best.x[2]))
 
 
