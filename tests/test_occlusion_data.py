@@ -228,19 +228,22 @@ def test_hindsight_does_not_label_an_occluder_that_stood_still() -> None:
 def test_hindsight_does_not_label_a_box_that_stood_in_front_and_moved_away() -> None:
     """A mug hidden behind a box whose centre stands 8 cm from it (a 15 cm box cannot cover a
     mug from there) is seen again where it was when the box moves away: not covered, although
-    the box moved; the same box over the mug (1 cm off) and slid away labels it."""
-    def episode(offset: float) -> Episode:
+    the box moved; the same box over the mug (1 cm off) and lifted off it labels it; slid
+    away without rising, it would have taken the mug along: it was only in front of it."""
+    def episode(offset: float, lift: float) -> Episode:
         frames = []
         for k in range(6):
             seen = k in (0, 5)
-            box = (0.0 + (0.1 if k == 5 else 0.0), -offset, 0.075)
+            box = (0.0 + (0.1 if k == 5 else 0.0), -offset, 0.075 + (lift if k == 5 else 0.0))
             frames.append(frame(k, {"mug-1": (seen, (0.0, 0.0, 0.04)), "box-1": (True, box)}, {}))
         return Episode("in front", frames, {})
 
-    in_front = labels(episode(0.08), LabelOptions(source="hindsight"))
+    in_front = labels(episode(0.08, 0.05), LabelOptions(source="hindsight"))
     assert all(in_front[k]["mug-1"] == {} for k in range(1, 5))
-    over = labels(episode(0.01), LabelOptions(source="hindsight"))
+    over = labels(episode(0.01, 0.05), LabelOptions(source="hindsight"))
     assert all(over[k]["mug-1"] == {"box-1": 1.0} for k in range(1, 5))
+    slid = labels(episode(0.01, 0.0), LabelOptions(source="hindsight"))
+    assert all(slid[k]["mug-1"] == {} for k in range(1, 5))
 
 
 def test_the_covering_anchor_does_not_depend_on_dictionary_order() -> None:

@@ -73,6 +73,21 @@ class Episode:
     frames: list[EpisodeFrame]
     truth_of: dict[str, str | None] = field(default_factory=dict)
 
+    def owners(self) -> list[dict[str, str]]:
+        """Per frame, each ground-truth object -> the anchor that showed it last (perceived
+        in that frame or before). A hidden anchor that is not its object's owner is a
+        duplicate: anchoring alone acquired the object anew where it came back (out of a
+        hand, into the view), and the duplicate's place is stale."""
+        owner: dict[str, str] = {}
+        out = []
+        for frame in self.frames:
+            for symbol, view in frame.anchors.items():
+                obj = self.truth_of.get(symbol)
+                if view.perceived and obj is not None:
+                    owner[obj] = symbol
+            out.append(dict(owner))
+        return out
+
     def covering(self, frame: int, symbol: str) -> str | None:
         """The anchor whose ground-truth body covers or holds ``symbol``'s object in
         ``frame`` (the ``under`` / ``held_by`` of the simulator), if it is an anchor."""

@@ -242,6 +242,7 @@ def _hand_anchor(episode: Episode, k: int, hand: str) -> AnchorView | None:
 
 def _hands(episode: Episode, covered_by, s: MotionSamples) -> None:
     frames = episode.frames
+    owners = episode.owners()
     for a in sorted({x for f in frames for x in f.anchors}):
         run: list[int] = []
         holder = None
@@ -253,7 +254,7 @@ def _hands(episode: Episode, covered_by, s: MotionSamples) -> None:
                 continue
             if run:
                 _carry(episode, a, holder, run, released=k < len(frames), covered_by=covered_by,
-                       s=s)
+                       s=s, owners=owners)
             run, holder = ([k], h) if h is not None else ([], None)
 
 
@@ -273,7 +274,7 @@ def _belief(episode: Episode, k: int, a: str, covered_by, hand: str
 
 
 def _carry(episode: Episode, a: str, hand: str, run: list[int], released: bool,
-           covered_by, s: MotionSamples) -> None:
+           covered_by, s: MotionSamples, owners: list[dict[str, str]]) -> None:
     frames = episode.frames
     first = run[0]
     before = _true(episode, first - 1, a) if first > 0 else None
@@ -290,7 +291,9 @@ def _carry(episode: Episode, a: str, hand: str, run: list[int], released: bool,
     recent = [j for j in range(max(0, at - RECENT), at)
               if a in frames[j].anchors and frames[j].perceived(a)]
     holding = _hand_anchor(episode, first, hand)
-    if grip is not None and holding is not None and recent and a in frames[at - 1].anchors:
+    owner = owners[at - 1].get(episode.truth_of.get(a) or "") if at > 0 else None
+    if (grip is not None and holding is not None and recent and a in frames[at - 1].anchors
+            and owner == a):                       # not a duplicate with a stale place
         x, y, z = _belief(episode, at - 1, a, covered_by, hand)
         gx, gy, gz = grip.grip                                          # type: ignore[misc]
         hz = holding.grip[2]                                            # type: ignore[index]
