@@ -175,7 +175,10 @@ def test_the_learned_parameters_are_within_the_simulator_s_ranges(name: str) -> 
     assert 0.1 ** 2 < p["lost_var"] < 0.6 ** 2
     # an object under a container stays within its footprint (4 cm radius)
     assert 0.5 < p["follow_keep"] < 1.0 and 0 < p["follow_var"] < 0.04 ** 2
-    assert 0.5 < p["coast_keep"] < 1.0 and 0 < p["wander_var"] < step ** 2
+    # a hidden object moving on keeps most of its velocity; in a frame it strays from where
+    # coasting puts it by at most the change of its velocity: two frames' worth of the fastest
+    # motion (a reversal)
+    assert 0.5 < p["coast_keep"] < 1.0 and 0 < p["wander_var"] < (2 * step) ** 2
     # a hand closes over what it takes: within a few centimetres of it, from above
     assert 0.005 < p["grip_reach"] < 0.15
     assert 0.02 < p["grip_height"] < 0.2 and 0.0 <= p["occluder_rise"] < 0.05

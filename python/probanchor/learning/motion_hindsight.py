@@ -19,8 +19,12 @@ object's position replaced by what spans its whole time hidden:
   it is seen against the occluder in the last frame that hid it), and the frames between
   (ox0, oy0, ox1, oy1, n);
 - ``coast_gap`` (instead of ``coast``): an object hidden under nothing throughout (behind
-  something): its perceived velocity as it vanished, how far it went until it reappeared
-  and the frames between (vx0, vy0, dx, dy, n);
+  something): its perceived velocity before it vanished, how far it went until it reappeared
+  and the frames between (vx0, vy0, dx, dy, n), measured :data:`PARTIAL` frames before it
+  vanished and after it reappeared (the views between may be partial); only when something
+  was perceived in front of it (between it and the camera, which looks along +y) as it
+  vanished: with nothing in front it left the view, went somewhere and came back (pushed out
+  and back, not coasting);
 - ``grasp``, ``hold``, ``carries``: a carry is a run of frames the hindsight labels give a hand
   (an anchor with a grip point) as what hides the object; the grasp: how near, in the table
   plane, the grip came to where the object was believed as it vanished, within the second the
@@ -80,6 +84,19 @@ def hindsight_samples(episode: Episode) -> MotionSamples:
 #: where it was STILL_WINDOW frames before and after (perception alone cannot see a
 #: displacement under its noise; an object moved by a hand or pushed is a few centimetres
 #: away in that time).
+#: Something stands in front of a vanishing object when it is perceived nearer the camera
+#: (smaller y) within this much to the side and this much nearer (m).
+FRONT_SIDE = 0.08
+FRONT_DEPTH = 0.2
+
+
+def _in_front(frame, a: str, where: tuple[float, ...]) -> bool:
+    """Whether an anchor other than ``a`` is perceived in front of ``where`` in ``frame``."""
+    return any(o != a and v.perceived and abs(v.position[0] - where[0]) < FRONT_SIDE
+               and 0.0 < where[1] - v.position[1] < FRONT_DEPTH
+               for o, v in frame.anchors.items())
+
+
 STILL_WINDOW = 5
 STILL_SPAN = 0.005
 
@@ -96,6 +113,28 @@ def _still(episode: Episode, a: str, k: int) -> bool:
     return math.hypot(x1 - x0, y1 - y0) < STILL_SPAN
 
 
+#: The views of an object this many frames before it vanishes and after it reappears may be
+#: partial (part of it behind what hides it): their centres are off its own, and the velocity
+#: of the last two of them is the visible part shrinking, not the object moving (an object
+#: standing still behind a passing hand "moved" 2 cm a frame as it vanished and was back where
+#: it stood). A coasting gap is measured between the views before and after them.
+PARTIAL = 2
+
+
+def _coast_gap(episode: Episode, a: str, start: int, end: int, s: MotionSamples) -> None:
+    """The ``coast_gap`` of ``a`` hidden under nothing from ``start`` to ``end``: from the view
+    PARTIAL frames before it vanished (its velocity from the one before) to the view PARTIAL
+    frames after it reappeared, if all those frames perceived it."""
+    frames = episode.frames
+    r0, r1 = start - 1 - PARTIAL, end + 1 + PARTIAL
+    if r0 < 1 or r1 >= len(frames) or not all(
+            frames[j].perceived(a) for j in [*range(r0 - 1, start), *range(end + 1, r1 + 1)]):
+        return
+    p0, p, q = (frames[j].anchors[a].position for j in (r0 - 1, r0, r1))
+    s.rows["coast_gap"].append([round(p[0] - p0[0], 5), round(p[1] - p0[1], 5),
+                                round(q[0] - p[0], 5), round(q[1] - p[1], 5), r1 - r0])
+
+
 def _gaps(episode: Episode, covered_by, s: MotionSamples) -> None:
     frames = episode.frames
     for a in sorted({x for f in frames for x in f.anchors}):
@@ -107,16 +146,11 @@ def _gaps(episode: Episode, covered_by, s: MotionSamples) -> None:
             back = frames[end + 1].anchors[a].position
             occluders = {covered_by(j, a) for j in range(start, end + 1)}
             if occluders == {None}:
-                if any(frames[j].blind for j in range(start, end + 1)) or start < 2:
+                if any(frames[j].blind for j in range(start, end + 1)):
                     continue                       # (lost: moved anywhere, not coasting)
-                before = frames[start - 2].anchors.get(a)
-                if before is None or not before.perceived:
-                    continue
-                s.rows["coast_gap"].append([round(last[0] - before.position[0], 5),
-                                            round(last[1] - before.position[1], 5),
-                                            round(back[0] - last[0], 5),
-                                            round(back[1] - last[1], 5), n])
-                continue
+                if _in_front(frames[start], a, last):
+                    _coast_gap(episode, a, start, end, s)
+                continue                           # (else it left the view: not coasting)
             if len(occluders) != 1:
                 continue
             (o,) = occluders

@@ -43,16 +43,19 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
     "lost_var": ("the same for an object lost while the camera saw nothing (m²)",
                  "moved anywhere: 2 x the variance of where objects stand (longer axis)"),
     "follow_keep": ("the fraction of its offset from its occluder a hidden object keeps",
-                    "least-squares AR(1) coefficient of the true offsets (hindsight: ML over "
-                    "the offsets as it vanished and reappeared)"),
+                    "least-squares AR(1) coefficient of the true offsets (hindsight: ML, with "
+                    "a broad component for what it cannot explain, over the offsets as it "
+                    "vanished and reappeared)"),
     "follow_var": ("the jitter of that offset per frame (m²)", "the AR(1)'s residual variance"),
     "coast_keep": ("the fraction of its velocity a hidden object under nothing keeps",
-                   "least-squares AR(1) coefficient of the true velocities (hindsight: ML "
-                   "over how far it went while hidden)"),
+                   "least-squares AR(1) coefficient of the true velocities (hindsight: ML, with "
+                   "a broad component for what it cannot explain, over how far objects that "
+                   "moved as they vanished went while hidden)"),
     "wander_var": ("how far such an object may move besides (m²)",
                    "the AR(1)'s residual variance"),
     "grip_reach": ("how far (table plane) a hand's grip may be from what it takes (m)",
-                   "2 x the largest grasp seen"),
+                   "2 x the largest grasp seen that is not far out (beyond the upper quartile "
+                   "+ 3 interquartile ranges)"),
     "grip_height": ("how far above it (m)", "90 % quantile, moved off the median by its distance"),
     "occluder_rise": ("how far below its centre (m)",
                       "10 % quantile, moved off the median by its distance; 0 if above it"),
