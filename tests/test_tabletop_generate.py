@@ -88,3 +88,40 @@ def test_occlusion_games_hide_containers_under_boxes_too():
                 kinds.add((obj, cover))
                 assert obj == "ball" or cover == "box", (seed, ev)
     assert {("cup", "box"), ("mug", "box"), ("ball", "mug")} <= kinds
+
+
+def test_occlusion_games_take_containers_in_hand_and_out_of_view():
+    """The experience a theory is learned from has a hand taking containers too (cups, mugs
+    and boxes small enough for it, which are then hidden in it), cups and mugs standing upright
+    (they cover nothing), and objects pushed out of the camera's view and back: a learned theory
+    knows only what its games show (one learned without them held a box hidden in a hand
+    for impossible and lost it)."""
+    from probanchor.tabletop.generate import BIG_BOX, HAND_BOX, OUT_OF_VIEW, occlusion_game
+
+    taken, upright, left, back = set(), 0, 0, 0
+    for seed in range(40):
+        b = occlusion_game(seed)
+        scenario = b.build()
+        specs = {o.id: o for o in scenario.objects}
+        upright += sum(o.shape in ("cup", "mug") and not o.upside_down for o in specs.values())
+        out: set[str] = set()
+        for ev in b.data["events"]:
+            if ev.get("do") == "pick_up":
+                spec = specs[ev["object"]]
+                taken.add(spec.category)
+                if spec.shape == "box":
+                    assert 2 * spec.half_extents()[0] <= HAND_BOX + 1e-9
+            elif ev.get("do") == "put_under":
+                inner, cover = specs[ev["object"]], specs[ev["container"]]
+                assert cover.upside_down or cover.shape == "box"
+                if inner.category != "ball":
+                    assert 2 * cover.half_extents()[0] >= BIG_BOX
+            elif ev.get("do") == "move" and abs(ev["to"][0]) >= OUT_OF_VIEW:
+                left += 1
+                out.add(ev["object"])
+            elif ev.get("do") == "move" and ev["object"] in out:
+                back += 1
+                out.discard(ev["object"])
+        assert not out, (seed, out)                   # everything pushed out comes back
+    assert {"ball", "box", "cup", "mug"} <= taken
+    assert upright >= 5 and left >= 5 and back == left

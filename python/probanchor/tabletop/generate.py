@@ -17,6 +17,13 @@ from probanchor.tabletop.builder import ScenarioBuilder
 from probanchor.tabletop.errors import ScenarioError
 from probanchor.tabletop.scenario import Scenario
 
+#: A box that covers a can, a cup or a mug in the occlusion games has at least this side (m);
+#: a hand takes boxes of at most HAND_BOX.
+BIG_BOX = 0.13
+HAND_BOX = 0.11
+#: |x| (m) of a spot out of the camera's view, beside the table.
+OUT_OF_VIEW = 0.95
+
 CONTAINER_KINDS = (
     ("mug", {"radius": 0.04, "height": 0.1}),
     ("box", {"size": [0.12, 0.12, 0.12]}),
@@ -89,27 +96,36 @@ SCENE_COLOURS = ["red", "orange", "yellow", "green", "cyan", "blue", "purple", "
 
 def _place_objects(b: ScenarioBuilder, rng: np.random.Generator,
                    free: Callable[[], tuple[float, float]], chosen: Sequence[str],
-                   colours: Sequence[str]
+                   colours: Sequence[str], box_side: tuple[float, float] = (0.13, 0.16),
+                   upright: float = 0.0
                    ) -> tuple[dict[str, list[str]], dict[str, tuple[float, float]]]:
     """Add one object per chosen category at a free spot, sized as its kind is: the ids per
-    category and each object's position."""
+    category and each object's position. Boxes are cubes with sides drawn from ``box_side``;
+    a cup or mug stands upright (open side up: it cannot cover anything) with probability
+    ``upright``, and is then listed under ``"upright"`` instead of its category."""
     ids: dict[str, list[str]] = {}
     where: dict[str, tuple[float, float]] = {}
     for k, (cat, col) in enumerate(zip(chosen, colours, strict=True)):
         oid = f"{cat}_{k}"
-        ids.setdefault(cat, []).append(oid)
         xy = free()
         where[oid] = xy
         if cat == "ball":
             b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.025, 0.035)))
         elif cat in ("mug", "cup"):
-            b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.04, 0.045)),
-                  height=float(rng.uniform(0.09, 0.11)))
+            params = {"radius": float(rng.uniform(0.04, 0.045)),
+                      "height": float(rng.uniform(0.09, 0.11))}
+            if upright and rng.random() < upright:
+                params["upside_down"] = False
+                ids.setdefault("upright", []).append(oid)
+                b.add(oid, cat, col, position=xy, **params)
+                continue
+            b.add(oid, cat, col, position=xy, **params)
         elif cat == "can":
             b.add(oid, cat, col, position=xy, radius=0.033, height=0.12)
         else:
-            side = float(rng.uniform(0.13, 0.16))
+            side = float(rng.uniform(*box_side))
             b.add(oid, cat, col, position=xy, size=[side, side, side])
+        ids.setdefault(cat, []).append(oid)
     return ids, where
 
 
@@ -174,6 +190,27 @@ def _reveal_all(b: ScenarioBuilder, t: float, hidden: dict[str, str],
     b.data["duration"] = t + 1.0
 
 
+def _leave_view(b: ScenarioBuilder, rng: np.random.Generator, t: float, movable: Sequence[str],
+                hidden: dict[str, str], where: dict[str, tuple[float, float]],
+                free: Callable[[float], tuple[float, float]]) -> float:
+    """An object pushed out of the view sideways (what it covers goes with it), left there for
+    1 to 3 s and pushed back to a free spot."""
+    obj = str(rng.choice(movable))
+    x, y = where[obj]
+    out = (OUT_OF_VIEW if x >= 0 else -OUT_OF_VIEW, y)
+    speed = float(rng.uniform(0.15, 0.3))
+    b.move(t, obj, to=out, speed=speed)
+    t += float(np.hypot(out[0] - x, 0.0)) / speed + float(rng.uniform(1.0, 3.0))
+    back = free(0.16)
+    b.move(t, obj, to=back, speed=speed)
+    t += float(np.hypot(back[0] - out[0], back[1] - out[1])) / speed + 1.0
+    where[obj] = back
+    for a, c in hidden.items():
+        if c == obj:
+            where[a] = back
+    return t
+
+
 def random_scene(seed: int) -> Scenario:
     """A random table scene with the events the scenarios use: objects pushed around (also past
     each other), balls and cans put under containers, containers swapped, moved and lifted, the
@@ -235,15 +272,18 @@ def random_scene(seed: int) -> Scenario:
 def occlusion_game(seed: int) -> ScenarioBuilder:
     """A random table with many kinds of occlusion, for learning a theory of occlusion.
 
-    Three to six objects (balls, cans, mugs, cups, boxes; balls and cans are small and cannot
-    hide anything) and five to nine events of: an object covered by a container (carried over
-    it, with other containers near and far; a ball under a mug, cup or box, a can, a mug or a
-    cup under a box), a container carried with what it covers, two
-    containers swapped, a container lifted off what it covers, an object grasped by a hand,
-    carried and put down elsewhere, a container passing in front of an object (it is only
-    behind, not under), the camera covered (sometimes while an object goes under a container),
-    an object pushed elsewhere. Everything hidden is revealed at the end. About 15-30 s at 15
-    fps; the same seed gives the same game.
+    Three to six objects (balls, cans, mugs, cups, boxes of 9 to 16 cm; balls and cans are
+    small and cannot hide anything; a cup or mug stands upright one time in five, and then
+    covers nothing either) and six to ten events of: an object covered by a container
+    (carried over it, with other containers near and far; a ball under a mug, cup or box, a
+    can, a mug or a cup under a box of 13 cm or more), a container carried with what it
+    covers, two containers swapped, a container lifted off what it covers, an object (a ball,
+    a can, a cup or mug that covers nothing, a box of 11 cm or less) grasped by a hand, carried
+    and put down elsewhere, a container passing in front of an object (it is only behind, not
+    under), the camera covered (sometimes while an object goes under a container), an object
+    pushed elsewhere, an object (a container with what it covers) pushed out of the view and
+    back to another place. Everything hidden is revealed at the end. About 15-35 s at 15 fps;
+    the same seed gives the same game.
     """
     for attempt in range(50):
         rng = np.random.default_rng([seed, attempt, 17])
@@ -256,15 +296,16 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
         colours = list(rng.choice(SCENE_COLOURS, n, replace=True))
         spots: list[tuple[float, float]] = []
         free = functools.partial(_free_spot, rng, spots)
-        ids, where = _place_objects(b, rng, free, chosen, colours)  # where: rough, for "front"
+        ids, where = _place_objects(b, rng, free, chosen, colours, box_side=(0.09, 0.16),
+                                    upright=0.2)   # where: rough, for "front"
         containers = ids.get("mug", []) + ids.get("box", []) + ids.get("cup", [])
         small = ids.get("ball", []) + ids.get("can", [])
+        side = {o["id"]: float(o["size"][0]) for o in b.data["objects"] if "size" in o}
         t = 1.0
         hidden: dict[str, str] = {}       # object -> container over it
-        held: str | None = None
-        events = int(rng.integers(5, 10))
-        choices = ["under", "under", "carry", "swap", "lift", "grasp", "front", "cover",
-                   "cover_under", "move"]
+        events = int(rng.integers(6, 11))
+        choices = ["under", "under", "under", "carry", "swap", "lift", "grasp", "front",
+                   "cover", "cover_under", "move", "leave"]
         for _ in range(events):
             what = str(rng.choice(choices))
             # a container that covers something or is covered itself stays where it is
@@ -272,10 +313,12 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
             visible_small = [o for o in small if o not in hidden]
             coverable = visible_small + [c for c in free_c if not c.startswith("box")]
             if what in ("under", "cover_under") and coverable and free_c:
-                obj = str(rng.choice(coverable))
-                box = str(rng.choice([c for c in free_c if c != obj] or [obj]))
-                if box == obj or (not obj.startswith("ball") and not box.startswith("box")):
+                box = str(rng.choice(free_c))
+                fits = [o for o in coverable if o != box
+                        and (o.startswith("ball") or side.get(box, 0.0) >= BIG_BOX)]
+                if not fits:
                     continue
+                obj = str(rng.choice(fits))
                 if what == "cover_under":
                     b.cover_camera(t, duration=2.6)
                     b.put_under(t + 0.2, obj, box, duration=2.2)
@@ -296,8 +339,11 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
                 t = _swap(b, rng, t, [c for c in containers if c not in hidden], where)
             elif what == "lift" and hidden:
                 t = _lift(b, rng, t, hidden, where, free)
-            elif what == "grasp" and visible_small and held is None:
-                obj = str(rng.choice(visible_small))
+            elif what == "grasp" and (graspable := [
+                    o for os_ in ids.values() for o in os_
+                    if o not in hidden and o not in hidden.values()
+                    and side.get(o, 0.0) <= HAND_BOX]):
+                obj = str(rng.choice(graspable))
                 b.pick_up(t, obj, duration=2.0)
                 t += 2.5
                 where[obj] = free(0.12)
@@ -307,6 +353,9 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
                 t = _pass_in_front(b, rng, t, free_c, ids, hidden, where, spots)
             elif what == "cover":
                 t = _cover(b, rng, t)
+            elif what == "leave":
+                t = _leave_view(b, rng, t, [o for os_ in ids.values() for o in os_
+                                            if o not in hidden], hidden, where, free)
             else:
                 movable = [o for os_ in ids.values() for o in os_
                            if o not in hidden and o not in hidden.values()]
