@@ -138,8 +138,9 @@ class LabelOptions:
         the can, and the cans of 80 games hide 1 % of what they are near.)
     moved : float, default=0.02
         Hindsight: a candidate must have moved by more than this (m, in 3-D) in the frames
-        around the reappearance (lifted, slid off, a hand withdrawn): one that stood still
-        while the anchor came out from behind it hid it from view, it did not cover it.
+        around the reappearance (lifted, a hand withdrawn; it must have risen too, ``rise``):
+        one that stood still while the anchor came out from behind it hid it from view, it
+        did not cover it.
     arrival_reach : float, default=0.06
         Hindsight: a candidate covers the anchor only from the frame it is within this
         table-plane distance (m) of where the anchor was last seen (or out of view); while it
