@@ -25,8 +25,8 @@ reappear_var(0.001738).  % where a hidden object is seen again, around its belie
 lost_var(0.07437).  % the same for an object lost while the camera saw nothing (m²); 9,313 samples
 follow_keep(0.9296).  % the fraction of its offset from its occluder a hidden object keeps; 19,339 samples
 follow_var(5.969e-06).  % the jitter of that offset per frame (m²); 19,339 samples
-coast_keep(0.9754).  % the fraction of its velocity a hidden object under nothing keeps; 44,879 samples
-wander_var(1.01e-06).  % how far such an object may move besides (m²); 44,879 samples
+coast_keep(0.8987).  % the fraction of its velocity a hidden object under nothing keeps; 208 samples
+wander_var(0.0002156).  % how far such an object may move besides (m²); 208 samples
 grip_reach(0.09242).  % how far (table plane) a hand's grip may be from what it takes (m); 60 samples
 grip_height(0.13).  % how far above it (m); 60 samples
 occluder_rise(0.004228).  % how far below its centre (m); 60 samples

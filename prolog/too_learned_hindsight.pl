@@ -25,8 +25,8 @@ reappear_var(0.001087).  % where a hidden object is seen again, around its belie
 lost_var(0.07437).  % the same for an object lost while the camera saw nothing (m²); 9,313 samples
 follow_keep(0.9976).  % the fraction of its offset from its occluder a hidden object keeps; 37 samples
 follow_var(1e-08).  % the jitter of that offset per frame (m²); 37 samples
-coast_keep(0.9157).  % the fraction of its velocity a hidden object under nothing keeps; 34 samples
-wander_var(0.0003809).  % how far such an object may move besides (m²); 34 samples
+coast_keep(0.8164).  % the fraction of its velocity a hidden object under nothing keeps; 36 samples
+wander_var(0.0004746).  % how far such an object may move besides (m²); 36 samples
 grip_reach(0.06652).  % how far (table plane) a hand's grip may be from what it takes (m); 23 samples
 grip_height(0.1211).  % how far above it (m); 23 samples
 occluder_rise(0.003004).  % how far below its centre (m); 23 samples

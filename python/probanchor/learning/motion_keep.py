@@ -9,33 +9,39 @@ The theory moves a hidden object as a first-order autoregression in the table pl
 - under nothing, x is its velocity (``coast_keep``, ``wander_var``: the theory adds the
   velocity to where it was and spreads the belief by V).
 
-From ground truth (x seen at every step) both are fitted as the conditional maximum-likelihood
-estimates of that model, which are the least-squares ones: ``k = sum(x(t) x(t+1)) /
-sum(x(t)^2)`` over the samples and both axes, ``V`` the mean square of the residuals
-``x(t+1) - k x(t)``.
+From ground truth (x seen at every step) the offset under an occluder is fitted as the
+conditional maximum-likelihood estimates of that model, which are the least-squares ones:
+``k = sum(x(t) x(t+1)) / sum(x(t)^2)`` over the samples and both axes, ``V`` the mean square of
+the residuals ``x(t+1) - k x(t)``.
 
-From what a robot perceives (:mod:`probanchor.learning.motion_hindsight`) x is seen only as the
-object vanishes and as it reappears, n steps later; the model then says, on each axis:
-
-- under its occluder, of the offset (``follow_gap`` rows)::
-
-      x(n) ~ N(k^n x(0), V (1 - k^(2n)) / (1 - k^2) + C)
+The theory predicts a hidden object over the whole time it is hidden, with no observation in
+between, and an object's motion is no AR(1) (it goes on at one speed, then stops; pushed out of
+the view, it stops there and comes back): fitted step by step from true velocities, k was 0.975
+with a jitter of 1 mm, which coasted a mug pushed out of the view a metre past the view's edge.
+So the coasting is fitted over whole times hidden, from both kinds of labels: an object seen
+as it vanishes and as it reappears, n steps later (true positions from ground truth, perceived
+ones from hindsight, :mod:`probanchor.learning.motion_hindsight`), where the model says, on
+each axis:
 
 - under nothing, of the displacement d = p(n) - p(0) given the velocity v(0) as it vanished
   (``coast_gap`` rows; the velocity is kept deterministically, the position spreads)::
 
       d ~ N(v(0) k (1 - k^n) / (1 - k), n V + C)
 
+- under its occluder, of the offset (``follow_gap`` rows, hindsight only)::
+
+      x(n) ~ N(k^n x(0), V (1 - k^(2n)) / (1 - k^2) + C)
+
 where ``C`` is the noise of where an object is perceived as it vanishes and reappears (a
 partial view's centre is centimetres off; the theory has it in ``reappear_var``), told apart
-from the motion by the gaps' lengths. Some gaps the model cannot explain (hindsight labels
-miss an occluder now and then, and the object it moved is no coasting or jitter; a container
-swapped along a curve behind another): each gap is the model's with weight w, else drawn from
-a broad Gaussian with the gaps' own spread; ``(k, V, C, w)`` are the maximum-likelihood
-estimates of that mixture (scipy.optimize, k in [0, 0.999], V and C at least (0.1 mm)²). From
-ground truth such gaps do not occur. (Leaving out the gaps beyond the fitted model's 99.73 %
-region and fitting again until none is, as this did before, narrowed the model step by step
-until it explained no moving object: the gaps have heavier tails than the model.)
+from the motion by the gaps' lengths; ``(k, V, C)`` are the maximum-likelihood estimates
+(scipy.optimize, k in [0, 0.999], V and C at least (0.1 mm)²). The offsets under an occluder
+seen in hindsight have gaps the model cannot explain (hindsight labels miss an occluder now and
+then, and the object it moved is no jitter): each is the model's with weight w, else drawn from
+a broad Gaussian with the gaps' own spread, w fitted with the rest. (Leaving out the gaps
+beyond the fitted model's 99.73 % region and fitting again until none was, as this did before,
+narrowed the model step by step until it explained no moving object: the gaps have heavier
+tails than the model.) The coasting has no broad component (:func:`coast_gaps`).
 """
 
 from __future__ import annotations
@@ -78,11 +84,13 @@ def ar1(rows: Sequence[Sequence[object]]) -> tuple[float, float, int]:
     return k, float(np.mean(residual * residual)), len(a)
 
 
-def _gap_fit(a: np.ndarray, moments, x_scale: float) -> tuple[float, float, float, float]:
-    """(k, V, C, w): the maximum-likelihood mixture of the gap rows ``a`` (see the module
-    docstring) over k in [0, K_MAX], V, C > 0 and the weight w in (0, 1) of the model's
-    component (searched in logs and logits), from a few starts."""
-    broad = float(np.mean(a[:, 2:4] ** 2)) + V_MIN       # the gaps' own spread, per axis
+def _gap_fit(a: np.ndarray, moments, x_scale: float, broad: bool
+             ) -> tuple[float, float, float, float]:
+    """(k, V, C, w): the maximum-likelihood fit of the gap rows ``a`` (see the module
+    docstring) over k in [0, K_MAX], V, C > 0 (searched in logs) and, with ``broad``, the
+    weight w in (0, 1) of the model's component of a mixture with a broad Gaussian of the
+    gaps' own spread (searched in logits; without, w = 1), from a few starts."""
+    spread = float(np.mean(a[:, 2:4] ** 2)) + V_MIN       # the gaps' own spread, per axis
 
     def nll(theta: np.ndarray) -> float:
         k = K_MAX * float(expit(theta[0]))
@@ -90,7 +98,9 @@ def _gap_fit(a: np.ndarray, moments, x_scale: float) -> tuple[float, float, floa
         mean, var = moments(a, k, v)
         var = var + c
         model = -0.5 * np.sum(np.log(2 * math.pi * var) + (a[:, 2:4] - mean) ** 2 / var, axis=1)
-        other = -0.5 * np.sum(np.log(2 * math.pi * broad) + a[:, 2:4] ** 2 / broad, axis=1)
+        if not broad:
+            return -float(np.sum(model))
+        other = -0.5 * np.sum(np.log(2 * math.pi * spread) + a[:, 2:4] ** 2 / spread, axis=1)
         w = float(expit(theta[3]))
         return -float(np.sum(np.logaddexp(math.log(w) + model,
                                           math.log(max(1.0 - w, 1e-300)) + other)))
@@ -100,14 +110,14 @@ def _gap_fit(a: np.ndarray, moments, x_scale: float) -> tuple[float, float, floa
     for k0 in (0.5, 0.9, 0.99):
         for c0 in (scale - 4.0, scale):
             start = np.array([math.log(k0 / (K_MAX - k0)), scale - 2.0, c0, math.log(19.0)])
-            r = minimize(nll, start, method="Nelder-Mead",
+            r = minimize(nll, start if broad else start[:3], method="Nelder-Mead",
                          options={"xatol": 1e-6, "fatol": 1e-9, "maxiter": 8000})
             if best is None or r.fun < best.fun:
                 best = r
     assert best is not None
     x = best.x
     return (K_MAX * float(expit(x[0])), V_MIN + math.exp(x[1]), V_MIN + math.exp(x[2]),
-            float(expit(x[3])))
+            float(expit(x[3])) if broad else 1.0)
 
 
 def _robust(a: np.ndarray, moments, scale: float) -> tuple[float, float, int]:
@@ -116,7 +126,7 @@ def _robust(a: np.ndarray, moments, scale: float) -> tuple[float, float, int]:
     but for the noise C of the ends, and of a broad component with the gaps' own spread (the
     gaps the model cannot explain); the gaps explained are the model's expected share of them
     (its weight times their number)."""
-    k, v, _, w = _gap_fit(a, moments, scale)
+    k, v, _, w = _gap_fit(a, moments, scale, broad=True)
     return k, v, int(round(w * len(a)))
 
 
@@ -148,8 +158,14 @@ def coast_gaps(rows: Sequence[Sequence[object]]) -> tuple[float, float, int]:
     they vanished (at least :data:`MOVING` a frame).
 
     Only those: an object standing still behind something that passed in front of it says
-    nothing of the velocity kept, and, the most of the gaps and the tightest, it had the fit
-    explain the moving ones as gaps the model cannot explain, at a kept fraction of 0.
+    nothing of the velocity kept, and, the most of the gaps and the tightest, it made the
+    moving ones look like gaps the model cannot explain, at a kept fraction of 0.
+
+    With no broad component, unlike :func:`follow_gaps`: what a moving object does while
+    hidden, stopping out of the view and coming back included, is what the theory must
+    predict over a whole time hidden. (With one, the broad component took the objects that
+    stopped out of the view, and the model left kept 0.999 of the velocity: a theory that
+    coasted a mug pushed out of the view a metre past the view's edge.)
 
     Raises
     ------
@@ -166,7 +182,9 @@ def coast_gaps(rows: Sequence[Sequence[object]]) -> tuple[float, float, int]:
         gain = k * (1 - k ** n) / max(1 - k, 1e-12) if k > 1e-9 else np.zeros_like(n)
         return gain * rows[:, :2], np.repeat(v * n, 2, axis=1)
 
-    return _robust(a, moments, float(np.mean(a[:, 2:4] ** 2 / np.maximum(a[:, 4:5], 1.0))))
+    k, v, _, _ = _gap_fit(a, moments, float(np.mean(a[:, 2:4] ** 2 / np.maximum(a[:, 4:5], 1.0))),
+                          broad=False)
+    return k, v, len(a)
 
 
 def follow(rows: Sequence[Sequence[object]]) -> tuple[float, float, int]:

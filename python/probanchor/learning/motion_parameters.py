@@ -48,11 +48,10 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
                     "vanished and reappeared)"),
     "follow_var": ("the jitter of that offset per frame (m²)", "the AR(1)'s residual variance"),
     "coast_keep": ("the fraction of its velocity a hidden object under nothing keeps",
-                   "least-squares AR(1) coefficient of the true velocities (hindsight: ML, with "
-                   "a broad component for what it cannot explain, over how far objects that "
-                   "moved as they vanished went while hidden)"),
+                   "ML over how far objects that moved as they vanished went while hidden (true "
+                   "ends; hindsight: perceived ones)"),
     "wander_var": ("how far such an object may move besides (m²)",
-                   "the AR(1)'s residual variance"),
+                   "the same fit's variance per step"),
     "grip_reach": ("how far (table plane) a hand's grip may be from what it takes (m)",
                    "2 x the largest grasp seen that is not far out (beyond the upper quartile "
                    "+ 3 interquartile ranges)"),
@@ -97,9 +96,7 @@ def fit(samples: MotionSamples, hand: dict[str, float]) -> list[Fitted]:
         (("follow_keep", "follow_var"),
          lambda: _pair(motion_keep.follow(r["follow"]) if r["follow"]
                        else motion_keep.follow_gaps(r["follow_gap"]))),
-        (("coast_keep", "wander_var"),
-         lambda: _pair(motion_keep.coast(r["coast"]) if r["coast"]
-                       else motion_keep.coast_gaps(r["coast_gap"]))),
+        (("coast_keep", "wander_var"), lambda: _pair(_coasting(r))),
         (("grip_reach", "grip_height", "occluder_rise", "grip_drop"),
          lambda: list(motion_grip.grip(r["grasp"], r["hold"]).values())),
         (("grip_rise",), lambda: [motion_grip.rise(r["carries"])]),
@@ -115,6 +112,18 @@ def fit(samples: MotionSamples, hand: dict[str, float]) -> list[Fitted]:
             values = [(hand[n], 0) for n in names]
         out.update(zip(names, values, strict=True))
     return [Fitted(name, out[name][0], out[name][1]) for name in DESCRIPTIONS]
+
+
+def _coasting(r: dict[str, list]) -> tuple[float, float, int]:
+    """The coasting fitted over whole times hidden (``coast_gap``, :func:`motion_keep.
+    coast_gaps`: what the theory predicts), else, with no gap of an object that moved, over the
+    steps of true velocities (``coast``)."""
+    try:
+        return motion_keep.coast_gaps(r.get("coast_gap", []))
+    except ValueError:
+        if not r.get("coast"):
+            raise
+        return motion_keep.coast(r["coast"])
 
 
 def _pair(kvn: tuple[float, float, int]) -> list[tuple[float, int]]:

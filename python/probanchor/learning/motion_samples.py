@@ -13,6 +13,11 @@
   and t+1 under the same occluder: (ox0, oy0, ox1, oy1, occluder's category);
 - ``coast``: a hidden object under nothing, its true velocity (table plane) before and in the
   step: (vx0, vy0, vx1, vy1);
+- ``coast_gap``: an object hidden under nothing from when it vanished until it reappeared
+  (behind something, or out of the view; not while the camera saw nothing), its true velocity
+  as it vanished, how far it truly went until it reappeared and the frames between (vx0, vy0,
+  dx, dy, n): what the theory predicts over a whole time hidden, which the steps do not show
+  (an object pushed out of the view stops there and comes back);
 - ``grasp``: a hand taking an object: the table-plane distance and the height of its grip
   point above where an ideal particle believed the object, in the frame the object vanished
   under the hand in the second before it held it (the moment the carriers' rules take it),
@@ -29,7 +34,7 @@
 
 Positions of hidden objects are the simulator's ground truth; the rest is what perception gave.
 For the samples of a collection labelled in hindsight, which read no truth (``follow_gap`` and
-``coast_gap`` instead of ``follow`` and ``coast``), see
+``coast_gap`` from the perceived ends, no ``follow`` or ``coast``), see
 :mod:`probanchor.learning.motion_hindsight`.
 """
 
@@ -181,9 +186,29 @@ def episode_samples(episode: Episode) -> MotionSamples:
                     s.rows["coast"].append([round(x0 - xm, 5), round(y0 - ym, 5),
                                             round(x1 - x0, 5), round(y1 - y0, 5)])
     reappearances(episode, covered_by, s)
+    _coast_gaps(episode, covered_by, s)
     _hands(episode, covered_by, s)
     _uncovering(episode, s)
     return s
+
+
+def _coast_gaps(episode: Episode, covered_by, s: MotionSamples) -> None:
+    """The ``coast_gap`` rows: from the true positions two frames before an object vanished
+    under nothing, one before, and where it reappeared."""
+    frames = episode.frames
+    for a in sorted({x for f in frames for x in f.anchors}):
+        for start, end in hidden_runs(episode, a):
+            run = range(start, end + 1)
+            if start < 2 or any(covered_by(j, a) is not None or frames[j].blind for j in run):
+                continue
+            truths = [_true(episode, j, a) for j in run]
+            ps = [_true_position(episode, j, a) for j in (start - 2, start - 1, end + 1)]
+            if any(p is None for p in ps) or any(
+                    t is None or t.get("held_by") or t.get("under") for t in truths):
+                continue
+            (xm, ym, _), (x0, y0, _), (x1, y1, _) = ps                  # type: ignore[misc]
+            s.rows["coast_gap"].append([round(x0 - xm, 5), round(y0 - ym, 5),
+                                        round(x1 - x0, 5), round(y1 - y0, 5), end - start + 2])
 
 
 def hidden_runs(episode: Episode, a: str) -> list[tuple[int, int]]:
