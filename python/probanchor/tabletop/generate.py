@@ -114,12 +114,13 @@ def _place_objects(b: ScenarioBuilder, rng: np.random.Generator,
         elif cat in ("mug", "cup"):
             params = {"radius": float(rng.uniform(0.04, 0.045)),
                       "height": float(rng.uniform(0.09, 0.11))}
-            if upright and rng.random() < upright:
+            stands = bool(upright) and rng.random() < upright
+            if stands:
                 params["upside_down"] = False
-                ids.setdefault("upright", []).append(oid)
-                b.add(oid, cat, col, position=xy, **params)
-                continue
             b.add(oid, cat, col, position=xy, **params)
+            if stands:
+                ids.setdefault("upright", []).append(oid)
+                continue
         elif cat == "can":
             b.add(oid, cat, col, position=xy, radius=0.033, height=0.12)
         else:
@@ -200,7 +201,7 @@ def _leave_view(b: ScenarioBuilder, rng: np.random.Generator, t: float, movable:
     out = (OUT_OF_VIEW if x >= 0 else -OUT_OF_VIEW, y)
     speed = float(rng.uniform(0.15, 0.3))
     b.move(t, obj, to=out, speed=speed)
-    t += float(np.hypot(out[0] - x, 0.0)) / speed + float(rng.uniform(1.0, 3.0))
+    t += abs(out[0] - x) / speed + float(rng.uniform(1.0, 3.0))
     back = free(0.16)
     b.move(t, obj, to=back, speed=speed)
     t += float(np.hypot(back[0] - out[0], back[1] - out[1])) / speed + 1.0
