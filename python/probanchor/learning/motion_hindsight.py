@@ -51,6 +51,7 @@ from probanchor.learning.experience import Episode
 from probanchor.learning.motion_samples import (
     RECENT,
     MotionSamples,
+    coast_gap_row,
     covering,
     hidden_runs,
     places,
@@ -86,19 +87,6 @@ def hindsight_samples(episode: Episode) -> MotionSamples:
 #: where it was STILL_WINDOW frames before and after (perception alone cannot see a
 #: displacement under its noise; an object moved by a hand or pushed is a few centimetres
 #: away in that time).
-#: Something stands in front of a vanishing object when it is perceived nearer the camera
-#: (smaller y) within this much to the side and this much nearer (m).
-FRONT_SIDE = 0.08
-FRONT_DEPTH = 0.2
-
-
-def _in_front(frame, a: str, where: tuple[float, ...]) -> bool:
-    """Whether an anchor other than ``a`` is perceived in front of ``where`` in ``frame``."""
-    return any(o != a and v.perceived and abs(v.position[0] - where[0]) < FRONT_SIDE
-               and 0.0 < where[1] - v.position[1] < FRONT_DEPTH
-               for o, v in frame.anchors.items())
-
-
 STILL_WINDOW = 5
 STILL_SPAN = 0.005
 
@@ -113,6 +101,19 @@ def _still(episode: Episode, a: str, k: int) -> bool:
         return False
     (x0, y0, _), (x1, y1, _) = told(v0), told(v1)
     return math.hypot(x1 - x0, y1 - y0) < STILL_SPAN
+
+
+#: Something stands in front of a vanishing object when it is perceived nearer the camera
+#: (smaller y) within this much to the side and this much nearer (m).
+FRONT_SIDE = 0.08
+FRONT_DEPTH = 0.2
+
+
+def _in_front(frame, a: str, where: tuple[float, ...]) -> bool:
+    """Whether an anchor other than ``a`` is perceived in front of ``where`` in ``frame``."""
+    return any(o != a and v.perceived and abs(v.position[0] - where[0]) < FRONT_SIDE
+               and 0.0 < where[1] - v.position[1] < FRONT_DEPTH
+               for o, v in frame.anchors.items())
 
 
 #: The views of an object this many frames before it vanishes and after it reappears may be
@@ -132,9 +133,8 @@ def _coast_gap(episode: Episode, a: str, start: int, end: int, s: MotionSamples)
     if r0 < 1 or r1 >= len(frames) or not all(
             frames[j].perceived(a) for j in [*range(r0 - 1, start), *range(end + 1, r1 + 1)]):
         return
-    p0, p, q = (frames[j].anchors[a].position for j in (r0 - 1, r0, r1))
-    s.rows["coast_gap"].append([round(p[0] - p0[0], 5), round(p[1] - p0[1], 5),
-                                round(q[0] - p[0], 5), round(q[1] - p[1], 5), r1 - r0])
+    before, last, back = (frames[j].anchors[a].position for j in (r0 - 1, r0, r1))
+    s.rows["coast_gap"].append(coast_gap_row(before, last, back, r1 - r0))
 
 
 def _gaps(episode: Episode, covered_by, s: MotionSamples) -> None:

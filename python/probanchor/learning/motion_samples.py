@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -50,8 +50,8 @@ from typing import Any
 from probanchor.learning.experience import AnchorView, Episode
 from probanchor.learning.occlusion_data import LabelOptions, LabelSource, labels
 
-__all__ = ["KINDS", "MotionSamples", "covering", "episode_samples", "hidden_runs", "places",
-           "read_samples", "reappearances", "samples_path", "told"]
+__all__ = ["KINDS", "MotionSamples", "coast_gap_row", "covering", "episode_samples",
+           "hidden_runs", "places", "read_samples", "reappearances", "samples_path", "told"]
 
 #: The kinds of samples (see the module docstring).
 KINDS = ("displacement", "reappear", "lost", "follow", "coast", "grasp", "hold", "carries",
@@ -206,9 +206,15 @@ def _coast_gaps(episode: Episode, covered_by, s: MotionSamples) -> None:
             if any(p is None for p in ps) or any(
                     t is None or t.get("held_by") or t.get("under") for t in truths):
                 continue
-            (xm, ym, _), (x0, y0, _), (x1, y1, _) = ps                  # type: ignore[misc]
-            s.rows["coast_gap"].append([round(x0 - xm, 5), round(y0 - ym, 5),
-                                        round(x1 - x0, 5), round(y1 - y0, 5), end - start + 2])
+            s.rows["coast_gap"].append(coast_gap_row(*ps, end - start + 2))  # type: ignore[arg-type]
+
+
+def coast_gap_row(before: Sequence[float], last: Sequence[float], back: Sequence[float],
+                  n: int) -> list[float]:
+    """A ``coast_gap`` row: the velocity from ``before`` to ``last`` (one frame apart) and the
+    displacement from ``last`` to ``back``, ``n`` frames later, in the table plane."""
+    return [round(last[0] - before[0], 5), round(last[1] - before[1], 5),
+            round(back[0] - last[0], 5), round(back[1] - last[1], 5), n]
 
 
 def hidden_runs(episode: Episode, a: str) -> list[tuple[int, int]]:
