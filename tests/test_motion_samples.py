@@ -35,3 +35,13 @@ def test_an_object_hidden_under_nothing_gives_a_coasting_gap_from_its_true_ends(
 
 def test_an_object_under_a_container_gives_no_coasting_gap() -> None:
     assert episode_samples(rolling("box_1")).rows["coast_gap"] == []
+
+
+def test_a_data_file_that_does_not_exist_is_named_as_such(tmp_path) -> None:
+    from probanchor.learning.motion_samples import read_samples
+
+    with pytest.raises(FileNotFoundError, match=r"nope\.pl: no such data file"):
+        read_samples([tmp_path / "nope.pl"])
+    (tmp_path / "old.pl").write_text("% data without samples beside it\n")
+    with pytest.raises(FileNotFoundError, match=r"old\.motion\.json: no motion samples beside"):
+        read_samples([tmp_path / "old.pl"])

@@ -87,10 +87,14 @@ def read_samples(data: list[str | Path] | tuple[str | Path, ...]) -> MotionSampl
     Raises
     ------
     FileNotFoundError
-        A data file has no samples beside it (collected by an older ``anchoring collect``).
+        A data file does not exist, or has no samples beside it (collected by an older
+        ``anchoring collect``).
     """
     out = MotionSamples()
     for d in data:
+        if not Path(d).is_file():
+            raise FileNotFoundError(f"{d}: no such data file (write it with `anchoring "
+                                    "collect`)")
         path = samples_path(d)
         if not path.is_file():
             raise FileNotFoundError(f"{path}: no motion samples beside {d} (collect it again "
