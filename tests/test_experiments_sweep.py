@@ -41,6 +41,26 @@ def test_every_method_runs_on_the_same_cached_stream(tmp_path: Path) -> None:
     assert "| tiny | reasoning | 1 |" in table and "| tiny | sort | 1 |" in table
 
 
+def test_a_stream_perceived_by_another_classifier_is_perceived_again(tmp_path: Path,
+                                                                    monkeypatch) -> None:
+    import probanchor.perception.classifier as classifier
+
+    scenario = tmp_path / "tiny.yaml"
+    scenario.write_text(SCENARIO)
+    cache = tmp_path / "percepts"
+    legacy = cache / "tiny_seed1.jsonl"   # a stream cached before streams carried the model
+    cache.mkdir()
+    legacy.write_text("")
+    first = percept_stream(scenario, seed=1, cache=cache)
+    assert first.name == f"tiny_seed1.{classifier.model_digest()}.jsonl"
+    assert not legacy.exists()
+    other = percept_stream(scenario, seed=2, cache=cache)   # another seed's stream stays
+    monkeypatch.setattr(classifier, "model_digest", lambda path=None: "0123456789ab")
+    again = percept_stream(scenario, seed=1, cache=cache)
+    assert again.name == "tiny_seed1.0123456789ab.jsonl" and again.stat().st_size > 0
+    assert not first.exists() and other.exists()
+
+
 def test_a_rerun_keeps_recorded_units_and_runs_only_new_ones(tmp_path, monkeypatch) -> None:
     import probanchor.experiments.sweep as experiment
 

@@ -12,6 +12,7 @@ from pathlib import Path
 import pytest
 
 from probanchor.jobs import ClusterError, Job, JobsFailed, parse_cluster, raise_failures, run_jobs
+from probanchor.perception.classifier import model_digest
 
 
 def square(x: int) -> int:
@@ -162,5 +163,5 @@ def test_a_small_evaluation_on_ray_gives_the_local_table(ray_two_workers,
     assert "| transitive | no-reasoning | 2 |" in tables["ray"]
     assert summaries["ray"] == summaries["local"] and len(summaries["ray"]) == 8
     for seed in (0, 1):   # the same percept streams
-        name = f"percepts/transitive_seed{seed}.jsonl"
+        name = f"percepts/transitive_seed{seed}.{model_digest()}.jsonl"
         assert (tmp_path / "ray" / name).read_bytes() == (tmp_path / "local" / name).read_bytes()

@@ -138,11 +138,22 @@ def stream_frames(path: str | Path, skipped: list[str] | None = None, start: int
 
 def percept_stream(scenario: Path, seed: int, cache: Path) -> Path:
     """The perceived stream of ``scenario`` with noise seed ``seed``, cached in ``cache`` as
-    JSON Lines (perceived once; written whole or not at all)."""
-    path = cache / f"{scenario.stem}_seed{seed}.jsonl"
+    JSON Lines (perceived once; written whole or not at all).
+
+    The file's name carries the digest of the category model that perceived it
+    (``<scenario>_seed<seed>.<digest>.jsonl``): after the classifier is trained again the
+    scenario is perceived again, and the streams of this scenario and seed perceived with
+    another model are removed."""
+    from probanchor.perception.classifier import model_digest
+
+    stem = f"{scenario.stem}_seed{seed}"
+    path = cache / f"{stem}.{model_digest()}.jsonl"
     if not path.exists():
         cache.mkdir(parents=True, exist_ok=True)
         partial = path.with_suffix(".partial")
         write_percepts(partial, perceive_scenario(scenario, seed=seed))
+        for stale in (*cache.glob(f"{stem}.*.jsonl"), cache / f"{stem}.jsonl"):
+            if stale != path:
+                stale.unlink(missing_ok=True)
         partial.rename(path)
     return path

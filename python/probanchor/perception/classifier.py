@@ -9,6 +9,7 @@ truth: its input is the segment's points only.
 
 from __future__ import annotations
 
+import hashlib
 import json
 from dataclasses import dataclass
 from importlib import resources
@@ -79,3 +80,8 @@ class CategoryModel:
             meta=dict(data.get("meta", {})),
             temperature=float(data.get("temperature", 1.0)),
         )
+
+
+def model_digest(path: str | Path = DEFAULT_MODEL) -> str:
+    """A short digest of a model file's bytes (12 hex digits): what perceived a cached stream."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:12]
