@@ -1,7 +1,7 @@
 """Training data for the category classifier, rendered with the simulator.
 
 Random tables with three or four objects of the known categories (random sizes within each
-category's range, colours, yaws, cups and mugs upright or turned over, the camera moved a
+category's range, colours, yaws, cups, mugs and bowls upright or turned over, the camera moved a
 little) are rendered; the pipeline segments them; each segment's shape features are labelled
 with the category of the object whose pixels dominate it (the ground truth is read here, at
 training time only). ``probanchor.perception.training.train`` fits the classifier on the result: the
@@ -42,10 +42,15 @@ def random_object(rng: np.random.Generator, oid: str, category: str) -> dict:
                        float(rng.uniform(0.04, 0.17))]
     elif category == "can":
         obj.update(radius=float(rng.uniform(0.028, 0.038)), height=float(rng.uniform(0.09, 0.14)))
+    elif category == "bottle":
+        obj.update(radius=float(rng.uniform(0.025, 0.04)), height=float(rng.uniform(0.16, 0.26)))
+    elif category == "bowl":
+        obj.update(radius=float(rng.uniform(0.06, 0.09)), height=float(rng.uniform(0.05, 0.09)),
+                   upside_down=bool(rng.random() < 0.7))
     return obj
 
 
-CONTAINERS = ("box", "cup", "mug")
+CONTAINERS = ("bowl", "box", "cup", "mug")
 
 
 def random_scene(rng: np.random.Generator, index: int, hard: float = 0.0) -> dict:

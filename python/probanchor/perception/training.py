@@ -15,7 +15,7 @@ import numpy as np
 from probanchor.perception.classifier import CategoryModel
 from probanchor.perception.features import SHAPE_FEATURES
 
-CATEGORIES = ("ball", "box", "can", "cup", "mug")
+CATEGORIES = ("ball", "bottle", "bowl", "box", "can", "cup", "mug")
 
 
 @dataclass

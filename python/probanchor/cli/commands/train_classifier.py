@@ -1,6 +1,6 @@
 """`anchoring train-classifier`: train the category classifier on rendered views.
 
-Renders random tables (3-4 objects of the categories ball, box, can, cup, mug), segments
+Renders random tables (3-4 objects of the categories ball, bottle, bowl, box, can, cup, mug), segments
 them with the pipeline, trains a small MLP on the shape features of 60 % of the scenes, fits
 its softmax temperature on 20 %, tests it on the last 20 % and writes the model (JSON
 weights) with its held-out accuracy.
@@ -16,7 +16,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser(
         "train-classifier", help="train the category classifier on rendered views",
         description=__doc__.split("\n\n")[1] if __doc__ else None)
-    parser.add_argument("--scenes", type=int, default=800, help="random tables (default 800)")
+    parser.add_argument("--scenes", type=int, default=1200, help="random tables (default 1200)")
     parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     parser.add_argument("--hard", type=float, default=0.4,
                         help="share of scenes with a partly hidden or a lifted object "
