@@ -87,23 +87,26 @@ def test_occlusion_games_hide_containers_under_boxes_too():
                 obj, cover = ev["object"].split("_")[0], ev["container"].split("_")[0]
                 kinds.add((obj, cover))
                 assert obj == "ball" or cover == "box", (seed, ev)
-    assert {("cup", "box"), ("mug", "box"), ("ball", "mug")} <= kinds
+    assert {("cup", "box"), ("mug", "box"), ("ball", "mug"), ("ball", "bowl")} <= kinds
 
 
 def test_occlusion_games_take_containers_in_hand_and_out_of_view():
-    """The experience a theory is learned from has a hand taking containers too (cups, mugs
-    and boxes small enough for it, which are then hidden in it), cups and mugs standing upright
+    """The experience a theory is learned from has every category perception knows, a hand
+    taking containers and bottles too (cups, mugs and boxes small enough for it, which are then
+    hidden in it), cups and mugs standing upright
     (they cover nothing), and objects pushed out of the camera's view and back: a learned theory
     knows only what its games show (one learned without them held a box hidden in a hand
     for impossible and lost it)."""
+    from probanchor.perception.training import CATEGORIES
     from probanchor.tabletop.generate import BIG_BOX, HAND_BOX, OUT_OF_VIEW, occlusion_game
 
-    taken, upright, left, back = set(), 0, 0, 0
+    taken, upright, left, back, kinds = set(), 0, 0, 0, set()
     for seed in range(40):
         b = occlusion_game(seed)
         scenario = b.build()
         specs = {o.id: o for o in scenario.objects}
         upright += sum(o.shape in ("cup", "mug") and not o.upside_down for o in specs.values())
+        kinds |= {o.category for o in specs.values()}
         out: set[str] = set()
         for ev in b.data["events"]:
             if ev.get("do") == "pick_up":
@@ -123,5 +126,6 @@ def test_occlusion_games_take_containers_in_hand_and_out_of_view():
                 back += 1
                 out.discard(ev["object"])
         assert not out, (seed, out)                   # everything pushed out comes back
-    assert {"ball", "box", "cup", "mug"} <= taken
+    assert {"ball", "bottle", "box", "cup", "mug"} <= taken
     assert upright >= 5 and left >= 5 and back == left
+    assert kinds == set(CATEGORIES)                   # every category perception knows

@@ -101,8 +101,9 @@ def _place_objects(b: ScenarioBuilder, rng: np.random.Generator,
                    ) -> tuple[dict[str, list[str]], dict[str, tuple[float, float]]]:
     """Add one object per chosen category at a free spot, sized as its kind is: the ids per
     category and each object's position. Boxes are cubes with sides drawn from ``box_side``;
-    a cup or mug stands upright (open side up: it cannot cover anything) with probability
-    ``upright``, and is then listed under ``"upright"`` instead of its category."""
+    bowls are 13 to 17 cm wide and 7.5 to 9 cm deep (a ball fits under), bottles 17 to 24 cm
+    tall; a cup, mug or bowl stands upright (open side up: it cannot cover anything) with
+    probability ``upright``, and is then listed under ``"upright"`` instead of its category."""
     ids: dict[str, list[str]] = {}
     where: dict[str, tuple[float, float]] = {}
     for k, (cat, col) in enumerate(zip(chosen, colours, strict=True)):
@@ -111,9 +112,11 @@ def _place_objects(b: ScenarioBuilder, rng: np.random.Generator,
         where[oid] = xy
         if cat == "ball":
             b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.025, 0.035)))
-        elif cat in ("mug", "cup"):
-            params = {"radius": float(rng.uniform(0.04, 0.045)),
-                      "height": float(rng.uniform(0.09, 0.11))}
+        elif cat in ("mug", "cup", "bowl"):
+            params = ({"radius": float(rng.uniform(0.065, 0.085)),
+                       "height": float(rng.uniform(0.075, 0.09))} if cat == "bowl" else
+                      {"radius": float(rng.uniform(0.04, 0.045)),
+                       "height": float(rng.uniform(0.09, 0.11))})
             stands = bool(upright) and rng.random() < upright
             if stands:
                 params["upside_down"] = False
@@ -123,6 +126,9 @@ def _place_objects(b: ScenarioBuilder, rng: np.random.Generator,
                 continue
         elif cat == "can":
             b.add(oid, cat, col, position=xy, radius=0.033, height=0.12)
+        elif cat == "bottle":
+            b.add(oid, cat, col, position=xy, radius=float(rng.uniform(0.028, 0.038)),
+                  height=float(rng.uniform(0.17, 0.24)))
         else:
             side = float(rng.uniform(*box_side))
             b.add(oid, cat, col, position=xy, size=[side, side, side])
@@ -273,13 +279,14 @@ def random_scene(seed: int) -> Scenario:
 def occlusion_game(seed: int) -> ScenarioBuilder:
     """A random table with many kinds of occlusion, for learning a theory of occlusion.
 
-    Three to six objects (balls, cans, mugs, cups, boxes of 9 to 16 cm; balls and cans are
-    small and cannot hide anything; a cup or mug stands upright one time in five, and then
-    covers nothing either) and six to ten events of: an object covered by a container
-    (carried over it, with other containers near and far; a ball under a mug, cup or box, a
-    can, a mug or a cup under a box of 13 cm or more), a container carried with what it
+    Three to six objects (balls, cans, bottles, mugs, cups, bowls, boxes of 9 to 16 cm; balls,
+    cans and bottles cover nothing; a cup, mug or bowl stands upright one time in five, and
+    then covers nothing either) and six to ten events of: an object covered by a container
+    (carried over it, with other containers near and far; a ball under a mug, cup, bowl or box,
+    a can, a mug or a cup under a box of 13 cm or more), a container carried with what it
     covers, two containers swapped, a container lifted off what it covers, an object (a ball,
-    a can, a cup or mug that covers nothing, a box of 11 cm or less) grasped by a hand, carried
+    a can, a bottle, a bowl, a cup or mug that covers nothing, a box of 11 cm or less) grasped
+    by a hand, carried
     and put down elsewhere, a container passing in front of an object (it is only behind, not
     under), the camera covered (sometimes while an object goes under a container), an object
     pushed elsewhere, an object (a container with what it covers) pushed out of the view and
@@ -289,17 +296,19 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
     for attempt in range(50):
         rng = np.random.default_rng([seed, attempt, 17])
         b = ScenarioBuilder(f"occlusion_game_{seed}", fps=15)
-        kinds = ["ball", "ball", "can", "mug", "cup", "box", "mug", "box", "cup"]
+        kinds = ["ball", "ball", "can", "mug", "cup", "box", "mug", "box", "cup", "bottle",
+                 "bowl"]
         n = int(rng.integers(3, 7))
         chosen = list(rng.choice(kinds, n, replace=False))
-        if not any(c in ("mug", "cup", "box") for c in chosen):
-            chosen[-1] = str(rng.choice(["mug", "cup", "box"]))
+        if not any(c in ("mug", "cup", "box", "bowl") for c in chosen):
+            chosen[-1] = str(rng.choice(["mug", "cup", "box", "bowl"]))
         colours = list(rng.choice(SCENE_COLOURS, n, replace=True))
         spots: list[tuple[float, float]] = []
         free = functools.partial(_free_spot, rng, spots)
         ids, where = _place_objects(b, rng, free, chosen, colours, box_side=(0.09, 0.16),
                                     upright=0.2)   # where: rough, for "front"
-        containers = ids.get("mug", []) + ids.get("box", []) + ids.get("cup", [])
+        containers = (ids.get("mug", []) + ids.get("box", []) + ids.get("cup", [])
+                      + ids.get("bowl", []))
         small = ids.get("ball", []) + ids.get("can", [])
         side = {o["id"]: float(o["size"][0]) for o in b.data["objects"] if "size" in o}
         t = 1.0
@@ -312,7 +321,7 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
             # a container that covers something or is covered itself stays where it is
             free_c = [c for c in containers if c not in hidden.values() and c not in hidden]
             visible_small = [o for o in small if o not in hidden]
-            coverable = visible_small + [c for c in free_c if not c.startswith("box")]
+            coverable = visible_small + [c for c in free_c if c.startswith(("cup", "mug"))]
             if what in ("under", "cover_under") and coverable and free_c:
                 box = str(rng.choice(free_c))
                 fits = [o for o in coverable if o != box
