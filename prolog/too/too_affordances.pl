@@ -8,10 +8,11 @@
 
 % ------------------------------------------------------------------ background knowledge
 % Affordances, as the paper's experiments keep them beside learned rules (section 5.2).
-% What cannot hide anything: a ball does not afford occluding, nor does a can (closed, it
-% stands upright and contains nothing that could be put under it).
+% What cannot hide anything: a ball does not afford occluding, nor does a can or a bottle
+% (closed, it stands upright and contains nothing that could be put under it).
 cannot_occlude(ball) := true.
 cannot_occlude(can) := true.
+cannot_occlude(bottle) := true.
 % What cannot be hidden by other objects: hands (skin) are not anchored inside anything.
 cannot_be_occluded(skin) := true.
 cannot_be_occluded(hand) := true.

@@ -52,6 +52,7 @@ import numpy as np
 
 from probanchor.learning.experience import Episode
 from probanchor.loop.naming import category_atom, symbol_atom
+from probanchor.perception.training import CATEGORIES as PERCEIVED_CATEGORIES
 
 __all__ = ["BIAS", "CATEGORIES", "FEATURES", "Collection", "LabelOptions", "episode_facts",
            "hindsight_agreement", "labels"]
@@ -60,7 +61,7 @@ Labels = dict[str, float]          # occluder anchor -> probability that it cove
 LabelSource = Literal["truth", "hindsight"]
 
 #: The categories the theory can meet (the perception classifier's and hands' skin).
-CATEGORIES = ("ball", "box", "can", "cup", "mug", "skin")
+CATEGORIES = (*PERCEIVED_CATEGORIES, "skin")
 
 #: Background knowledge of the learned rules, in the data and in the learned theory.
 FEATURES = """\
