@@ -59,8 +59,9 @@ def random_scene(rng: np.random.Generator, index: int, hard: float = 0.0) -> dic
     With probability ``hard`` the scene is one of the views that occur while objects hide one
     another: an object standing 8 to 15 cm behind another (partly hidden by it: a mug's rim
     above a box, a sliver beside it), or a container lifted into the air (at the frame taken,
-    ``t = 1``, it is between 3 and 20 cm up and moving). Such views are ambiguous, and a
-    classifier that never saw them answered with confident wrong categories.
+    ``t = 1``, it is between 3 and 20 cm up and moving), half the time off a ball it covered.
+    Such views are ambiguous, and a classifier that never saw them answered with confident wrong
+    categories.
     """
     cam = CameraSpec()
     position = [float(v + rng.uniform(-0.05, 0.05)) for v in cam.position]
@@ -89,6 +90,13 @@ def random_scene(rng: np.random.Generator, index: int, hard: float = 0.0) -> dic
     scene: dict = {"name": f"train_{index}_{kind}", "fps": 1, "duration": 0.5,
                    "camera": {"position": position, "target": target}, "objects": objects}
     if kind == "lifted":
+        if rng.random() < 0.5:
+            # a ball it covered, seen as the container rises off it (the two may be one
+            # segment): a classifier that had never seen it called the view a bowl
+            objects.append({"id": f"ball_{len(objects) + 1}", "category": "ball",
+                            "colour": str(rng.choice(PALETTE)),
+                            "radius": float(rng.uniform(0.025, 0.035)),
+                            "under": objects[0]["id"]})
         # the lift rises over 35 % of its duration, then moves at height: at t = 1 it is up
         scene["events"] = [{"at": 0.0, "do": "lift", "container": objects[0]["id"],
                             "height": float(rng.uniform(0.03, 0.2)),
