@@ -184,3 +184,16 @@ def test_the_learned_parameters_are_within_the_simulator_s_ranges(name: str) -> 
     assert 0.02 < p["grip_height"] < 0.2 and 0.0 <= p["occluder_rise"] < 0.05
     assert 0.0 < p["grip_drop"] < 0.05
     assert 0.0 < p["grip_rise"] < step
+
+
+def test_each_kind_s_height_is_the_median_of_its_perceived_heights() -> None:
+    """The carriers' rules measure a grip from an object's top: half its kind's height, the
+    median of the perceived heights of that kind (a kind seen too few times has none, and its
+    grip is measured from its centre)."""
+    from probanchor.learning.motion_parameters import kind_height_clauses, kind_heights
+
+    s = MotionSamples()
+    s.rows["heights"] = ([["bottle", 0.2]] * 15 + [["bottle", 0.05]] * 5 + [["ball", 0.06]] * 19)
+    assert kind_heights(s) == {"bottle": (0.2, 20)}
+    assert kind_heights(s, least=19) == {"ball": (0.06, 19), "bottle": (0.2, 20)}
+    assert "kind_height(bottle, 0.2).  % 20 samples" in kind_height_clauses(kind_heights(s))

@@ -26,6 +26,9 @@
 % What the runner asserts at every step (above): declared, so that reading them is not taken
 % for a call to a predicate defined nowhere.
 :- dynamic((object/1, category/2, observed/1)).
+% The heights of the kinds (a learned theory's, fitted from the perceived heights; too.pl has
+% none): the carriers' rules measure a grip's height over an object from its top.
+:- dynamic(kind_height/2).
 
 % ------------------------------------------------------------------ seen and hidden
 seen(A):t+1 := observed(A).

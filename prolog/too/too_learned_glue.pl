@@ -4,9 +4,10 @@
     learned affordances and parameters, before their learned trees): which pairs the learned
     occluder(A, O):t+1 is drawn for, how a particle picks among the candidates it gives, and
     how an occlusion goes on; for which objects the learned released(A):t+1 is drawn, and the
-    state it reads.  Reads onset_reach/1, fitted from the data and written into the theory
-    (python/probanchor/learning/occlusion_reach.py), and the affordances can_occlude/1 and
-    can_be_occluded/1, learned too.
+    state it reads.  Reads onset_reach/1 and onset_reach/2 (the reach of all onsets and of
+    the kinds with onsets enough for their own), fitted from the data and written into the
+    theory (python/probanchor/learning/occlusion_reach.py), and the affordances can_occlude/1
+    and can_be_occluded/1, learned too.
 */
 
 % ------------------------------------------------------------------ learned occlusion rules
@@ -16,10 +17,12 @@
 % tree gives a ball as occluder a probability of about 1e-4 per frame, and one particle of a
 % hidden ball under the other, identical ball is enough for the matching to swap them);
 % of those, only the pairs that can matter: O hid A at t (the occlusion may go on), A was lost
-% while the camera saw nothing (any occluder may have it), or O is within onset_reach/1 of
-% where A was (fitted from the data: twice the distance within which 90 % of the onsets were);
-% beyond it the learned tree gives an onset a negligible probability, and a draw for every pair
-% in every particle would cost more than the rest of the theory.
+% while the camera saw nothing (any occluder may have it), or O is within the onset reach of
+% its kind of where A was (fitted from the data: twice the distance within which 90 % of the
+% onsets by that kind were, or by any kind for a kind with few onsets); beyond it the learned
+% tree gives an onset a negligible probability (the tree is learned from the pairs asked about
+% here), and a draw for every pair in every particle would cost more than the rest of the
+% theory.
 % O is a candidate occluder of the hidden A when the particle
 % draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
 % when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
@@ -30,9 +33,12 @@ pair(A, O):t+1 :=
     ->  true
     ;   lost_anywhere(A):t
     ->  true
-    ;   pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (X, Y, _), onset_reach(R),
+    ;   pos(O):t+1 ~= (XO, YO, _), pos(A):t ~= (X, Y, _), reach_of(O, R),
         (X-XO)**2 + (Y-YO)**2 < R*R
     ).
+:- dynamic(onset_reach/2).
+reach_of(O, R) := category(O, C), onset_reach(C, R).
+reach_of(O, R) := category(O, C), \+ onset_reach(C, _), onset_reach(R).
 occluder_candidate(A, O):t+1 :=
     pair(A, O):t+1, \+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
 pick_occluder(A):t+1 ~ uniform(Os) :=

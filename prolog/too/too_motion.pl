@@ -27,17 +27,21 @@ occluded_by(A, O):t+1 :=
 % seen/1 and occluded_by/2, which the filter keeps anyway: rest_z/1 and raised/1 are variables
 % of the objects a hand holds.)
 % O's grip is over the hidden A: within grip_reach of where A was in the table plane, at most
-% grip_height above A and not below it (grip_was_over/2: so it was in the previous frame).
+% grip_height above A's top and not below its centre (grip_was_over/2: so it was in the
+% previous frame).  A's top is half its kind's height above its centre (kind_height/2, in a
+% learned theory; without it, the grip is measured from A's centre).
 grip_over(O, A):t+1 :=
     object(O), is_carrier(O), observed(O), hidden(A):t+1, O \== A, can_be_occluded(A),
     pos(A):t ~= (X, Y, Z), pos(O):t+1 ~= (XO, YO, ZO),
-    grip_reach(R), grip_height(H), occluder_rise(L),
-    D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, ZO - Z < H, Z < ZO + L.
+    grip_reach(R), grip_height(H), occluder_rise(L), top_gap(A, G),
+    D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, ZO - Z - G < H, Z < ZO + L.
 grip_was_over(O, A):t+1 :=
     object(O), is_carrier(O), seen(O):t, object(A), A \== O, \+ seen(A):t,
     can_be_occluded(A), pos(A):t ~= (X, Y, Z), pos(O):t ~= (XO, YO, ZO),
-    grip_reach(R), grip_height(H), occluder_rise(L),
-    D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, ZO - Z < H, Z < ZO + L.
+    grip_reach(R), grip_height(H), occluder_rise(L), top_gap(A, G),
+    D is sqrt((X-XO)**2 + (Y-YO)**2), D < R, ZO - Z - G < H, Z < ZO + L.
+top_gap(A, G) := category(A, C), kind_height(C, H), G is H / 2.
+top_gap(A, 0.0) := category(A, C), \+ kind_height(C, _).
 % O, holding nothing else, may have picked A up when A vanished just now under its grip, or
 % when its grip has just come over A (it was not in the previous frame): a candidate occluder,
 % picked as any other by the occlusion rules above (hand-written or learned).  A hand hovering

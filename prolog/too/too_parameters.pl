@@ -26,6 +26,7 @@ cover_height(0.12).         % a container whose centre rises more than this abov
                             % centre no longer covers it (it was lifted)
 grip_reach(0.06).           % a carrier (a hand) closes over an object within 6 cm of where it
 grip_height(0.1).           % grips in the table plane, its grip at most 10 cm above the object
+                            % (its centre: too.pl has no kind heights)
 lift_margin(0.03).          % a carried object lifted 3 cm above where it stood was picked up ...
 release_margin(0.02).       % ... and is put down when carried back within 2 cm of that height,
 release_p(0.6).             % ... where the hand lets go of it with this probability per frame

@@ -44,6 +44,8 @@ class AnchorView:
     position: tuple[float, float, float]
     #: a perceived hand's grip point (where the reasoning is told it is), else None
     grip: tuple[float, float, float] | None = None
+    #: its height (m) as anchoring knows it (the mean of its last percepts' sizes)
+    height: float = 0.0
 
 
 @dataclass
@@ -150,7 +152,8 @@ def play(frames: Iterable[PerceptFrame], name: str) -> Episode:
                 position = tuple(float(v) for v in np.asarray(anchor.position.mean()))
             views[anchor.symbol] = AnchorView(anchor.symbol, anchor.best_category,
                                               percept is not None, position,  # type: ignore[arg-type]
-                                              grip)  # type: ignore[arg-type]
+                                              grip,  # type: ignore[arg-type]
+                                              float(np.asarray(anchor.size.mean())[2]))
         out.append(EpisodeFrame(k, float(frame.time), views, frame.truth))
     truth_of: dict[str, str | None] = {}
     for symbol in sorted({s for f in out for s in f.anchors}):   # (an order of its own)

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import os
 import re
+import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -43,6 +44,8 @@ from probanchor.learning.motion_parameters import (
     Fitted,
     fit,
     hand_written,
+    kind_height_clauses,
+    kind_heights,
     parameter_clauses,
     parameter_rows,
 )
@@ -54,7 +57,15 @@ from probanchor.learning.occlusion_affordances import (
     affordances,
     never_occluders,
 )
-from probanchor.learning.occlusion_reach import MARGIN, QUANTILE, OnsetReach, onset_reach
+from probanchor.learning.occlusion_asked import asked_data
+from probanchor.learning.occlusion_reach import (
+    MARGIN,
+    QUANTILE,
+    DataPoints,
+    OnsetReach,
+    onset_reach,
+    read_points,
+)
 from probanchor.learning.release_data import release_path, release_points
 
 __all__ = ["AFTER", "BEFORE", "DEPLOYED", "GLUE", "PAPER", "LearnedTheory", "TheoryError",
@@ -102,9 +113,11 @@ class LearnedTheory:
 def theory_text(learned_program: str, header: str, *, base: str | Path,
                 out: str | Path, reach: OnsetReach,
                 found: dict[str, dict[str, Affordance]], fitted: Sequence[Fitted],
-                release_program: str | None) -> str:
+                release_program: str | None,
+                heights: dict[str, tuple[float, int]] | None = None) -> str:
     """The theory: ``header``, the hand-written parts of ``base`` (a folder) included, the
-    parameters fitted from the data (``fitted``), the affordances read from it (``found``), the
+    parameters fitted from the data (``fitted``, and the kinds' ``heights``,
+    :func:`kind_heights`), the affordances read from it (``found``), the
     glue included, the onset reach fitted from the data and the learned programs (the learner's
     output: background knowledge and clauses) of the occluder and of the release (None: no hand
     carried anything in the data, the theory has no carrier and no release).
@@ -133,7 +146,13 @@ def theory_text(learned_program: str, header: str, *, base: str | Path,
     onset = (f"% The onset reach (m): {QUANTILE:.0%} of the {reach.onsets} onsets in the data "
               f"were within {reach.quantile:.4g} m; times {MARGIN}.\n"
               f"onset_reach({reach.reach:.4g}).\n")
+    if reach.kinds:
+        onset += "% The reach of the kinds with onsets enough for one of their own.\n"
+    for kind, own in reach.kinds.items():
+        onset += (f"onset_reach({kind}, {own.reach:.4g}).  % {own.onsets} onsets, "
+                  f"{QUANTILE:.0%} within {own.quantile:.4g} m\n")
     return (header + "".join(include(n) for n in BEFORE) + "\n" + parameter_clauses(fitted)
+            + ("" if not heights else kind_height_clauses(heights))
             + "\n" + affordance_clauses(found) + "\n" + include(GLUE) + onset + "\n"
             + body.rstrip()
             + "\n\n" + "".join(include(n) for n in AFTER))
@@ -211,7 +230,13 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     if absent:
         raise TheoryError(f"{', '.join(absent)}: no release data beside the data (`anchoring "
                           "collect` writes DATA.release.pl; collect again)")
-    result = learn(data, ["occluder:t+1"], seed=seed, options=options, progress=progress)
+    found = affordances(data)
+    points = read_points(data)
+    try:
+        reach = onset_reach(points, exclude=never_occluders(found))
+    except ValueError as error:
+        raise TheoryError(f"{', '.join(map(str, data))}: {error}") from None
+    result = _learn_asked(data, points, reach, seed=seed, options=options, progress=progress)
     release = None
     if sum(release_points(r) for r in releases):
         release = learn(releases, ["released:t+1"], seed=seed, options=options,
@@ -238,14 +263,10 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
         "*/",
         "",
     ]
-    found = affordances(data)
-    try:
-        reach = onset_reach(data, exclude=never_occluders(found))
-    except ValueError as error:
-        raise TheoryError(str(error)) from None
     text = theory_text(result.program_text(form), "\n".join(header) + "\n", base=folder,
                        out=out, reach=reach, found=found, fitted=fitted,
-                       release_program=None if release is None else release.program_text(form))
+                       release_program=None if release is None else release.program_text(form),
+                       heights=kind_heights(samples))
 
     def loads(tmp: Path) -> None:
         try:
@@ -255,6 +276,24 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
 
     write_atomically(out, text, loads)
     return LearnedTheory(out, result, text, reach, folder, found, fitted, samples, release)
+
+
+def _learn_asked(data: Sequence[str | Path], points: DataPoints, reach: OnsetReach, *,
+                 seed: int, options: SearchOptions, progress: bool) -> LearnResult:
+    """The occluder tree learned from the examples of ``data`` the filter asks about
+    (:mod:`probanchor.learning.occlusion_asked`); an error in a data file names that file."""
+    import bridge
+
+    with tempfile.TemporaryDirectory(prefix="learn-theory-") as folder:
+        copies, _ = asked_data(data, points, reach, folder)
+        try:
+            return learn(copies, ["occluder:t+1"], seed=seed, options=options,
+                         progress=progress)
+        except bridge.DDCError as error:
+            message = str(error)
+            for copy, path in zip(copies, data, strict=True):
+                message = message.replace(str(copy), str(path))
+            raise bridge.DDCError(message, error.cause) from None
 
 
 def logistic_leaves(result: LearnResult) -> list[dict[str, object]]:

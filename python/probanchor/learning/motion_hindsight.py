@@ -238,6 +238,7 @@ def _carry(episode: Episode, a: str, hand: str, run: list[int], released: bool,
         heights, grips = heights[:end + 1], grips[:end + 1]
     if max(heights, default=0.0) < LIFTED:
         return                     # (the hand never rose with it: a hand hovering, no carry)
-    s.rows["grasp"].append([round(nearest, 5), round(vanishing[2] - z, 5), round(low - z, 5)])
+    top = z + frames[seen[0]].anchors[a].height / 2
+    s.rows["grasp"].append([round(nearest, 5), round(vanishing[2] - top, 5), round(low - z, 5)])
     s.rows["hold"].append(round(low - rest, 5))
     s.rows["carries"].append({"heights": heights, "released": released, "grips": grips})

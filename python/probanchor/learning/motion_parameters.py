@@ -24,10 +24,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from probanchor.learning import motion_grip, motion_keep, motion_variances
 from probanchor.learning.motion_samples import MotionSamples
 
-__all__ = ["DESCRIPTIONS", "Fitted", "fit", "hand_written", "parameter_clauses",
+__all__ = ["DESCRIPTIONS", "MIN_HEIGHTS", "Fitted", "fit", "hand_written", "kind_height_clauses",
+           "kind_heights", "parameter_clauses",
            "parameter_rows"]
 
 #: Every parameter a learned theory reads, what it is, and how it is fitted.
@@ -48,14 +51,16 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
                     "vanished and reappeared)"),
     "follow_var": ("the jitter of that offset per frame (m²)", "the AR(1)'s residual variance"),
     "coast_keep": ("the fraction of its velocity a hidden object under nothing keeps",
-                   "ML over how far objects that moved as they vanished went while hidden (true "
-                   "ends; hindsight: perceived ones)"),
+                   "ML over how far objects that moved as they vanished (no faster than 99 % of "
+                   "the perceived steps) went while hidden (true ends; hindsight: perceived "
+                   "ones)"),
     "wander_var": ("how far such an object may move besides (m²)",
                    "the same fit's variance per step"),
     "grip_reach": ("how far (table plane) a hand's grip may be from what it takes (m)",
                    "2 x the largest grasp seen that is not far out (beyond the upper quartile "
                    "+ 3 interquartile ranges)"),
-    "grip_height": ("how far above it (m)", "90 % quantile, moved off the median by its distance"),
+    "grip_height": ("how far above its top (m)",
+                    "90 % quantile, moved off the median by its distance"),
     "occluder_rise": ("how far below its centre (m)",
                       "10 % quantile, moved off the median by its distance; 0 if above it"),
     "grip_drop": ("how far what a hand holds is below its grip (m)",
@@ -119,7 +124,8 @@ def _coasting(r: dict[str, list]) -> tuple[float, float, int]:
     coast_gaps`: what the theory predicts), else, with no gap of an object that moved, over the
     steps of true velocities (``coast``)."""
     try:
-        return motion_keep.coast_gaps(r.get("coast_gap", []))
+        return motion_keep.coast_gaps(r.get("coast_gap", []),
+                                      motion_keep.fastest(r.get("displacement", [])))
     except ValueError:
         if not r.get("coast"):
             raise
@@ -142,6 +148,31 @@ def parameter_clauses(fitted: Sequence[Fitted]) -> str:
         how = (f"{f.samples:,} samples" if f.samples else
                "NOT FITTED: no samples in the data, too_parameters.pl's value")
         lines.append(f"{f.name}({f.value:.4g}).  % {DESCRIPTIONS[f.name][0]}; {how}")
+    return "\n".join(lines) + "\n"
+
+
+#: A kind's height is fitted from at least this many perceived heights.
+MIN_HEIGHTS = 20
+
+
+def kind_heights(samples: MotionSamples, least: int = MIN_HEIGHTS
+                 ) -> dict[str, tuple[float, int]]:
+    """Each kind's height (m): the median of its perceived heights (``heights`` samples), with
+    their count, for the kinds with at least ``least`` of them. The carriers' rules measure
+    how high a grip is over an object from its top, half its kind's height above its centre:
+    a hand's grip over a bottle 20 cm tall is 17 cm above its centre, over a ball 8 cm."""
+    by_kind: dict[str, list[float]] = {}
+    for kind, height in samples.rows.get("heights", []):
+        by_kind.setdefault(str(kind), []).append(float(height))
+    return {k: (float(np.median(v)), len(v)) for k, v in sorted(by_kind.items())
+            if len(v) >= least}
+
+
+def kind_height_clauses(heights: dict[str, tuple[float, int]]) -> str:
+    """The kinds' heights as facts (``kind_height(Kind, Metres)``), each with its sample count."""
+    lines = ["% The height of each kind (m): the median of its perceived heights; a grip's height",
+             "% over an object is measured from its top (too/too_motion.pl)."]
+    lines += [f"kind_height({k}, {h:.4g}).  % {n:,} samples" for k, (h, n) in heights.items()]
     return "\n".join(lines) + "\n"
 
 

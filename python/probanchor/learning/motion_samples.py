@@ -19,7 +19,8 @@
   dx, dy, n): what the theory predicts over a whole time hidden, which the steps do not show
   (an object pushed out of the view stops there and comes back);
 - ``grasp``: a hand taking an object: the table-plane distance and the height of its grip
-  point above where an ideal particle believed the object, in the frame the object vanished
+  point above the top of the object where an ideal particle believed it (its centre and half
+  its height as anchoring knows it), in the frame the object vanished
   under the hand in the second before it held it (the moment the carriers' rules take it),
   else the frame it started holding it, and the grip's height as it starts holding it (the
   lowest it comes); an object perceived within the second before;
@@ -30,7 +31,8 @@
 - ``uncover``: how far a lifted container's centre stood above what stayed on the table when
   that became visible again;
 - ``places``: where the perceived objects (not hands) stand in the table plane, every
-  ``PLACES_EVERY`` frames.
+  ``PLACES_EVERY`` frames;
+- ``heights``: the perceived objects' (not hands') categories and heights (m), as often.
 
 Positions of hidden objects are the simulator's ground truth; the rest is what perception gave.
 For the samples of a collection labelled in hindsight, which read no truth (``follow_gap`` and
@@ -55,7 +57,7 @@ __all__ = ["KINDS", "MotionSamples", "coast_gap_row", "covering", "episode_sampl
 
 #: The kinds of samples (see the module docstring).
 KINDS = ("displacement", "reappear", "lost", "follow", "coast", "grasp", "hold", "carries",
-         "uncover", "places", "follow_gap", "coast_gap")
+         "uncover", "places", "follow_gap", "coast_gap", "heights")
 
 #: ``places`` keeps where the perceived objects stand every this many frames.
 PLACES_EVERY = 15
@@ -140,11 +142,13 @@ def covering(episode: Episode, source: LabelSource) -> Callable[[int, str], str 
 
 
 def places(episode: Episode, s: MotionSamples) -> None:
-    """Where the perceived objects (not hands) stand, every :data:`PLACES_EVERY` frames."""
+    """Where the perceived objects (not hands) stand, and their categories and heights, every
+    :data:`PLACES_EVERY` frames."""
     for k in range(0, len(episode.frames), PLACES_EVERY):
         for v in episode.frames[k].anchors.values():
             if v.perceived and v.grip is None:
                 s.rows["places"].append([round(v.position[0], 4), round(v.position[1], 4)])
+                s.rows["heights"].append([v.category, round(v.height, 4)])
 
 
 def episode_samples(episode: Episode) -> MotionSamples:
@@ -330,9 +334,10 @@ def _carry(episode: Episode, a: str, hand: str, run: list[int], released: bool,
     if (grip is not None and holding is not None and recent and a in frames[at - 1].anchors
             and owner == a):                       # not a duplicate with a stale place
         x, y, z = _belief(episode, at - 1, a, covered_by, hand)
+        top = z + frames[at - 1].anchors[a].height / 2
         gx, gy, gz = grip.grip                                          # type: ignore[misc]
         hz = holding.grip[2]                                            # type: ignore[index]
-        s.rows["grasp"].append([round(math.hypot(gx - x, gy - y), 5), round(gz - z, 5),
+        s.rows["grasp"].append([round(math.hypot(gx - x, gy - y), 5), round(gz - top, 5),
                                 round(hz - z, 5)])
     heights, grips = [], []
     for k in run:
