@@ -1,10 +1,10 @@
 /*  too_learned.pl -- the theory of occlusion with rules learned from experience.
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
-    data_truth.pl: 81779 groundings of occluder(A, O):t+1,
-    63 clauses, training log-likelihood -28363.5;
-    and one for released(A):t+1 from 2953 frames a hand held an object
-    (3 clauses, training log-likelihood -120.556);
+    data_truth.pl: 28836 groundings of occluder(A, O):t+1,
+    92 clauses, training log-likelihood -7558.29;
+    and one for released(A):t+1 from 2528 frames a hand held an object
+    (3 clauses, training log-likelihood -78.9072);
     search seed 0.
     Command: anchoring learn-theory out/learn/data_truth.pl --seed 0 --out prolog/too_learned.pl --plots docs/images
     The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
@@ -19,19 +19,28 @@
 % motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
 % fractions, quantiles for reaches and heights, Laplace's rule for a probability);
 % variances per axis in square metres, one step is one camera frame.
-obs_var(4.411e-06).  % the measurement noise of a perceived position (m², per axis); 118,969 samples
-motion_var(2.987e-05).  % how far a perceived object moves in a frame (m², per axis); 138,522 samples
-reappear_var(0.001738).  % where a hidden object is seen again, around its belief (m²); 1,406 samples
-lost_var(0.07437).  % the same for an object lost while the camera saw nothing (m²); 9,313 samples
-follow_keep(0.9296).  % the fraction of its offset from its occluder a hidden object keeps; 19,339 samples
-follow_var(5.969e-06).  % the jitter of that offset per frame (m²); 19,339 samples
-coast_keep(0.8987).  % the fraction of its velocity a hidden object under nothing keeps; 208 samples
-wander_var(0.0002156).  % how far such an object may move besides (m²); 208 samples
-grip_reach(0.09242).  % how far (table plane) a hand's grip may be from what it takes (m); 60 samples
-grip_height(0.13).  % how far above it (m); 60 samples
-occluder_rise(0.004228).  % how far below its centre (m); 60 samples
-grip_drop(0.01903).  % how far what a hand holds is below its grip (m); 2,892 samples
-grip_rise(0.001788).  % how far a hand's grip rises in a frame when it lifts (m); 838 samples
+obs_var(5.212e-06).  % the measurement noise of a perceived position (m², per axis); 105,130 samples
+motion_var(2.935e-05).  % how far a perceived object moves in a frame (m², per axis); 121,605 samples
+reappear_var(0.00201).  % where a hidden object is seen again, around its belief (m²); 1,358 samples
+lost_var(0.07289).  % the same for an object lost while the camera saw nothing (m²); 8,202 samples
+follow_keep(0.8715).  % the fraction of its offset from its occluder a hidden object keeps; 13,933 samples
+follow_var(1.687e-05).  % the jitter of that offset per frame (m²); 13,933 samples
+coast_keep(0.8858).  % the fraction of its velocity a hidden object under nothing keeps; 219 samples
+wander_var(0.0001852).  % how far such an object may move besides (m²); 219 samples
+grip_reach(0.06716).  % how far (table plane) a hand's grip may be from what it takes (m); 49 samples
+grip_height(0.1155).  % how far above its top (m); 49 samples
+occluder_rise(0.006988).  % how far below its centre (m); 49 samples
+grip_drop(0.02061).  % how far what a hand holds is below its grip (m); 2,521 samples
+grip_rise(0.001076).  % how far a hand's grip rises in a frame when it lifts (m); 728 samples
+% The height of each kind (m): the median of its perceived heights; a grip's height
+% over an object is measured from its top (too/too_motion.pl).
+kind_height(ball, 0.0593).  % 1,167 samples
+kind_height(bottle, 0.2127).  % 701 samples
+kind_height(bowl, 0.0869).  % 749 samples
+kind_height(box, 0.1338).  % 1,915 samples
+kind_height(can, 0.1232).  % 543 samples
+kind_height(cup, 0.1044).  % 1,497 samples
+kind_height(mug, 0.1024).  % 1,630 samples
 
 % ------------------------------------------------------------------ learned affordances
 % Read from the data (python/probanchor/learning/occlusion_affordances.py): the share
@@ -43,20 +52,23 @@ grip_rise(0.001788).  % how far a hand's grip rises in a frame when it lifts (m)
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.0001155).  % 17,312
-hides(box, 0.1509).  % 39,306
-hides(can, 8.384e-05).  % 11,926
-hides(cup, 0.1962).  % 37,543
-hides(mug, 0.12).  % 33,187
-hides(skin, 0.4402).  % 5,879
-hidden_share(ball, 0.2432).  % 58,325
-hidden_share(box, 0.03502).  % 7,908
-hidden_share(can, 0.244).  % 9,248
-hidden_share(cup, 0.1078).  % 13,087
-hidden_share(mug, 0.1284).  % 13,562
-hidden_share(skin, 2.324e-05).  % 43,023
-carries(box, 0.3333).  % 1
-carries(skin, 0.998).  % 1,511
+hides(ball, 0.001874).  % 13,339
+hides(bottle, 9.749e-05).  % 10,255
+hides(bowl, 0.1675).  % 11,034
+hides(box, 0.2377).  % 30,454
+hides(can, 0.0001273).  % 7,852
+hides(cup, 0.08995).  % 18,875
+hides(mug, 0.05801).  % 20,355
+hides(skin, 0.4886).  % 4,513
+hidden_share(ball, 0.2244).  % 45,964
+hidden_share(bottle, 0.14).  % 1,584
+hidden_share(bowl, 0.0123).  % 5,363
+hidden_share(box, 0.02792).  % 8,522
+hidden_share(can, 0.2177).  % 4,790
+hidden_share(cup, 0.1359).  % 11,782
+hidden_share(mug, 0.06116).  % 11,689
+hidden_share(skin, 3.706e-05).  % 26,983
+carries(skin, 0.9965).  % 1,154
 carrier(skin).
 can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
 is_carrier(O) := category(O, C), carrier(C).
@@ -64,8 +76,12 @@ hand_known := object(O), is_carrier(O).
 can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= 0.01.
 
 :- include('too/too_learned_glue.pl').
-% The onset reach (m): 90% of the 72 onsets in the data were within 0.04571 m; times 2.0.
-onset_reach(0.0914).
+% The onset reach (m): 90% of the 62 onsets in the data were within 0.1167 m; times 2.0.
+onset_reach(0.2335).
+% The reach of the kinds with onsets enough for one of their own.
+onset_reach(bowl, 0.2396).  % 10 onsets, 90% within 0.1198 m
+onset_reach(box, 0.2169).  % 34 onsets, 90% within 0.1084 m
+onset_reach(mug, 0.0507).  % 10 onsets, 90% within 0.02535 m
 
 % The learned rules (ddc learn): a distributional logic tree for occluder/2 (each path from its
 % root to a leaf is one clause of the tree), with the background knowledge it reads.
@@ -80,13 +96,15 @@ learned_from(own, ['data_truth.pl'],
       type(distance3(obj, obj):t+1),
       type(rise(obj, obj):t+1),
       type(lift(obj):t+1),
+      type(moved(obj):t+1),
       type(kind(obj):t+1),
       rv(occluder(_, _):t+1, boolean),
       rv(distance(_, _):t+1, continuous),
       rv(distance3(_, _):t+1, continuous),
       rv(rise(_, _):t+1, continuous),
       rv(lift(_):t+1, continuous),
-      rv(kind(_):t+1, discrete([ball, box, can, cup, mug, skin])),
+      rv(moved(_):t+1, continuous),
+      rv(kind(_):t+1, discrete([ball, bottle, bowl, box, can, cup, mug, skin])),
       examples(occluder(A, B):t+1, pair(A, B):t+1)]).
 
 % Background knowledge from the data that the learned clauses call.
@@ -102,298 +120,439 @@ lift(O):t+1 ~ val(H) :=
     pos(O):t ~= (_, _, Z0),
     pos(O):t+1 ~= (_, _, Z1),
     H is Z1-Z0.
+moved(O):t+1 ~ val(M) :=
+    pos(O):t ~= (X0, Y0, Z0),
+    pos(O):t+1 ~= (X1, Y1, Z1),
+    M is sqrt((X1-X0)**2+(Y1-Y0)**2+(Z1-Z0)**2).
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 63 clauses, 81779 groundings, training log-likelihood -28363.5 (mean -0.129884 per grounding), 101 parameters.
+% occluder(Occluded, Occluder):t+1: 92 clauses, 28836 groundings, training log-likelihood -7558.29 (mean -0.118961 per grounding), 144 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
-    ->  (   occluded_by(Occluded, Occluder):t
-        ->  (   lift(Occluder):t+1 ~= Lift
-            ->  % n = 6822 (weight 19818), log-likelihood -436.649, logistic
-                logistic([Distance, Lift], [291.18, -144.606, 5.65716], P1),
-                P2 is 1-P1
+    ->  (   kind(Occluder):t+1 ~= ball
+        ->  (   moved(Occluder):t+1 ~= Moved
+            ->  (   Moved < 0.004
+                ->  % n = 662 (weight 2870), log-likelihood -0.999478, finite
+                    P1 = 0.000348189,
+                    P2 = 0.999651811
+                ;   (   occluded_by(Occluded, Occluder):t
+                    ->  % n = 16 (weight 20), log-likelihood -0.9304, finite
+                        P1 = 0.9545455,
+                        P2 = 0.0454545
+                    ;   (   seen(Occluder):t
+                        ->  % n = 593 (weight 729), log-likelihood -0.997947, finite
+                            P1 = 0.00136799,
+                            P2 = 0.99863201
+                        ;   % n = 58 (weight 66), log-likelihood -11.7294, logistic
+                            logistic([Distance], [-22.6013, 0.865311], P1),
+                            P2 is 1-P1
+                        )
+                    )
+                )
             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [190.017, 4.93943], P1),
+                logistic([Distance], [-40.1325, -0.561127], P1),
                 P2 is 1-P1
             )
-        ;   (   kind(Occluder):t+1 ~= ball
-            ->  (   seen(Occluder):t
-                ->  % n = 6244 (weight 21412), log-likelihood -0.99993, finite
-                    P1 = 4.66984e-5,
-                    P2 = 0.9999533016
-                ;   % n = 137 (weight 177), log-likelihood -11.1354, finite
-                    P1 = 0.0167598,
-                    P2 = 0.9832402
-                )
-            ;   kind(Occluder):t+1 ~= box
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  % n = 9762 (weight 28454), log-likelihood -1996.72, logistic
-                    logistic([Distance], [-36.8072, 1.6893], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 330 (weight 1038), log-likelihood -0.998557, finite
-                    P1 = 0.000961538,
-                    P2 = 0.999038462
-                ;   kind(Occluded):t+1 ~= can
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise
-                    ->  (   Rise < 0.0
-                        ->  % n = 129 (weight 233), log-likelihood -135.824, logistic
-                            logistic([Distance], [-2.1877, 0.139988], P1),
-                            P2 is 1-P1
-                        ;   Rise < 0.1
-                        ->  % n = 2261 (weight 3937), log-likelihood -2484.18, logistic
-                            logistic([Distance], [-4.53844, 0.516325], P1),
-                            P2 is 1-P1
-                        ;   % n = 33 (weight 37), log-likelihood -14.7047, finite
-                            P1 = 0.153846,
-                            P2 = 0.846154
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-4.04262, 0.44025], P1),
-                        P2 is 1-P1
+        ;   kind(Occluder):t+1 ~= bottle
+        ->  % n = 1473 (weight 6701), log-likelihood -0.999776, finite
+            P1 = 0.000149187,
+            P2 = 0.999850813
+        ;   kind(Occluder):t+1 ~= bowl
+        ->  (   occluded_by(Occluded, Occluder):t
+            ->  (   rise(Occluded, Occluder):t+1 ~= Rise
+                ->  (   Rise < 0.0
+                    ->  % n = 149 (weight 489), log-likelihood -0.996942, finite
+                        P1 = 0.99796334,
+                        P2 = 0.00203666
+                    ;   Rise < 0.1
+                    ->  % n = 466 (weight 1310), log-likelihood -8.48311, finite
+                        P1 = 0.99847561,
+                        P2 = 0.00152439
+                    ;   % n = 42 (weight 46), log-likelihood -21.2821, finite
+                        P1 = 0.8125,
+                        P2 = 0.1875
                     )
-                ;   kind(Occluded):t+1 ~= cup
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                    P1 = 0.99458581,
+                    P2 = 0.00541419
+                )
+            ;   (   kind(Occluded):t+1 ~= ball
                 ->  (   rise(Occluded, Occluder):t+1 ~= Rise4
                     ->  (   Rise4 < 0.0
-                        ->  % n = 75 (weight 131), log-likelihood -0.988684, finite
-                            P1 = 0.0075188,
-                            P2 = 0.9924812
+                        ->  (   moved(Occluder):t+1 ~= Moved3
+                            ->  (   Moved3 < 0.004
+                                ->  % n = 102 (weight 274), log-likelihood -0.27036, logistic
+                                    logistic([Distance], [-1921.13, 46.8458], P1),
+                                    P2 is 1-P1
+                                ;   % n = 55 (weight 107), log-likelihood -64.1669, logistic
+                                    logistic([Distance], [14.8954, -1.52019], P1),
+                                    P2 is 1-P1
+                                )
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                                P1 = 0.263708,
+                                P2 = 0.736292
+                            )
                         ;   Rise4 < 0.1
-                        ->  (   seen(Occluder):t
-                            ->  % n = 1327 (weight 3711), log-likelihood -1139.99, logistic
-                                logistic([Distance], [-10.9093, 0.21974], P1),
-                                P2 is 1-P1
-                            ;   % n = 49 (weight 89), log-likelihood -9.74097, finite
-                                P1 = 0.032967,
-                                P2 = 0.967033
-                            )
-                        ;   % n = 90 (weight 154), log-likelihood -0.990357, finite
-                            P1 = 0.00641026,
-                            P2 = 0.99358974
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-11.1077, 0.127667], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= mug
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise8
-                    ->  (   Rise8 < 0.0
-                        ->  % n = 88 (weight 216), log-likelihood -0.993105, finite
-                            P1 = 0.00458716,
-                            P2 = 0.99541284
-                        ;   Rise8 < 0.1
-                        ->  (   lost_anywhere(Occluded):t
-                            ->  % n = 37 (weight 165), log-likelihood -6.40077, finite
-                                P1 = 0.011976,
-                                P2 = 0.988024
-                            ;   (   seen(Occluder):t
-                                ->  % n = 1895 (weight 4147), log-likelihood -1451.51, logistic
-                                    logistic([Distance], [-13.0363, 0.983221], P1),
+                        ->  (   moved(Occluder):t+1 ~= Moved6
+                            ->  (   Moved6 < 0.004
+                                ->  % n = 1073 (weight 2437), log-likelihood -507.443, logistic
+                                    logistic([Distance], [-45.5859, 2.22777], P1),
                                     P2 is 1-P1
-                                ;   % n = 95 (weight 163), log-likelihood -91.9382, finite
-                                    P1 = 0.254545,
-                                    P2 = 0.745455
-                                )
-                            )
-                        ;   % n = 185 (weight 245), log-likelihood -0.993916, finite
-                            P1 = 0.00404858,
-                            P2 = 0.99595142
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-12.7155, 0.667135], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 3270 (weight 11002), log-likelihood -0.999864, finite
-                    P1 = 9.0876e-5,
-                    P2 = 0.999909124
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-15.3674, 0.625193], P1),
-                    P2 is 1-P1
-                )
-            ;   kind(Occluder):t+1 ~= can
-            ->  % n = 4594 (weight 18250), log-likelihood -0.999918, finite
-                P1 = 5.47885e-5,
-                P2 = 0.9999452115
-            ;   kind(Occluder):t+1 ~= cup
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
-                    ->  (   Rise12 < 0.0
-                        ->  % n = 129 (weight 341), log-likelihood -30.2584, finite
-                            P1 = 0.0204082,
-                            P2 = 0.9795918
-                        ;   Rise12 < 0.1
-                        ->  (   seen(Occluder):t
-                            ->  (   seen(Occluded):t
-                                ->  % n = 107, log-likelihood -4.95344, logistic
-                                    logistic([Distance], [-34.5712, 2.6258], P1),
-                                    P2 is 1-P1
-                                ;   % n = 11724 (weight 23156), log-likelihood -10735.2, logistic
-                                    logistic([Distance], [-9.26563, 1.21661], P1),
+                                ;   % n = 570 (weight 702), log-likelihood -306.951, logistic
+                                    logistic([Distance], [-20.9486, 1.53693], P1),
                                     P2 is 1-P1
                                 )
-                            ;   % n = 291 (weight 763), log-likelihood -128.613, logistic
-                                logistic([Distance], [-12.6584, -0.0675005], P1),
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Distance], [-31.9267, 1.90565], P1),
                                 P2 is 1-P1
                             )
-                        ;   % n = 278 (weight 310), log-likelihood -68.2388, logistic
-                            logistic([Distance], [-18.0225, 0.5978], P1),
+                        ;   % n = 154 (weight 182), log-likelihood -71.8074, logistic
+                            logistic([Distance], [-22.4684, 0.724655], P1),
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-9.37732, 1.16175], P1),
+                        logistic([Distance], [-26.5943, 1.21298], P1),
                         P2 is 1-P1
                     )
+                ;   kind(Occluded):t+1 ~= bottle
+                ->  % n = 31 (weight 47), log-likelihood -0.969106, finite
+                    P1 = 0.0204082,
+                    P2 = 0.9795918
+                ;   kind(Occluded):t+1 ~= bowl
+                ->  % n = 55 (weight 211), log-likelihood -0.992943, finite
+                    P1 = 0.00469484,
+                    P2 = 0.99530516
                 ;   kind(Occluded):t+1 ~= box
-                ->  % n = 876 (weight 2376), log-likelihood -0.999369, finite
-                    P1 = 0.000420521,
-                    P2 = 0.999579479
+                ->  % n = 168 (weight 376), log-likelihood -0.996027, finite
+                    P1 = 0.0026455,
+                    P2 = 0.9973545
                 ;   kind(Occluded):t+1 ~= can
-                ->  % n = 1437 (weight 4533), log-likelihood -0.999669, finite
-                    P1 = 0.000220507,
-                    P2 = 0.999779493
+                ->  % n = 54 (weight 114), log-likelihood -0.987019, finite
+                    P1 = 0.00862069,
+                    P2 = 0.99137931
                 ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 704 (weight 2468), log-likelihood -0.999393, finite
-                    P1 = 0.000404858,
-                    P2 = 0.999595142
+                ->  % n = 362 (weight 1054), log-likelihood -0.998579, finite
+                    P1 = 0.00094697,
+                    P2 = 0.99905303
                 ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 1467 (weight 5283), log-likelihood -0.999716, finite
-                    P1 = 0.000189215,
-                    P2 = 0.999810785
+                ->  % n = 384 (weight 920), log-likelihood -0.998372, finite
+                    P1 = 0.0010846,
+                    P2 = 0.9989154
                 ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 3542 (weight 10602), log-likelihood -0.999859, finite
-                    P1 = 9.4304e-5,
-                    P2 = 0.999905696
+                ->  % n = 199 (weight 531), log-likelihood -0.997183, finite
+                    P1 = 0.00187617,
+                    P2 = 0.99812383
                 ;   \+ kind(Occluded):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-11.2021, 0.902542], P1),
+                    logistic([Distance], [-35.3952, 1.10155], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluder):t+1 ~= mug
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise16
-                    ->  (   Rise16 < 0.0
-                        ->  % n = 194 (weight 318), log-likelihood -3.64438, logistic
-                            logistic([Distance], [-43.3717, 5.79207], P1),
+            )
+        ;   kind(Occluder):t+1 ~= box
+        ->  (   kind(Occluded):t+1 ~= ball
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  (   moved(Occluder):t+1 ~= Moved9
+                    ->  (   Moved9 < 0.004
+                        ->  % n = 912 (weight 4556), log-likelihood -9.73061, finite
+                            P1 = 0.999561211,
+                            P2 = 0.000438789
+                        ;   (   lift(Occluder):t+1 ~= Lift
+                            ->  % n = 552 (weight 724), log-likelihood -77.9504, logistic
+                                logistic([Distance, Lift], [75.1704, -79.3579, 3.22324], P1),
+                                P2 is 1-P1
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                                P1 = 0.9669421,
+                                P2 = 0.0330579
+                            )
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                        P1 = 0.99526694,
+                        P2 = 0.00473306
+                    )
+                ;   (   moved(Occluder):t+1 ~= Moved12
+                    ->  (   Moved12 < 0.004
+                        ->  % n = 3428 (weight 6100), log-likelihood -2166.82, logistic
+                            logistic([Distance], [-34.2214, 1.69196], P1),
                             P2 is 1-P1
-                        ;   Rise16 < 0.1
-                        ->  % n = 9585 (weight 24145), log-likelihood -6783.2, logistic
-                            logistic([Distance], [-14.6964, 1.23156], P1),
-                            P2 is 1-P1
-                        ;   % n = 143 (weight 175), log-likelihood -8.42973, logistic
-                            logistic([Distance], [-12.7235, -1.21458], P1),
-                            P2 is 1-P1
+                        ;   (   rise(Occluded, Occluder):t+1 ~= Rise8
+                            ->  (   Rise8 < 0.0
+                                ->  % n = 4, too few groundings for a model of its own: the parent's model, log-likelihood -0.45361, logistic
+                                    logistic([Distance], [-17.6837, 0.955888], P1),
+                                    P2 is 1-P1
+                                ;   Rise8 < 0.1
+                                ->  % n = 999 (weight 1123), log-likelihood -602.52, logistic
+                                    logistic([Distance], [-16.2103, 1.08424], P1),
+                                    P2 is 1-P1
+                                ;   % n = 293 (weight 305), log-likelihood -56.0366, logistic
+                                    logistic([Distance], [-36.4905, 0.494207], P1),
+                                    P2 is 1-P1
+                                )
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Distance], [-17.6837, 0.955888], P1),
+                                P2 is 1-P1
+                            )
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-14.8787, 1.26339], P1),
+                        logistic([Distance], [-28.3923, 1.54046], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 755 (weight 2347), log-likelihood -0.999361, finite
-                    P1 = 0.000425713,
-                    P2 = 0.999574287
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 1140 (weight 3836), log-likelihood -0.999609, finite
-                    P1 = 0.000260552,
-                    P2 = 0.999739448
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 1387 (weight 4543), log-likelihood -0.99967, finite
-                    P1 = 0.000220022,
-                    P2 = 0.999779978
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 607 (weight 1775), log-likelihood -0.999156, finite
-                    P1 = 0.000562746,
-                    P2 = 0.999437254
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 2841 (weight 9637), log-likelihood -0.999844, finite
-                    P1 = 0.000103745,
-                    P2 = 0.999896255
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-16.5371, 1.0497], P1),
-                    P2 is 1-P1
                 )
-            ;   kind(Occluder):t+1 ~= skin
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise20
-                    ->  (   Rise20 < 0.0
-                        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-13.3887, 0.642947], P1),
-                            P2 is 1-P1
-                        ;   Rise20 < 0.1
-                        ->  % n = 915 (weight 1091), log-likelihood -375.64, logistic
-                            logistic([Distance], [-10.5417, 0.589853], P1),
-                            P2 is 1-P1
-                        ;   % n = 2938 (weight 3578), log-likelihood -827.945, logistic
-                            logistic([Distance], [-14.95, 0.720107], P1),
-                            P2 is 1-P1
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-13.3887, 0.642947], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= box
-                ->  (   seen(Occluded):t
-                    ->  % n = 54, log-likelihood -4.22026, logistic
-                        logistic([Distance], [-40.3323, 3.20919], P1),
-                        P2 is 1-P1
-                    ;   % n = 391 (weight 419), log-likelihood -244.481, logistic
-                        logistic([Distance], [-4.1439, 1.47515], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 693 (weight 805), log-likelihood -302.993, logistic
-                    logistic([Distance], [-12.7149, 1.67063], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= cup
-                ->  (   lift(Occluder):t+1 ~= Lift2
-                    ->  (   seen(Occluded):t
-                        ->  % n = 49, log-likelihood -6.09022, logistic
-                            logistic([Distance, Lift2], [-21.6714, -151.654, 0.923366], P1),
-                            P2 is 1-P1
-                        ;   % n = 887 (weight 959), log-likelihood -372.813, logistic
-                            logistic([Distance, Lift2], [-10.255, -42.7321, 3.08885], P1),
-                            P2 is 1-P1
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-9.22649, 2.76553], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= mug
-                ->  (   seen(Occluded):t
-                    ->  % n = 59, log-likelihood -7.33852, logistic
-                        logistic([Distance], [-36.2589, 2.42747], P1),
-                        P2 is 1-P1
-                    ;   (   lift(Occluder):t+1 ~= Lift4
-                        ->  % n = 1163 (weight 1267), log-likelihood -662.705, logistic
-                            logistic([Distance, Lift4], [-9.57738, -27.8547, 2.1184], P1),
+            ;   kind(Occluded):t+1 ~= bottle
+            ->  % n = 47 (weight 103), log-likelihood -0.985653, finite
+                P1 = 0.00952381,
+                P2 = 0.99047619
+            ;   kind(Occluded):t+1 ~= bowl
+            ->  % n = 112 (weight 332), log-likelihood -0.995503, finite
+                P1 = 0.00299401,
+                P2 = 0.99700599
+            ;   kind(Occluded):t+1 ~= box
+            ->  % n = 268 (weight 992), log-likelihood -0.99849, finite
+                P1 = 0.00100604,
+                P2 = 0.99899396
+            ;   kind(Occluded):t+1 ~= can
+            ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
+                ->  (   Rise12 < 0.0
+                    ->  (   lift(Occluder):t+1 ~= Lift2
+                        ->  % n = 139 (weight 207), log-likelihood -4.41698, logistic
+                            logistic([Distance, Lift2], [-335.196, -635.573, 6.32556], P1),
                             P2 is 1-P1
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-8.86673, 2.0126], P1),
+                            logistic([Distance], [-134.678, 4.55349], P1),
                             P2 is 1-P1
                         )
+                    ;   Rise12 < 0.1
+                    ->  % n = 779 (weight 1339), log-likelihood -31.9967, logistic
+                        logistic([Distance], [-79.8536, 6.23555], P1),
+                        P2 is 1-P1
+                    ;   % n = 27 (weight 35), log-likelihood -0.958964, finite
+                        P1 = 0.027027,
+                        P2 = 0.972973
                     )
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-11.522, 1.44715], P1),
-                    P2 is 1-P1
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-11.522, 1.44715], P1),
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-78.9292, 4.90099], P1),
                     P2 is 1-P1
                 )
-            ;   \+ kind(Occluder):t+1 ~= _
+            ;   kind(Occluded):t+1 ~= cup
+            ->  (   moved(Occluder):t+1 ~= Moved15
+                ->  (   Moved15 < 0.004
+                    ->  (   lost_anywhere(Occluded):t
+                        ->  % n = 6 (weight 30), log-likelihood -0.952461, finite
+                            P1 = 0.03125,
+                            P2 = 0.96875
+                        ;   (   seen(Occluded):t
+                            ->  % n = 19, log-likelihood -0.927013, finite
+                                P1 = 0.047619,
+                                P2 = 0.952381
+                            ;   % n = 1518 (weight 2962), log-likelihood -242.426, logistic
+                                logistic([Distance], [-327.108, 16.1725], P1),
+                                P2 is 1-P1
+                            )
+                        )
+                    ;   % n = 277 (weight 349), log-likelihood -121.678, logistic
+                        logistic([Distance], [-32.7242, 2.2475], P1),
+                        P2 is 1-P1
+                    )
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-69.8903, 4.74906], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= mug
+            ->  % n = 371 (weight 1179), log-likelihood -0.998729, finite
+                P1 = 0.00084674,
+                P2 = 0.99915326
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 492 (weight 1504), log-likelihood -0.999004, finite
+                P1 = 0.000664011,
+                P2 = 0.999335989
+            ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-13.8422, 0.738241], P1),
+                logistic([Distance], [-47.9434, 2.74957], P1),
                 P2 is 1-P1
             )
+        ;   kind(Occluder):t+1 ~= can
+        ->  % n = 886 (weight 3010), log-likelihood -0.999502, finite
+            P1 = 0.000332005,
+            P2 = 0.999667995
+        ;   kind(Occluder):t+1 ~= cup
+        ->  (   kind(Occluded):t+1 ~= ball
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  (   moved(Occluder):t+1 ~= Moved18
+                    ->  (   Moved18 < 0.004
+                        ->  % n = 257 (weight 1281), log-likelihood -8.46069, finite
+                            P1 = 0.99844115,
+                            P2 = 0.00155885
+                        ;   % n = 289 (weight 413), log-likelihood -26.2951, logistic
+                            logistic([Distance], [434.903, 1.86245], P1),
+                            P2 is 1-P1
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                        P1 = 0.99410377,
+                        P2 = 0.00589623
+                    )
+                ;   (   moved(Occluder):t+1 ~= Moved21
+                    ->  (   Moved21 < 0.004
+                        ->  % n = 1807 (weight 4143), log-likelihood -1317.49, logistic
+                            logistic([Distance], [-25.0743, 1.86791], P1),
+                            P2 is 1-P1
+                        ;   % n = 1063 (weight 1203), log-likelihood -547.294, logistic
+                            logistic([Distance], [-19.1498, 1.58826], P1),
+                            P2 is 1-P1
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance], [-23.6162, 1.83253], P1),
+                        P2 is 1-P1
+                    )
+                )
+            ;   kind(Occluded):t+1 ~= bottle
+            ->  % n = 37 (weight 129), log-likelihood -0.988511, finite
+                P1 = 0.00763359,
+                P2 = 0.99236641
+            ;   kind(Occluded):t+1 ~= bowl
+            ->  % n = 80 (weight 196), log-likelihood -0.992407, finite
+                P1 = 0.00505051,
+                P2 = 0.99494949
+            ;   kind(Occluded):t+1 ~= box
+            ->  % n = 138 (weight 438), log-likelihood -0.996587, finite
+                P1 = 0.00227273,
+                P2 = 0.99772727
+            ;   kind(Occluded):t+1 ~= can
+            ->  % n = 623 (weight 1535), log-likelihood -0.999024, finite
+                P1 = 0.000650618,
+                P2 = 0.999349382
+            ;   kind(Occluded):t+1 ~= cup
+            ->  % n = 143 (weight 351), log-likelihood -0.995745, finite
+                P1 = 0.00283286,
+                P2 = 0.99716714
+            ;   kind(Occluded):t+1 ~= mug
+            ->  % n = 181 (weight 657), log-likelihood -0.997722, finite
+                P1 = 0.00151745,
+                P2 = 0.99848255
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 211 (weight 699), log-likelihood -0.997859, finite
+                P1 = 0.00142653,
+                P2 = 0.99857347
+            ;   \+ kind(Occluded):t+1 ~= _
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-29.386, 2.02376], P1),
+                P2 is 1-P1
+            )
+        ;   kind(Occluder):t+1 ~= mug
+        ->  (   seen(Occluded):t
+            ->  % n = 18, log-likelihood -11.4683, finite
+                P1 = 0.35,
+                P2 = 0.65
+            ;   (   lift(Occluder):t+1 ~= Lift4
+                ->  % n = 1821 (weight 3325), log-likelihood -299.634, logistic
+                    logistic([Distance, Lift4], [-115.462, -196.223, 5.14432], P1),
+                    P2 is 1-P1
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-109.756, 4.96508], P1),
+                    P2 is 1-P1
+                )
+            )
+        ;   kind(Occluder):t+1 ~= skin
+        ->  (   kind(Occluded):t+1 ~= ball
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 220 (weight 284), log-likelihood -6.94882, finite
+                    P1 = 0.99300699,
+                    P2 = 0.00699301
+                ;   % n = 663 (weight 723), log-likelihood -208.904, logistic
+                    logistic([Distance], [-30.3519, 2.36453], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= bottle
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 150 (weight 214), log-likelihood -15.911, finite
+                    P1 = 0.9814815,
+                    P2 = 0.0185185
+                ;   (   moved(Occluder):t+1 ~= Moved24
+                    ->  (   Moved24 < 0.004
+                        ->  % n = 57, log-likelihood -0.974383, finite
+                            P1 = 0.9830508,
+                            P2 = 0.0169492
+                        ;   % n = 140 (weight 144), log-likelihood -69.4997, finite
+                            P1 = 0.808219,
+                            P2 = 0.191781
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance], [-13.1544, 2.46657], P1),
+                        P2 is 1-P1
+                    )
+                )
+            ;   kind(Occluded):t+1 ~= bowl
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 38 (weight 62), log-likelihood -5.40241, finite
+                    P1 = 0.96875,
+                    P2 = 0.03125
+                ;   % n = 96 (weight 100), log-likelihood -68.9945, finite
+                    P1 = 0.539216,
+                    P2 = 0.460784
+                )
+            ;   kind(Occluded):t+1 ~= box
+            ->  (   lift(Occluder):t+1 ~= Lift6
+                ->  % n = 428 (weight 516), log-likelihood -161.609, logistic
+                    logistic([Distance, Lift6], [-21.7589, -52.203, 3.2553], P1),
+                    P2 is 1-P1
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-19.2635, 2.99292], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= can
+            ->  (   lift(Occluder):t+1 ~= Lift8
+                ->  % n = 588 (weight 688), log-likelihood -150.292, logistic
+                    logistic([Distance, Lift8], [-35.8024, -51.9539, 4.12431], P1),
+                    P2 is 1-P1
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-32.8235, 3.89524], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= cup
+            ->  (   lift(Occluder):t+1 ~= Lift10
+                ->  % n = 826 (weight 922), log-likelihood -64.669, logistic
+                    logistic([Distance, Lift10], [-24.7086, -120.384, 6.21834], P1),
+                    P2 is 1-P1
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-17.9685, 4.69883], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= mug
+            ->  (   lift(Occluder):t+1 ~= Lift12
+                ->  (   moved(Occluder):t+1 ~= Moved27
+                    ->  (   Moved27 < 0.004
+                        ->  % n = 200 (weight 364), log-likelihood -17.9481, logistic
+                            logistic([Distance, Lift12], [-65.1791, -1680.74, 7.91792], P1),
+                            P2 is 1-P1
+                        ;   % n = 967 (weight 1015), log-likelihood -242.686, logistic
+                            logistic([Distance, Lift12], [-25.4301, -37.1746, 3.87045], P1),
+                            P2 is 1-P1
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance, Lift12], [-26.9277, -42.1925, 4.05813], P1),
+                        P2 is 1-P1
+                    )
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-25.0323, 3.89837], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-26.1648, 3.57626], P1),
+                P2 is 1-P1
+            ;   \+ kind(Occluded):t+1 ~= _
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-26.1648, 3.57626], P1),
+                P2 is 1-P1
+            )
+        ;   \+ kind(Occluder):t+1 ~= _
+        ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+            logistic([Distance], [-38.355, 2.5103], P1),
+            P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.18012,
-        P2 = 0.81988
+        P1 = 0.391293,
+        P2 = 0.608707
     ).
 
 % When a hand lets go of what it carries (ddc learn, from the carries beside the data): a
@@ -417,21 +576,21 @@ height(A):t+1 ~ val(H) :=
 highest(A):t+1 ~ val(H) :=
     top(A):t ~= H.
 
-% released(Held):t+1: 3 clauses, 2953 groundings, training log-likelihood -120.556 (mean -0.0408248 per grounding), 6 parameters.
+% released(Held):t+1: 3 clauses, 2528 groundings, training log-likelihood -78.9072 (mean -0.0312133 per grounding), 6 parameters.
 released(Held):t+1 ~ finite([P1:true, P2:false]) :=
     carried(Held):t+1,
     (   height(Held):t+1 ~= Height
     ->  (   highest(Held):t+1 ~= Highest
-        ->  % n = 2953, log-likelihood -120.556, logistic
-            logistic([Height, Highest], [-78.022, 36.9771, -5.53863], P1),
+        ->  % n = 2528, log-likelihood -78.9072, logistic
+            logistic([Height, Highest], [-100.738, 66.9638, -9.84724], P1),
             P2 is 1-P1
         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Height], [-60.6167, -1.12395], P1),
+            logistic([Height], [-43.1725, -1.5941], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.0247039,
-        P2 = 0.9752961
+        P1 = 0.0249012,
+        P2 = 0.9750988
     ).
 
 :- include('too/too_motion.pl').

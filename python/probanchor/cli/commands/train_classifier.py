@@ -1,9 +1,9 @@
 """`anchoring train-classifier`: train the category classifier on rendered views.
 
-Renders random tables (3-4 objects of the categories ball, bottle, bowl, box, can, cup, mug), segments
-them with the pipeline, trains a small MLP on the shape features of 60 % of the scenes, fits
-its softmax temperature on 20 %, tests it on the last 20 % and writes the model (JSON
-weights) with its held-out accuracy.
+Renders random tables (3-4 objects of the categories ball, bottle, bowl, box, can, cup,
+mug), segments them with the pipeline, trains a small MLP on the shape features of 60 % of
+the scenes, fits its softmax temperature on 20 %, tests it on the last 20 % and writes the
+model (JSON weights) with its held-out accuracy.
 """
 
 from __future__ import annotations
