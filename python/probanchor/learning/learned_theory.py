@@ -440,10 +440,13 @@ def parameter_table(reach: OnsetReach, base: str | Path) -> str:
     text = (Path(base) / "too_parameters.pl").read_text(encoding="utf-8")
     m = re.search(r"^occluder_reach\(([\d.eE+-]+)\)", text, re.M)
     hand = f"{float(m.group(1)):.3g} (`occluder_reach`)" if m else "-"
+    rows = "".join(f"| onset reach of a {kind} (m) | {own.reach:.3g} | {hand} | {own.onsets} "
+                   f"onsets, {QUANTILE:.0%} within {own.quantile:.3g} m, times {MARGIN:g} |\n"
+                   for kind, own in reach.kinds.items())
     return ("| parameter | learned | hand-written | fitted from |\n|---|---:|---:|---|\n"
             f"| onset reach (m): how far from where a hidden object was an occluder may start "
             f"hiding it | {reach.reach:.3g} | {hand} | {reach.onsets} onsets, {QUANTILE:.0%} "
-            f"within {reach.quantile:.3g} m, times {MARGIN:g} |\n")
+            f"within {reach.quantile:.3g} m, times {MARGIN:g} |\n" + rows)
 
 
 def _heaviest(theory: LearnedTheory, k: int = 6) -> list[dict[str, object]]:
