@@ -398,15 +398,8 @@ def test_a_grip_is_measured_from_the_top_of_its_kind(tmp_path: Path) -> None:
                                     found=FOUND, fitted=FITTED, release_program=RELEASE,
                                     heights=heights))
         assert ("kind_height(bottle, 0.2)." in path.read_text()) == (heights is not None)
-        f = bridge.Filter(path, particles=200, seed=1, threads=1)
-        actions = ["object(bottle_1)", "category(bottle_1, bottle)", "object(skin_1)",
-                   "category(skin_1, skin)"]
-        hand = ["observed(skin_1)", "observation(pos(skin_1)) ~= (0.01, 0.0, 0.27)"]
-        f.step(["observed(bottle_1)", "observation(pos(bottle_1)) ~= (0.0, 0.0, 0.1)", *hand],
-               actions=actions)
-        f.step(hand, actions=actions)
-        probability[name] = f.probability("occluded_by(bottle_1, skin_1):t")
-        f.close()
+        probability[name] = _vanished_under(path, ("bottle_1", "bottle", (0.0, 0.0, 0.1)),
+                                            ("skin_1", "skin", (0.01, 0.0, 0.27)))
     assert probability["heights"] > 0.2 and probability["none"] == 0.0
     assert kind_height_clauses({}).count("kind_height(") == 0
 
@@ -420,16 +413,27 @@ def test_a_kind_s_own_reach_decides_whether_it_is_asked(tmp_path: Path) -> None:
         path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path,
                                     reach=OnsetReach(0.1, 0.05, 20, kinds), found=FOUND,
                                     fitted=FITTED, release_program=RELEASE))
-        f = bridge.Filter(path, particles=200, seed=1, threads=1)
-        actions = ["object(ball_1)", "category(ball_1, ball)", "object(bowl_1)",
-                   "category(bowl_1, bowl)"]
-        bowl = ["observed(bowl_1)", "observation(pos(bowl_1)) ~= (0.2, 0.0, 0.04)"]
-        f.step(["observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)", *bowl],
-               actions=actions)
-        f.step(bowl, actions=actions)
-        probability[name] = f.probability("occluded_by(ball_1, bowl_1):t")
-        f.close()
+        probability[name] = _vanished_under(path, ("ball_1", "ball", (0.0, 0.0, 0.03)),
+                                            ("bowl_1", "bowl", (0.2, 0.0, 0.04)))
     assert probability["own"] > 0.0 and probability["all"] == 0.0
+
+
+def _vanished_under(theory: Path, hidden: tuple[str, str, tuple[float, float, float]],
+                    other: tuple[str, str, tuple[float, float, float]]) -> float:
+    """P(``hidden`` is under ``other``) one frame after it vanished; each is (atom, category,
+    position), ``other`` perceived at its position in both frames (200 particles)."""
+    f = bridge.Filter(theory, particles=200, seed=1, threads=1)
+    actions = [f"object({a})" for a, _, _ in (hidden, other)]
+    actions += [f"category({a}, {c})" for a, c, _ in (hidden, other)]
+
+    def seen(a: str, p: tuple[float, float, float]) -> list[str]:
+        return [f"observed({a})", f"observation(pos({a})) ~= ({p[0]}, {p[1]}, {p[2]})"]
+
+    f.step([*seen(hidden[0], hidden[2]), *seen(other[0], other[2])], actions=actions)
+    f.step(seen(other[0], other[2]), actions=actions)
+    probability = f.probability(f"occluded_by({hidden[0]}, {other[0]}):t")
+    f.close()
+    return probability
 
 
 ENDS_AT_ONCE = """% learned (a header of the learner's)
