@@ -316,6 +316,21 @@ def test_the_onset_reach_is_fitted_from_the_onsets(tmp_path: Path) -> None:
         onset_reach([empty])
 
 
+def test_without_an_onset_the_reach_is_the_hand_written_one_marked_not_fitted(
+        tmp_path: Path) -> None:
+    """A few games where only hands took objects have no onset to fit the reach from: the
+    theory keeps too_parameters.pl's occluder_reach and says so, as for a parameter without
+    samples."""
+    from probanchor.learning.learned_theory import parameter_table
+
+    reach = OnsetReach(HAND["occluder_reach"], float("nan"), 0)
+    path = tmp_path / "too_learned.pl"
+    text = theory_text(LEARNED, "", base=PROLOG, out=path, reach=reach, found=FOUND,
+                       fitted=FITTED, release_program=RELEASE)
+    assert "NOT FITTED" in text and f"onset_reach({HAND['occluder_reach']:.4g})." in text
+    assert "none: not fitted" in parameter_table(reach, PROLOG)
+
+
 def test_a_kind_with_onsets_enough_has_a_reach_of_its_own(tmp_path: Path) -> None:
     """Bowls start covering from farther than mugs: with ``min_onsets`` onsets a kind's reach
     is fitted from its own; a kind with fewer has the reach of all the onsets."""

@@ -144,8 +144,9 @@ def theory_text(learned_program: str, header: str, *, base: str | Path,
     body = _program_body(learned_program, OCCLUDER_INTRO) + "\n" + (
         NO_RELEASE if release_program is None else _program_body(release_program, RELEASE_INTRO))
     onset = (f"% The onset reach (m): {QUANTILE:.0%} of the {reach.onsets} onsets in the data "
-              f"were within {reach.quantile:.4g} m; times {MARGIN}.\n"
-              f"onset_reach({reach.reach:.4g}).\n")
+             f"were within {reach.quantile:.4g} m; times {MARGIN}.\n" if reach.onsets else
+             "% The onset reach (m): NOT FITTED: no onset in the data, too_parameters.pl's "
+             "occluder_reach.\n") + f"onset_reach({reach.reach:.4g}).\n"
     if reach.kinds:
         onset += "% The reach of the kinds with onsets enough for one of their own.\n"
     for kind, own in reach.kinds.items():
@@ -234,8 +235,10 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     points = read_points(data)
     try:
         reach = onset_reach(points, exclude=never_occluders(found))
-    except ValueError as error:
-        raise TheoryError(f"{', '.join(map(str, data))}: {error}") from None
+    except ValueError:
+        # no onset to fit (a few games where only hands took objects): the hand-written reach,
+        # marked NOT FITTED, as a parameter without samples keeps its hand-written value
+        reach = OnsetReach(hand_written(folder)["occluder_reach"], float("nan"), 0)
     result = _learn_asked(data, points, reach, seed=seed, options=options, progress=progress)
     release = None
     if sum(release_points(r) for r in releases):
@@ -445,8 +448,9 @@ def parameter_table(reach: OnsetReach, base: str | Path) -> str:
                    for kind, own in reach.kinds.items())
     return ("| parameter | learned | hand-written | fitted from |\n|---|---:|---:|---|\n"
             f"| onset reach (m): how far from where a hidden object was an occluder may start "
-            f"hiding it | {reach.reach:.3g} | {hand} | {reach.onsets} onsets, {QUANTILE:.0%} "
-            f"within {reach.quantile:.3g} m, times {MARGIN:g} |\n" + rows)
+            f"hiding it | {reach.reach:.3g} | {hand} | "
+            + (f"{reach.onsets} onsets, {QUANTILE:.0%} within {reach.quantile:.3g} m, times "
+               f"{MARGIN:g} |\n" if reach.onsets else "none: not fitted |\n") + rows)
 
 
 def _heaviest(theory: LearnedTheory, k: int = 6) -> list[dict[str, object]]:
