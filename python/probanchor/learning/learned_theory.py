@@ -231,8 +231,8 @@ def learn_theory(data: Sequence[str | Path], out: str | Path, *, seed: int = 0,
     if absent:
         raise TheoryError(f"{', '.join(absent)}: no release data beside the data (`anchoring "
                           "collect` writes DATA.release.pl; collect again)")
-    found = affordances(data)
     points = read_points(data)
+    found = affordances(points)
     try:
         reach = onset_reach(points, exclude=never_occluders(found))
     except ValueError:

@@ -22,7 +22,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from probanchor.learning.occlusion_reach import read_points
+from probanchor.learning.occlusion_reach import DataPoints, read_points
 
 __all__ = ["LIFT", "MIN_CARRIES", "MIN_SHARE", "Affordance", "affordance_clauses", "affordances",
            "affordance_table", "carriers", "never_occluders"]
@@ -48,11 +48,11 @@ class Affordance:
     points: float
 
 
-def affordances(data: Sequence[str | Path], lift: float = LIFT
+def affordances(data: Sequence[str | Path] | DataPoints, lift: float = LIFT
                 ) -> dict[str, dict[str, Affordance]]:
-    """``{"hides": {kind: Affordance}, "hidden": {...}, "carries": {...}}`` from data files
-    (see the module docstring)."""
-    d = read_points(data)
+    """``{"hides": {kind: Affordance}, "hidden": {...}, "carries": {...}}`` from data files or
+    their points (see the module docstring)."""
+    d = data if isinstance(data, DataPoints) else read_points(data)
     hides: dict[str, list[float]] = {}
     hidden: dict[str, list[float]] = {}
     carries: dict[str, list[float]] = {}

@@ -18,18 +18,12 @@ the original file).
 
 from __future__ import annotations
 
-import re
 from collections.abc import Sequence
 from pathlib import Path
 
-from probanchor.learning.occlusion_reach import DataPoints, OnsetReach
+from probanchor.learning.occlusion_reach import DataPoints, OnsetReach, pair_of_line
 
 __all__ = ["asked", "asked_data"]
-
-_PAIR_LINE = re.compile(
-    r"^(?:pair\((\w+), (\w+)\):t\+1"
-    r"|(?:[\d.e-]+ :: )?occluder\((\w+), (\w+)\):t\+1"
-    r"|weight\(occluder\((\w+), (\w+)\):t\+1, \d+\))\.$")
 
 
 def asked(points: DataPoints, reach: OnsetReach) -> set[tuple[str, str]]:
@@ -59,11 +53,8 @@ def asked_data(data: Sequence[str | Path], points: DataPoints, reach: OnsetReach
     for number, path in enumerate(map(Path, data)):
         lines = path.read_text(encoding="utf-8").splitlines()
         for k, line in enumerate(lines):
-            m = _PAIR_LINE.match(line)
-            if m is None:
-                continue
-            a, o = next((m[i], m[i + 1]) for i in (1, 3, 5) if m[i] is not None)
-            if (a, o) not in keep:
+            pair = pair_of_line(line.strip())
+            if pair is not None and pair not in keep:
                 dropped += line.startswith("pair(")
                 lines[k] = ""
         copy = Path(folder) / str(number) / path.name

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 __all__ = ["MARGIN", "MIN_ONSETS", "QUANTILE", "DataPoints", "OnsetReach", "onset_reach",
-           "read_points"]
+           "pair_of_line", "read_points"]
 
 #: The share of the onsets within the reach (before the margin).
 QUANTILE = 0.9
@@ -77,6 +77,17 @@ def read_points(data: Sequence[str | Path]) -> DataPoints:
         for line in Path(path).read_text(encoding="utf-8").splitlines():
             _read_line(line.strip(), d)
     return d
+
+
+def pair_of_line(line: str) -> tuple[str, str] | None:
+    """The pair (A, O) a data line is about when it is the pair's example, label or weight
+    (``pair(A, O):t+1.``, ``[P ::] occluder(A, O):t+1.``, ``weight(occluder(A, O):t+1, N).``),
+    else None."""
+    if m := _PAIR.match(line) or _WEIGHT.match(line):
+        return m[1], m[2]
+    if m := _TARGET.match(line):
+        return m[2], m[3]
+    return None
 
 
 def _read_line(line: str, d: DataPoints) -> None:
