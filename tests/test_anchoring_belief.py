@@ -228,3 +228,29 @@ def test_look_alikes_lost_while_the_camera_saw_nothing_are_reported_ambiguous():
         for ambiguity in r.ambiguous:
             assert sorted(ambiguity.candidates.values()) == [0.5, 0.5]
         assert m.process(0.5, cups(0.5, hue_b)).ambiguous == []  # seen since: settled
+
+
+@pytest.mark.parametrize("stray", [5, 20])
+def test_an_anchor_in_view_keeps_its_view_beside_a_fragment_of_it(stray):
+    """A mug in view, seen whole and, beside it, a fragment of it (which the matcher also
+    accepts for the mug); a hidden bottle of the same colour held elsewhere but for ``stray`` of
+    its 1,000 particles, left where the mug stands. The mug keeps its own view: taking the
+    fragment, so that the bottle could take the view and make the assignment one pair larger
+    (a joint assignment does), would give the mug's percept the bottle's symbol."""
+    mug = {"category": {"mug": 0.8, "cup": 0.2}, "size": (0.08, 0.08, 0.1)}
+    m = AnchorManager()
+    for k in range(3):
+        m.process(k / 15, [percept(k / 15, A, **mug),
+                           percept(k / 15, B, {"bottle": 0.6, "mug": 0.2, "cup": 0.2},
+                                   size=(0.07, 0.07, 0.2))])
+    m.process(0.2, [percept(0.2, A, **mug)])
+    n = 1000
+    rng = np.random.default_rng(0)
+    m.set_position_particles("bottle-1",
+                             np.concatenate([cloud(rng, FAR, n - stray), cloud(rng, A, stray)]),
+                             np.ones(n), np.arange(n) < n - stray)
+    fragment = percept(0.27, A + [0.04, 0.0, -0.02], {"ball": 0.9, "mug": 0.1},
+                       size=(0.02, 0.02, 0.06))
+    r = m.process(0.27, [percept(0.27, A, **mug), fragment])
+    assert r.symbols[0] == "mug-1"
+    assert "bottle-1" not in r.symbols.values()

@@ -15,11 +15,13 @@ Per frame (:meth:`AnchorManager.process`):
    (the matching function's appearance decision, calibrated) times where its belief puts it,
    with the part of the belief that has the object under nothing (moved unseen, or lost while
    the camera saw nothing) spread over the whole table (:mod:`anchoring.likelihood`);
-5. percepts and anchors are assigned jointly, one to one, by the Hungarian method
-   (``scipy.optimize.linear_sum_assignment``): as many pairs as possible among those the
-   matcher accepts (decision > 0) or step 4 does, and among such assignments the one with the
-   largest total mean similarity (monotone in every attribute; an RBF SVM's decision value is not,
-   and it saturates for clear matches); with ``position_match="mass"`` (the default) the position
+5. percepts and anchors are assigned one to one by the Hungarian method
+   (``scipy.optimize.linear_sum_assignment``) in a two-level cascade (:func:`cascade_assignment`):
+   first the anchors perceived until now, then those whose position is a belief, over the
+   percepts left; at each level as many pairs as possible among those the matcher accepts
+   (decision > 0) or step 4 does, and among such assignments the one with the largest total
+   mean similarity (monotone in every attribute; an RBF SVM's decision value is not, and it
+   saturates for clear matches); with ``position_match="mass"`` (the default) the position
    term of an anchor with a belief is the belief's mass near the percept, so a weak mode counts as
    little as it weighs and two anchors with a particle each at the percept are not tied; ``"max"``
    takes the best particle's similarity, as the paper's Algorithm 1;
@@ -351,10 +353,7 @@ class AnchorManager:
                     fit = features.copy()
                     fit[believed, :, 2] = mass[believed]
                 cost = np.where(accept, -fit.mean(axis=-1), 1e9)
-                rows, cols = linear_sum_assignment(cost)
-                for r, c in zip(rows, cols, strict=True):
-                    if accept[r, c]:
-                        matched_anchor[int(c)] = int(r)
+                matched_anchor.update(cascade_assignment(accept, cost, believed))
 
         if self.withhold_seconds > 0:
             for j in container_views(anchors, frame, features, matched_anchor, time,
@@ -561,6 +560,33 @@ class AnchorManager:
                 raise
             raise AnchorManagerError(f"{path}: bad world file: {exc!r}") from exc
         return manager
+
+
+def cascade_assignment(accept: np.ndarray, cost: np.ndarray, believed: np.ndarray
+                       ) -> dict[int, int]:
+    """Percept index -> anchor index: the anchors perceived until now first, one to one over
+    the pairs ``accept`` allows (as many as possible, then the least total ``cost``), then the
+    anchors whose position is a belief (``believed``) over the percepts left.
+
+    A matching cascade (as DeepSORT's, by how long ago a track was last seen, in two levels):
+    an anchor in view keeps its own percept even where another pair would make the assignment
+    one pair larger. Joint, a fragment of a container seen beside it (which the container's
+    anchor also accepts) made the container's anchor take the fragment so that a hidden
+    anchor, with a few stray particles there, could take the container's own view.
+    """
+    out: dict[int, int] = {}
+    free = np.ones(accept.shape[1], bool)
+    for level in (~believed, believed):
+        rows = np.nonzero(level)[0]
+        cols = np.nonzero(free)[0]
+        if not len(rows) or not len(cols) or not accept[np.ix_(rows, cols)].any():
+            continue
+        sub = cost[np.ix_(rows, cols)]
+        for r, c in zip(*linear_sum_assignment(sub), strict=True):
+            if accept[rows[r], cols[c]]:
+                out[int(cols[c])] = int(rows[r])
+                free[cols[c]] = False
+    return out
 
 
 def _hand_rules(record: Any) -> HandRules | None:
