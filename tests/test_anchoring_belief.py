@@ -254,3 +254,29 @@ def test_an_anchor_in_view_keeps_its_view_beside_a_fragment_of_it(stray):
     r = m.process(0.27, [percept(0.27, A, **mug), fragment])
     assert r.symbols[0] == "mug-1"
     assert "bottle-1" not in r.symbols.values()
+
+
+def test_hidden_anchors_are_assigned_by_their_likelihoods():
+    """A red mug and a green ball both hidden, their beliefs at the same place (the ball under
+    the mug, the mug out of view); the first view of the mug coming back is a sliver that
+    perception calls a ball. Both anchors may take it; the mug is the more probable (its
+    colour), and takes it by the sum of the log likelihood ratios. By the mean similarity
+    (``position_match="mass"``), the ball took it for its category."""
+    mug = {"category": {"mug": 0.8, "cup": 0.2}, "hue": 0.0, "size": (0.09, 0.09, 0.1)}
+
+    def first_view(position_match: str) -> str:
+        m = AnchorManager(position_match=position_match)
+        for k in range(3):
+            m.process(k / 15, [percept(k / 15, A, **mug), percept(k / 15, B, hue=2.0),
+                               box(k / 15)])
+        m.process(0.2, [box(0.2)])
+        rng = np.random.default_rng(0)
+        for symbol in ("mug-1", "ball-1"):
+            m.set_position_particles(symbol, cloud(rng, FAR, 1000, 0.01), np.ones(1000),
+                                     np.ones(1000, bool))
+        sliver = percept(1.0, FAR + [0.01, 0.0, -0.01], {"ball": 0.9, "mug": 0.1},
+                         size=(0.036, 0.036, 0.032))
+        return m.process(1.0, [sliver, box(1.0)]).symbols[0]
+
+    assert first_view("likelihood") == "mug-1"
+    assert first_view("mass") == "ball-1"

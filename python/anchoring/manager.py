@@ -19,12 +19,15 @@ Per frame (:meth:`AnchorManager.process`):
    (``scipy.optimize.linear_sum_assignment``) in a two-level cascade (:func:`cascade_assignment`):
    first the anchors perceived until now, then those whose position is a belief, over the
    percepts left; at each level as many pairs as possible among those the matcher accepts
-   (decision > 0) or step 4 does, and among such assignments the one with the largest total
-   mean similarity (monotone in every attribute; an RBF SVM's decision value is not, and it
-   saturates for clear matches); with ``position_match="mass"`` (the default) the position
-   term of an anchor with a belief is the belief's mass near the percept, so a weak mode counts as
-   little as it weighs and two anchors with a particle each at the percept are not tied; ``"max"``
-   takes the best particle's similarity, as the paper's Algorithm 1;
+   (decision > 0) or step 4 does, and among such assignments, for the anchors in view, the
+   one with the largest total mean similarity (monotone in every attribute; an RBF SVM's
+   decision value is not, and it saturates for clear matches), for the hidden ones
+   (``position_match="likelihood"``, the default) the most probable: the largest sum of
+   their log likelihood ratios of step 4, so a weak mode counts as little as it weighs and
+   a percept goes to the anchor it is likelier to be rather than to the one it is most similar
+   to on average; ``"mass"`` ranks the hidden ones by the mean similarity too, with the
+   belief's mass near the percept as the position term; ``"max"`` takes the best particle's
+   similarity, as the paper's Algorithm 1;
 6. what is left unmatched may still be re-identified by appearance, when it is the only
    look-alike of an anchor not perceived for a while (:mod:`anchoring.reidentify`; ``score`` 0);
    the likelihood test of step 4 holds there too;
@@ -192,7 +195,7 @@ class AnchorManager:
         merge_seconds: float = 0.5,
         reid_seconds: float = 0.3,
         reid_similarity: tuple[float, float, float] = (0.5, 0.9, 0.7),
-        position_match: Literal["mass", "max"] = "mass",
+        position_match: Literal["likelihood", "mass", "max"] = "likelihood",
         belief_radius: float = BELIEF_RADIUS,
         association: AssociationModel | None = None,
         ambiguity_ratio: float = 0.5,
@@ -214,13 +217,14 @@ class AnchorManager:
         # assignment's position term, the kernel's standard deviation (metres), the likelihoods
         # of re-acquiring against a new object (anchoring.likelihood), the mass ratio that is
         # ambiguous
-        if position_match not in ("mass", "max"):
-            raise ValueError(f"position_match must be 'mass' or 'max', not {position_match!r}")
+        if position_match not in ("likelihood", "mass", "max"):
+            raise ValueError("position_match must be 'likelihood', 'mass' or 'max', not "
+                             f"{position_match!r}")
         if belief_radius <= 0:
             raise ValueError(f"belief_radius must be positive, not {belief_radius!r}")
         if not 0 < ambiguity_ratio <= 1:
             raise ValueError(f"ambiguity_ratio must be in (0, 1], not {ambiguity_ratio!r}")
-        self.position_match: Literal["mass", "max"] = position_match
+        self.position_match: Literal["likelihood", "mass", "max"] = position_match
         self.belief_radius = float(belief_radius)
         self.association = (association if association is not None
                             else AssociationModel.for_matcher(self.matcher))
@@ -335,10 +339,8 @@ class AnchorManager:
                 [max(unexplained_mass(a, frame, self.association),
                      self.association.blind_doubt if lost else 0.0)
                  for a, lost in zip(anchors, lost_blind, strict=True)])
-            likely = reacquire_probability(
-                log_appearance, belief_ratio(mass, unexplained, self.association,
-                                             self.belief_radius),
-                self.association) >= 0.5
+            belief = belief_ratio(mass, unexplained, self.association, self.belief_radius)
+            likely = reacquire_probability(log_appearance, belief, self.association) >= 0.5
             # a hidden anchor (its position a belief) is accepted by its likelihood, in which
             # the matcher's appearance decision is one factor; the others by the matcher
             refuse |= believed[:, None] & ~likely
@@ -353,6 +355,12 @@ class AnchorManager:
                     fit = features.copy()
                     fit[believed, :, 2] = mass[believed]
                 cost = np.where(accept, -fit.mean(axis=-1), 1e9)
+                if self.position_match == "likelihood" and believed.any():
+                    # the hidden anchors (assigned apart, below) by the most probable joint
+                    # assignment: the largest sum of log LR(j, a) = log A + log B
+                    with np.errstate(divide="ignore"):
+                        log_ratio = log_appearance + np.log(belief)
+                    cost[believed] = np.where(accept[believed], -log_ratio[believed], 1e9)
                 matched_anchor.update(cascade_assignment(accept, cost, believed))
 
         if self.withhold_seconds > 0:
