@@ -21,6 +21,8 @@ from probanchor.tabletop.scenario import Scenario
 #: a hand takes boxes of at most HAND_BOX.
 BIG_BOX = 0.13
 HAND_BOX = 0.11
+#: the share of the balls and cans an occlusion game slides under a container where it stands
+SLIDE_UNDER = 0.5
 #: |x| (m) of a spot out of the camera's view, beside the table.
 OUT_OF_VIEW = 0.95
 
@@ -282,8 +284,9 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
     Three to six objects (balls, cans, bottles, mugs, cups, bowls, boxes of 9 to 16 cm; balls,
     cans and bottles cover nothing; a cup, mug or bowl stands upright one time in five, and
     then covers nothing either) and six to ten events of: an object covered by a container
-    (carried over it, with other containers near and far; a ball under a mug, cup, bowl or box,
-    a can, a mug or a cup under a box of 13 cm or more), a container carried with what it
+    (carried over it, with other containers near and far, or, half the balls and cans, slid
+    under it where it stands; a ball under a mug, cup, bowl or box, a can, a mug or a cup under
+    a box of 13 cm or more), a container carried with what it
     covers, two containers swapped, a container lifted off what it covers, an object (a ball,
     a can, a bottle, a bowl, a cup or mug that covers nothing, a box of 11 cm or less) grasped
     by a hand, carried
@@ -329,15 +332,22 @@ def occlusion_game(seed: int) -> ScenarioBuilder:
                 if not fits:
                     continue
                 obj = str(rng.choice(fits))
+                # a ball or a can slid under the container where it stands half the time (the
+                # container is carried over it otherwise): which container an object went
+                # under is not always the one nearest to where it was last seen
+                move = "object" if obj in small and rng.random() < SLIDE_UNDER else None
                 if what == "cover_under":
                     b.cover_camera(t, duration=2.6)
-                    b.put_under(t + 0.2, obj, box, duration=2.2)
+                    b.put_under(t + 0.2, obj, box, duration=2.2, move=move)
                     t += 3.4
                 else:
-                    b.put_under(t, obj, box, duration=float(rng.uniform(2.0, 3.0)))
+                    b.put_under(t, obj, box, duration=float(rng.uniform(2.0, 3.0)), move=move)
                     t += 3.2
                 hidden[obj] = box
-                where[box] = where[obj]
+                if move:
+                    where[obj] = where[box]
+                else:
+                    where[box] = where[obj]
             elif what == "carry" and hidden:
                 obj = str(rng.choice(sorted(hidden)))
                 box = hidden[obj]
