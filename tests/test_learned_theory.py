@@ -5,6 +5,7 @@ too.pl included, loaded before it replaces anything, run by the filter; and ``an
 from __future__ import annotations
 
 import json
+import math
 import re
 from pathlib import Path
 
@@ -368,7 +369,7 @@ def test_the_tree_is_learned_from_the_pairs_the_filter_asks_about(tmp_path: Path
         "occluder(b, m):t+1.",                                         # known: asked
         "pos(d):t ~= (0.9, 0.0, 0.03).", "lost_anywhere(d):t.", "pair(d, m):t+1.",  # lost
     ]) + "\n")
-    reach = OnsetReach(0.06, 0.03, 4, {"bowl": OnsetReach(0.2, 0.1, 4)})
+    reach = OnsetReach(0.06, 0.03, 4, kinds={"bowl": OnsetReach(0.2, 0.1, 4)})
     points = read_points([data])
     assert asked(points, reach) == {("a", "w"), ("b", "m"), ("d", "m")}
     (copy,), dropped = asked_data([data], points, reach, tmp_path / "asked")
@@ -426,7 +427,7 @@ def test_a_kind_s_own_reach_decides_whether_it_is_asked(tmp_path: Path) -> None:
     for name, kinds in (("own", {"bowl": OnsetReach(0.25, 0.12, 10)}), ("all", {})):
         path = tmp_path / f"too_{name}.pl"
         path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path,
-                                    reach=OnsetReach(0.1, 0.05, 20, kinds), found=FOUND,
+                                    reach=OnsetReach(0.1, 0.05, 20, kinds=kinds), found=FOUND,
                                     fitted=FITTED, release_program=RELEASE))
         probability[name] = _vanished_under(path, ("ball_1", "ball", (0.0, 0.0, 0.03)),
                                             ("bowl_1", "bowl", (0.2, 0.0, 0.04)))
@@ -561,3 +562,23 @@ def test_without_a_carrier_in_the_data_nothing_is_one(tmp_path: Path, capfd) -> 
     assert program.query("\\+ is_carrier(h)", samples=1, seed=0).probability == 1.0
     assert program.query("\\+ hand_known", samples=1, seed=0).probability == 1.0
     assert "carrier/1" not in capfd.readouterr().err
+
+
+def test_far_out_onsets_do_not_stretch_the_reach(tmp_path: Path) -> None:
+    """Onsets far beyond the others (of objects a particle had lost track of, found again far
+    from where they were last seen) are left out before the quantile, as the grip reach's far
+    events: 14 boxes' onsets within 4 cm and 3 at 24 cm give a reach from the 14."""
+    near = [0.005 * (k + 1) for k in range(8)] + [0.01, 0.015, 0.02, 0.025, 0.03, 0.04]
+    lines = []
+    for k, d in enumerate(near + [0.24, 0.245, 0.25]):
+        lines += [f"pos(a{k}):t ~= (0.0, 0.0, 0.03).", f"pos(o{k}):t+1 ~= ({d}, 0.0, 0.05).",
+                  f"category(o{k}, box).", f"pair(a{k}, o{k}):t+1.", f"occluder(a{k}, o{k}):t+1."]
+    data = tmp_path / "data.pl"
+    data.write_text("\n".join(lines) + "\n")
+    fitted = onset_reach([data], min_onsets=10)
+    kept = sorted(near)
+    q = kept[math.ceil(0.9 * len(kept)) - 1]
+    assert fitted.onsets == 17 and fitted.far_out == 3
+    assert fitted.quantile == pytest.approx(q) and fitted.of("box") == pytest.approx(2 * q)
+    # without the fence the 90 % quantile is one of the far ones
+    assert onset_reach([data], far=float("inf")).quantile == pytest.approx(0.245)

@@ -144,14 +144,15 @@ def theory_text(learned_program: str, header: str, *, base: str | Path,
     body = _program_body(learned_program, OCCLUDER_INTRO) + "\n" + (
         NO_RELEASE if release_program is None else _program_body(release_program, RELEASE_INTRO))
     onset = (f"% The onset reach (m): {QUANTILE:.0%} of the {reach.onsets} onsets in the data "
-             f"were within {reach.quantile:.4g} m; times {MARGIN}.\n" if reach.onsets else
+             f"{_far_out(reach)}were within {reach.quantile:.4g} m; times {MARGIN}.\n"
+             if reach.onsets else
              "% The onset reach (m): NOT FITTED: no onset in the data, too_parameters.pl's "
              "occluder_reach.\n") + f"onset_reach({reach.reach:.4g}).\n"
     if reach.kinds:
         onset += "% The reach of the kinds with onsets enough for one of their own.\n"
     for kind, own in reach.kinds.items():
         onset += (f"onset_reach({kind}, {own.reach:.4g}).  % {own.onsets} onsets, "
-                  f"{QUANTILE:.0%} within {own.quantile:.4g} m\n")
+                  f"{_far_out(own)}{QUANTILE:.0%} within {own.quantile:.4g} m\n")
     return (header + "".join(include(n) for n in BEFORE) + "\n" + parameter_clauses(fitted)
             + ("" if not heights else kind_height_clauses(heights))
             + "\n" + affordance_clauses(found) + "\n" + include(GLUE) + onset + "\n"
@@ -444,13 +445,19 @@ def parameter_table(reach: OnsetReach, base: str | Path) -> str:
     m = re.search(r"^occluder_reach\(([\d.eE+-]+)\)", text, re.M)
     hand = f"{float(m.group(1)):.3g} (`occluder_reach`)" if m else "-"
     rows = "".join(f"| onset reach of a {kind} (m) | {own.reach:.3g} | {hand} | {own.onsets} "
-                   f"onsets, {QUANTILE:.0%} within {own.quantile:.3g} m, times {MARGIN:g} |\n"
-                   for kind, own in reach.kinds.items())
+                   f"onsets, {_far_out(own)}{QUANTILE:.0%} within {own.quantile:.3g} m, times "
+                   f"{MARGIN:g} |\n" for kind, own in reach.kinds.items())
     return ("| parameter | learned | hand-written | fitted from |\n|---|---:|---:|---|\n"
             f"| onset reach (m): how far from where a hidden object was an occluder may start "
             f"hiding it | {reach.reach:.3g} | {hand} | "
-            + (f"{reach.onsets} onsets, {QUANTILE:.0%} within {reach.quantile:.3g} m, times "
-               f"{MARGIN:g} |\n" if reach.onsets else "none: not fitted |\n") + rows)
+            + (f"{reach.onsets} onsets, {_far_out(reach)}{QUANTILE:.0%} within "
+               f"{reach.quantile:.3g} m, times {MARGIN:g} |\n" if reach.onsets
+               else "none: not fitted |\n") + rows)
+
+
+def _far_out(reach: OnsetReach) -> str:
+    """``"(K far out left out) "`` when the fit left K onsets out, else nothing."""
+    return f"({reach.far_out} far out left out) " if reach.far_out else ""
 
 
 def _heaviest(theory: LearnedTheory, k: int = 6) -> list[dict[str, object]]:

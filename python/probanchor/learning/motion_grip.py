@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from probanchor.learning.occlusion_reach import MARGIN
+from probanchor.learning.occlusion_reach import FAR, MARGIN
 
 __all__ = ["FAR", "GATE", "THRESHOLD", "grip", "reach", "rise", "signed_gate", "threshold"]
 
@@ -43,9 +43,6 @@ __all__ = ["FAR", "GATE", "THRESHOLD", "grip", "reach", "rise", "signed_gate", "
 GATE = 0.9
 #: The quantile of a threshold.
 THRESHOLD = 0.1
-#: A reach leaves out events beyond the upper quartile plus this many interquartile ranges
-#: (Tukey's "far out").
-FAR = 3.0
 
 
 def _values(xs: Sequence[float]) -> np.ndarray:
