@@ -111,8 +111,10 @@ pos(A):t+1 ~ gaussian([XO, YO, Z], C) :=
 % (a mug carried behind a box, a container swapped while merged with another in the image).
 % It coasts on with the velocity it had when it vanished, slowing down (coast_keep per frame,
 % so at most 1 / (1 - coast_keep) frames' worth of its last motion: a static object stays),
-% and its belief spreads by wander_var per frame in the table plane; a reappearance then
-% weights the particles by where they had it, and matching finds the particles near it.  One a
+% and its belief spreads per frame in the table plane by wander_var if it was moving as it
+% vanished (at moving_speed or faster), else by rest_var (spread/2 below: an object standing
+% still behind something stays where it stood); a reappearance then weights the particles by
+% where they had it, and matching finds the particles near it.  One a
 % hand has let go of (it has rest_z/1) is on the table, at the height it stood at: a hand may
 % let go a centimetre or two above it, and an object left in the air would be under the grip
 % again as the hand rises, which would take it again.
@@ -123,7 +125,14 @@ pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
     ->  MZ = R
     ;   MZ = Z
     ),
-    wander_var(V), VZ is V / 100.
+    spread(A, V):t+1, VZ is V / 100.
+% A hidden object under nothing coasts while it has been since it vanished moving (as fast as
+% moving_speed or faster then); it rests otherwise.
+coasting(A):t+1 :=
+    hidden(A):t+1, seen(A):t, vel(A):t ~= (VX, VY), moving_speed(S), VX*VX + VY*VY >= S*S.
+coasting(A):t+1 := coasting(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
+spread(A, V):t+1 := coasting(A):t+1, wander_var(V).
+spread(A, V):t+1 := object(A), \+ coasting(A):t+1, rest_var(V).
 % A hand out of view is believed where it was last seen, the same point in every particle, so
 % that when it comes back its position weighs every particle alike (a hand's position says
 % nothing about what hides what).

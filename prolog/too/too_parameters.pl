@@ -14,6 +14,9 @@ lost_var(0.09).             % where an object lost while the camera saw nothing 
                             % (30 cm)^2 around its belief (it may have been moved anywhere)
 follow_var(0.000004).       % jitter of a hidden object that follows its occluder: (2 mm)^2
 wander_var(0.0001).         % how far a hidden object under nothing may move in a frame: (1 cm)^2
+rest_var(0.0001).           % the same for one that was standing still as it vanished (as far:
+                            % the hand-written theory does not tell the two apart)
+moving_speed(0.004).        % a hidden object was moving as it vanished at 4 mm a frame or more
 coast_keep(0.9).            % fraction of its velocity a hidden object under nothing keeps per frame
 follow_keep(0.95).          % fraction of its offset from the occluder's centre kept per frame
 occluder_reach(0.15).       % an occluder is within 15 cm of the object in the table plane ...

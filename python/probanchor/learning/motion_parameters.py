@@ -56,6 +56,9 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
                    "ones)"),
     "wander_var": ("how far such an object may move besides (m²)",
                    "the same fit's variance per step"),
+    "rest_var": ("how far one that stood still as it vanished may move (m²)",
+                 "ML variance per step of how far objects that stood still as they vanished "
+                 "went while hidden"),
     "grip_reach": ("how far (table plane) a hand's grip may be from what it takes (m)",
                    "2 x the largest grasp seen that is not far out (beyond the upper quartile "
                    "+ 3 interquartile ranges)"),
@@ -102,6 +105,7 @@ def fit(samples: MotionSamples, hand: dict[str, float]) -> list[Fitted]:
          lambda: _pair(motion_keep.follow(r["follow"]) if r["follow"]
                        else motion_keep.follow_gaps(r["follow_gap"]))),
         (("coast_keep", "wander_var"), lambda: _pair(_coasting(r))),
+        (("rest_var",), lambda: [motion_keep.rest_gaps(r.get("coast_gap", []))]),
         (("grip_reach", "grip_height", "occluder_rise", "grip_drop"),
          lambda: list(motion_grip.grip(r["grasp"], r["hold"]).values())),
         (("grip_rise",), lambda: [motion_grip.rise(r["carries"])]),
@@ -148,6 +152,8 @@ def parameter_clauses(fitted: Sequence[Fitted]) -> str:
         how = (f"{f.samples:,} samples" if f.samples else
                "NOT FITTED: no samples in the data, too_parameters.pl's value")
         lines.append(f"{f.name}({f.value:.4g}).  % {DESCRIPTIONS[f.name][0]}; {how}")
+    lines.append(f"moving_speed({motion_keep.MOVING:g}).  % (m a frame) what the fits above "
+                 "call moving as it vanished (wander_var) and still (rest_var)")
     return "\n".join(lines) + "\n"
 
 
