@@ -179,6 +179,8 @@ def test_the_learned_parameters_are_within_the_simulator_s_ranges(name: str) -> 
     # coasting puts it by at most the change of its velocity: two frames' worth of the fastest
     # motion (a reversal)
     assert 0.5 < p["coast_keep"] < 1.0 and 0 < p["wander_var"] < (2 * step) ** 2
+    # one that stood still as it vanished stays about where it stood: it strays less
+    assert 0 < p["rest_var"] < p["wander_var"] and p["moving_speed"] < step
     # a hand closes over what it takes: within a few centimetres of it, from above
     assert 0.005 < p["grip_reach"] < 0.15
     assert 0.02 < p["grip_height"] < 0.2 and 0.0 <= p["occluder_rise"] < 0.05
@@ -197,3 +199,22 @@ def test_each_kind_s_height_is_the_median_of_its_perceived_heights() -> None:
     assert kind_heights(s) == {"bottle": (0.2, 20)}
     assert kind_heights(s, least=19) == {"ball": (0.06, 19), "bottle": (0.2, 20)}
     assert "kind_height(bottle, 0.2).  % 20 samples" in kind_height_clauses(kind_heights(s))
+
+
+def test_rest_var_is_the_spread_of_the_objects_that_stood_still_as_they_vanished() -> None:
+    """Gaps of n frames of objects still as they vanished, d ~ N(0, n V + C) per axis, among
+    gaps of objects that moved (which do not count): the maximum-likelihood V and their count."""
+    from probanchor.learning.motion_keep import MOVING, rest_gaps
+
+    rng = np.random.default_rng(4)
+    v, c = 0.002 ** 2, 0.004 ** 2
+    n = rng.integers(1, 60, 4000)
+    d = rng.normal(0.0, 1.0, (4000, 2)) * np.sqrt(n * v + c)[:, None]
+    rows = [[0.0005, -0.001, *d[k], int(n[k])] for k in range(4000)]
+    rows += [[MOVING * 3, 0.0, 0.5, 0.5, 10]] * 50                   # moving: not counted
+    fitted, count = rest_gaps(rows)
+    assert count == 4000
+    # the standard error of V over ~8000 axis-values spread over n: a few per cent
+    assert fitted == pytest.approx(v, rel=0.15)
+    with pytest.raises(ValueError, match="stood still"):
+        rest_gaps([[MOVING * 3, 0.0, 0.1, 0.1, 5]])

@@ -582,3 +582,38 @@ def test_far_out_onsets_do_not_stretch_the_reach(tmp_path: Path) -> None:
     assert fitted.quantile == pytest.approx(q) and fitted.of("box") == pytest.approx(2 * q)
     # without the fence the 90 % quantile is one of the far ones
     assert onset_reach([data], far=float("inf")).quantile == pytest.approx(0.245)
+
+
+def test_a_hidden_object_that_stood_still_rests_and_one_that_moved_coasts(
+        tmp_path: Path) -> None:
+    """A ball hidden under nothing spreads by rest_var a frame if it stood still as it
+    vanished, by wander_var if it was moving (at moving_speed or faster): ten frames later
+    its particles' spread is that of ten steps of its own variance (400 particles)."""
+    from dataclasses import replace
+
+    rest, wander = 0.001 ** 2, 0.01 ** 2
+    fitted = [replace(f, value={"rest_var": rest, "wander_var": wander}.get(f.name, f.value))
+              for f in FITTED]
+    path = tmp_path / "too_learned.pl"
+    path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH, found=FOUND,
+                                fitted=fitted, release_program=RELEASE))
+    assert "moving_speed(" in path.read_text()
+    spread = {}
+    for name, speed in (("still", 0.0), ("moving", 0.01)):
+        f = bridge.Filter(path, particles=400, seed=2, threads=1)
+        actions = ["object(ball_1)", "category(ball_1, ball)", "object(box_1)",
+                   "category(box_1, box)"]
+        box = ["observed(box_1)", "observation(pos(box_1)) ~= (0.5, 0.3, 0.06)"]
+        for k in range(4):
+            f.step([*box, "observed(ball_1)",
+                    f"observation(pos(ball_1)) ~= ({speed * k}, 0.0, 0.03)"], actions=actions)
+        for _ in range(10):
+            f.step(box, actions=actions)
+        xyz, w = f.samples("P", "pos(ball_1):t ~= P")
+        f.close()
+        spread[name] = float(np.sqrt(np.average((xyz[:, 1] - np.average(xyz[:, 1], weights=w))
+                                                ** 2, weights=w)))
+    # the standard deviation of 400 samples' standard deviation: about 1/sqrt(800) of it
+    tolerance = 4 / np.sqrt(800)
+    assert spread["still"] == pytest.approx(np.sqrt(10 * rest), rel=tolerance)
+    assert spread["moving"] == pytest.approx(np.sqrt(10 * wander), rel=tolerance)
