@@ -1,10 +1,10 @@
 /*  too_learned.pl -- the theory of occlusion with rules learned from experience.
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
-    data_truth.pl: 28836 groundings of occluder(A, O):t+1,
-    92 clauses, training log-likelihood -7558.29;
-    and one for released(A):t+1 from 2528 frames a hand held an object
-    (3 clauses, training log-likelihood -78.9072);
+    data_truth.pl: 19876 groundings of occluder(A, O):t+1,
+    112 clauses, training log-likelihood -4505.75;
+    and one for released(A):t+1 from 2486 frames a hand held an object
+    (3 clauses, training log-likelihood -74.478);
     search seed 0.
     Command: anchoring learn-theory out/learn/data_truth.pl --seed 0 --out prolog/too_learned.pl --plots docs/images
     The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
@@ -19,28 +19,30 @@
 % motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
 % fractions, quantiles for reaches and heights, Laplace's rule for a probability);
 % variances per axis in square metres, one step is one camera frame.
-obs_var(5.212e-06).  % the measurement noise of a perceived position (m², per axis); 105,130 samples
-motion_var(2.935e-05).  % how far a perceived object moves in a frame (m², per axis); 121,605 samples
-reappear_var(0.00201).  % where a hidden object is seen again, around its belief (m²); 1,358 samples
-lost_var(0.07289).  % the same for an object lost while the camera saw nothing (m²); 8,202 samples
-follow_keep(0.8715).  % the fraction of its offset from its occluder a hidden object keeps; 13,933 samples
-follow_var(1.687e-05).  % the jitter of that offset per frame (m²); 13,933 samples
-coast_keep(0.8858).  % the fraction of its velocity a hidden object under nothing keeps; 219 samples
-wander_var(0.0001852).  % how far such an object may move besides (m²); 219 samples
-grip_reach(0.06716).  % how far (table plane) a hand's grip may be from what it takes (m); 49 samples
-grip_height(0.1155).  % how far above its top (m); 49 samples
-occluder_rise(0.006988).  % how far below its centre (m); 49 samples
-grip_drop(0.02061).  % how far what a hand holds is below its grip (m); 2,521 samples
-grip_rise(0.001076).  % how far a hand's grip rises in a frame when it lifts (m); 728 samples
+obs_var(5.523e-06).  % the measurement noise of a perceived position (m², per axis); 105,839 samples
+motion_var(2.961e-05).  % how far a perceived object moves in a frame (m², per axis); 122,418 samples
+reappear_var(0.002192).  % where a hidden object is seen again, around its belief (m²); 1,267 samples
+lost_var(0.07156).  % the same for an object lost while the camera saw nothing (m²); 8,191 samples
+follow_keep(0.9262).  % the fraction of its offset from its occluder a hidden object keeps; 15,037 samples
+follow_var(1.441e-05).  % the jitter of that offset per frame (m²); 15,037 samples
+coast_keep(0.8864).  % the fraction of its velocity a hidden object under nothing keeps; 237 samples
+wander_var(0.0001671).  % how far such an object may move besides (m²); 237 samples
+rest_var(6.69e-06).  % how far one that stood still as it vanished may move (m²); 928 samples
+grip_reach(0.1482).  % how far (table plane) a hand's grip may be from what it takes (m); 52 samples
+grip_height(0.1178).  % how far above its top (m); 52 samples
+occluder_rise(0.009905).  % how far below its centre (m); 52 samples
+grip_drop(0.02111).  % how far what a hand holds is below its grip (m); 2,484 samples
+grip_rise(0.001216).  % how far a hand's grip rises in a frame when it lifts (m); 717 samples
+moving_speed(0.004).  % (m a frame) what the fits above call moving as it vanished (wander_var) and still (rest_var)
 % The height of each kind (m): the median of its perceived heights; a grip's height
 % over an object is measured from its top (too/too_motion.pl).
-kind_height(ball, 0.0593).  % 1,167 samples
-kind_height(bottle, 0.2127).  % 701 samples
-kind_height(bowl, 0.0869).  % 749 samples
-kind_height(box, 0.1338).  % 1,915 samples
-kind_height(can, 0.1232).  % 543 samples
-kind_height(cup, 0.1044).  % 1,497 samples
-kind_height(mug, 0.1024).  % 1,630 samples
+kind_height(ball, 0.05905).  % 1,214 samples
+kind_height(bottle, 0.2128).  % 729 samples
+kind_height(bowl, 0.0868).  % 701 samples
+kind_height(box, 0.134).  % 1,764 samples
+kind_height(can, 0.1232).  % 547 samples
+kind_height(cup, 0.1037).  % 1,565 samples
+kind_height(mug, 0.1026).  % 1,671 samples
 
 % ------------------------------------------------------------------ learned affordances
 % Read from the data (python/probanchor/learning/occlusion_affordances.py): the share
@@ -52,23 +54,25 @@ kind_height(mug, 0.1024).  % 1,630 samples
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.001874).  % 13,339
-hides(bottle, 9.749e-05).  % 10,255
-hides(bowl, 0.1675).  % 11,034
-hides(box, 0.2377).  % 30,454
-hides(can, 0.0001273).  % 7,852
-hides(cup, 0.08995).  % 18,875
-hides(mug, 0.05801).  % 20,355
-hides(skin, 0.4886).  % 4,513
-hidden_share(ball, 0.2244).  % 45,964
-hidden_share(bottle, 0.14).  % 1,584
-hidden_share(bowl, 0.0123).  % 5,363
-hidden_share(box, 0.02792).  % 8,522
-hidden_share(can, 0.2177).  % 4,790
-hidden_share(cup, 0.1359).  % 11,782
-hidden_share(mug, 0.06116).  % 11,689
-hidden_share(skin, 3.706e-05).  % 26,983
-carries(skin, 0.9965).  % 1,154
+hides(ball, 0.0007706).  % 15,571
+hides(bottle, 8.407e-05).  % 11,893
+hides(bowl, 0.1579).  % 12,145
+hides(box, 0.2196).  % 27,227
+hides(can, 0.0001241).  % 8,057
+hides(cup, 0.1005).  % 20,897
+hides(mug, 0.1132).  % 21,959
+hides(skin, 0.4984).  % 4,689
+hidden_share(ball, 0.2288).  % 45,935
+hidden_share(bottle, 0.1527).  % 2,152
+hidden_share(bowl, 0.05359).  % 2,965
+hidden_share(box, 0.02287).  % 9,355
+hidden_share(can, 0.1396).  % 4,476
+hidden_share(cup, 0.1611).  % 13,031
+hidden_share(mug, 0.06839).  % 13,085
+hidden_share(skin, 3.181e-05).  % 31,439
+carries(bowl, 0.5).  % 2
+carries(box, 0.25).  % 2
+carries(skin, 0.9983).  % 1,170
 carrier(skin).
 can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
 is_carrier(O) := category(O, C), carrier(C).
@@ -76,12 +80,12 @@ hand_known := object(O), is_carrier(O).
 can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= 0.01.
 
 :- include('too/too_learned_glue.pl').
-% The onset reach (m): 90% of the 62 onsets in the data were within 0.1167 m; times 2.0.
-onset_reach(0.2335).
+% The onset reach (m): 90% of the 61 onsets in the data (6 far out left out) were within 0.07701 m; times 2.0.
+onset_reach(0.154).
 % The reach of the kinds with onsets enough for one of their own.
-onset_reach(bowl, 0.2396).  % 10 onsets, 90% within 0.1198 m
-onset_reach(box, 0.2169).  % 34 onsets, 90% within 0.1084 m
-onset_reach(mug, 0.0507).  % 10 onsets, 90% within 0.02535 m
+onset_reach(box, 0.0881).  % 35 onsets, (5 far out left out) 90% within 0.04405 m
+onset_reach(cup, 0.0632).  % 10 onsets, (2 far out left out) 90% within 0.03162 m
+onset_reach(mug, 0.0549).  % 10 onsets, (1 far out left out) 90% within 0.02745 m
 
 % The learned rules (ddc learn): a distributional logic tree for occluder/2 (each path from its
 % root to a leaf is one clause of the tree), with the background knowledge it reads.
@@ -127,432 +131,524 @@ moved(O):t+1 ~ val(M) :=
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 92 clauses, 28836 groundings, training log-likelihood -7558.29 (mean -0.118961 per grounding), 144 parameters.
+% occluder(Occluded, Occluder):t+1: 112 clauses, 19876 groundings, training log-likelihood -4505.75 (mean -0.116044 per grounding), 160 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   kind(Occluder):t+1 ~= ball
         ->  (   moved(Occluder):t+1 ~= Moved
             ->  (   Moved < 0.004
-                ->  % n = 662 (weight 2870), log-likelihood -0.999478, finite
-                    P1 = 0.000348189,
-                    P2 = 0.999651811
-                ;   (   occluded_by(Occluded, Occluder):t
-                    ->  % n = 16 (weight 20), log-likelihood -0.9304, finite
-                        P1 = 0.9545455,
-                        P2 = 0.0454545
-                    ;   (   seen(Occluder):t
-                        ->  % n = 593 (weight 729), log-likelihood -0.997947, finite
-                            P1 = 0.00136799,
-                            P2 = 0.99863201
-                        ;   % n = 58 (weight 66), log-likelihood -11.7294, logistic
-                            logistic([Distance], [-22.6013, 0.865311], P1),
-                            P2 is 1-P1
-                        )
-                    )
+                ->  % n = 451 (weight 2119), log-likelihood -0.999293, finite
+                    P1 = 0.000471476,
+                    P2 = 0.999528524
+                ;   % n = 412 (weight 484), log-likelihood -31.2526, logistic
+                    logistic([Distance], [-23.2868, -0.487393], P1),
+                    P2 is 1-P1
                 )
             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-40.1325, -0.561127], P1),
+                logistic([Distance], [-28.7269, -2.24759], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= bottle
-        ->  % n = 1473 (weight 6701), log-likelihood -0.999776, finite
-            P1 = 0.000149187,
-            P2 = 0.999850813
+        ->  % n = 439 (weight 1687), log-likelihood -0.999112, finite
+            P1 = 0.000592066,
+            P2 = 0.999407934
         ;   kind(Occluder):t+1 ~= bowl
-        ->  (   occluded_by(Occluded, Occluder):t
-            ->  (   rise(Occluded, Occluder):t+1 ~= Rise
-                ->  (   Rise < 0.0
-                    ->  % n = 149 (weight 489), log-likelihood -0.996942, finite
-                        P1 = 0.99796334,
-                        P2 = 0.00203666
-                    ;   Rise < 0.1
-                    ->  % n = 466 (weight 1310), log-likelihood -8.48311, finite
-                        P1 = 0.99847561,
-                        P2 = 0.00152439
-                    ;   % n = 42 (weight 46), log-likelihood -21.2821, finite
-                        P1 = 0.8125,
-                        P2 = 0.1875
+        ->  (   kind(Occluded):t+1 ~= ball
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  (   rise(Occluded, Occluder):t+1 ~= Rise
+                    ->  (   Rise < 0.0
+                        ->  % n = 51 (weight 167), log-likelihood -0.991101, finite
+                            P1 = 0.99408284,
+                            P2 = 0.00591716
+                        ;   Rise < 0.1
+                        ->  % n = 517 (weight 1705), log-likelihood -0.999121, finite
+                            P1 = 0.999414177,
+                            P2 = 0.000585823
+                        ;   % n = 29 (weight 45), log-likelihood -19.4852, finite
+                            P1 = 0.829787,
+                            P2 = 0.170213
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                        P1 = 0.99583116,
+                        P2 = 0.00416884
                     )
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                    P1 = 0.99458581,
-                    P2 = 0.00541419
-                )
-            ;   (   kind(Occluded):t+1 ~= ball
-                ->  (   rise(Occluded, Occluder):t+1 ~= Rise4
+                ;   (   rise(Occluded, Occluder):t+1 ~= Rise4
                     ->  (   Rise4 < 0.0
-                        ->  (   moved(Occluder):t+1 ~= Moved3
-                            ->  (   Moved3 < 0.004
-                                ->  % n = 102 (weight 274), log-likelihood -0.27036, logistic
-                                    logistic([Distance], [-1921.13, 46.8458], P1),
+                        ->  % n = 132 (weight 180), log-likelihood -1.75438, logistic
+                            logistic([Distance], [-144.301, 10.5719], P1),
+                            P2 is 1-P1
+                        ;   Rise4 < 0.1
+                        ->  (   seen(Occluder):t
+                            ->  (   moved(Occluder):t+1 ~= Moved3
+                                ->  (   Moved3 < 0.004
+                                    ->  % n = 812 (weight 1160), log-likelihood -769.427, finite
+                                        P1 = 0.621343,
+                                        P2 = 0.378657
+                                    ;   % n = 344 (weight 388), log-likelihood -243.593, logistic
+                                        logistic([Distance], [-16.0838, 0.94355], P1),
+                                        P2 is 1-P1
+                                    )
+                                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                    logistic([Distance], [-8.66113, 0.71555], P1),
                                     P2 is 1-P1
-                                ;   % n = 55 (weight 107), log-likelihood -64.1669, logistic
-                                    logistic([Distance], [14.8954, -1.52019], P1),
-                                    P2 is 1-P1
+                                )
+                            ;   % n = 31 (weight 47), log-likelihood -13.7576, finite
+                                P1 = 0.102041,
+                                P2 = 0.897959
+                            )
+                        ;   (   moved(Occluder):t+1 ~= Moved6
+                            ->  (   Moved6 < 0.004
+                                ->  % n = 18, log-likelihood -0.923279, finite
+                                    P1 = 0.95,
+                                    P2 = 0.05
+                                ;   % n = 31, log-likelihood -21.0841, finite
+                                    P1 = 0.575758,
+                                    P2 = 0.424242
                                 )
                             ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                                P1 = 0.263708,
-                                P2 = 0.736292
+                                P1 = 0.72549,
+                                P2 = 0.27451
                             )
-                        ;   Rise4 < 0.1
-                        ->  (   moved(Occluder):t+1 ~= Moved6
-                            ->  (   Moved6 < 0.004
-                                ->  % n = 1073 (weight 2437), log-likelihood -507.443, logistic
-                                    logistic([Distance], [-45.5859, 2.22777], P1),
-                                    P2 is 1-P1
-                                ;   % n = 570 (weight 702), log-likelihood -306.951, logistic
-                                    logistic([Distance], [-20.9486, 1.53693], P1),
-                                    P2 is 1-P1
-                                )
-                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Distance], [-31.9267, 1.90565], P1),
-                                P2 is 1-P1
-                            )
-                        ;   % n = 154 (weight 182), log-likelihood -71.8074, logistic
-                            logistic([Distance], [-22.4684, 0.724655], P1),
-                            P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-26.5943, 1.21298], P1),
+                        logistic([Distance], [-12.8453, 0.936269], P1),
                         P2 is 1-P1
                     )
-                ;   kind(Occluded):t+1 ~= bottle
-                ->  % n = 31 (weight 47), log-likelihood -0.969106, finite
-                    P1 = 0.0204082,
-                    P2 = 0.9795918
-                ;   kind(Occluded):t+1 ~= bowl
-                ->  % n = 55 (weight 211), log-likelihood -0.992943, finite
-                    P1 = 0.00469484,
-                    P2 = 0.99530516
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 168 (weight 376), log-likelihood -0.996027, finite
-                    P1 = 0.0026455,
-                    P2 = 0.9973545
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 54 (weight 114), log-likelihood -0.987019, finite
-                    P1 = 0.00862069,
-                    P2 = 0.99137931
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 362 (weight 1054), log-likelihood -0.998579, finite
-                    P1 = 0.00094697,
-                    P2 = 0.99905303
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 384 (weight 920), log-likelihood -0.998372, finite
-                    P1 = 0.0010846,
-                    P2 = 0.9989154
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 199 (weight 531), log-likelihood -0.997183, finite
-                    P1 = 0.00187617,
-                    P2 = 0.99812383
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-35.3952, 1.10155], P1),
-                    P2 is 1-P1
                 )
+            ;   kind(Occluded):t+1 ~= bottle
+            ->  % n = 22 (weight 30), log-likelihood -0.952461, finite
+                P1 = 0.03125,
+                P2 = 0.96875
+            ;   kind(Occluded):t+1 ~= bowl
+            ->  % n = 1 (weight 5), too few groundings for a model of its own: the parent's model, log-likelihood -5.69665, logistic
+                logistic([Distance], [-36.1291, 2.00012], P1),
+                P2 is 1-P1
+            ;   kind(Occluded):t+1 ~= box
+            ->  % n = 59 (weight 183), log-likelihood -0.991872, finite
+                P1 = 0.00540541,
+                P2 = 0.99459459
+            ;   kind(Occluded):t+1 ~= can
+            ->  % n = 30 (weight 38), log-likelihood -0.962077, finite
+                P1 = 0.025,
+                P2 = 0.975
+            ;   kind(Occluded):t+1 ~= cup
+            ->  % n = 206 (weight 422), log-likelihood -0.996459, finite
+                P1 = 0.00235849,
+                P2 = 0.99764151
+            ;   kind(Occluded):t+1 ~= mug
+            ->  % n = 174 (weight 598), log-likelihood -0.997498, finite
+                P1 = 0.00166667,
+                P2 = 0.99833333
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 7 (weight 19), log-likelihood -0.927013, finite
+                P1 = 0.047619,
+                P2 = 0.952381
+            ;   \+ kind(Occluded):t+1 ~= _
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-36.1291, 2.00012], P1),
+                P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= box
         ->  (   kind(Occluded):t+1 ~= ball
             ->  (   occluded_by(Occluded, Occluder):t
                 ->  (   moved(Occluder):t+1 ~= Moved9
                     ->  (   Moved9 < 0.004
-                        ->  % n = 912 (weight 4556), log-likelihood -9.73061, finite
-                            P1 = 0.999561211,
-                            P2 = 0.000438789
+                        ->  % n = 515 (weight 2575), log-likelihood -0.999418, finite
+                            P1 = 0.999611952,
+                            P2 = 0.000388048
                         ;   (   lift(Occluder):t+1 ~= Lift
-                            ->  % n = 552 (weight 724), log-likelihood -77.9504, logistic
-                                logistic([Distance, Lift], [75.1704, -79.3579, 3.22324], P1),
+                            ->  % n = 743 (weight 1011), log-likelihood -64.1959, logistic
+                                logistic([Distance, Lift], [354.507, -64.117, 2.68566], P1),
                                 P2 is 1-P1
-                            ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                                P1 = 0.9669421,
-                                P2 = 0.0330579
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Distance], [429.552, 2.17211], P1),
+                                P2 is 1-P1
                             )
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                        P1 = 0.99526694,
-                        P2 = 0.00473306
+                        P1 = 0.99386845,
+                        P2 = 0.00613155
                     )
-                ;   (   moved(Occluder):t+1 ~= Moved12
-                    ->  (   Moved12 < 0.004
-                        ->  % n = 3428 (weight 6100), log-likelihood -2166.82, logistic
-                            logistic([Distance], [-34.2214, 1.69196], P1),
-                            P2 is 1-P1
-                        ;   (   rise(Occluded, Occluder):t+1 ~= Rise8
-                            ->  (   Rise8 < 0.0
-                                ->  % n = 4, too few groundings for a model of its own: the parent's model, log-likelihood -0.45361, logistic
-                                    logistic([Distance], [-17.6837, 0.955888], P1),
-                                    P2 is 1-P1
-                                ;   Rise8 < 0.1
-                                ->  % n = 999 (weight 1123), log-likelihood -602.52, logistic
-                                    logistic([Distance], [-16.2103, 1.08424], P1),
-                                    P2 is 1-P1
-                                ;   % n = 293 (weight 305), log-likelihood -56.0366, logistic
-                                    logistic([Distance], [-36.4905, 0.494207], P1),
+                ;   (   lost_anywhere(Occluded):t
+                    ->  (   seen(Occluder):t
+                        ->  % n = 38 (weight 190), log-likelihood -0.992169, finite
+                            P1 = 0.00520833,
+                            P2 = 0.99479167
+                        ;   % n = 15, log-likelihood -9.56045, finite
+                            P1 = 0.352941,
+                            P2 = 0.647059
+                        )
+                    ;   (   rise(Occluded, Occluder):t+1 ~= Rise8
+                        ->  (   Rise8 < 0.0
+                            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Distance], [-23.7261, 1.59914], P1),
+                                P2 is 1-P1
+                            ;   Rise8 < 0.1
+                            ->  (   moved(Occluder):t+1 ~= Moved12
+                                ->  (   Moved12 < 0.004
+                                    ->  % n = 1882 (weight 2298), log-likelihood -1179.27, logistic
+                                        logistic([Distance], [-21.4609, 1.73224], P1),
+                                        P2 is 1-P1
+                                    ;   % n = 523 (weight 547), log-likelihood -354.308, logistic
+                                        logistic([Distance], [-17.2971, 1.02005], P1),
+                                        P2 is 1-P1
+                                    )
+                                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                    logistic([Distance], [-22.1523, 1.62458], P1),
                                     P2 is 1-P1
                                 )
-                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Distance], [-17.6837, 0.955888], P1),
+                            ;   % n = 78 (weight 86), log-likelihood -35.4303, logistic
+                                logistic([Distance], [-47.9994, 0.203861], P1),
                                 P2 is 1-P1
                             )
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-23.7261, 1.59914], P1),
+                            P2 is 1-P1
                         )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-28.3923, 1.54046], P1),
-                        P2 is 1-P1
                     )
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 47 (weight 103), log-likelihood -0.985653, finite
-                P1 = 0.00952381,
-                P2 = 0.99047619
+            ->  % n = 15 (weight 23), log-likelihood -0.938906, finite
+                P1 = 0.04,
+                P2 = 0.96
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 112 (weight 332), log-likelihood -0.995503, finite
-                P1 = 0.00299401,
-                P2 = 0.99700599
+            ->  % n = 27 (weight 63), log-likelihood -0.976764, finite
+                P1 = 0.0153846,
+                P2 = 0.9846154
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 268 (weight 992), log-likelihood -0.99849, finite
-                P1 = 0.00100604,
-                P2 = 0.99899396
+            ->  % n = 196 (weight 696), log-likelihood -0.99785, finite
+                P1 = 0.00143266,
+                P2 = 0.99856734
             ;   kind(Occluded):t+1 ~= can
-            ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
-                ->  (   Rise12 < 0.0
-                    ->  (   lift(Occluder):t+1 ~= Lift2
-                        ->  % n = 139 (weight 207), log-likelihood -4.41698, logistic
-                            logistic([Distance, Lift2], [-335.196, -635.573, 6.32556], P1),
-                            P2 is 1-P1
-                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-134.678, 4.55349], P1),
+            ->  (   moved(Occluder):t+1 ~= Moved15
+                ->  (   Moved15 < 0.004
+                    ->  % n = 507 (weight 887), log-likelihood -0.998312, finite
+                        P1 = 0.99887514,
+                        P2 = 0.00112486
+                    ;   (   occluded_by(Occluded, Occluder):t
+                        ->  % n = 55 (weight 79), log-likelihood -12.8734, finite
+                            P1 = 0.9506173,
+                            P2 = 0.0493827
+                        ;   % n = 102 (weight 114), log-likelihood -37.0748, logistic
+                            logistic([Distance], [-86.6373, 3.38713], P1),
                             P2 is 1-P1
                         )
-                    ;   Rise12 < 0.1
-                    ->  % n = 779 (weight 1339), log-likelihood -31.9967, logistic
-                        logistic([Distance], [-79.8536, 6.23555], P1),
-                        P2 is 1-P1
-                    ;   % n = 27 (weight 35), log-likelihood -0.958964, finite
-                        P1 = 0.027027,
-                        P2 = 0.972973
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-78.9292, 4.90099], P1),
+                    logistic([Distance], [-106.827, 5.24125], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= cup
-            ->  (   moved(Occluder):t+1 ~= Moved15
-                ->  (   Moved15 < 0.004
+            ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
+                ->  (   Rise12 < 0.0
+                    ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance], [-75.1297, 4.59196], P1),
+                        P2 is 1-P1
+                    ;   Rise12 < 0.1
                     ->  (   lost_anywhere(Occluded):t
-                        ->  % n = 6 (weight 30), log-likelihood -0.952461, finite
-                            P1 = 0.03125,
-                            P2 = 0.96875
-                        ;   (   seen(Occluded):t
-                            ->  % n = 19, log-likelihood -0.927013, finite
-                                P1 = 0.047619,
-                                P2 = 0.952381
-                            ;   % n = 1518 (weight 2962), log-likelihood -242.426, logistic
-                                logistic([Distance], [-327.108, 16.1725], P1),
+                        ->  % n = 8 (weight 32), log-likelihood -0.566375, logistic
+                            logistic([Distance], [-1656.49, 74.8099], P1),
+                            P2 is 1-P1
+                        ;   (   moved(Occluder):t+1 ~= Moved18
+                            ->  (   Moved18 < 0.004
+                                ->  % n = 1393 (weight 2517), log-likelihood -339.179, logistic
+                                    logistic([Distance], [-95.6384, 5.90576], P1),
+                                    P2 is 1-P1
+                                ;   (   occluded_by(Occluded, Occluder):t
+                                    ->  % n = 159 (weight 191), log-likelihood -15.5665, finite
+                                        P1 = 0.9792746,
+                                        P2 = 0.0207254
+                                    ;   % n = 95 (weight 107), log-likelihood -73.1122, finite
+                                        P1 = 0.431193,
+                                        P2 = 0.568807
+                                    )
+                                )
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Distance], [-73.2977, 4.78126], P1),
                                 P2 is 1-P1
                             )
                         )
-                    ;   % n = 277 (weight 349), log-likelihood -121.678, logistic
-                        logistic([Distance], [-32.7242, 2.2475], P1),
-                        P2 is 1-P1
+                    ;   % n = 24 (weight 28), log-likelihood -9.62223, finite
+                        P1 = 0.133333,
+                        P2 = 0.866667
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-69.8903, 4.74906], P1),
+                    logistic([Distance], [-75.1297, 4.59196], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 371 (weight 1179), log-likelihood -0.998729, finite
-                P1 = 0.00084674,
-                P2 = 0.99915326
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 95 (weight 335), log-likelihood -7.11504, finite
+                    P1 = 0.99406528,
+                    P2 = 0.00593472
+                ;   (   lift(Occluder):t+1 ~= Lift2
+                    ->  % n = 256 (weight 640), log-likelihood -222.623, logistic
+                        logistic([Distance, Lift2], [-57.2976, -297.838, -0.134059], P1),
+                        P2 is 1-P1
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance], [-57.8606, -0.100422], P1),
+                        P2 is 1-P1
+                    )
+                )
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 492 (weight 1504), log-likelihood -0.999004, finite
-                P1 = 0.000664011,
-                P2 = 0.999335989
+            ->  % n = 281 (weight 965), log-likelihood -0.998448, finite
+                P1 = 0.00103413,
+                P2 = 0.99896587
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-47.9434, 2.74957], P1),
+                logistic([Distance], [-59.0331, 2.86735], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= can
-        ->  % n = 886 (weight 3010), log-likelihood -0.999502, finite
-            P1 = 0.000332005,
-            P2 = 0.999667995
+        ->  % n = 374 (weight 1406), log-likelihood -0.998934, finite
+            P1 = 0.000710227,
+            P2 = 0.999289773
         ;   kind(Occluder):t+1 ~= cup
         ->  (   kind(Occluded):t+1 ~= ball
-            ->  (   occluded_by(Occluded, Occluder):t
-                ->  (   moved(Occluder):t+1 ~= Moved18
-                    ->  (   Moved18 < 0.004
-                        ->  % n = 257 (weight 1281), log-likelihood -8.46069, finite
-                            P1 = 0.99844115,
-                            P2 = 0.00155885
-                        ;   % n = 289 (weight 413), log-likelihood -26.2951, logistic
-                            logistic([Distance], [434.903, 1.86245], P1),
-                            P2 is 1-P1
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                        P1 = 0.99410377,
-                        P2 = 0.00589623
-                    )
-                ;   (   moved(Occluder):t+1 ~= Moved21
-                    ->  (   Moved21 < 0.004
-                        ->  % n = 1807 (weight 4143), log-likelihood -1317.49, logistic
-                            logistic([Distance], [-25.0743, 1.86791], P1),
-                            P2 is 1-P1
-                        ;   % n = 1063 (weight 1203), log-likelihood -547.294, logistic
-                            logistic([Distance], [-19.1498, 1.58826], P1),
+            ->  (   seen(Occluder):t
+                ->  (   lift(Occluder):t+1 ~= Lift4
+                    ->  (   rise(Occluded, Occluder):t+1 ~= Rise16
+                        ->  (   Rise16 < 0.0
+                            ->  % n = 62 (weight 182), log-likelihood -0.991828, finite
+                                P1 = 0.99456522,
+                                P2 = 0.00543478
+                            ;   Rise16 < 0.1
+                            ->  % n = 1813 (weight 3317), log-likelihood -72.7575, logistic
+                                logistic([Distance, Lift4], [-214.809, -773.311, 8.17447], P1),
+                                P2 is 1-P1
+                            ;   (   moved(Occluder):t+1 ~= Moved21
+                                ->  (   Moved21 < 0.004
+                                    ->  % n = 6 (weight 14), log-likelihood -0.903539, finite
+                                        P1 = 0.9375,
+                                        P2 = 0.0625
+                                    ;   % n = 22, log-likelihood -15.2492, finite
+                                        P1 = 0.5,
+                                        P2 = 0.5
+                                    )
+                                ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                                    P1 = 0.684211,
+                                    P2 = 0.315789
+                                )
+                            )
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance, Lift4], [-180.562, -327.611, 6.60674], P1),
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-23.6162, 1.83253], P1),
+                        logistic([Distance], [-162.905, 5.88982], P1),
                         P2 is 1-P1
                     )
+                ;   % n = 14 (weight 18), log-likelihood -12.3664, finite
+                    P1 = 0.45,
+                    P2 = 0.55
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 37 (weight 129), log-likelihood -0.988511, finite
-                P1 = 0.00763359,
-                P2 = 0.99236641
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-121.38, 4.35636], P1),
+                P2 is 1-P1
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 80 (weight 196), log-likelihood -0.992407, finite
-                P1 = 0.00505051,
-                P2 = 0.99494949
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-121.38, 4.35636], P1),
+                P2 is 1-P1
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 138 (weight 438), log-likelihood -0.996587, finite
-                P1 = 0.00227273,
-                P2 = 0.99772727
+            ->  % n = 32 (weight 132), log-likelihood -0.988769, finite
+                P1 = 0.00746269,
+                P2 = 0.99253731
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 623 (weight 1535), log-likelihood -0.999024, finite
-                P1 = 0.000650618,
-                P2 = 0.999349382
+            ->  % n = 1, too few groundings for a model of its own: the parent's model, log-likelihood -0.0831746, logistic
+                logistic([Distance], [-121.38, 4.35636], P1),
+                P2 is 1-P1
             ;   kind(Occluded):t+1 ~= cup
-            ->  % n = 143 (weight 351), log-likelihood -0.995745, finite
-                P1 = 0.00283286,
-                P2 = 0.99716714
+            ->  % n = 7 (weight 27), log-likelihood -0.947466, finite
+                P1 = 0.0344828,
+                P2 = 0.9655172
             ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 181 (weight 657), log-likelihood -0.997722, finite
-                P1 = 0.00151745,
-                P2 = 0.99848255
+            ->  % n = 29 (weight 73), log-likelihood -0.97988, finite
+                P1 = 0.0133333,
+                P2 = 0.9866667
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 211 (weight 699), log-likelihood -0.997859, finite
-                P1 = 0.00142653,
-                P2 = 0.99857347
+            ->  % n = 287 (weight 931), log-likelihood -0.998392, finite
+                P1 = 0.00107181,
+                P2 = 0.99892819
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-29.386, 2.02376], P1),
+                logistic([Distance], [-121.38, 4.35636], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= mug
-        ->  (   seen(Occluded):t
-            ->  % n = 18, log-likelihood -11.4683, finite
-                P1 = 0.35,
-                P2 = 0.65
-            ;   (   lift(Occluder):t+1 ~= Lift4
-                ->  % n = 1821 (weight 3325), log-likelihood -299.634, logistic
-                    logistic([Distance, Lift4], [-115.462, -196.223, 5.14432], P1),
-                    P2 is 1-P1
+        ->  (   kind(Occluded):t+1 ~= ball
+            ->  (   lift(Occluder):t+1 ~= Lift6
+                ->  (   occluded_by(Occluded, Occluder):t
+                    ->  % n = 637 (weight 2473), log-likelihood -14.0731, logistic
+                        logistic([Distance, Lift6], [274.967, -993.035, 8.08215], P1),
+                        P2 is 1-P1
+                    ;   (   moved(Occluder):t+1 ~= Moved24
+                        ->  (   Moved24 < 0.004
+                            ->  (   seen(Occluder):t
+                                ->  % n = 1316 (weight 1348), log-likelihood -85.976, logistic
+                                    logistic([Distance, Lift6], [616.21, 580.42, -3.97792], P1),
+                                    P2 is 1-P1
+                                ;   % n = 7 (weight 11), log-likelihood -7.58018, finite
+                                    P1 = 0.538462,
+                                    P2 = 0.461538
+                                )
+                            ;   % n = 149 (weight 153), log-likelihood -62.2485, logistic
+                                logistic([Distance, Lift6], [-84.9294, -212.941, 3.35532], P1),
+                                P2 is 1-P1
+                            )
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance, Lift6], [-46.6116, -265.832, 3.63862], P1),
+                            P2 is 1-P1
+                        )
+                    )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-109.756, 4.96508], P1),
+                    logistic([Distance], [-73.555, 4.50654], P1),
                     P2 is 1-P1
                 )
+            ;   kind(Occluded):t+1 ~= bottle
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-86.0151, 4.29917], P1),
+                P2 is 1-P1
+            ;   kind(Occluded):t+1 ~= bowl
+            ->  % n = 3 (weight 15), log-likelihood -0.0903584, logistic
+                logistic([Distance], [-47.2191, 4.733], P1),
+                P2 is 1-P1
+            ;   kind(Occluded):t+1 ~= box
+            ->  % n = 11 (weight 43), log-likelihood -0.966333, finite
+                P1 = 0.0222222,
+                P2 = 0.9777778
+            ;   kind(Occluded):t+1 ~= can
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-86.0151, 4.29917], P1),
+                P2 is 1-P1
+            ;   kind(Occluded):t+1 ~= cup
+            ->  % n = 13, log-likelihood -0.896907, finite
+                P1 = 0.0666667,
+                P2 = 0.9333333
+            ;   kind(Occluded):t+1 ~= mug
+            ->  % n = 94 (weight 214), log-likelihood -0.993041, finite
+                P1 = 0.00462963,
+                P2 = 0.99537037
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 336 (weight 1132), log-likelihood -0.998677, finite
+                P1 = 0.000881834,
+                P2 = 0.999118166
+            ;   \+ kind(Occluded):t+1 ~= _
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-86.0151, 4.29917], P1),
+                P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= skin
         ->  (   kind(Occluded):t+1 ~= ball
             ->  (   occluded_by(Occluded, Occluder):t
-                ->  % n = 220 (weight 284), log-likelihood -6.94882, finite
-                    P1 = 0.99300699,
-                    P2 = 0.00699301
-                ;   % n = 663 (weight 723), log-likelihood -208.904, logistic
-                    logistic([Distance], [-30.3519, 2.36453], P1),
+                ->  % n = 321 (weight 413), log-likelihood -7.32547, finite
+                    P1 = 0.99518072,
+                    P2 = 0.00481928
+                ;   % n = 583 (weight 635), log-likelihood -267.337, logistic
+                    logistic([Distance], [-35.5707, 2.42714], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  (   occluded_by(Occluded, Occluder):t
-                ->  % n = 150 (weight 214), log-likelihood -15.911, finite
-                    P1 = 0.9814815,
-                    P2 = 0.0185185
-                ;   (   moved(Occluder):t+1 ~= Moved24
-                    ->  (   Moved24 < 0.004
-                        ->  % n = 57, log-likelihood -0.974383, finite
-                            P1 = 0.9830508,
-                            P2 = 0.0169492
-                        ;   % n = 140 (weight 144), log-likelihood -69.4997, finite
-                            P1 = 0.808219,
-                            P2 = 0.191781
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-13.1544, 2.46657], P1),
+            ->  (   rise(Occluded, Occluder):t+1 ~= Rise20
+                ->  (   Rise20 < 0.0
+                    ->  % n = 2, too few groundings for a model of its own: the parent's model, log-likelihood -2.22243, logistic
+                        logistic([Distance], [-19.7561, 3.27229], P1),
                         P2 is 1-P1
+                    ;   Rise20 < 0.1
+                    ->  % n = 169 (weight 209), log-likelihood -15.0925, logistic
+                        logistic([Distance], [-124.785, 4.49506], P1),
+                        P2 is 1-P1
+                    ;   (   occluded_by(Occluded, Occluder):t
+                        ->  % n = 134 (weight 194), log-likelihood -0.99233, finite
+                            P1 = 0.99489796,
+                            P2 = 0.00510204
+                        ;   (   moved(Occluder):t+1 ~= Moved27
+                            ->  (   Moved27 < 0.004
+                                ->  % n = 65, log-likelihood -0.977462, finite
+                                    P1 = 0.9850746,
+                                    P2 = 0.0149254
+                                ;   % n = 101, log-likelihood -38.8008, logistic
+                                    logistic([Distance], [36.9167, 0.88795], P1),
+                                    P2 is 1-P1
+                                )
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                                P1 = 0.89881,
+                                P2 = 0.10119
+                            )
+                        )
                     )
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-19.7561, 3.27229], P1),
+                    P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= bowl
-            ->  (   occluded_by(Occluded, Occluder):t
-                ->  % n = 38 (weight 62), log-likelihood -5.40241, finite
-                    P1 = 0.96875,
-                    P2 = 0.03125
-                ;   % n = 96 (weight 100), log-likelihood -68.9945, finite
-                    P1 = 0.539216,
-                    P2 = 0.460784
+            ->  (   seen(Occluded):t
+                ->  % n = 11, log-likelihood -6.47776, finite
+                    P1 = 0.307692,
+                    P2 = 0.692308
+                ;   (   occluded_by(Occluded, Occluder):t
+                    ->  (   lift(Occluder):t+1 ~= Lift8
+                        ->  % n = 106 (weight 146), log-likelihood -3.50167, logistic
+                            logistic([Distance, Lift8], [-44.0569, -136.173, 5.90011], P1),
+                            P2 is 1-P1
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                            P1 = 0.972973,
+                            P2 = 0.027027
+                        )
+                    ;   % n = 124 (weight 128), log-likelihood -46.2652, finite
+                        P1 = 0.876923,
+                        P2 = 0.123077
+                    )
                 )
             ;   kind(Occluded):t+1 ~= box
-            ->  (   lift(Occluder):t+1 ~= Lift6
-                ->  % n = 428 (weight 516), log-likelihood -161.609, logistic
-                    logistic([Distance, Lift6], [-21.7589, -52.203, 3.2553], P1),
-                    P2 is 1-P1
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-19.2635, 2.99292], P1),
-                    P2 is 1-P1
-                )
+            ->  % n = 309 (weight 397), log-likelihood -101.178, logistic
+                logistic([Distance], [-47.2045, 3.73458], P1),
+                P2 is 1-P1
             ;   kind(Occluded):t+1 ~= can
-            ->  (   lift(Occluder):t+1 ~= Lift8
-                ->  % n = 588 (weight 688), log-likelihood -150.292, logistic
-                    logistic([Distance, Lift8], [-35.8024, -51.9539, 4.12431], P1),
-                    P2 is 1-P1
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-32.8235, 3.89524], P1),
-                    P2 is 1-P1
-                )
+            ->  % n = 155 (weight 167), log-likelihood -25.1679, logistic
+                logistic([Distance], [-55.5187, 4.38202], P1),
+                P2 is 1-P1
             ;   kind(Occluded):t+1 ~= cup
             ->  (   lift(Occluder):t+1 ~= Lift10
-                ->  % n = 826 (weight 922), log-likelihood -64.669, logistic
-                    logistic([Distance, Lift10], [-24.7086, -120.384, 6.21834], P1),
+                ->  % n = 986 (weight 1142), log-likelihood -101.581, logistic
+                    logistic([Distance, Lift10], [-46.8672, -98.743, 6.31458], P1),
                     P2 is 1-P1
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-17.9685, 4.69883], P1),
+                    logistic([Distance], [-39.9517, 5.50089], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= mug
             ->  (   lift(Occluder):t+1 ~= Lift12
-                ->  (   moved(Occluder):t+1 ~= Moved27
-                    ->  (   Moved27 < 0.004
-                        ->  % n = 200 (weight 364), log-likelihood -17.9481, logistic
-                            logistic([Distance, Lift12], [-65.1791, -1680.74, 7.91792], P1),
-                            P2 is 1-P1
-                        ;   % n = 967 (weight 1015), log-likelihood -242.686, logistic
-                            logistic([Distance, Lift12], [-25.4301, -37.1746, 3.87045], P1),
-                            P2 is 1-P1
-                        )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance, Lift12], [-26.9277, -42.1925, 4.05813], P1),
+                ->  (   seen(Occluded):t
+                    ->  % n = 15, log-likelihood -9.56045, finite
+                        P1 = 0.647059,
+                        P2 = 0.352941
+                    ;   % n = 809 (weight 953), log-likelihood -113.994, logistic
+                        logistic([Distance, Lift12], [-30.429, -83.7878, 4.67951], P1),
                         P2 is 1-P1
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-25.0323, 3.89837], P1),
+                    logistic([Distance], [-23.7976, 3.96983], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= skin
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-26.1648, 3.57626], P1),
+                logistic([Distance], [-36.0239, 3.81619], P1),
                 P2 is 1-P1
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-26.1648, 3.57626], P1),
+                logistic([Distance], [-36.0239, 3.81619], P1),
                 P2 is 1-P1
             )
         ;   \+ kind(Occluder):t+1 ~= _
         ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Distance], [-38.355, 2.5103], P1),
+            logistic([Distance], [-49.6036, 2.8733], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.391293,
-        P2 = 0.608707
+        P1 = 0.618594,
+        P2 = 0.381406
     ).
 
 % When a hand lets go of what it carries (ddc learn, from the carries beside the data): a
@@ -576,21 +672,21 @@ height(A):t+1 ~ val(H) :=
 highest(A):t+1 ~ val(H) :=
     top(A):t ~= H.
 
-% released(Held):t+1: 3 clauses, 2528 groundings, training log-likelihood -78.9072 (mean -0.0312133 per grounding), 6 parameters.
+% released(Held):t+1: 3 clauses, 2486 groundings, training log-likelihood -74.478 (mean -0.029959 per grounding), 6 parameters.
 released(Held):t+1 ~ finite([P1:true, P2:false]) :=
     carried(Held):t+1,
     (   height(Held):t+1 ~= Height
     ->  (   highest(Held):t+1 ~= Highest
-        ->  % n = 2528, log-likelihood -78.9072, logistic
-            logistic([Height, Highest], [-100.738, 66.9638, -9.84724], P1),
+        ->  % n = 2486, log-likelihood -74.478, logistic
+            logistic([Height, Highest], [-103.808, 63.3374, -9.1449], P1),
             P2 is 1-P1
         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Height], [-43.1725, -1.5941], P1),
+            logistic([Height], [-48.4773, -1.49431], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.0249012,
-        P2 = 0.9750988
+        P1 = 0.0249196,
+        P2 = 0.9750804
     ).
 
 :- include('too/too_motion.pl').

@@ -1,10 +1,10 @@
 /*  too_learned_hindsight.pl -- the theory of occlusion with rules learned from experience.
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
-    data_hindsight.pl: 13349 groundings of occluder(A, O):t+1,
-    87 clauses, training log-likelihood -3011.57;
-    and one for released(A):t+1 from 974 frames a hand held an object
-    (3 clauses, training log-likelihood -35.2656);
+    data_hindsight.pl: 13241 groundings of occluder(A, O):t+1,
+    88 clauses, training log-likelihood -2809.55;
+    and one for released(A):t+1 from 982 frames a hand held an object
+    (3 clauses, training log-likelihood -33.9081);
     search seed 0.
     Command: anchoring learn-theory out/learn/data_hindsight.pl --seed 0 --out prolog/too_learned_hindsight.pl --plots docs/images
     The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
@@ -19,28 +19,30 @@
 % motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
 % fractions, quantiles for reaches and heights, Laplace's rule for a probability);
 % variances per axis in square metres, one step is one camera frame.
-obs_var(3.734e-06).  % the measurement noise of a perceived position (m², per axis); 90,941 samples
-motion_var(3.394e-05).  % how far a perceived object moves in a frame (m², per axis); 121,610 samples
-reappear_var(0.001287).  % where a hidden object is seen again, around its belief (m²); 1,351 samples
-lost_var(0.07289).  % the same for an object lost while the camera saw nothing (m²); 8,202 samples
-follow_keep(0.999).  % the fraction of its offset from its occluder a hidden object keeps; 18 samples
-follow_var(1.15e-07).  % the jitter of that offset per frame (m²); 18 samples
-coast_keep(0.9092).  % the fraction of its velocity a hidden object under nothing keeps; 34 samples
-wander_var(0.0002792).  % how far such an object may move besides (m²); 34 samples
-grip_reach(0.06474).  % how far (table plane) a hand's grip may be from what it takes (m); 19 samples
-grip_height(0.1257).  % how far above its top (m); 19 samples
-occluder_rise(0.002776).  % how far below its centre (m); 19 samples
-grip_drop(0.04105).  % how far what a hand holds is below its grip (m); 19 samples
-grip_rise(0.001085).  % how far a hand's grip rises in a frame when it lifts (m); 261 samples
+obs_var(3.822e-06).  % the measurement noise of a perceived position (m², per axis); 91,276 samples
+motion_var(3.185e-05).  % how far a perceived object moves in a frame (m², per axis); 122,427 samples
+reappear_var(0.001354).  % where a hidden object is seen again, around its belief (m²); 1,267 samples
+lost_var(0.07156).  % the same for an object lost while the camera saw nothing (m²); 8,191 samples
+follow_keep(0.999).  % the fraction of its offset from its occluder a hidden object keeps; 25 samples
+follow_var(1.571e-07).  % the jitter of that offset per frame (m²); 25 samples
+coast_keep(0.8678).  % the fraction of its velocity a hidden object under nothing keeps; 37 samples
+wander_var(0.0003492).  % how far such an object may move besides (m²); 37 samples
+rest_var(1.6e-06).  % how far one that stood still as it vanished may move (m²); 84 samples
+grip_reach(0.06474).  % how far (table plane) a hand's grip may be from what it takes (m); 21 samples
+grip_height(0.1377).  % how far above its top (m); 21 samples
+occluder_rise(0.00425).  % how far below its centre (m); 21 samples
+grip_drop(0.04065).  % how far what a hand holds is below its grip (m); 21 samples
+grip_rise(0.00109).  % how far a hand's grip rises in a frame when it lifts (m); 277 samples
+moving_speed(0.004).  % (m a frame) what the fits above call moving as it vanished (wander_var) and still (rest_var)
 % The height of each kind (m): the median of its perceived heights; a grip's height
 % over an object is measured from its top (too/too_motion.pl).
-kind_height(ball, 0.0593).  % 1,167 samples
-kind_height(bottle, 0.2127).  % 701 samples
-kind_height(bowl, 0.0869).  % 749 samples
-kind_height(box, 0.1338).  % 1,915 samples
-kind_height(can, 0.1232).  % 543 samples
-kind_height(cup, 0.1044).  % 1,497 samples
-kind_height(mug, 0.1024).  % 1,630 samples
+kind_height(ball, 0.05905).  % 1,214 samples
+kind_height(bottle, 0.2128).  % 729 samples
+kind_height(bowl, 0.0868).  % 701 samples
+kind_height(box, 0.134).  % 1,764 samples
+kind_height(can, 0.1232).  % 547 samples
+kind_height(cup, 0.1037).  % 1,565 samples
+kind_height(mug, 0.1026).  % 1,671 samples
 
 % ------------------------------------------------------------------ learned affordances
 % Read from the data (python/probanchor/learning/occlusion_affordances.py): the share
@@ -52,25 +54,24 @@ kind_height(mug, 0.1024).  % 1,630 samples
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.0002129).  % 9,567
-hides(bottle, 0.0001633).  % 6,120
-hides(bowl, 0.09386).  % 6,710
-hides(box, 0.2302).  % 21,774
-hides(can, 0.000235).  % 4,253
-hides(cup, 0.04766).  % 15,818
-hides(mug, 0.06659).  % 13,528
-hides(skin, 0.3197).  % 3,286
-hidden_share(ball, 0.1732).  % 29,024
-hidden_share(bottle, 0.08805).  % 1,387
-hidden_share(bowl, 0.00742).  % 7,815
-hidden_share(box, 0.02845).  % 6,853
-hidden_share(can, 0.1498).  % 3,455
-hidden_share(cup, 0.1293).  % 16,813
-hidden_share(mug, 0.02036).  % 12,574
-hidden_share(skin, 0.0003188).  % 3,135
-carries(bowl, 0.6667).  % 1
-carries(box, 0.8333).  % 4
-carries(skin, 0.9981).  % 532
+hides(ball, 0.0007449).  % 10,307
+hides(bottle, 0.0001563).  % 6,398
+hides(bowl, 0.04415).  % 6,816
+hides(box, 0.2081).  % 19,259
+hides(can, 0.0002088).  % 4,788
+hides(cup, 0.09245).  % 15,661
+hides(mug, 0.1656).  % 16,123
+hides(skin, 0.328).  % 3,605
+hidden_share(ball, 0.1959).  % 33,763
+hidden_share(bottle, 0.108).  % 1,792
+hidden_share(bowl, 0.02357).  % 4,240
+hidden_share(box, 0.01034).  % 10,922
+hidden_share(can, 0.1319).  % 3,820
+hidden_share(cup, 0.1328).  % 12,998
+hidden_share(mug, 0.03258).  % 11,264
+hidden_share(skin, 0.0002404).  % 4,158
+carries(box, 0.875).  % 6
+carries(skin, 0.9972).  % 529
 carrier(skin).
 can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
 is_carrier(O) := category(O, C), carrier(C).
@@ -78,10 +79,10 @@ hand_known := object(O), is_carrier(O).
 can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= 0.01.
 
 :- include('too/too_learned_glue.pl').
-% The onset reach (m): 90% of the 32 onsets in the data were within 0.04984 m; times 2.0.
-onset_reach(0.0997).
+% The onset reach (m): 90% of the 37 onsets in the data (1 far out left out) were within 0.05909 m; times 2.0.
+onset_reach(0.1182).
 % The reach of the kinds with onsets enough for one of their own.
-onset_reach(box, 0.1014).  % 16 onsets, 90% within 0.05069 m
+onset_reach(box, 0.0879).  % 14 onsets, (1 far out left out) 90% within 0.04395 m
 
 % The learned rules (ddc learn): a distributional logic tree for occluder/2 (each path from its
 % root to a leaf is one clause of the tree), with the background knowledge it reads.
@@ -116,6 +117,10 @@ rise(A, O):t+1 ~ val(H) :=
     pos(A):t ~= (_, _, Z),
     pos(O):t+1 ~= (_, _, ZO),
     H is ZO-Z.
+lift(O):t+1 ~ val(H) :=
+    pos(O):t ~= (_, _, Z0),
+    pos(O):t+1 ~= (_, _, Z1),
+    H is Z1-Z0.
 moved(O):t+1 ~ val(M) :=
     pos(O):t ~= (X0, Y0, Z0),
     pos(O):t+1 ~= (X1, Y1, Z1),
@@ -123,397 +128,408 @@ moved(O):t+1 ~ val(M) :=
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 87 clauses, 13349 groundings, training log-likelihood -3011.57 (mean -0.111643 per grounding), 105 parameters.
+% occluder(Occluded, Occluder):t+1: 88 clauses, 13241 groundings, training log-likelihood -2809.55 (mean -0.109851 per grounding), 115 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   kind(Occluder):t+1 ~= ball
-        ->  % n = 208 (weight 594), log-likelihood -7.91873, finite
-            P1 = 0.00341772,
-            P2 = 0.99658228
+        ->  % n = 298 (weight 747), log-likelihood -27.2424, logistic
+            logistic([Distance], [-27.4002, -1.5501], P1),
+            P2 is 1-P1
         ;   kind(Occluder):t+1 ~= bottle
-        ->  % n = 72 (weight 300), log-likelihood -0.995026, finite
-            P1 = 0.00331126,
-            P2 = 0.99668874
+        ->  % n = 132 (weight 400), log-likelihood -0.996265, finite
+            P1 = 0.00248756,
+            P2 = 0.99751244
         ;   kind(Occluder):t+1 ~= bowl
-        ->  (   kind(Occluded):t+1 ~= ball
-            ->  (   lost_anywhere(Occluded):t
-                ->  % n = 178 (weight 578), log-likelihood -7.66297, finite
-                    P1 = 0.00344828,
-                    P2 = 0.99655172
-                ;   (   rise(Occluded, Occluder):t+1 ~= Rise
-                    ->  (   Rise < 0.0
-                        ->  % n = 98 (weight 286), log-likelihood -6.95588, finite
-                            P1 = 0.99305556,
-                            P2 = 0.00694444
-                        ;   Rise < 0.1
-                        ->  (   moved(Occluder):t+1 ~= Moved
-                            ->  (   Moved < 0.004
-                                ->  % n = 252 (weight 576), log-likelihood -164.32, logistic
-                                    logistic([Distance], [-440.565, 7.0907], P1),
-                                    P2 is 1-P1
-                                ;   (   occluded_by(Occluded, Occluder):t
-                                    ->  % n = 54 (weight 66), log-likelihood -0.977796, finite
-                                        P1 = 0.9852941,
-                                        P2 = 0.0147059
-                                    ;   % n = 138 (weight 170), log-likelihood -78.9554, logistic
-                                        logistic([Distance], [-84.6486, 1.1565], P1),
+        ->  (   occluded_by(Occluded, Occluder):t
+            ->  % n = 123 (weight 291), log-likelihood -0.994873, finite
+                P1 = 0.99658703,
+                P2 = 0.00341297
+            ;   (   kind(Occluded):t+1 ~= ball
+                ->  (   lost_anywhere(Occluded):t
+                    ->  % n = 83 (weight 283), log-likelihood -0.994729, finite
+                        P1 = 0.00350877,
+                        P2 = 0.99649123
+                    ;   (   moved(Occluder):t+1 ~= Moved
+                        ->  (   Moved < 0.004
+                            ->  (   seen(Occluder):t
+                                ->  (   lift(Occluder):t+1 ~= Lift
+                                    ->  % n = 210 (weight 534), log-likelihood -208.57, logistic
+                                        logistic([Distance, Lift], [44.712, -1363.58, -2.50434], P1),
+                                        P2 is 1-P1
+                                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                        logistic([Distance], [45.339, -2.51388], P1),
                                         P2 is 1-P1
                                     )
+                                ;   % n = 4 (weight 20), log-likelihood -0.9304, finite
+                                    P1 = 0.0454545,
+                                    P2 = 0.9545455
                                 )
-                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Distance], [-308.257, 4.9793], P1),
-                                P2 is 1-P1
+                            ;   % n = 189 (weight 241), log-likelihood -113.033, finite
+                                P1 = 0.18107,
+                                P2 = 0.81893
                             )
-                        ;   (   occluded_by(Occluded, Occluder):t
-                            ->  % n = 11 (weight 15), log-likelihood -0.909369, finite
-                                P1 = 0.9411765,
-                                P2 = 0.0588235
-                            ;   % n = 47 (weight 51), log-likelihood -23.7792, logistic
-                                logistic([Distance], [-57.9235, 0.67485], P1),
-                                P2 is 1-P1
-                            )
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [15.0682, -1.95117], P1),
+                            P2 is 1-P1
                         )
-                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-182.587, 3.37517], P1),
-                        P2 is 1-P1
                     )
-                )
-            ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 14, log-likelihood -0.903539, finite
-                P1 = 0.0625,
-                P2 = 0.9375
-            ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 162 (weight 326), log-likelihood -7.08764, finite
-                P1 = 0.00609756,
-                P2 = 0.99390244
-            ;   kind(Occluded):t+1 ~= box
-            ->  % n = 110 (weight 286), log-likelihood -0.994784, finite
-                P1 = 0.00347222,
-                P2 = 0.99652778
-            ;   kind(Occluded):t+1 ~= can
-            ->  % n = 4, too few groundings for a model of its own: the parent's model, log-likelihood -0.000705675, logistic
-                logistic([Distance], [-141.103, 2.18764], P1),
-                P2 is 1-P1
-            ;   kind(Occluded):t+1 ~= cup
-            ->  (   moved(Occluder):t+1 ~= Moved3
-                ->  (   Moved3 < 0.004
-                    ->  % n = 64 (weight 188), log-likelihood -6.0567, logistic
-                        logistic([Distance], [-430.401, 13.8379], P1),
-                        P2 is 1-P1
-                    ;   % n = 72 (weight 108), log-likelihood -15.1539, logistic
-                        logistic([Distance], [-148.213, 5.65444], P1),
-                        P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= bottle
+                ->  % n = 23 (weight 35), log-likelihood -0.958964, finite
+                    P1 = 0.027027,
+                    P2 = 0.972973
+                ;   kind(Occluded):t+1 ~= bowl
+                ->  % n = 141 (weight 249), log-likelihood -6.81632, finite
+                    P1 = 0.00796813,
+                    P2 = 0.99203187
+                ;   kind(Occluded):t+1 ~= box
+                ->  (   seen(Occluded):t
+                    ->  % n = 20, log-likelihood -12.2327, finite
+                        P1 = 0.318182,
+                        P2 = 0.681818
+                    ;   % n = 58 (weight 90), log-likelihood -5.78476, finite
+                        P1 = 0.0217391,
+                        P2 = 0.9782609
                     )
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-264.701, 8.8998], P1),
-                    P2 is 1-P1
+                ;   kind(Occluded):t+1 ~= can
+                ->  % n = 9, too few groundings for a model of its own: the parent's model, log-likelihood -0.978042, finite
+                    P1 = 0.102975,
+                    P2 = 0.897025
+                ;   kind(Occluded):t+1 ~= cup
+                ->  % n = 73 (weight 185), log-likelihood -0.991959, finite
+                    P1 = 0.00534759,
+                    P2 = 0.99465241
+                ;   kind(Occluded):t+1 ~= mug
+                ->  % n = 36 (weight 72), log-likelihood -0.979607, finite
+                    P1 = 0.0135135,
+                    P2 = 0.9864865
+                ;   kind(Occluded):t+1 ~= skin
+                ->  % n = 4 (weight 8), too few groundings for a model of its own: the parent's model, log-likelihood -0.869371, finite
+                    P1 = 0.102975,
+                    P2 = 0.897025
+                ;   \+ kind(Occluded):t+1 ~= _
+                ->  % n = 0, too few groundings for a model of its own: the parent's model, finite
+                    P1 = 0.102975,
+                    P2 = 0.897025
                 )
-            ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 69 (weight 157), log-likelihood -0.99054, finite
-                P1 = 0.00628931,
-                P2 = 0.99371069
-            ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-141.103, 2.18764], P1),
-                P2 is 1-P1
-            ;   \+ kind(Occluded):t+1 ~= _
-            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-141.103, 2.18764], P1),
-                P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= box
         ->  (   kind(Occluded):t+1 ~= ball
             ->  (   occluded_by(Occluded, Occluder):t
-                ->  % n = 754 (weight 2590), log-likelihood -0.999421, finite
-                    P1 = 0.999614198,
-                    P2 = 0.000385802
+                ->  % n = 620 (weight 1944), log-likelihood -0.999229, finite
+                    P1 = 0.999486125,
+                    P2 = 0.000513875
                 ;   (   lost_anywhere(Occluded):t
-                    ->  (   moved(Occluder):t+1 ~= Moved6
-                        ->  (   Moved6 < 0.004
-                            ->  % n = 148 (weight 740), log-likelihood -0.997977, finite
-                                P1 = 0.00134771,
-                                P2 = 0.99865229
-                            ;   % n = 64 (weight 84), log-likelihood -13.062, finite
-                                P1 = 0.0465116,
-                                P2 = 0.9534884
+                    ->  % n = 128 (weight 472), log-likelihood -7.45961, finite
+                        P1 = 0.00421941,
+                        P2 = 0.99578059
+                    ;   (   moved(Occluder):t+1 ~= Moved3
+                        ->  (   Moved3 < 0.004
+                            ->  (   seen(Occluder):t
+                                ->  % n = 1221 (weight 1473), log-likelihood -767.101, finite
+                                    P1 = 0.784407,
+                                    P2 = 0.215593
+                                ;   % n = 28, log-likelihood -0.949243, finite
+                                    P1 = 0.9666667,
+                                    P2 = 0.0333333
+                                )
+                            ;   % n = 386 (weight 406), log-likelihood -255.395, logistic
+                                logistic([Distance], [-23.8456, 1.35117], P1),
+                                P2 is 1-P1
                             )
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-16.9761, -3.38524], P1),
+                            logistic([Distance], [-8.38361, 1.3335], P1),
                             P2 is 1-P1
                         )
-                    ;   % n = 2381 (weight 2893), log-likelihood -1368.29, logistic
-                        logistic([Distance], [-46.4144, 1.98698], P1),
-                        P2 is 1-P1
                     )
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 6 (weight 10), log-likelihood -0.870114, finite
-                P1 = 0.0833333,
-                P2 = 0.9166667
+            ->  % n = 14 (weight 18), log-likelihood -0.923279, finite
+                P1 = 0.05,
+                P2 = 0.95
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 81 (weight 189), log-likelihood -0.992128, finite
-                P1 = 0.0052356,
-                P2 = 0.9947644
+            ->  % n = 34 (weight 78), log-likelihood -0.981145, finite
+                P1 = 0.0125,
+                P2 = 0.9875
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 74 (weight 262), log-likelihood -0.994309, finite
-                P1 = 0.00378788,
-                P2 = 0.99621212
+            ->  % n = 186 (weight 634), log-likelihood -0.99764, finite
+                P1 = 0.00157233,
+                P2 = 0.99842767
             ;   kind(Occluded):t+1 ~= can
-            ->  (   rise(Occluded, Occluder):t+1 ~= Rise4
-                ->  (   Rise4 < 0.0
-                    ->  % n = 31 (weight 111), log-likelihood -10.1905, finite
-                        P1 = 0.0265487,
-                        P2 = 0.9734513
-                    ;   Rise4 < 0.1
-                    ->  (   occluded_by(Occluded, Occluder):t
-                        ->  % n = 141 (weight 473), log-likelihood -0.996839, finite
-                            P1 = 0.99789474,
-                            P2 = 0.00210526
-                        ;   % n = 491 (weight 523), log-likelihood -188.372, finite
-                            P1 = 0.881905,
-                            P2 = 0.118095
-                        )
-                    ;   % n = 21 (weight 29), log-likelihood -0.950905, finite
-                        P1 = 0.0322581,
-                        P2 = 0.9677419
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 128 (weight 440), log-likelihood -0.996603, finite
+                    P1 = 0.99773756,
+                    P2 = 0.00226244
+                ;   (   lift(Occluder):t+1 ~= Lift2
+                    ->  % n = 517 (weight 537), log-likelihood -31.2407, logistic
+                        logistic([Distance, Lift2], [-173.354, 78.1773, 7.19766], P1),
+                        P2 is 1-P1
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance], [-143.611, 6.242], P1),
+                        P2 is 1-P1
                     )
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-28.9048, 1.76898], P1),
-                    P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= cup
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 317 (weight 1545), log-likelihood -0.99903, finite
+                    P1 = 0.999353588,
+                    P2 = 0.000646412
+                ;   (   moved(Occluder):t+1 ~= Moved6
+                    ->  (   Moved6 < 0.004
+                        ->  (   lost_anywhere(Occluded):t
+                            ->  % n = 1 (weight 5), too few groundings for a model of its own: the parent's model, log-likelihood -121.818, logistic
+                                logistic([Distance], [162.271, -4.9563], P1),
+                                P2 is 1-P1
+                            ;   % n = 547 (weight 771), log-likelihood -107.698, logistic
+                                logistic([Distance], [280.231, -9.11262], P1),
+                                P2 is 1-P1
+                            )
+                        ;   % n = 62 (weight 66), log-likelihood -31.3121, finite
+                            P1 = 0.191176,
+                            P2 = 0.808824
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance], [110.663, -3.49443], P1),
+                        P2 is 1-P1
+                    )
+                )
+            ;   kind(Occluded):t+1 ~= mug
             ->  (   moved(Occluder):t+1 ~= Moved9
                 ->  (   Moved9 < 0.004
-                    ->  % n = 1238 (weight 2770), log-likelihood -11.199, logistic
-                        logistic([Distance], [-147.328, 11.6488], P1),
-                        P2 is 1-P1
-                    ;   % n = 150 (weight 158), log-likelihood -18.9552, logistic
-                        logistic([Distance], [-147.255, 7.54368], P1),
+                    ->  (   rise(Occluded, Occluder):t+1 ~= Rise
+                        ->  (   Rise < 0.0
+                            ->  % n = 18 (weight 90), log-likelihood -0.983616, finite
+                                P1 = 0.0108696,
+                                P2 = 0.9891304
+                            ;   Rise < 0.1
+                            ->  % n = 176 (weight 300), log-likelihood -4.8972, logistic
+                                logistic([Distance], [-364.916, 13.668], P1),
+                                P2 is 1-P1
+                            ;   % n = 3 (weight 15), log-likelihood -0.909369, finite
+                                P1 = 0.0588235,
+                                P2 = 0.9411765
+                            )
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-408.735, 13.3499], P1),
+                            P2 is 1-P1
+                        )
+                    ;   % n = 91 (weight 111), log-likelihood -26.9899, logistic
+                        logistic([Distance], [-120.78, 2.7692], P1),
                         P2 is 1-P1
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-217.929, 13.5149], P1),
+                    logistic([Distance], [-331.364, 10.356], P1),
                     P2 is 1-P1
                 )
-            ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 75 (weight 151), log-likelihood -0.990167, finite
-                P1 = 0.00653595,
-                P2 = 0.99346405
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 114 (weight 262), log-likelihood -0.994309, finite
-                P1 = 0.00378788,
-                P2 = 0.99621212
+            ->  % n = 67 (weight 147), log-likelihood -0.989903, finite
+                P1 = 0.00671141,
+                P2 = 0.99328859
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-57.6827, 2.90155], P1),
+                logistic([Distance], [-52.3269, 2.62971], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= can
-        ->  % n = 223 (weight 647), log-likelihood -0.997687, finite
-            P1 = 0.00154083,
-            P2 = 0.99845917
+        ->  % n = 98 (weight 462), log-likelihood -0.996764, finite
+            P1 = 0.00215517,
+            P2 = 0.99784483
         ;   kind(Occluder):t+1 ~= cup
         ->  (   kind(Occluded):t+1 ~= ball
-            ->  (   occluded_by(Occluded, Occluder):t
-                ->  % n = 234 (weight 746), log-likelihood -0.997993, finite
-                    P1 = 0.9986631,
-                    P2 = 0.0013369
-                ;   (   lost_anywhere(Occluded):t
-                    ->  (   seen(Occluder):t
-                        ->  % n = 182 (weight 822), log-likelihood -0.998179, finite
-                            P1 = 0.00121359,
-                            P2 = 0.99878641
-                        ;   % n = 11 (weight 19), log-likelihood -8.35563, finite
-                            P1 = 0.190476,
-                            P2 = 0.809524
+            ->  (   lost_anywhere(Occluded):t
+                ->  % n = 16 (weight 64), log-likelihood -12.2238, finite
+                    P1 = 0.0606061,
+                    P2 = 0.9393939
+                ;   (   occluded_by(Occluded, Occluder):t
+                    ->  % n = 413 (weight 1437), log-likelihood -0.998957, finite
+                        P1 = 0.999305073,
+                        P2 = 0.000694927
+                    ;   (   moved(Occluder):t+1 ~= Moved12
+                        ->  (   Moved12 < 0.004
+                            ->  % n = 1138 (weight 1158), log-likelihood -59.2993, logistic
+                                logistic([Distance], [-157.679, 5.86005], P1),
+                                P2 is 1-P1
+                            ;   (   seen(Occluder):t
+                                ->  % n = 169, log-likelihood -59.7866, logistic
+                                    logistic([Distance], [-51.9999, 2.77115], P1),
+                                    P2 is 1-P1
+                                ;   % n = 12, log-likelihood -0.889296, finite
+                                    P1 = 0.0714286,
+                                    P2 = 0.9285714
+                                )
+                            )
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-84.7194, 4.58077], P1),
+                            P2 is 1-P1
                         )
-                    ;   % n = 683 (weight 783), log-likelihood -365.341, logistic
-                        logistic([Distance], [-40.1551, 1.82078], P1),
-                        P2 is 1-P1
                     )
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 5, too few groundings for a model of its own: the parent's model, log-likelihood -3.69499e-06, logistic
-                logistic([Distance], [-179.824, 1.35166], P1),
+            ->  % n = 3, too few groundings for a model of its own: the parent's model, log-likelihood -1.28188e-06, logistic
+                logistic([Distance], [-203.855, 2.40082], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 5 (weight 17), log-likelihood -0.919143, finite
-                P1 = 0.0526316,
-                P2 = 0.9473684
+            ->  % n = 28 (weight 76), log-likelihood -0.980659, finite
+                P1 = 0.0128205,
+                P2 = 0.9871795
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 29 (weight 141), log-likelihood -0.989478, finite
-                P1 = 0.00699301,
-                P2 = 0.99300699
+            ->  % n = 26 (weight 98), log-likelihood -0.984933, finite
+                P1 = 0.01,
+                P2 = 0.99
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 1, too few groundings for a model of its own: the parent's model, log-likelihood -2.25067e-07, logistic
-                logistic([Distance], [-179.824, 1.35166], P1),
-                P2 is 1-P1
+            ->  % n = 14 (weight 22), log-likelihood -0.936312, finite
+                P1 = 0.0416667,
+                P2 = 0.9583333
             ;   kind(Occluded):t+1 ~= cup
-            ->  % n = 630 (weight 1558), log-likelihood -0.999038, finite
-                P1 = 0.000641026,
-                P2 = 0.999358974
+            ->  % n = 445 (weight 1205), log-likelihood -0.998757, finite
+                P1 = 0.0008285,
+                P2 = 0.9991715
             ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 262 (weight 882), log-likelihood -0.998302, finite
-                P1 = 0.00113122,
-                P2 = 0.99886878
+            ->  % n = 122 (weight 470), log-likelihood -0.996819, finite
+                P1 = 0.00211864,
+                P2 = 0.99788136
             ;   kind(Occluded):t+1 ~= skin
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-179.824, 1.35166], P1),
+                logistic([Distance], [-203.855, 2.40082], P1),
                 P2 is 1-P1
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-179.824, 1.35166], P1),
+                logistic([Distance], [-203.855, 2.40082], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= mug
         ->  (   kind(Occluded):t+1 ~= ball
-            ->  (   occluded_by(Occluded, Occluder):t
-                ->  % n = 242 (weight 890), log-likelihood -0.998318, finite
-                    P1 = 0.99887892,
-                    P2 = 0.00112108
-                ;   % n = 1413 (weight 2353), log-likelihood -240.874, logistic
-                    logistic([Distance], [-101.302, 4.84209], P1),
+            ->  (   moved(Occluder):t+1 ~= Moved15
+                ->  (   Moved15 < 0.004
+                    ->  (   occluded_by(Occluded, Occluder):t
+                        ->  % n = 495 (weight 2475), log-likelihood -0.999394, finite
+                            P1 = 0.999596286,
+                            P2 = 0.000403714
+                        ;   % n = 1299 (weight 1703), log-likelihood -149.194, logistic
+                            logistic([Distance], [-75.3572, 4.80716], P1),
+                            P2 is 1-P1
+                        )
+                    ;   (   occluded_by(Occluded, Occluder):t
+                        ->  % n = 135 (weight 187), log-likelihood -0.992045, finite
+                            P1 = 0.99470899,
+                            P2 = 0.00529101
+                        ;   % n = 218 (weight 246), log-likelihood -123.728, logistic
+                            logistic([Distance], [-25.6523, 1.16867], P1),
+                            P2 is 1-P1
+                        )
+                    )
+                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                    logistic([Distance], [-84.4573, 4.7483], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 1, too few groundings for a model of its own: the parent's model, log-likelihood -1.18532, logistic
-                logistic([Distance], [-93.8449, 2.29868], P1),
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-166.278, 4.15294], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 9 (weight 17), log-likelihood -0.919143, finite
-                P1 = 0.0526316,
-                P2 = 0.9473684
+            ->  % n = 12 (weight 20), log-likelihood -0.9304, finite
+                P1 = 0.0454545,
+                P2 = 0.9545455
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 8 (weight 12), log-likelihood -0.889296, finite
-                P1 = 0.0714286,
-                P2 = 0.9285714
+            ->  % n = 116 (weight 360), log-likelihood -0.995851, finite
+                P1 = 0.00276243,
+                P2 = 0.99723757
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 1, too few groundings for a model of its own: the parent's model, log-likelihood -0.000915401, logistic
-                logistic([Distance], [-93.8449, 2.29868], P1),
-                P2 is 1-P1
+            ->  % n = 5 (weight 13), log-likelihood -0.896907, finite
+                P1 = 0.0666667,
+                P2 = 0.9333333
             ;   kind(Occluded):t+1 ~= cup
-            ->  (   moved(Occluder):t+1 ~= Moved12
-                ->  (   Moved12 < 0.004
-                    ->  % n = 12 (weight 20), log-likelihood -0.9304, finite
-                        P1 = 0.0454545,
-                        P2 = 0.9545455
-                    ;   % n = 16, log-likelihood -11.0904, finite
-                        P1 = 0.5,
-                        P2 = 0.5
-                    )
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                    P1 = 0.236842,
-                    P2 = 0.763158
-                )
+            ->  % n = 27 (weight 39), log-likelihood -0.963012, finite
+                P1 = 0.0243902,
+                P2 = 0.9756098
             ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 220 (weight 792), log-likelihood -0.99811, finite
-                P1 = 0.00125945,
-                P2 = 0.99874055
+            ->  % n = 181 (weight 537), log-likelihood -0.997215, finite
+                P1 = 0.00185529,
+                P2 = 0.99814471
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 30 (weight 150), log-likelihood -0.990103, finite
-                P1 = 0.00657895,
-                P2 = 0.99342105
+            ->  % n = 34 (weight 158), log-likelihood -0.990599, finite
+                P1 = 0.00625,
+                P2 = 0.99375
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-93.8449, 2.29868], P1),
+                logistic([Distance], [-166.278, 4.15294], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= skin
-        ->  (   occluded_by(Occluded, Occluder):t
-            ->  (   kind(Occluded):t+1 ~= ball
-                ->  % n = 148 (weight 184), log-likelihood -0.991916, finite
-                    P1 = 0.99462366,
-                    P2 = 0.00537634
-                ;   kind(Occluded):t+1 ~= bottle
-                ->  % n = 150 (weight 117.78), log-likelihood -47.6926, finite
-                    P1 = 0.854087,
-                    P2 = 0.145913
-                ;   kind(Occluded):t+1 ~= bowl
-                ->  % n = 39 (weight 55), log-likelihood -0.973477, finite
-                    P1 = 0.9824561,
-                    P2 = 0.0175439
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 143 (weight 191), log-likelihood -0.99221, finite
-                    P1 = 0.99481865,
-                    P2 = 0.00518135
-                ;   kind(Occluded):t+1 ~= can
-                ->  % n = 32 (weight 40), log-likelihood -0.963902, finite
-                    P1 = 0.9761905,
-                    P2 = 0.0238095
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 146 (weight 190), log-likelihood -0.992169, finite
-                    P1 = 0.99479167,
-                    P2 = 0.00520833
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 181 (weight 249), log-likelihood -0.994013, finite
-                    P1 = 0.99601594,
-                    P2 = 0.00398406
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, finite
-                    P1 = 0.9830115,
-                    P2 = 0.0169885
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, finite
-                    P1 = 0.9830115,
-                    P2 = 0.0169885
-                )
-            ;   (   kind(Occluded):t+1 ~= ball
-                ->  (   lost_anywhere(Occluded):t
-                    ->  % n = 150 (weight 190), log-likelihood -0.992169, finite
-                        P1 = 0.00520833,
-                        P2 = 0.99479167
-                    ;   % n = 151, log-likelihood -40.5713, logistic
-                        logistic([Distance], [-60.8424, 3.85481], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= bottle
-                ->  % n = 147 (weight 103.22), log-likelihood -48.9711, finite
-                    P1 = 0.81202,
-                    P2 = 0.18798
-                ;   kind(Occluded):t+1 ~= bowl
-                ->  % n = 55 (weight 59), log-likelihood -22.7691, logistic
-                    logistic([Distance], [-67.7144, 4.15318], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= box
-                ->  % n = 85, log-likelihood -8.63546, logistic
-                    logistic([Distance], [-67.8609, 5.69811], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= can
-                ->  (   lost_anywhere(Occluded):t
-                    ->  % n = 52 (weight 76), log-likelihood -0.980659, finite
-                        P1 = 0.0128205,
-                        P2 = 0.9871795
-                    ;   % n = 41, log-likelihood -12.0217, logistic
-                        logistic([Distance], [-99.7705, 3.73799], P1),
-                        P2 is 1-P1
-                    )
-                ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 188 (weight 216), log-likelihood -143.254, logistic
-                    logistic([Distance], [19.9984, -0.553723], P1),
-                    P2 is 1-P1
-                ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 178 (weight 190), log-likelihood -97.7893, finite
-                    P1 = 0.786458,
-                    P2 = 0.213542
-                ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-23.8632, 1.61169], P1),
-                    P2 is 1-P1
-                ;   \+ kind(Occluded):t+1 ~= _
-                ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-23.8632, 1.61169], P1),
+        ->  (   kind(Occluded):t+1 ~= ball
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 185 (weight 241), log-likelihood -0.993816, finite
+                    P1 = 0.99588477,
+                    P2 = 0.00411523
+                ;   % n = 271 (weight 279), log-likelihood -79.133, logistic
+                    logistic([Distance], [-50.9977, 3.22695], P1),
                     P2 is 1-P1
                 )
+            ;   kind(Occluded):t+1 ~= bottle
+            ->  % n = 623 (weight 445), log-likelihood -303.646, finite
+                P1 = 0.573012,
+                P2 = 0.426988
+            ;   kind(Occluded):t+1 ~= bowl
+            ->  % n = 188 (weight 216), log-likelihood -59.6192, logistic
+                logistic([Distance], [-69.8543, 4.82865], P1),
+                P2 is 1-P1
+            ;   kind(Occluded):t+1 ~= box
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 78 (weight 102), log-likelihood -0.985515, finite
+                    P1 = 0.99038462,
+                    P2 = 0.00961538
+                ;   % n = 133 (weight 165), log-likelihood -82.3579, logistic
+                    logistic([Distance], [-52.6145, 2.27594], P1),
+                    P2 is 1-P1
+                )
+            ;   kind(Occluded):t+1 ~= can
+            ->  % n = 91 (weight 99), log-likelihood -11.3589, logistic
+                logistic([Distance], [-69.0507, 5.26239], P1),
+                P2 is 1-P1
+            ;   kind(Occluded):t+1 ~= cup
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 136 (weight 176), log-likelihood -0.991552, finite
+                    P1 = 0.99438202,
+                    P2 = 0.00561798
+                ;   (   rise(Occluded, Occluder):t+1 ~= Rise4
+                    ->  (   Rise4 < 0.0
+                        ->  % n = 0, too few groundings for a model of its own: the parent's model, finite
+                            P1 = 0.772727,
+                            P2 = 0.227273
+                        ;   Rise4 < 0.1
+                        ->  % n = 34 (weight 38), log-likelihood -6.09678, logistic
+                            logistic([Distance], [1818.46, -18.468], P1),
+                            P2 is 1-P1
+                        ;   % n = 128 (weight 136), log-likelihood -67.7846, finite
+                            P1 = 0.797101,
+                            P2 = 0.202899
+                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                        P1 = 0.772727,
+                        P2 = 0.227273
+                    )
+                )
+            ;   kind(Occluded):t+1 ~= mug
+            ->  % n = 421 (weight 501), log-likelihood -30.7929, logistic
+                logistic([Distance], [-59.7559, 6.02588], P1),
+                P2 is 1-P1
+            ;   kind(Occluded):t+1 ~= skin
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-22.555, 2.0822], P1),
+                P2 is 1-P1
+            ;   \+ kind(Occluded):t+1 ~= _
+            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-22.555, 2.0822], P1),
+                P2 is 1-P1
             )
         ;   \+ kind(Occluder):t+1 ~= _
         ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Distance], [-60.9297, 1.89303], P1),
+            logistic([Distance], [-47.4566, 1.81633], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.535967,
-        P2 = 0.464033
+        P1 = 0.608172,
+        P2 = 0.391828
     ).
 
 % When a hand lets go of what it carries (ddc learn, from the carries beside the data): a
@@ -537,21 +553,21 @@ height(A):t+1 ~ val(H) :=
 highest(A):t+1 ~ val(H) :=
     top(A):t ~= H.
 
-% released(Held):t+1: 3 clauses, 974 groundings, training log-likelihood -35.2656 (mean -0.036207 per grounding), 6 parameters.
+% released(Held):t+1: 3 clauses, 982 groundings, training log-likelihood -33.9081 (mean -0.0345296 per grounding), 6 parameters.
 released(Held):t+1 ~ finite([P1:true, P2:false]) :=
     carried(Held):t+1,
     (   height(Held):t+1 ~= Height
     ->  (   highest(Held):t+1 ~= Highest
-        ->  % n = 974, log-likelihood -35.2656, logistic
-            logistic([Height, Highest], [-79.1454, 28.8099, -4.89208], P1),
+        ->  % n = 982, log-likelihood -33.9081, logistic
+            logistic([Height, Highest], [-90.0057, 31.5224, -4.94269], P1),
             P2 is 1-P1
         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Height], [-50.4278, -2.10792], P1),
+            logistic([Height], [-53.1562, -2.09308], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.0204918,
-        P2 = 0.9795082
+        P1 = 0.0223577,
+        P2 = 0.9776423
     ).
 
 :- include('too/too_motion.pl').

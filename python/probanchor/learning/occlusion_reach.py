@@ -14,7 +14,7 @@ margin, the onsets far out (beyond Tukey's far fence, the upper quartile plus ``
 interquartile ranges, as the grip reach's events) left out; onsets by occluders of the kinds
 the theory never asks the tree about (a carrier, a kind that cannot occlude: ``exclude``) do
 not count. It depends on the occluder's kind: a bowl 17 cm
-across starts covering a ball from 12 cm away, a mug from 5 cm. A kind with at least
+across starts covering a ball up to 9 cm away, a mug within 3 cm. A kind with at least
 ``MIN_ONSETS`` onsets has a reach of its own, fitted from its onsets; the others have the
 reach of all the onsets. (One reach for all, the bowls' and big boxes' onsets gave mugs a reach
 of 23 cm, and the tree, asked about a mug that far from a ball hidden behind a bottle, put the
