@@ -205,8 +205,10 @@ def rest_gaps(rows: Sequence[Sequence[object]]) -> tuple[float, int]:
     with ``C`` the noise of the ends, as :func:`coast_gaps`. An object standing still behind
     something stays where it stood: the 928 such gaps of 80 games moved 0 cm at the median and
     3.4 cm at the 99th percentile (V about (2.6 mm)² a frame), where the moving objects' wander
-    is (1.3 cm)²; spread by the latter, a cup a hand took spread out of the hand's reach in
-    the frames before it rose, and the particles that had it stay behind were never taken.
+    is (1.3 cm)²; spread by the latter, the belief of a still object grew by 4 cm in ten frames,
+    and the particles that had it stay behind as a hand closed on it could wander out of the
+    hand's reach before it rose (a cup a hand took while it started to move, and so coasting,
+    still does).
 
     Raises
     ------
