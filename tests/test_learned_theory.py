@@ -617,3 +617,30 @@ def test_a_hidden_object_that_stood_still_rests_and_one_that_moved_coasts(
     tolerance = 4 / np.sqrt(800)
     assert spread["still"] == pytest.approx(np.sqrt(10 * rest), rel=tolerance)
     assert spread["moving"] == pytest.approx(np.sqrt(10 * wander), rel=tolerance)
+
+
+def test_a_theory_written_before_rest_var_spreads_every_hidden_object_by_its_wander(
+        tmp_path: Path) -> None:
+    """A learned theory of an older version has no rest_var/1 and no moving_speed/1: it loads
+    (with a warning naming them) and a hidden object still has a belief, spread by wander_var."""
+    path = tmp_path / "too_old.pl"
+    text = theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH, found=FOUND,
+                       fitted=[f for f in FITTED if f.name != "rest_var"],
+                       release_program=RELEASE)
+    path.write_text("\n".join(line for line in text.splitlines()
+                              if not line.startswith("moving_speed(")) + "\n")
+    f = bridge.Filter(path, particles=200, seed=3, threads=1)
+    actions = ["object(ball_1)", "category(ball_1, ball)", "object(box_1)",
+               "category(box_1, box)"]
+    box = ["observed(box_1)", "observation(pos(box_1)) ~= (0.5, 0.3, 0.06)"]
+    f.step([*box, "observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)"],
+           actions=actions)
+    for _ in range(10):
+        f.step(box, actions=actions)
+    xyz, w = f.samples("P", "pos(ball_1):t ~= P")
+    f.close()
+    assert not np.isnan(xyz).any()
+    wander = next(x.value for x in FITTED if x.name == "wander_var")
+    spread = float(np.sqrt(np.average((xyz[:, 0] - np.average(xyz[:, 0], weights=w)) ** 2,
+                                      weights=w)))
+    assert spread == pytest.approx(np.sqrt(10 * wander), rel=4 / np.sqrt(400))
