@@ -132,10 +132,11 @@ coasting(A):t+1 :=
     hidden(A):t+1, seen(A):t, vel(A):t ~= (VX, VY), moving_speed(S), VX*VX + VY*VY >= S*S.
 coasting(A):t+1 := coasting(A):t, hidden(A):t+1, \+ occluded_by(A, _):t+1.
 spread(A, V):t+1 := coasting(A):t+1, wander_var(V).
-spread(A, V):t+1 := object(A), \+ coasting(A):t+1, rest_var(V).
+spread(A, V):t+1 := object(A), \+ coasting(A):t+1, resting_var(V).
 % A theory written before rest_var/1 (a learned theory of an older version, loaded with a
 % warning that names it) spreads every hidden object by wander_var, as it did then.
-spread(A, V):t+1 := object(A), \+ coasting(A):t+1, \+ rest_var(_), wander_var(V).
+resting_var(V) := rest_var(V).
+resting_var(V) := \+ rest_var(_), wander_var(V).
 % A hand out of view is believed where it was last seen, the same point in every particle, so
 % that when it comes back its position weighs every particle alike (a hand's position says
 % nothing about what hides what).

@@ -151,8 +151,7 @@ def theory_text(learned_program: str, header: str, *, base: str | Path,
     if reach.kinds:
         onset += "% The reach of the kinds with onsets enough for one of their own.\n"
     for kind, own in reach.kinds.items():
-        onset += (f"onset_reach({kind}, {own.reach:.4g}).  % {own.onsets} onsets, "
-                  f"{_far_out(own)}{QUANTILE:.0%} within {own.quantile:.4g} m\n")
+        onset += f"onset_reach({kind}, {own.reach:.4g}).  % {_fitted_from(own, '.4g')}\n"
     return (header + "".join(include(n) for n in BEFORE) + "\n" + parameter_clauses(fitted)
             + ("" if not heights else kind_height_clauses(heights))
             + "\n" + affordance_clauses(found) + "\n" + include(GLUE) + onset + "\n"
@@ -444,15 +443,20 @@ def parameter_table(reach: OnsetReach, base: str | Path) -> str:
     text = (Path(base) / "too_parameters.pl").read_text(encoding="utf-8")
     m = re.search(r"^occluder_reach\(([\d.eE+-]+)\)", text, re.M)
     hand = f"{float(m.group(1)):.3g} (`occluder_reach`)" if m else "-"
-    rows = "".join(f"| onset reach of a {kind} (m) | {own.reach:.3g} | {hand} | {own.onsets} "
-                   f"onsets, {_far_out(own)}{QUANTILE:.0%} within {own.quantile:.3g} m, times "
-                   f"{MARGIN:g} |\n" for kind, own in reach.kinds.items())
+    rows = "".join(f"| onset reach of a {kind} (m) | {own.reach:.3g} | {hand} | "
+                   f"{_fitted_from(own, '.3g')}, times {MARGIN:g} |\n"
+                   for kind, own in reach.kinds.items())
     return ("| parameter | learned | hand-written | fitted from |\n|---|---:|---:|---|\n"
             f"| onset reach (m): how far from where a hidden object was an occluder may start "
             f"hiding it | {reach.reach:.3g} | {hand} | "
-            + (f"{reach.onsets} onsets, {_far_out(reach)}{QUANTILE:.0%} within "
-               f"{reach.quantile:.3g} m, times {MARGIN:g} |\n" if reach.onsets
+            + (f"{_fitted_from(reach, '.3g')}, times {MARGIN:g} |\n" if reach.onsets
                else "none: not fitted |\n") + rows)
+
+
+def _fitted_from(reach: OnsetReach, digits: str) -> str:
+    """``"N onsets, (K far out left out) 90% within Q m"``, Q formatted with ``digits``."""
+    return (f"{reach.onsets} onsets, {_far_out(reach)}{QUANTILE:.0%} within "
+            f"{reach.quantile:{digits}} m")
 
 
 def _far_out(reach: OnsetReach) -> str:

@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from probanchor.learning.occlusion_reach import FAR, MARGIN
+from probanchor.learning.occlusion_reach import FAR, MARGIN, not_far_out
 
 __all__ = ["FAR", "GATE", "THRESHOLD", "grip", "reach", "rise", "signed_gate", "threshold"]
 
@@ -55,9 +55,7 @@ def _values(xs: Sequence[float]) -> np.ndarray:
 def reach(xs: Sequence[float]) -> float:
     """The margin times the largest of the non-negative ``xs`` that is not far out (beyond the
     upper quartile plus ``FAR`` interquartile ranges): every other event seen within it."""
-    a = _values(xs)
-    q1, q3 = np.quantile(a, [0.25, 0.75])
-    return MARGIN * float(np.max(a[a <= q3 + FAR * (q3 - q1)]))
+    return MARGIN * float(np.max(not_far_out(_values(xs), FAR)))
 
 
 def signed_gate(xs: Sequence[float]) -> tuple[float, float]:

@@ -220,18 +220,14 @@ def rest_gaps(rows: Sequence[Sequence[object]]) -> tuple[float, int]:
     if not len(a):
         raise ValueError("no object that stood still hidden under nothing throughout: "
                          "no gap to fit")
-    n = np.maximum(a[:, 4], 1.0)
-    d2 = a[:, 2] ** 2 + a[:, 3] ** 2
 
-    def nll(theta: np.ndarray) -> float:
-        var = n * (V_MIN + math.exp(theta[0])) + V_MIN + math.exp(theta[1])
-        return float(np.sum(2 * np.log(var) + d2 / var))      # two axes, constants dropped
+    def moments(rows: np.ndarray, k: float, v: float) -> tuple[np.ndarray, np.ndarray]:
+        # the coasting model without a velocity: k plays no part
+        return np.zeros((len(rows), 2)), np.repeat(v * np.maximum(rows[:, 4:5], 1.0), 2, axis=1)
 
-    scale = math.log(max(float(np.mean(d2 / (2 * n))), 1e-12))
-    best = min((minimize(nll, np.array([scale + dv, scale + dc]), method="Nelder-Mead",
-                         options={"xatol": 1e-6, "fatol": 1e-9, "maxiter": 4000})
-                for dv in (-2.0, 0.0) for dc in (-4.0, 0.0)), key=lambda r: r.fun)
-    return V_MIN + math.exp(best.x[0]), len(a)
+    _, v, _, _ = _gap_fit(a, moments, float(np.mean(a[:, 2:4] ** 2 / np.maximum(a[:, 4:5], 1.0))),
+                          broad=False)
+    return v, len(a)
 
 
 #: The quantile of the perceived objects' steps that :func:`fastest` reads.

@@ -34,8 +34,10 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["FAR", "MARGIN", "MIN_ONSETS", "QUANTILE", "DataPoints", "OnsetReach", "onset_reach",
-           "pair_of_line", "read_points"]
+import numpy as np
+
+__all__ = ["FAR", "MARGIN", "MIN_ONSETS", "QUANTILE", "DataPoints", "OnsetReach", "not_far_out",
+           "onset_reach", "pair_of_line", "read_points"]
 
 #: The share of the onsets within the reach (before the margin).
 QUANTILE = 0.9
@@ -46,6 +48,24 @@ MIN_ONSETS = 10
 #: A reach leaves out events beyond the upper quartile plus this many interquartile ranges
 #: (Tukey's "far out"; the grip reach too, :mod:`probanchor.learning.motion_grip`).
 FAR = 3.0
+
+
+
+def not_far_out(values: Iterable[float], far: float = FAR) -> np.ndarray:
+    """The ``values`` (sorted) that are not far out: at most the upper quartile plus ``far``
+    interquartile ranges (Tukey's far fence).
+
+    Raises
+    ------
+    ValueError
+        No value.
+    """
+    a = np.sort(np.asarray(list(values), dtype=float))
+    if a.size == 0:
+        raise ValueError("no samples")
+    q1, q3 = np.quantile(a, [0.25, 0.75])
+    return a[a <= q3 + far * (q3 - q1)]
+
 
 _POS_T = re.compile(r"^pos\((\w+)\):t ~= \(([-\d.e]+), ([-\d.e]+), ([-\d.e]+)\)\.$")
 _POS_T1 = re.compile(r"^pos\((\w+)\):t\+1 ~= \(([-\d.e]+), ([-\d.e]+), ([-\d.e]+)\)\.$")
@@ -156,12 +176,9 @@ def onset_reach(data: Sequence[str | Path] | DataPoints, exclude: Iterable[str] 
         raise ValueError(f"no occlusion onset in {where}: no reach to fit")
 
     def fitted(distances: list[float]) -> OnsetReach:
-        distances = sorted(distances)
-        n = len(distances)
-        q1, q3 = distances[math.ceil(0.25 * n) - 1], distances[math.ceil(0.75 * n) - 1]
-        kept = [d for d in distances if d <= q3 + far * (q3 - q1)]
-        q = kept[min(len(kept) - 1, math.ceil(quantile * len(kept)) - 1)]
-        return OnsetReach(round(margin * q, 4), q, n, n - len(kept))
+        kept = not_far_out(distances, far)
+        q = float(kept[min(len(kept) - 1, math.ceil(quantile * len(kept)) - 1)])
+        return OnsetReach(round(margin * q, 4), q, len(distances), len(distances) - len(kept))
 
     by_kind: dict[str, list[float]] = {}
     for kind, distance in onsets:
