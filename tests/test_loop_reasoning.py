@@ -182,3 +182,25 @@ def test_an_upright_can_hides_nothing(blind: bool) -> None:
         assert reasoner.probability("occluded_by(ball_1, can_1):t") == 0.0
     finally:
         reasoner.close()
+
+
+def test_the_loop_blurs_beliefs_by_its_theory_reappearance_spread() -> None:
+    """Anchoring weighs a hidden anchor's belief near a percept with the spread the theory
+    says a hidden object is seen again with (sqrt(reappear_var)): too.pl's 5 cm, a learned
+    theory's fitted one; a manager the caller made keeps its own."""
+    from anchoring.manager import AnchorManager
+    from probanchor.loop.loop import AnchoringLoop, LoopConfig
+    from probanchor.loop.theories import DEFAULT_THEORY, THEORIES
+
+    def radius(theory, manager=None) -> float:
+        loop = AnchoringLoop(LoopConfig(particles=4, theory=theory), manager)
+        try:
+            return loop.manager.belief_radius
+        finally:
+            loop.close()
+
+    assert radius(DEFAULT_THEORY) == pytest.approx(0.05)
+    text = THEORIES["hindsight"].read_text(encoding="utf-8")
+    fitted = float(text.split("reappear_var(", 1)[1].split(")", 1)[0])
+    assert radius(THEORIES["hindsight"]) == pytest.approx(fitted ** 0.5)
+    assert radius(DEFAULT_THEORY, AnchorManager(belief_radius=0.02)) == pytest.approx(0.02)

@@ -24,9 +24,14 @@
 % here), and a draw for every pair in every particle would cost more than the rest of the
 % theory.
 % O is a candidate occluder of the hidden A when the particle
-% draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly, or `behind`
-% when A has just vanished (it stays where it was, hidden from view: as in too.pl); the
-% occlusion goes on while O is perceived and the particle draws occluder(A, O):t+1 ~= true.
+% draws occluder(A, O):t+1 ~= true; the particle picks one candidate uniformly; when none is
+% drawn A is under nothing (behind something, or left where it was), so the share of the
+% vanishings under nothing is the tree's own (the data's vanishings with no occluder are among
+% its examples; too.pl adds a `behind` choice by hand).  A carrier's grip over A
+% (too/too_motion.pl's grasp_candidate/2) is no draw of the tree: when A has just vanished
+% with a carrier among the candidates, `behind` is one more choice (A stays where it was,
+% hidden from view: the hand may pass over it; as in too.pl).  The occlusion goes on while
+% O is perceived and the particle draws occluder(A, O):t+1 ~= true.
 pair(A, O):t+1 :=
     hidden(A):t+1, observed(O), O \== A, can_be_occluded(A), can_occlude(O),
     (   occluded_by(A, O):t
@@ -42,12 +47,12 @@ reach_of(O, R) := category(O, C), \+ onset_reach(C, _), onset_reach(R).
 occluder_candidate(A, O):t+1 :=
     pair(A, O):t+1, \+ occluded_by(A, O):t, occluder(A, O):t+1 ~= true.
 pick_occluder(A):t+1 ~ uniform(Os) :=
-    hidden(A):t+1, seen(A):t, \+ occluded_by(A, _):t,
+    hidden(A):t+1, \+ occluded_by(A, _):t,
     findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os1), Os1 \== [],
-    Os = [behind | Os1].
-pick_occluder(A):t+1 ~ uniform(Os) :=
-    hidden(A):t+1, \+ seen(A):t, \+ occluded_by(A, _):t,
-    findall_forward(O, occluder_candidate(A, O):t+1, Os0), sort(Os0, Os), Os \== [].
+    (   seen(A):t, member(O, Os1), is_carrier(O)
+    ->  Os = [behind | Os1]
+    ;   Os = Os1
+    ).
 occluded_by(A, O):t+1 := hidden(A):t+1, pick_occluder(A):t+1 ~= O, O \== behind.
 occluded_by(A, O):t+1 :=
     occluded_by(A, O):t, seen(O):t, pair(A, O):t+1, occluder(A, O):t+1 ~= true.

@@ -12,7 +12,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 FEATURES: tuple[str, ...] = ("category", "colour", "position", "size", "time")
-#: The kernel of a belief's mass near a percept (metres): too.pl's reappear_var is (5 cm)^2.
+#: The kernel of a belief's mass near a percept (metres) where no theory says otherwise (a run
+#: takes its theory's reappearance spread, sqrt(reappear_var): too.pl's is 5 cm).
 BELIEF_RADIUS = 0.05
 
 

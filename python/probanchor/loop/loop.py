@@ -99,14 +99,21 @@ class AnchoringLoop:
 
     def __init__(self, config: LoopConfig, manager: AnchorManager | None = None) -> None:
         self.config = config
-        self.manager = manager or (AnchorManager() if config.reidentify
-                                   else AnchorManager(reid_seconds=0))
+        # (an AnchorManager with no anchors is falsy: compare with None)
+        self.manager = manager if manager is not None else (
+            AnchorManager() if config.reidentify else AnchorManager(reid_seconds=0))
         self.reasoner = (
             OcclusionReasoner(config.theory, particles=config.particles, seed=config.seed,
                               resample_threshold=config.resample_threshold,
                               threads=config.threads, engine=config.engine)
             if config.reasoning else None
         )
+        if manager is None and self.reasoner is not None:
+            # a hidden anchor is re-acquired where its theory has it seen again: the blur of
+            # its belief's predictive density is the theory's own reappearance spread
+            radius = self.reasoner.reappear_radius()
+            if radius is not None:
+                self.manager.belief_radius = radius
         self.rejected_percepts = 0
         # the anchors the reasoning was told about in the last frame
         self.reasoned_anchors = 0

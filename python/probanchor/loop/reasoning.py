@@ -174,6 +174,15 @@ class OcclusionReasoner:
     def probability(self, goal: str) -> float:
         return self.filter.probability(goal)
 
+    def reappear_radius(self) -> float | None:
+        """The standard deviation (metres) of where the theory has a hidden object seen again
+        around its belief: the square root of its ``reappear_var/1`` (hand-written in too.pl,
+        fitted from the data in a learned theory), None for a theory without one."""
+        values = [v for v in self.filter.values("V", "reappear_var(V)") if v is not None]
+        if not values or not isinstance(values[0], int | float) or not values[0] > 0:
+            return None
+        return float(values[0]) ** 0.5
+
     def close(self) -> None:
         self.filter.close()
 
