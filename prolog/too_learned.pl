@@ -28,6 +28,7 @@ follow_var(1.441e-05).  % the jitter of that offset per frame (m²); 15,037 samp
 coast_keep(0.8864).  % the fraction of its velocity a hidden object under nothing keeps; 237 samples
 wander_var(0.0001671).  % how far such an object may move besides (m²); 237 samples
 rest_var(6.69e-06).  % how far one that stood still as it vanished may move (m²); 928 samples
+height_var(1e-08).  % how far a hidden object's height may move (m² a frame); 1,170 samples
 grip_reach(0.1482).  % how far (table plane) a hand's grip may be from what it takes (m); 52 samples
 grip_height(0.1178).  % how far above its top (m); 52 samples
 occluder_rise(0.009905).  % how far below its centre (m); 52 samples

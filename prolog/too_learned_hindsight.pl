@@ -28,6 +28,7 @@ follow_var(1.571e-07).  % the jitter of that offset per frame (m²); 25 samples
 coast_keep(0.8678).  % the fraction of its velocity a hidden object under nothing keeps; 37 samples
 wander_var(0.0003492).  % how far such an object may move besides (m²); 37 samples
 rest_var(1.6e-06).  % how far one that stood still as it vanished may move (m²); 84 samples
+height_var(1e-08).  % how far a hidden object's height may move (m² a frame); 128 samples
 grip_reach(0.06474).  % how far (table plane) a hand's grip may be from what it takes (m); 21 samples
 grip_height(0.1377).  % how far above its top (m); 21 samples
 occluder_rise(0.00425).  % how far below its centre (m); 21 samples

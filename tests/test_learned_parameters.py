@@ -218,3 +218,27 @@ def test_rest_var_is_the_spread_of_the_objects_that_stood_still_as_they_vanished
     assert fitted == pytest.approx(v, rel=0.15)
     with pytest.raises(ValueError, match="stood still"):
         rest_gaps([[MOVING * 3, 0.0, 0.1, 0.1, 5]])
+
+
+def test_height_var_is_the_spread_of_hidden_objects_heights() -> None:
+    """Gaps of n frames whose heights went dz ~ N(0, n V + C): the maximum-likelihood V and the
+    count of the rows that have dz; samples collected before dz was kept fit no height_var,
+    and the fit leaves it out (the theory reads too.pl's rule) rather than failing."""
+    from probanchor.learning.motion_keep import height_gaps
+    from probanchor.learning.motion_parameters import OPTIONAL
+
+    rng = np.random.default_rng(5)
+    v, c = 0.001 ** 2, 0.003 ** 2
+    n = rng.integers(1, 60, 3000)
+    dz = rng.normal(0.0, 1.0, 3000) * np.sqrt(n * v + c)
+    rows = [[0.0, 0.0, 0.01, -0.01, int(n[k]), float(dz[k])] for k in range(3000)]
+    fitted, count = height_gaps(rows + [[0.0, 0.0, 0.01, 0.01, 5]])  # one without dz
+    assert count == 3000
+    # the standard error of V from 3,000 values spread over n: a few per cent
+    assert fitted == pytest.approx(v, rel=0.15)
+    with pytest.raises(ValueError, match="change of height"):
+        height_gaps([[0.0, 0.0, 0.01, 0.01, 5]])
+    old = MotionSamples()
+    old.rows["coast_gap"] = [[0.0, 0.0, 0.01, 0.01, 5]]
+    hand = {name: 0.5 for name in DESCRIPTIONS if name not in OPTIONAL}
+    assert "height_var" not in {f.name for f in fit(old, hand)}

@@ -47,7 +47,7 @@ REACH = OnsetReach(0.15, 0.12, 1)
 #: The hand-written values, as if fitted.
 HAND = {m[1]: float(m[2]) for m in re.finditer(r"^(\w+)\(([-\d.eE+]+)\)\.",
                                                 (PROLOG / "too_parameters.pl").read_text(), re.M)}
-FITTED = [Fitted(name, HAND[name], 1) for name in DESCRIPTIONS]
+FITTED = [Fitted(name, HAND.get(name, 1e-6), 1) for name in DESCRIPTIONS]
 #: Affordances as the data show them (occlusion_affordances.py).
 FOUND = {"hides": {"ball": Affordance(1e-4, 9000), "bowl": Affordance(0.2, 900),
                    "mug": Affordance(0.1, 9000),
@@ -650,3 +650,38 @@ def test_a_theory_written_before_rest_var_spreads_every_hidden_object_by_its_wan
     spread = float(np.sqrt(np.average((xyz[:, 0] - np.average(xyz[:, 0], weights=w)) ** 2,
                                       weights=w)))
     assert spread == pytest.approx(np.sqrt(10 * wander), rel=4 / np.sqrt(400))
+
+
+def test_a_hidden_object_height_spreads_by_height_var(tmp_path: Path) -> None:
+    """A ball standing still behind a box: ten frames later its particles' heights spread by
+    ten steps of height_var when the theory has it, by ten of a hundredth of rest_var (too.pl's
+    rule) when it has none (400 particles)."""
+    from dataclasses import replace
+
+    rest, height = 0.004 ** 2, 0.002 ** 2
+    spread = {}
+    for name, fitted in (
+            ("fitted", [replace(f, value={"rest_var": rest, "height_var": height}.get(
+                f.name, f.value)) for f in FITTED]),
+            ("none", [replace(f, value=rest) if f.name == "rest_var" else f
+                      for f in FITTED if f.name != "height_var"])):
+        path = tmp_path / f"too_{name}.pl"
+        path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH,
+                                    found=FOUND, fitted=fitted, release_program=RELEASE))
+        assert ("height_var(" in path.read_text()) == (name == "fitted")
+        f = bridge.Filter(path, particles=400, seed=2, threads=1)
+        actions = ["object(ball_1)", "category(ball_1, ball)", "object(box_1)",
+                   "category(box_1, box)"]
+        box = ["observed(box_1)", "observation(pos(box_1)) ~= (0.5, 0.3, 0.06)"]
+        for _ in range(4):
+            f.step([*box, "observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)"],
+                   actions=actions)
+        for _ in range(10):
+            f.step(box, actions=actions)
+        xyz, w = f.samples("P", "pos(ball_1):t ~= P")
+        f.close()
+        spread[name] = float(np.sqrt(np.average((xyz[:, 2] - np.average(xyz[:, 2], weights=w))
+                                                ** 2, weights=w)))
+    tolerance = 4 / np.sqrt(800)     # the relative error of 400 samples' standard deviation
+    assert spread["fitted"] == pytest.approx(np.sqrt(10 * height), rel=tolerance)
+    assert spread["none"] == pytest.approx(np.sqrt(10 * rest / 100), rel=tolerance)

@@ -29,6 +29,9 @@
 % The heights of the kinds (a learned theory's, fitted from the perceived heights; too.pl has
 % none): the carriers' rules measure a grip's height over an object from its top.
 :- dynamic(kind_height/2).
+% How far a hidden object's height spreads a frame (a learned theory's, fitted; too.pl has none:
+% too_motion.pl's height_spread/2).
+:- dynamic(height_var/1).
 
 % ------------------------------------------------------------------ seen and hidden
 seen(A):t+1 := observed(A).

@@ -95,7 +95,7 @@ pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
         )
     ;   MZ = Z
     ),
-    follow_var(V), VZ is V / 100.
+    follow_var(V), height_spread(V, VZ).
 % Hidden under an occluder that has just been picked: under it, at the object's own height
 % (in a hand that picked it up late, as it was already rising: at most grip_drop below the
 % grip).
@@ -125,7 +125,7 @@ pos(A):t+1 ~ gaussian([MX, MY, MZ], [V, 0, 0, 0, V, 0, 0, 0, VZ]) :=
     ->  MZ = R
     ;   MZ = Z
     ),
-    spread(A, V):t+1, VZ is V / 100.
+    spread(A, V):t+1, height_spread(V, VZ).
 % A hidden object under nothing coasts while it has been since it vanished moving (as fast as
 % moving_speed or faster then); it rests otherwise.
 coasting(A):t+1 :=
@@ -137,6 +137,11 @@ spread(A, V):t+1 := object(A), \+ coasting(A):t+1, resting_var(V).
 % warning that names it) spreads every hidden object by wander_var, as it did then.
 resting_var(V) := rest_var(V).
 resting_var(V) := \+ rest_var(_), wander_var(V).
+% A hidden object's height (it stays on the table, or in the hand that holds it) spreads by
+% height_var, fitted from the data in a learned theory; too.pl has none and spreads it by a
+% hundredth of its spread in the table plane V (height_var/1 is declared in too_base.pl).
+height_spread(_, VZ) := height_var(VZ).
+height_spread(V, VZ) := \+ height_var(_), VZ is V / 100.
 % A hand out of view is believed where it was last seen, the same point in every particle, so
 % that when it comes back its position weighs every particle alike (a hand's position says
 % nothing about what hides what).

@@ -59,6 +59,10 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
     "rest_var": ("how far one that stood still as it vanished may move (m²)",
                  "ML variance per step of how far objects that stood still as they vanished "
                  "went while hidden"),
+    "height_var": ("how far a hidden object's height may move (m² a frame)",
+                   "ML variance per step of how far hidden objects' heights went while "
+                   "hidden, with a broad component for the jumps (put on or taken off "
+                   "something)"),
     "grip_reach": ("how far (table plane) a hand's grip may be from what it takes (m)",
                    "2 x the largest grasp seen that is not far out (beyond the upper quartile "
                    "+ 3 interquartile ranges)"),
@@ -71,6 +75,12 @@ DESCRIPTIONS: dict[str, tuple[str, str]] = {
     "grip_rise": ("how far a hand's grip rises in a frame when it lifts (m)",
                   "the 10 % quantile of the rises while lifting, / 2"),
 }
+
+
+#: Parameters too_parameters.pl does not have, each with the hand-written rule too.pl reads
+#: instead (too/too_motion.pl): left out of a theory whose samples cannot fit them (collected
+#: before the samples kept what they are fitted from), which then reads that rule too.
+OPTIONAL = {"height_var": "V / 100"}
 
 
 @dataclass(frozen=True)
@@ -106,6 +116,7 @@ def fit(samples: MotionSamples, hand: dict[str, float]) -> list[Fitted]:
                        else motion_keep.follow_gaps(r["follow_gap"]))),
         (("coast_keep", "wander_var"), lambda: _pair(_coasting(r))),
         (("rest_var",), lambda: [motion_keep.rest_gaps(r.get("coast_gap", []))]),
+        (("height_var",), lambda: [motion_keep.height_gaps(r.get("coast_gap", []))]),
         (("grip_reach", "grip_height", "occluder_rise", "grip_drop"),
          lambda: list(motion_grip.grip(r["grasp"], r["hold"]).values())),
         (("grip_rise",), lambda: [motion_grip.rise(r["carries"])]),
@@ -115,12 +126,14 @@ def fit(samples: MotionSamples, hand: dict[str, float]) -> list[Fitted]:
             values = fitter()
         except ValueError as error:
             missing = [n for n in names if n not in hand]
+            if missing and all(n in OPTIONAL for n in missing):
+                continue
             if missing:
                 raise ValueError(f"the motion samples cannot fit {', '.join(missing)}: "
                                  f"{error}") from None
             values = [(hand[n], 0) for n in names]
         out.update(zip(names, values, strict=True))
-    return [Fitted(name, out[name][0], out[name][1]) for name in DESCRIPTIONS]
+    return [Fitted(name, out[name][0], out[name][1]) for name in DESCRIPTIONS if name in out]
 
 
 def _coasting(r: dict[str, list]) -> tuple[float, float, int]:
@@ -198,6 +211,7 @@ def parameter_rows(fitted: Sequence[Fitted], base: str | Path) -> str:
         what, how = DESCRIPTIONS[f.name]
         h = hand.get(f.name)
         n = f"{f.samples:,}" if f.samples else "none: not fitted"
-        lines.append(f"| `{f.name}` | {f.value:.3g} | {'-' if h is None else f'{h:.3g}'} | "
+        written = OPTIONAL.get(f.name, "-") if h is None else f"{h:.3g}"
+        lines.append(f"| `{f.name}` | {f.value:.3g} | {written} | "
                      f"{what} | {how} | {n} |")
     return "\n".join(lines) + "\n"

@@ -15,9 +15,10 @@
   step: (vx0, vy0, vx1, vy1);
 - ``coast_gap``: an object hidden under nothing from when it vanished until it reappeared
   (behind something, or out of the view; not while the camera saw nothing), its true velocity
-  as it vanished, how far it truly went until it reappeared and the frames between (vx0, vy0,
-  dx, dy, n): what the theory predicts over a whole time hidden, which the steps do not show
-  (an object pushed out of the view stops there and comes back);
+  as it vanished, how far it truly went until it reappeared and the frames between, and how
+  far its height went (vx0, vy0, dx, dy, n, dz): what the theory predicts over a whole time
+  hidden, which the steps do not show (an object pushed out of the view stops there and comes
+  back);
 - ``grasp``: a hand taking an object: the table-plane distance and the height of its grip
   point above the top of the object where an ideal particle believed it (its centre and half
   its height as anchoring knows it), in the frame the object vanished
@@ -220,9 +221,11 @@ def _coast_gaps(episode: Episode, covered_by, s: MotionSamples) -> None:
 def coast_gap_row(before: Sequence[float], last: Sequence[float], back: Sequence[float],
                   n: int) -> list[float]:
     """A ``coast_gap`` row: the velocity from ``before`` to ``last`` (one frame apart) and the
-    displacement from ``last`` to ``back``, ``n`` frames later, in the table plane."""
+    displacement from ``last`` to ``back``, ``n`` frames later, in the table plane, then the
+    change of height from ``last`` to ``back``."""
     return [round(last[0] - before[0], 5), round(last[1] - before[1], 5),
-            round(back[0] - last[0], 5), round(back[1] - last[1], 5), n]
+            round(back[0] - last[0], 5), round(back[1] - last[1], 5), n,
+            round(back[2] - last[2], 5)]
 
 
 def hidden_runs(episode: Episode, a: str) -> list[tuple[int, int]]:
