@@ -147,16 +147,16 @@ def test_a_swap_the_theory_finds_improbable_is_kept_until_a_lift_decides_it(tmp_
     """Two look-alike mugs, each over a ball of its own colour, swapped 70 cm apart while the
     camera is covered. The learned theory's prior of an unseen move leaves the swap a weight
     that 200 particles may not hold (plain resampling drops it and, with it, the question, in
-    this seed and seed 2; in seeds 0, 1 and 4 to 7 it keeps it by chance); resampled by the
-    identity answers, the swap keeps its particles (in each of seeds 0 to 7) until lifting a
-    mug shows the other's ball, and the mugs' symbols are revised."""
+    this seed and seeds 1, 2 and 5 to 7; in seeds 3 and 4 it keeps it by chance); resampled by
+    the identity answers, the swap keeps its particles (in each of seeds 0 to 7) until lifting
+    a mug shows the other's ball, and the mugs' symbols are revised."""
     import anchoring.identity
     from probanchor.loop.runner import run
     from probanchor.loop.theories import theory_path
 
     scenario = tmp_path / "far_swap.yaml"
     scenario.write_text(FAR_SWAP)
-    options = RunOptions(scenario=scenario, particles=200, seed=3, threads=1, progress=False,
+    options = RunOptions(scenario=scenario, particles=200, seed=0, threads=1, progress=False,
                          theory=theory_path("learned"))
     summary = run(options).summary
     assert [sorted(r["mapping"].items()) for r in summary["revisions"]] == \

@@ -119,8 +119,10 @@ def test_a_store_from_another_theory_or_run_is_not_resumed(scenario: Path, whole
     # the same theory file, one of the files it includes edited
     theory.write_text((ROOT / "prolog" / "too.pl").read_text())
     motion = tmp_path / "too" / "too_motion.pl"
-    motion.write_text(motion.read_text().replace("follow_var(V), VZ is V / 100.",
-                                                 "follow_var(V), VZ is V / 50.", 1))
+    text = motion.read_text()
+    edited = text.replace("VZ is V / 100.", "VZ is V / 50.", 1)
+    assert edited != text, "the edit must change too_motion.pl"
+    motion.write_text(edited)
     with pytest.raises(StoreError, match=r"world\.db: a store from another theory"):
         run(RunOptions(scenario=scenario, particles=PARTICLES, progress=False, resume=db,
                        theory=theory))
