@@ -590,6 +590,26 @@ def test_far_out_onsets_do_not_stretch_the_reach(tmp_path: Path) -> None:
     assert onset_reach([data], far=float("inf")).quantile == pytest.approx(0.245)
 
 
+def hidden_ball_spread(path: Path, axis: int, seen: int = 4, speed: float = 0.0,
+                       particles: int = 400, seed: int = 2) -> tuple[float, np.ndarray]:
+    """A ball beside a box perceived ``seen`` frames (moving ``speed`` a frame along x), then
+    hidden under nothing for ten: its particles' standard deviation along ``axis``, and their
+    positions."""
+    f = bridge.Filter(path, particles=particles, seed=seed, threads=1)
+    actions = ["object(ball_1)", "category(ball_1, ball)", "object(box_1)",
+               "category(box_1, box)"]
+    box = ["observed(box_1)", "observation(pos(box_1)) ~= (0.5, 0.3, 0.06)"]
+    for k in range(seen):
+        f.step([*box, "observed(ball_1)",
+                f"observation(pos(ball_1)) ~= ({speed * k}, 0.0, 0.03)"], actions=actions)
+    for _ in range(10):
+        f.step(box, actions=actions)
+    xyz, w = f.samples("P", "pos(ball_1):t ~= P")
+    f.close()
+    x = xyz[:, axis]
+    return float(np.sqrt(np.average((x - np.average(x, weights=w)) ** 2, weights=w))), xyz
+
+
 def test_a_hidden_object_that_stood_still_rests_and_one_that_moved_coasts(
         tmp_path: Path) -> None:
     """A ball hidden under nothing spreads by rest_var a frame if it stood still as it
@@ -604,21 +624,8 @@ def test_a_hidden_object_that_stood_still_rests_and_one_that_moved_coasts(
     path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH, found=FOUND,
                                 fitted=fitted, release_program=RELEASE))
     assert "moving_speed(" in path.read_text()
-    spread = {}
-    for name, speed in (("still", 0.0), ("moving", 0.01)):
-        f = bridge.Filter(path, particles=400, seed=2, threads=1)
-        actions = ["object(ball_1)", "category(ball_1, ball)", "object(box_1)",
-                   "category(box_1, box)"]
-        box = ["observed(box_1)", "observation(pos(box_1)) ~= (0.5, 0.3, 0.06)"]
-        for k in range(4):
-            f.step([*box, "observed(ball_1)",
-                    f"observation(pos(ball_1)) ~= ({speed * k}, 0.0, 0.03)"], actions=actions)
-        for _ in range(10):
-            f.step(box, actions=actions)
-        xyz, w = f.samples("P", "pos(ball_1):t ~= P")
-        f.close()
-        spread[name] = float(np.sqrt(np.average((xyz[:, 1] - np.average(xyz[:, 1], weights=w))
-                                                ** 2, weights=w)))
+    spread = {name: hidden_ball_spread(path, axis=1, speed=speed)[0]
+              for name, speed in (("still", 0.0), ("moving", 0.01))}
     # the standard deviation of 400 samples' standard deviation: about 1/sqrt(800) of it
     tolerance = 4 / np.sqrt(800)
     assert spread["still"] == pytest.approx(np.sqrt(10 * rest), rel=tolerance)
@@ -635,20 +642,9 @@ def test_a_theory_written_before_rest_var_spreads_every_hidden_object_by_its_wan
                        release_program=RELEASE)
     path.write_text("\n".join(line for line in text.splitlines()
                               if not line.startswith("moving_speed(")) + "\n")
-    f = bridge.Filter(path, particles=200, seed=3, threads=1)
-    actions = ["object(ball_1)", "category(ball_1, ball)", "object(box_1)",
-               "category(box_1, box)"]
-    box = ["observed(box_1)", "observation(pos(box_1)) ~= (0.5, 0.3, 0.06)"]
-    f.step([*box, "observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)"],
-           actions=actions)
-    for _ in range(10):
-        f.step(box, actions=actions)
-    xyz, w = f.samples("P", "pos(ball_1):t ~= P")
-    f.close()
+    spread, xyz = hidden_ball_spread(path, axis=0, seen=1, particles=200, seed=3)
     assert not np.isnan(xyz).any()
     wander = next(x.value for x in FITTED if x.name == "wander_var")
-    spread = float(np.sqrt(np.average((xyz[:, 0] - np.average(xyz[:, 0], weights=w)) ** 2,
-                                      weights=w)))
     assert spread == pytest.approx(np.sqrt(10 * wander), rel=4 / np.sqrt(400))
 
 
@@ -669,19 +665,7 @@ def test_a_hidden_object_height_spreads_by_height_var(tmp_path: Path) -> None:
         path.write_text(theory_text(LEARNED, "", base=PROLOG, out=path, reach=REACH,
                                     found=FOUND, fitted=fitted, release_program=RELEASE))
         assert ("height_var(" in path.read_text()) == (name == "fitted")
-        f = bridge.Filter(path, particles=400, seed=2, threads=1)
-        actions = ["object(ball_1)", "category(ball_1, ball)", "object(box_1)",
-                   "category(box_1, box)"]
-        box = ["observed(box_1)", "observation(pos(box_1)) ~= (0.5, 0.3, 0.06)"]
-        for _ in range(4):
-            f.step([*box, "observed(ball_1)", "observation(pos(ball_1)) ~= (0.0, 0.0, 0.03)"],
-                   actions=actions)
-        for _ in range(10):
-            f.step(box, actions=actions)
-        xyz, w = f.samples("P", "pos(ball_1):t ~= P")
-        f.close()
-        spread[name] = float(np.sqrt(np.average((xyz[:, 2] - np.average(xyz[:, 2], weights=w))
-                                                ** 2, weights=w)))
+        spread[name] = hidden_ball_spread(path, axis=2)[0]
     tolerance = 4 / np.sqrt(800)     # the relative error of 400 samples' standard deviation
     assert spread["fitted"] == pytest.approx(np.sqrt(10 * height), rel=tolerance)
     assert spread["none"] == pytest.approx(np.sqrt(10 * rest / 100), rel=tolerance)
