@@ -45,3 +45,30 @@ def test_a_data_file_that_does_not_exist_is_named_as_such(tmp_path) -> None:
     (tmp_path / "old.pl").write_text("% data without samples beside it\n")
     with pytest.raises(FileNotFoundError, match=r"old\.motion\.json: no motion samples beside"):
         read_samples([tmp_path / "old.pl"])
+
+
+def test_a_malformed_samples_file_names_the_file_and_the_row(tmp_path) -> None:
+    """A row not of its kind's shape is an error naming the file, the kind and the row (fitted
+    around, it made the coasting "NOT FITTED: no samples"); a file that is not JSON names its
+    line; a coasting gap written before the change of height was kept still reads."""
+    import json
+
+    from probanchor.learning.motion_samples import read_samples
+
+    data = tmp_path / "d.pl"
+    data.write_text("% data\n")
+    samples = tmp_path / "d.motion.json"
+    good = {"coast_gap": [[0.0, 0.0, 0.01, 0.0, 5, 0.001], [0.0, 0.0, 0.01, 0.0, 5]],
+            "reappear": [[0.01, 0.0, 0.0]], "hold": [0.03], "heights": [["mug", 0.1]]}
+    samples.write_text(json.dumps(good))
+    assert len(read_samples([data]).rows["coast_gap"]) == 2
+    samples.write_text(json.dumps({**good, "coast_gap": [good["coast_gap"][0],
+                                                        [0.0, 0.0, 0.01, "x", 5, 0.001]]}))
+    with pytest.raises(ValueError, match=r"d\.motion\.json: coast_gap row 1: .*'x'.* is not"):
+        read_samples([data])
+    samples.write_text(json.dumps({**good, "hold": [None]}))
+    with pytest.raises(ValueError, match=r"d\.motion\.json: hold row 0: None is not a number"):
+        read_samples([data])
+    samples.write_text('{"coast_gap": [1,\n')
+    with pytest.raises(ValueError, match=r"d\.motion\.json:2: not JSON"):
+        read_samples([data])

@@ -92,6 +92,9 @@ def read_samples(data: list[str | Path] | tuple[str | Path, ...]) -> MotionSampl
     FileNotFoundError
         A data file does not exist, or has no samples beside it (collected by an older
         ``anchoring collect``).
+    ValueError
+        A samples file is not JSON, or a row is not of its kind's shape (:data:`ROW_SHAPES`):
+        the message names the file and the line, or the kind and the row.
     """
     out = MotionSamples()
     for d in data:
@@ -102,9 +105,58 @@ def read_samples(data: list[str | Path] | tuple[str | Path, ...]) -> MotionSampl
         if not path.is_file():
             raise FileNotFoundError(f"{path}: no motion samples beside {d} (collect it again "
                                     "with `anchoring collect`, which writes them)")
-        rows = json.loads(path.read_text(encoding="utf-8"))
+        try:
+            rows = json.loads(path.read_text(encoding="utf-8"))
+        except json.JSONDecodeError as error:
+            raise ValueError(f"{path}:{error.lineno}: not JSON: {error.msg}") from None
+        if not isinstance(rows, dict):
+            raise ValueError(f"{path}: not an object of sample kinds")
+        for kind in KINDS:
+            for k, row in enumerate(rows.get(kind, [])):
+                if not _row_fits(row, ROW_SHAPES[kind]):
+                    raise ValueError(f"{path}: {kind} row {k}: {row!r} is not "
+                                     f"{' or '.join(map(_shape_text, ROW_SHAPES[kind]))}")
         out.extend(MotionSamples({k: list(rows.get(k, [])) for k in KINDS}))
     return out
+
+
+#: The rows each kind of sample may have (see the module docstring): per column ``n`` a
+#: number, ``s`` a string, ``*`` anything; ``n`` alone a number (not a list), ``{}`` an object.
+#: ``coast_gap`` rows written before the change of height was kept have five columns.
+ROW_SHAPES: dict[str, tuple[str, ...]] = {
+    "displacement": ("nnns**", "nnns*"), "reappear": ("nnn",), "lost": ("nnn",),
+    "follow": ("nnnns",), "coast": ("nnnn",), "grasp": ("nnn",), "hold": ("n",),
+    "carries": ("{}",), "uncover": ("n",), "places": ("nn",), "follow_gap": ("nnnnns",),
+    "coast_gap": ("nnnnnn", "nnnnn"), "heights": ("sn",),
+}
+
+
+def _is_number(v: object) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _row_fits(row: object, shapes: tuple[str, ...]) -> bool:
+    for shape in shapes:
+        if shape == "n":
+            if _is_number(row):
+                return True
+        elif shape == "{}":
+            if isinstance(row, dict):
+                return True
+        elif isinstance(row, list) and len(row) == len(shape) and all(
+                c == "*" or (c == "n" and _is_number(v)) or (c == "s" and isinstance(v, str))
+                for c, v in zip(shape, row, strict=True)):
+            return True
+    return False
+
+
+def _shape_text(shape: str) -> str:
+    if shape == "n":
+        return "a number"
+    if shape == "{}":
+        return "an object"
+    names = {"n": "number", "s": "string", "*": "value"}
+    return "[" + ", ".join(names[c] for c in shape) + "]"
 
 
 def told(view: AnchorView) -> tuple[float, float, float]:
