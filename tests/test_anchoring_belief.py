@@ -4,6 +4,8 @@ says when the beliefs cannot tell."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -261,11 +263,14 @@ def test_hidden_anchors_are_assigned_by_their_likelihoods():
     the mug, the mug out of view); the first view of the mug coming back is a sliver that
     perception calls a ball. Both anchors may take it; the mug is the more probable (its
     colour), and takes it by the sum of the log likelihood ratios. By the mean similarity
-    (``position_match="mass"``), the ball took it for its category."""
+    (``position_match="mass"``), the ball took it for its category. The appearance ratio is a
+    plain Platt one (no look-alike share) that lets both anchors pass the gate, so that only
+    the assignment's rule differs."""
     mug = {"category": {"mug": 0.8, "cup": 0.2}, "hue": 0.0, "size": (0.09, 0.09, 0.1)}
+    platt = AssociationModel(appearance_scale=5.95, appearance_offset=-5.55)
 
     def first_view(position_match: str) -> str:
-        m = AnchorManager(position_match=position_match)
+        m = AnchorManager(position_match=position_match, association=platt)
         for k in range(3):
             m.process(k / 15, [percept(k / 15, A, **mug), percept(k / 15, B, hue=2.0),
                                box(k / 15)])
@@ -280,3 +285,33 @@ def test_hidden_anchors_are_assigned_by_their_likelihoods():
 
     assert first_view("likelihood") == "mug-1"
     assert first_view("mass") == "ball-1"
+
+
+def revealed_lookalike(stray: int, association: AssociationModel | None = None) -> str:
+    """ball-1 seen at A, then hidden: all but ``stray`` of its 1,000 particles under a container
+    at FAR, ``stray`` under a container at B. An identical ball, never seen, is revealed at B.
+    Returns the symbol it gets (views are not withheld: the association alone decides)."""
+    m = AnchorManager(association=association, withhold_seconds=0)
+    for k in range(3):
+        m.process(k / 15, [percept(k / 15, A), box(k / 15)])
+    m.process(0.2, [box(0.2)])
+    n = 1000
+    rng = np.random.default_rng(0)
+    m.set_position_particles("ball-1", np.concatenate([cloud(rng, FAR, n - stray),
+                                                       cloud(rng, B, stray)]),
+                             np.ones(n), np.ones(n, bool))
+    return m.process(1.0, [percept(1.0, B), box(1.0)]).symbols[0]
+
+
+def test_a_revealed_lookalike_is_new_against_a_stray_particle():
+    """An identical appearance is evidence only as strong as the share of look-alikes among
+    other objects allows (A <= 1 / rho, the shipped calibration's rho): one particle in 1,000
+    where the look-alike appears does not make it the hidden ball; the plain Platt ratio of
+    the same decision (no bound: A about 1e4 for identical objects) gives it ball-1's symbol.
+    The bound is not a veto: a belief with 1 % there still re-acquires."""
+    shipped = AnchorManager().association  # the shipped model's calibration
+    assert shipped.appearance_lookalike > 0.0
+    platt = replace(shipped, appearance_lookalike=0.0)
+    assert revealed_lookalike(1) == "ball-2"
+    assert revealed_lookalike(1, platt) == "ball-1"
+    assert revealed_lookalike(10) == "ball-1"

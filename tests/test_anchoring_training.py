@@ -136,3 +136,58 @@ def test_grid_search_folds_are_whole_streams_and_prefer_few_support_vectors(monk
     with pytest.raises(ValueError, match="two training streams"):
         train_matching.choose_parameters(training.PairSet(x, y, np.zeros(600, int)), 200,
                                          np.random.default_rng(0))
+
+
+class _DecisionIsColour:
+    """A matching function whose decision is the pair's colour similarity (column 1)."""
+
+    def decision(self, x: np.ndarray) -> np.ndarray:
+        return np.asarray(x)[..., 1]
+
+
+def _calibration_pairs(rng: np.random.Generator, rho: float, n_same: int = 4000,
+                       n_other: int = 16000) -> training.PairSet:
+    """Decisions f of a known world: same object f ~ N(2, 0.3^2); another object a
+    look-alike with probability rho (f as the same object's), else f ~ N(-1, 0.6^2)."""
+    lookalike = rng.random(n_other) < rho
+    f = np.concatenate([rng.normal(2.0, 0.3, n_same),
+                        np.where(lookalike, rng.normal(2.0, 0.3, n_other),
+                                 rng.normal(-1.0, 0.6, n_other))])
+    x = np.ones((f.size, 5))
+    x[:, 1] = f
+    y = np.r_[np.ones(n_same, int), np.zeros(n_other, int)]
+    return training.PairSet(x, y, np.zeros(f.size, int))
+
+
+def test_appearance_calibration_recovers_the_share_of_lookalikes():
+    """The fitted share is the world's (within 4 binomial standard errors of its 16,000 other
+    objects), so log A at the most similar decisions is -log rho, not the unbounded Platt
+    line; data without look-alikes give a share near 0 (no bound that the data do not show)."""
+    from anchoring.likelihood import AssociationModel, appearance_log_ratio
+
+    rng = np.random.default_rng(0)
+    rho, n_other = 0.05, 16000
+    cal = training.appearance_calibration(_DecisionIsColour(), _calibration_pairs(rng, rho))
+    assert cal["lookalike"] == pytest.approx(rho, abs=4 * np.sqrt(rho * (1 - rho) / n_other))
+    model = AssociationModel(appearance_scale=cal["scale"], appearance_offset=cal["offset"],
+                             appearance_lookalike=cal["lookalike"])
+    top = np.ones((1, 5))
+    top[0, 1] = 3.0
+    assert appearance_log_ratio(_DecisionIsColour(), top, model)[0] == pytest.approx(
+        -np.log(cal["lookalike"]), abs=0.01)
+    assert cal["scale"] * 3.0 + cal["offset"] > -np.log(cal["lookalike"]) + 5  # Platt's line
+    clean = training.appearance_calibration(_DecisionIsColour(), _calibration_pairs(rng, 0.0))
+    assert clean["lookalike"] < 1e-3
+
+
+def test_a_calibration_without_a_lookalike_share_reads_as_none():
+    """Model files calibrated before the share was fitted keep their plain Platt ratio."""
+    from anchoring.likelihood import AssociationModel
+
+    class Calibrated(_DecisionIsColour):
+        info = {"appearance_calibration": {"scale": 6.0, "offset": -5.5}}
+
+    model = AssociationModel.for_matcher(Calibrated())
+    assert (model.appearance_scale, model.appearance_lookalike) == (6.0, 0.0)
+    with pytest.raises(ValueError, match="appearance_lookalike"):
+        AssociationModel(appearance_lookalike=1.0)

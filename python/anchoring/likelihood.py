@@ -8,12 +8,20 @@ looks and where its belief puts it::
 
     LR(j, a) = A(j, a) * B(j, a)
 
-    log A(j, a) = scale * f_app(j, a) + offset        (appearance; f_app: the learned matching
-                                                         function with position and time taken
-                                                         as agreeing, Platt-calibrated)
+    log A(j, a) = -log((1 - rho) exp(-(scale * f_app(j, a) + offset)) + rho)
+                                                      (appearance; f_app: the learned matching
+                                                       function with position and time taken
+                                                       as agreeing, calibrated)
     B(j, a) = (1 - e_a) * p_a(x) / u + e_a            (belief)
     p_a(x)  = sum_i w_i N(x; s_i, r^2 I)              (the belief's predictive density)
     u       = 1 / V                                   (a new object: anywhere on the table, V m^3)
+
+``A`` is how much likelier ``j``'s appearance is if ``j`` is ``a`` than if it is another
+object: the different objects are distinct-looking ones, against which a Platt-scaled decision
+``scale * f_app + offset`` is the log ratio, and, a share ``rho`` of them, look-alikes that look
+as ``a`` does (``p(f | different) = (1 - rho) q(f) + rho p(f | same)``). So ``A`` is at most
+``1 / rho``: an identical appearance is evidence only as strong as the world's rate of
+look-alikes allows (``rho = 0``: the plain Platt ratio, unbounded).
 
 ``e_a`` is the probability that the belief does not explain why ``a`` is unseen
 (:func:`unexplained_mass`): the mass of the particles that have ``a`` under no occluder with
@@ -77,7 +85,11 @@ class AssociationModel:
         such a belief, 0 trusts it as any other).
     appearance_scale, appearance_offset : float
         The Platt calibration of the matching function's appearance decision into a log
-        likelihood ratio (``anchoring train-matching`` fits them; 1 and 0 otherwise).
+        likelihood ratio against a distinct-looking object (``anchoring train-matching`` fits
+        them; 1 and 0 otherwise).
+    appearance_lookalike : float
+        ``rho``: the share of other objects that look as an anchor does (the calibration fits
+        it; 0 otherwise: an appearance ratio without bound). ``A <= 1 / rho``.
     """
 
     cover_radius: float = 0.15
@@ -87,6 +99,7 @@ class AssociationModel:
     blind_doubt: float = 0.5
     appearance_scale: float = 1.0
     appearance_offset: float = 0.0
+    appearance_lookalike: float = 0.0
 
     def __post_init__(self) -> None:
         for name in ("cover_radius", "table_volume"):
@@ -99,17 +112,22 @@ class AssociationModel:
             raise ValueError(f"blind_doubt must be in [0, 1], not {self.blind_doubt!r}")
         if not math.isfinite(self.appearance_scale) or not math.isfinite(self.appearance_offset):
             raise ValueError("the appearance calibration must be finite")
+        if not 0.0 <= self.appearance_lookalike < 1.0:
+            raise ValueError(f"appearance_lookalike must be in [0, 1), not "
+                             f"{self.appearance_lookalike!r}")
 
     @classmethod
     def for_matcher(cls, matcher: Matcher) -> AssociationModel:
         """The defaults, with the appearance calibration the matching model's file records
-        (``info["appearance_calibration"]``: ``{"scale": .., "offset": ..}``) if it has one."""
+        (``info["appearance_calibration"]``: ``{"scale": .., "offset": .., "lookalike": ..}``;
+        a calibration without ``lookalike`` has none) if it has one."""
         model = cls()
         info = getattr(matcher, "info", None) or {}
         calibration = info.get("appearance_calibration") if isinstance(info, dict) else None
         if isinstance(calibration, dict):
             model = replace(model, appearance_scale=float(calibration["scale"]),
-                            appearance_offset=float(calibration["offset"]))
+                            appearance_offset=float(calibration["offset"]),
+                            appearance_lookalike=float(calibration.get("lookalike", 0.0)))
         return model
 
     def to_json(self) -> dict[str, float]:
@@ -140,12 +158,28 @@ def appearance_log_ratio(matcher: Matcher, features: np.ndarray,
                          model: AssociationModel) -> np.ndarray:
     """``log A``: the matching function on the (..., 5) similarity vectors with the position
     and time similarities set to 1 (how the anchor looks, wherever and whenever it was),
-    calibrated into a log likelihood ratio."""
+    calibrated into a log likelihood ratio (:func:`calibrated_log_ratio`)."""
     x = np.array(features, dtype=float, copy=True)
     x[..., _POSITION] = 1.0
     x[..., _TIME] = 1.0
-    return model.appearance_scale * np.asarray(matcher.decision(x), dtype=float) \
-        + model.appearance_offset
+    return calibrated_log_ratio(np.asarray(matcher.decision(x), dtype=float),
+                                model.appearance_scale, model.appearance_offset,
+                                model.appearance_lookalike)
+
+
+def calibrated_log_ratio(decision: np.ndarray, scale: float, offset: float,
+                         lookalike: float) -> np.ndarray:
+    """``log A`` of appearance decisions ``f``::
+
+        log A0 = scale * f + offset                  (against a distinct-looking object)
+        A      = 1 / ((1 - rho) / A0 + rho)          (a share rho of other objects look alike)
+        log A  = -logaddexp(log(1 - rho) - log A0, log rho)
+
+    ``rho = 0`` gives ``log A0``."""
+    log_a0 = scale * np.asarray(decision, dtype=float) + offset
+    if lookalike <= 0.0:
+        return log_a0
+    return -np.logaddexp(math.log1p(-lookalike) - log_a0, math.log(lookalike))
 
 
 def unexplained_mass(anchor: Any, percepts: Sequence[Any], model: AssociationModel) -> float:

@@ -180,25 +180,45 @@ def scores(model: RbfSvm, pairs: PairSet) -> dict[str, float]:
 
 
 def appearance_calibration(model: RbfSvm, pairs: PairSet) -> dict[str, float]:
-    """Platt scaling of the appearance decision into a log likelihood ratio.
+    """The appearance decision's log likelihood ratio, fitted on labelled pairs.
 
-    The appearance decision is the matching function on a pair's similarities with position
-    and time taken as agreeing (:func:`anchoring.likelihood.appearance_log_ratio` with the
-    identity calibration). A logistic regression of the same-object label on it gives
-    ``logit P(same | d) = a d + b``; dividing out the pairs' prior odds (Bayes' rule) leaves
-    the likelihood ratio ``log p(d | same) / p(d | different) = a d + b - logit(prior)``, which
-    is what :class:`anchoring.likelihood.AssociationModel` multiplies the belief by. Returns
-    ``{"scale": a, "offset": b - logit(prior), "pairs": n}``.
+    The appearance decision ``f`` is the matching function on a pair's similarities with
+    position and time taken as agreeing (:func:`anchoring.likelihood.appearance_log_ratio` with
+    the identity calibration). The different-object pairs are of two kinds: distinct-looking
+    objects, against which Platt scaling gives the ratio ``log A0 = a f + b``, and a share
+    ``rho`` of look-alikes whose decisions fall as the same object's do::
+
+        p(f | different) = (1 - rho) q(f) + rho p(f | same)
+        A = p(f | same) / p(f | different) = 1 / ((1 - rho) / A0 + rho)
+        logit P(same | f) = logit(prior) + log A              (Bayes' rule)
+
+    ``a``, ``b`` and ``rho`` maximise the likelihood of the pairs' labels under the last line
+    (``scipy.optimize.minimize``, from the plain Platt fit, scikit-learn's
+    ``LogisticRegression``, with ``rho`` small). A linear log ratio alone grows without bound
+    with ``f``, where look-alikes are as common among the most similar pairs as the same object
+    is: identical twins were given ``A`` of about 1e4. Returns ``{"scale": a, "offset": b,
+    "lookalike": rho, "pairs": n}`` (:class:`anchoring.likelihood.AssociationModel`).
     """
+    from scipy.optimize import minimize
+    from scipy.special import expit, log_expit, logit
     from sklearn.linear_model import LogisticRegression
 
-    from anchoring.likelihood import AssociationModel, appearance_log_ratio
+    from anchoring.likelihood import AssociationModel, appearance_log_ratio, calibrated_log_ratio
 
     if len(pairs) == 0 or pairs.y.min() == pairs.y.max():
         raise ValueError("appearance calibration needs pairs of both labels")
     d = appearance_log_ratio(model, pairs.x, AssociationModel())
-    fit = LogisticRegression(C=100.0).fit(d.reshape(-1, 1), pairs.y)
-    prior = float(pairs.y.mean())
-    return {"scale": float(fit.coef_[0, 0]),
-            "offset": float(fit.intercept_[0] - np.log(prior / (1.0 - prior))),
-            "pairs": len(pairs)}
+    y = pairs.y.astype(bool)
+    prior_logit = float(logit(y.mean()))
+    platt = LogisticRegression(C=100.0).fit(d.reshape(-1, 1), y)
+
+    def loss(theta: np.ndarray) -> float:
+        # negative log likelihood of the labels; theta = (a, b, logit rho)
+        s = prior_logit + calibrated_log_ratio(d, theta[0], theta[1], float(expit(theta[2])))
+        return -float(log_expit(np.where(y, s, -s)).sum())
+
+    start = np.array([platt.coef_[0, 0], platt.intercept_[0] - prior_logit, logit(1e-3)])
+    fit = minimize(loss, start, method="Nelder-Mead",
+                   options={"maxiter": 4000, "xatol": 1e-6, "fatol": 1e-6})
+    a, b, r = (float(v) for v in fit.x)
+    return {"scale": a, "offset": b, "lookalike": float(expit(r)), "pairs": len(pairs)}

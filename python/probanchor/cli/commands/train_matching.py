@@ -344,8 +344,10 @@ def _calibrate_only(args: argparse.Namespace) -> int:
     model.info["appearance_calibration"] = calibration
     model.save(args.calibrate)
     print(f"appearance calibration of {args.calibrate} on {calibration['pairs']} pairs from "
-          f"{len(streams)} streams: log LR = {calibration['scale']:.3f} d "
-          f"{calibration['offset']:+.3f}")
+          f"{len(streams)} streams: log A0 = {calibration['scale']:.3f} d "
+          f"{calibration['offset']:+.3f} against a distinct-looking object, a share "
+          f"{calibration['lookalike']:.4f} of look-alikes: A at most "
+          f"{1.0 / calibration['lookalike']:.1f}")
     return 0
 
 
