@@ -1,8 +1,8 @@
 /*  too_learned.pl -- the theory of occlusion with rules learned from experience.
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
-    data_truth.pl: 19876 groundings of occluder(A, O):t+1,
-    112 clauses, training log-likelihood -4505.75;
+    data_truth.pl: 19875 groundings of occluder(A, O):t+1,
+    112 clauses, training log-likelihood -4504.85;
     and one for released(A):t+1 from 2486 frames a hand held an object
     (3 clauses, training log-likelihood -74.478);
     search seed 0.
@@ -19,10 +19,10 @@
 % motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
 % fractions, quantiles for reaches and heights, Laplace's rule for a probability);
 % variances per axis in square metres, one step is one camera frame.
-obs_var(5.523e-06).  % the measurement noise of a perceived position (m², per axis); 105,839 samples
+obs_var(5.523e-06).  % the measurement noise of a perceived position (m², per axis); 105,844 samples
 motion_var(2.961e-05).  % how far a perceived object moves in a frame (m², per axis); 122,418 samples
 reappear_var(0.002192).  % where a hidden object is seen again, around its belief (m²); 1,267 samples
-lost_var(0.07156).  % the same for an object lost while the camera saw nothing (m²); 8,191 samples
+lost_var(0.07154).  % the same for an object lost while the camera saw nothing (m²); 8,187 samples
 follow_keep(0.9262).  % the fraction of its offset from its occluder a hidden object keeps; 15,037 samples
 follow_var(1.441e-05).  % the jitter of that offset per frame (m²); 15,037 samples
 coast_keep(0.8864).  % the fraction of its velocity a hidden object under nothing keeps; 237 samples
@@ -37,10 +37,10 @@ grip_rise(0.001216).  % how far a hand's grip rises in a frame when it lifts (m)
 moving_speed(0.004).  % (m a frame) what the fits above call moving as it vanished (wander_var) and still (rest_var)
 % The height of each kind (m): the median of its perceived heights; a grip's height
 % over an object is measured from its top (too/too_motion.pl).
-kind_height(ball, 0.05905).  % 1,214 samples
+kind_height(ball, 0.059).  % 1,213 samples
 kind_height(bottle, 0.2128).  % 729 samples
 kind_height(bowl, 0.0868).  % 701 samples
-kind_height(box, 0.134).  % 1,764 samples
+kind_height(box, 0.134).  % 1,761 samples
 kind_height(can, 0.1232).  % 547 samples
 kind_height(cup, 0.1037).  % 1,565 samples
 kind_height(mug, 0.1026).  % 1,671 samples
@@ -55,7 +55,7 @@ kind_height(mug, 0.1026).  % 1,671 samples
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.0007706).  % 15,571
+hides(ball, 0.0007703).  % 15,576
 hides(bottle, 8.407e-05).  % 11,893
 hides(bowl, 0.1579).  % 12,145
 hides(box, 0.2196).  % 27,227
@@ -63,10 +63,10 @@ hides(can, 0.0001241).  % 8,057
 hides(cup, 0.1005).  % 20,897
 hides(mug, 0.1132).  % 21,959
 hides(skin, 0.4984).  % 4,689
-hidden_share(ball, 0.2288).  % 45,935
+hidden_share(ball, 0.2288).  % 45,934
 hidden_share(bottle, 0.1527).  % 2,152
 hidden_share(bowl, 0.05359).  % 2,965
-hidden_share(box, 0.02287).  % 9,355
+hidden_share(box, 0.02286).  % 9,361
 hidden_share(can, 0.1396).  % 4,476
 hidden_share(cup, 0.1611).  % 13,031
 hidden_share(mug, 0.06839).  % 13,085
@@ -132,22 +132,22 @@ moved(O):t+1 ~ val(M) :=
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 112 clauses, 19876 groundings, training log-likelihood -4505.75 (mean -0.116044 per grounding), 160 parameters.
+% occluder(Occluded, Occluder):t+1: 112 clauses, 19875 groundings, training log-likelihood -4504.85 (mean -0.116012 per grounding), 160 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   kind(Occluder):t+1 ~= ball
         ->  (   moved(Occluder):t+1 ~= Moved
             ->  (   Moved < 0.004
-                ->  % n = 451 (weight 2119), log-likelihood -0.999293, finite
-                    P1 = 0.000471476,
-                    P2 = 0.999528524
+                ->  % n = 452 (weight 2124), log-likelihood -0.999294, finite
+                    P1 = 0.000470367,
+                    P2 = 0.999529633
                 ;   % n = 412 (weight 484), log-likelihood -31.2526, logistic
                     logistic([Distance], [-23.2868, -0.487393], P1),
                     P2 is 1-P1
                 )
             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-28.7269, -2.24759], P1),
+                logistic([Distance], [-28.7424, -2.24696], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= bottle
@@ -276,9 +276,9 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                         ->  % n = 38 (weight 190), log-likelihood -0.992169, finite
                             P1 = 0.00520833,
                             P2 = 0.99479167
-                        ;   % n = 15, log-likelihood -9.56045, finite
-                            P1 = 0.352941,
-                            P2 = 0.647059
+                        ;   % n = 13, log-likelihood -8.66806, finite
+                            P1 = 0.4,
+                            P2 = 0.6
                         )
                     ;   (   rise(Occluded, Occluder):t+1 ~= Rise8
                         ->  (   Rise8 < 0.0
@@ -398,7 +398,7 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                 P2 = 0.99896587
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-59.0331, 2.86735], P1),
+                logistic([Distance], [-58.9301, 2.87007], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= can
@@ -644,12 +644,12 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
             )
         ;   \+ kind(Occluder):t+1 ~= _
         ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Distance], [-49.6036, 2.8733], P1),
+            logistic([Distance], [-49.5928, 2.87574], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.618594,
-        P2 = 0.381406
+        P1 = 0.618546,
+        P2 = 0.381454
     ).
 
 % When a hand lets go of what it carries (ddc learn, from the carries beside the data): a

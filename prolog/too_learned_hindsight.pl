@@ -2,7 +2,7 @@
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
     data_hindsight.pl: 13241 groundings of occluder(A, O):t+1,
-    88 clauses, training log-likelihood -2809.55;
+    88 clauses, training log-likelihood -2809.66;
     and one for released(A):t+1 from 982 frames a hand held an object
     (3 clauses, training log-likelihood -33.9081);
     search seed 0.
@@ -19,10 +19,10 @@
 % motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
 % fractions, quantiles for reaches and heights, Laplace's rule for a probability);
 % variances per axis in square metres, one step is one camera frame.
-obs_var(3.822e-06).  % the measurement noise of a perceived position (m², per axis); 91,276 samples
-motion_var(3.185e-05).  % how far a perceived object moves in a frame (m², per axis); 122,427 samples
+obs_var(3.822e-06).  % the measurement noise of a perceived position (m², per axis); 91,279 samples
+motion_var(3.184e-05).  % how far a perceived object moves in a frame (m², per axis); 122,427 samples
 reappear_var(0.001354).  % where a hidden object is seen again, around its belief (m²); 1,267 samples
-lost_var(0.07156).  % the same for an object lost while the camera saw nothing (m²); 8,191 samples
+lost_var(0.07154).  % the same for an object lost while the camera saw nothing (m²); 8,187 samples
 follow_keep(0.999).  % the fraction of its offset from its occluder a hidden object keeps; 25 samples
 follow_var(1.571e-07).  % the jitter of that offset per frame (m²); 25 samples
 coast_keep(0.8678).  % the fraction of its velocity a hidden object under nothing keeps; 37 samples
@@ -37,10 +37,10 @@ grip_rise(0.00109).  % how far a hand's grip rises in a frame when it lifts (m);
 moving_speed(0.004).  % (m a frame) what the fits above call moving as it vanished (wander_var) and still (rest_var)
 % The height of each kind (m): the median of its perceived heights; a grip's height
 % over an object is measured from its top (too/too_motion.pl).
-kind_height(ball, 0.05905).  % 1,214 samples
+kind_height(ball, 0.059).  % 1,213 samples
 kind_height(bottle, 0.2128).  % 729 samples
 kind_height(bowl, 0.0868).  % 701 samples
-kind_height(box, 0.134).  % 1,764 samples
+kind_height(box, 0.134).  % 1,761 samples
 kind_height(can, 0.1232).  % 547 samples
 kind_height(cup, 0.1037).  % 1,565 samples
 kind_height(mug, 0.1026).  % 1,671 samples
@@ -55,7 +55,7 @@ kind_height(mug, 0.1026).  % 1,671 samples
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.0007449).  % 10,307
+hides(ball, 0.0007442).  % 10,317
 hides(bottle, 0.0001563).  % 6,398
 hides(bowl, 0.04415).  % 6,816
 hides(box, 0.2081).  % 19,259
@@ -63,10 +63,10 @@ hides(can, 0.0002088).  % 4,788
 hides(cup, 0.09245).  % 15,661
 hides(mug, 0.1656).  % 16,123
 hides(skin, 0.328).  % 3,605
-hidden_share(ball, 0.1959).  % 33,763
+hidden_share(ball, 0.1959).  % 33,762
 hidden_share(bottle, 0.108).  % 1,792
 hidden_share(bowl, 0.02357).  % 4,240
-hidden_share(box, 0.01034).  % 10,922
+hidden_share(box, 0.01033).  % 10,933
 hidden_share(can, 0.1319).  % 3,820
 hidden_share(cup, 0.1328).  % 12,998
 hidden_share(mug, 0.03258).  % 11,264
@@ -129,13 +129,13 @@ moved(O):t+1 ~ val(M) :=
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 88 clauses, 13241 groundings, training log-likelihood -2809.55 (mean -0.109851 per grounding), 115 parameters.
+% occluder(Occluded, Occluder):t+1: 88 clauses, 13241 groundings, training log-likelihood -2809.66 (mean -0.109821 per grounding), 115 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   kind(Occluder):t+1 ~= ball
-        ->  % n = 298 (weight 747), log-likelihood -27.2424, logistic
-            logistic([Distance], [-27.4002, -1.5501], P1),
+        ->  % n = 300 (weight 757), log-likelihood -27.3563, logistic
+            logistic([Distance], [-27.6925, -1.55973], P1),
             P2 is 1-P1
         ;   kind(Occluder):t+1 ~= bottle
         ->  % n = 132 (weight 400), log-likelihood -0.996265, finite
@@ -221,9 +221,9 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                     P1 = 0.999486125,
                     P2 = 0.000513875
                 ;   (   lost_anywhere(Occluded):t
-                    ->  % n = 128 (weight 472), log-likelihood -7.45961, finite
-                        P1 = 0.00421941,
-                        P2 = 0.99578059
+                    ->  % n = 126 (weight 470), log-likelihood -7.45534, finite
+                        P1 = 0.00423729,
+                        P2 = 0.99576271
                     ;   (   moved(Occluder):t+1 ~= Moved3
                         ->  (   Moved3 < 0.004
                             ->  (   seen(Occluder):t
@@ -328,7 +328,7 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                 P2 = 0.99328859
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-52.3269, 2.62971], P1),
+                logistic([Distance], [-52.4287, 2.63069], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= can
@@ -525,12 +525,12 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
             )
         ;   \+ kind(Occluder):t+1 ~= _
         ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Distance], [-47.4566, 1.81633], P1),
+            logistic([Distance], [-47.5176, 1.81678], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.608172,
-        P2 = 0.391828
+        P1 = 0.607982,
+        P2 = 0.392018
     ).
 
 % When a hand lets go of what it carries (ddc learn, from the carries beside the data): a
