@@ -191,3 +191,26 @@ def test_a_calibration_without_a_lookalike_share_reads_as_none():
     assert (model.appearance_scale, model.appearance_lookalike) == (6.0, 0.0)
     with pytest.raises(ValueError, match="appearance_lookalike"):
         AssociationModel(appearance_lookalike=1.0)
+
+
+def test_calibrate_writes_the_share_into_an_existing_model(tmp_path, capsys):
+    """``train-matching --calibrate MODEL STREAMS``: only the calibration of MODEL changes."""
+    import shutil
+
+    from anchoring.matcher import DEFAULT_MODEL, RbfSvm
+    from probanchor.cli.anchoring_cli import main
+
+    model_path = tmp_path / "m.json"
+    shutil.copy(DEFAULT_MODEL, model_path)
+    paths = []
+    for k in range(2):
+        path = tmp_path / f"s{k}.jsonl"
+        write_percepts(path, stream(60 + k, n_objects=4, seconds=4.0, occlusion_rate=0.1))
+        paths.append(str(path))
+    assert main(["train-matching", "--calibrate", str(model_path), *paths]) == 0
+    assert "look-alikes" in capsys.readouterr().out
+    before, after = RbfSvm.load(DEFAULT_MODEL), RbfSvm.load(model_path)
+    cal = after.info["appearance_calibration"]
+    assert set(cal) == {"scale", "offset", "lookalike", "pairs"} and 0.0 <= cal["lookalike"] < 1
+    assert cal != before.info["appearance_calibration"]
+    np.testing.assert_array_equal(after.support_vectors, before.support_vectors)

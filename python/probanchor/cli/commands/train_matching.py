@@ -343,11 +343,12 @@ def _calibrate_only(args: argparse.Namespace) -> int:
     calibration = training.appearance_calibration(model, pairs)
     model.info["appearance_calibration"] = calibration
     model.save(args.calibrate)
+    rho = calibration["lookalike"]
+    bound = f"A at most {1.0 / rho:.1f}" if rho >= 1e-6 else "A without bound"
     print(f"appearance calibration of {args.calibrate} on {calibration['pairs']} pairs from "
           f"{len(streams)} streams: log A0 = {calibration['scale']:.3f} d "
           f"{calibration['offset']:+.3f} against a distinct-looking object, a share "
-          f"{calibration['lookalike']:.4f} of look-alikes: A at most "
-          f"{1.0 / calibration['lookalike']:.1f}")
+          f"{rho:.4g} of look-alikes: {bound}")
     return 0
 
 
