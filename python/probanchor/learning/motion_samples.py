@@ -56,9 +56,18 @@ from probanchor.learning.occlusion_data import LabelOptions, LabelSource, labels
 __all__ = ["KINDS", "MotionSamples", "coast_gap_row", "covering", "episode_samples",
            "hidden_runs", "places", "read_samples", "reappearances", "samples_path", "told"]
 
-#: The kinds of samples (see the module docstring).
-KINDS = ("displacement", "reappear", "lost", "follow", "coast", "grasp", "hold", "carries",
-         "uncover", "places", "follow_gap", "coast_gap", "heights")
+#: The rows each kind of sample may have (see the module docstring): per column ``n`` a
+#: number, ``s`` a string, ``*`` anything; ``n`` alone a number (not a list), ``{}`` an object.
+#: ``coast_gap`` rows written before the change of height was kept have five columns.
+ROW_SHAPES: dict[str, tuple[str, ...]] = {
+    "displacement": ("nnns**", "nnns*"), "reappear": ("nnn",), "lost": ("nnn",),
+    "follow": ("nnnns",), "coast": ("nnnn",), "grasp": ("nnn",), "hold": ("n",),
+    "carries": ("{}",), "uncover": ("n",), "places": ("nn",), "follow_gap": ("nnnnns",),
+    "coast_gap": ("nnnnnn", "nnnnn"), "heights": ("sn",),
+}
+
+#: The kinds of samples (see the module docstring), in the order they are written.
+KINDS = tuple(ROW_SHAPES)
 
 #: ``places`` keeps where the perceived objects stand every this many frames.
 PLACES_EVERY = 15
@@ -118,17 +127,6 @@ def read_samples(data: list[str | Path] | tuple[str | Path, ...]) -> MotionSampl
                                      f"{' or '.join(map(_shape_text, ROW_SHAPES[kind]))}")
         out.extend(MotionSamples({k: list(rows.get(k, [])) for k in KINDS}))
     return out
-
-
-#: The rows each kind of sample may have (see the module docstring): per column ``n`` a
-#: number, ``s`` a string, ``*`` anything; ``n`` alone a number (not a list), ``{}`` an object.
-#: ``coast_gap`` rows written before the change of height was kept have five columns.
-ROW_SHAPES: dict[str, tuple[str, ...]] = {
-    "displacement": ("nnns**", "nnns*"), "reappear": ("nnn",), "lost": ("nnn",),
-    "follow": ("nnnns",), "coast": ("nnnn",), "grasp": ("nnn",), "hold": ("n",),
-    "carries": ("{}",), "uncover": ("n",), "places": ("nn",), "follow_gap": ("nnnnns",),
-    "coast_gap": ("nnnnnn", "nnnnn"), "heights": ("sn",),
-}
 
 
 def _is_number(v: object) -> bool:
