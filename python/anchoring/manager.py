@@ -28,9 +28,12 @@ Per frame (:meth:`AnchorManager.process`):
    to on average; ``"mass"`` ranks the hidden ones by the mean similarity too, with the
    belief's mass near the percept as the position term; ``"max"`` takes the best particle's
    similarity, as the paper's Algorithm 1;
-6. what is left unmatched may still be re-identified by appearance, when it is the only
-   look-alike of an anchor not perceived for a while (:mod:`anchoring.reidentify`; ``score`` 0);
-   the likelihood test of step 4 holds there too;
+6. what is left unmatched may still be the anchor it comes out of a view of: a percept that
+   overlaps the view withheld a moment ago (step 8) of an anchor perceived just before it,
+   and looks like that anchor alone, re-acquires it whatever its belief (the view was seen;
+   :func:`anchoring.views.emerging_views`; ``score`` 0); or be re-identified by appearance,
+   when it is the only look-alike of an anchor not perceived for a while
+   (:mod:`anchoring.reidentify`; ``score`` 0), where the likelihood test of step 4 holds too;
 7. matched percepts re-acquire their anchor, unmatched percepts acquire a new anchor, and the
    anchors that were not perceived are *tracked* (their position is whatever the reasoning
    later supplies through :meth:`AnchorManager.set_position_particles`, else the last value);
@@ -92,7 +95,15 @@ from anchoring.matcher import Matcher, load_default_matcher
 from anchoring.reidentify import looks_alike, unique_lookalikes
 from anchoring.similarity import BELIEF_RADIUS
 from anchoring.validation import histogram_bins, invalid_reason
-from anchoring.views import Withheld, container_views, merged_views, withheld_views
+from anchoring.views import (
+    ViewTrack,
+    Withheld,
+    container_views,
+    emerging_views,
+    merged_views,
+    track_views,
+    withheld_views,
+)
 from probanchor.percepts import Percept, PerceptError
 
 log = logging.getLogger("anchoring")
@@ -232,6 +243,7 @@ class AnchorManager:
         self.hands = hands  # hands matched by their grip points (anchoring.hands); None: off
         self.blind_time: float | None = None  # the last frame with no valid percept
         self._withholding: dict[str, float] = {}  # anchor symbol -> since when it withholds
+        self._view_tracks: dict[str, ViewTrack] = {}  # anchor symbol -> its last tracked view
         self.symbols = SymbolTable()
         self.time: float | None = None
         self._anchors: dict[str, Anchor] = {}
@@ -283,6 +295,7 @@ class AnchorManager:
             anchor.symbol_category = new.rsplit("-", 1)[0]
         self._anchors = {s: moved.get(s, a) for s, a in self._anchors.items()}
         self._withholding = {mapping.get(s, s): t for s, t in self._withholding.items()}
+        self._view_tracks = {mapping.get(s, s): v for s, v in self._view_tracks.items()}
 
     # --- one frame ----------------------------------------------------------------------
     def process(self, time: float, percepts: Sequence[Percept]) -> FrameResult:
@@ -324,6 +337,7 @@ class AnchorManager:
         matched_anchor: dict[int, int] = {}  # index in frame -> index in anchors
         merged: dict[int, list[int]] = {}  # index in frame -> anchors seen as one segment
         refuse = np.zeros((len(anchors), len(frame)), bool)
+        blocked = refuse  # the merged views' refusals (the beliefs' come on top)
         scores = np.zeros((len(anchors), len(frame)))
         believed = np.array([a.position.is_probabilistic for a in anchors], bool)
         log_appearance = np.zeros((len(anchors), len(frame)))
@@ -334,6 +348,7 @@ class AnchorManager:
             scores = np.asarray(self.matcher.decision(features), dtype=float)
             refuse, merged = merged_views(anchors, frame, time,
                                           self.merge_ratio, self.merge_seconds)
+            blocked = refuse.copy()
             log_appearance = appearance_log_ratio(self.matcher, features, self.association)
             unexplained = np.array(
                 [max(unexplained_mass(a, frame, self.association),
@@ -367,6 +382,13 @@ class AnchorManager:
             for j in container_views(anchors, frame, features, matched_anchor, time,
                                      self.merge_seconds, self.view_margin):
                 del matched_anchor[j]
+        if self.withhold_seconds > 0:  # out of a view the anchor was tracked through
+            emerged = emerging_views(anchors, frame, features, matched_anchor, blocked,
+                                     self._view_tracks, time, self.merge_seconds,
+                                     self.view_margin, self.reid_similarity)
+            for j, k in emerged.items():
+                matched_anchor[j] = k
+                scores[k, j] = 0.0  # re-acquired by the view, not accepted by the matcher
         lookalikes = unique_lookalikes(anchors, features, matched_anchor, refuse, time,
                                        self.reid_seconds, self.reid_similarity)
         for j, k in lookalikes.items():
@@ -378,6 +400,8 @@ class AnchorManager:
         views, self._withholding = withheld_views(
             anchors, frame, features, matched_anchor, matched, merged, time,
             self._withholding, self.withhold_seconds, self.view_margin, self.view_colour)
+        self._view_tracks = track_views(anchors, frame, views, self._view_tracks, matched,
+                                        time, self.merge_seconds)
         if skin and self.withhold_seconds > 0:  # what an arm in front leaves in view
             views.update(views_under_hands(
                 anchors, frame, features[:, :, 1],
@@ -488,6 +512,7 @@ class AnchorManager:
             "blind_time": self.blind_time,
             "symbol_counters": self.symbols.counters,
             "withholding": dict(self._withholding),
+            "view_tracks": {s: v.to_json() for s, v in self._view_tracks.items()},
             "anchors": [a.to_json() for a in self._anchors.values()],
         }
 
@@ -557,6 +582,8 @@ class AnchorManager:
             )
             manager._withholding = {str(k): float(v)
                                     for k, v in record.get("withholding", {}).items()}
+            manager._view_tracks = {str(k): ViewTrack.from_json(v)
+                                    for k, v in record.get("view_tracks", {}).items()}
             for i, item in enumerate(record["anchors"]):
                 try:
                     anchor = Anchor.from_json(item)

@@ -26,6 +26,16 @@ there a moment ago, the hidden object can be seen only once the container has mo
 which would be seen; what is seen there is a partial view of the container (its lower part
 under something carried over it, which the classifier may take for a ball). The percept is
 then left to the withheld views.
+
+*Tracks through views* (:func:`track_views`, :func:`emerging_views`): a view withheld for an
+anchor perceived a moment before (within ``recent_seconds``), or itself tracked through such a
+view, is where that anchor was: its track goes on through the view. A percept left unmatched
+that overlaps the box of that view, seen within ``recent_seconds`` before, and looks like that
+anchor (:func:`anchoring.reidentify.looks_alike`) and like no other anchor so tracked there,
+re-acquires it: a mug that passed behind a cup and was seen as one segment with it comes out
+of the segment as the mug, wherever the reasoning had guessed it. The view is seen evidence;
+the belief that would refuse the mug is a guess made while it was unseen (it turned inside
+the segment, and the belief had coasted on).
 """
 
 from __future__ import annotations
@@ -35,6 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from anchoring.anchor import Anchor
+from anchoring.reidentify import looks_alike
 from probanchor.percepts import Percept
 
 
@@ -148,3 +159,72 @@ def boxes_overlap(anchor: Anchor, percept: Percept, margin: float) -> bool:
         if np.any(np.all(np.abs(c - percept.position) <= half, axis=1)):
             return True
     return False
+
+
+@dataclass
+class ViewTrack:
+    """An anchor's track through withheld views: the last view's ``time`` and 3-D box
+    (``position``, its centre, and ``size``)."""
+
+    time: float
+    position: np.ndarray
+    size: np.ndarray
+
+    def to_json(self) -> dict[str, object]:
+        return {"time": self.time, "position": self.position.tolist(),
+                "size": self.size.tolist()}
+
+    @classmethod
+    def from_json(cls, record: dict[str, object]) -> ViewTrack:
+        return cls(float(record["time"]),  # type: ignore[arg-type]
+                   np.asarray(record["position"], dtype=float).reshape(3),
+                   np.asarray(record["size"], dtype=float).reshape(3))
+
+
+def track_views(anchors: list[Anchor], frame: list[Percept], views: dict[int, list[str]],
+                tracks: dict[str, ViewTrack], perceived: set[str], time: float,
+                recent_seconds: float) -> dict[str, ViewTrack]:
+    """The tracks through views after this frame (anchor symbol -> its last view): an anchor
+    withheld in a view (``views``: index in ``frame`` -> symbols) goes on being tracked through
+    it when it was perceived, or seen in a tracked view, within ``recent_seconds``; an older
+    track ends, and so does the track of an anchor ``perceived`` in this frame."""
+    by_symbol = {a.symbol: a for a in anchors}
+    out = {s: v for s, v in tracks.items()
+           if s in by_symbol and s not in perceived and time - v.time <= recent_seconds}
+    for j, symbols in views.items():
+        for symbol in symbols:
+            anchor = by_symbol.get(symbol)
+            if anchor is None:
+                continue
+            if time - anchor.last_seen <= recent_seconds or symbol in out:
+                out[symbol] = ViewTrack(time, np.asarray(frame[j].position, dtype=float),
+                                        np.asarray(frame[j].size, dtype=float))
+    return out
+
+
+def emerging_views(anchors: list[Anchor], frame: list[Percept], features: np.ndarray,
+                   matched_anchor: dict[int, int], blocked: np.ndarray,
+                   tracks: dict[str, ViewTrack], time: float, recent_seconds: float,
+                   view_margin: float, reid_similarity: tuple[float, ...]) -> dict[int, int]:
+    """Percepts (index in ``frame``) that come out of an anchor's tracked view -> that anchor
+    (index in ``anchors``), see the module doc: the percept is unmatched, its box overlaps
+    (within ``view_margin``) the box of the anchor's view of the last ``recent_seconds``, it
+    looks like the anchor (``reid_similarity``), the pair is not ``blocked`` (a merged view),
+    and it is the only such pair of either."""
+    taken = set(matched_anchor.values())
+    rows = [k for k, a in enumerate(anchors)
+            if k not in taken and a.symbol in tracks
+            and 0.0 < time - tracks[a.symbol].time <= recent_seconds]
+    if not rows or features.shape[1] == 0:
+        return {}
+    alike = looks_alike(features, reid_similarity) & ~blocked
+    pairs = np.zeros((len(anchors), len(frame)), bool)
+    for k in rows:
+        view = tracks[anchors[k].symbol]
+        for j, percept in enumerate(frame):
+            if j in matched_anchor or not alike[k, j]:
+                continue
+            half = (view.size + percept.size) / 2 + view_margin
+            pairs[k, j] = bool(np.all(np.abs(percept.position - view.position) <= half))
+    return {int(j): int(ks[0]) for j in range(len(frame))
+            if len(ks := np.nonzero(pairs[:, j])[0]) == 1 and pairs[ks[0]].sum() == 1}
