@@ -311,3 +311,25 @@ def test_a_view_tracks_only_an_anchor_seen_a_moment_before():
     m = AnchorManager()
     t, frame = _mug_merges_with_cup(m, unseen=30)
     assert m.process(t, frame).symbols == {0: "cup-1", 1: "mug-2"}
+
+
+def test_a_segment_that_moved_on_is_still_the_two_objects_merged():
+    """A mug (hue 5) slides against a cup and the two are seen as one segment; the segment
+    moves on with the mug, until it no longer holds where the mug was last seen apart, and
+    the matcher would give it the mug's symbol (the cup's frames would carry it). It holds
+    the view both were tracked through a frame before: still the two merged, withheld."""
+    m = AnchorManager()
+    cup = lambda t: percept(t, [0.0, -0.17, 0.05], "cup", hue=2, size=(0.09, 0.09, 0.1))  # noqa: E731
+    t = 0.0
+    for k in range(10):
+        m.process(t, [cup(t), percept(t, [0.12 - 0.01 * k, -0.19, 0.05], "mug", hue=5)])
+        t += 1 / 15
+    # the mug was last seen apart at x = 0.03; the segment moves on for 0.6 s, longer than
+    # merge_seconds (the two were seen apart that long ago: tracked, they count as just seen)
+    for x in np.linspace(-0.01, -0.07, 9):
+        segment = percept(t, [x, -0.19, 0.05], {"mug": 0.6, "box": 0.4}, hue=5,
+                          size=(0.16, 0.1, 0.1))
+        r = m.process(t, [segment])
+        assert r.assignments == [], (x, r.assignments)
+        assert sorted(r.withheld[0].symbols) == ["cup-1", "mug-1"]
+        t += 1 / 15

@@ -346,8 +346,8 @@ class AnchorManager:
                                for a in anchors], bool)
         if anchors and frame:
             scores = np.asarray(self.matcher.decision(features), dtype=float)
-            refuse, merged = merged_views(anchors, frame, time,
-                                          self.merge_ratio, self.merge_seconds)
+            refuse, merged = merged_views(anchors, frame, time, self.merge_ratio,
+                                          self.merge_seconds, self._view_tracks)
             blocked = refuse.copy()
             log_appearance = appearance_log_ratio(self.matcher, features, self.association)
             unexplained = np.array(

@@ -58,8 +58,29 @@ class Withheld:
     symbols: list[str]
 
 
+@dataclass
+class ViewTrack:
+    """An anchor's track through withheld views: the last view's ``time`` and 3-D box
+    (``position``, its centre, and ``size``)."""
+
+    time: float
+    position: np.ndarray
+    size: np.ndarray
+
+    def to_json(self) -> dict[str, object]:
+        return {"time": self.time, "position": self.position.tolist(),
+                "size": self.size.tolist()}
+
+    @classmethod
+    def from_json(cls, record: dict[str, object]) -> ViewTrack:
+        return cls(float(record["time"]),  # type: ignore[arg-type]
+                   np.asarray(record["position"], dtype=float).reshape(3),
+                   np.asarray(record["size"], dtype=float).reshape(3))
+
+
 def merged_views(anchors: list[Anchor], frame: list[Percept], time: float,
-                 merge_ratio: float, merge_seconds: float
+                 merge_ratio: float, merge_seconds: float,
+                 tracks: dict[str, ViewTrack] | None = None
                  ) -> tuple[np.ndarray, dict[int, list[int]]]:
     """Two objects seen as one segment: (A, P) pairs refused, and the percepts (index in
     ``frame``) judged merged -> the anchors (indices) merged in them.
@@ -68,19 +89,30 @@ def merged_views(anchors: list[Anchor], frame: list[Percept], time: float,
     (``merge_ratio``), or when the percept's box holds the last perceived positions of two
     or more anchors perceived within ``merge_seconds`` and is larger than each of them
     (its largest horizontal extent over 1.2 times theirs plus 1 cm): a container lowered
-    over a ball holds the ball's position too, but is not larger than itself."""
+    over a ball holds the ball's position too, but is not larger than itself. An anchor
+    tracked through a view (``tracks``, :func:`track_views`) counts as perceived, and is held
+    also where the percept's box holds the centre of that view: two objects that have moved
+    on since they were last seen apart are still seen as one segment."""
     a_ext = np.array([an.size.samples[0][:2].max() for an in anchors])
     p_ext = np.array([pc.size[:2].max() for pc in frame])
     refuse = p_ext[None, :] > merge_ratio * a_ext[:, None] + 0.02
     merged: dict[int, list[int]] = {}
+    tracks = tracks or {}
     recent = [k for k, an in enumerate(anchors)
-              if an.history and time - an.last_seen <= merge_seconds]
+              if an.history and (time - an.last_seen <= merge_seconds or an.symbol in tracks)]
     if len(recent) < 2:
         return refuse, merged
-    centres = np.array([anchors[k].history[-1].position for k in recent])
     positions = np.array([pc.position for pc in frame])
     half = np.array([pc.size for pc in frame]) / 2
-    inside = np.all(np.abs(centres[:, None, :] - positions[None]) <= half[None], axis=2)
+
+    def holds(centres: np.ndarray) -> np.ndarray:  # (R, 3) -> (R, P)
+        return np.all(np.abs(centres[:, None, :] - positions[None]) <= half[None], axis=2)
+
+    inside = holds(np.array([anchors[k].history[-1].position for k in recent]))
+    viewed = [r for r, k in enumerate(recent) if anchors[k].symbol in tracks]
+    if viewed:
+        inside[viewed] |= holds(np.array([tracks[anchors[recent[r]].symbol].position
+                                          for r in viewed]))
     for j in np.nonzero(inside.sum(axis=0) >= 2)[0]:
         held = [recent[r] for r in np.nonzero(inside[:, j])[0]]
         if all(p_ext[j] > 1.2 * a_ext[k] + 0.01 for k in held):
@@ -159,26 +191,6 @@ def boxes_overlap(anchor: Anchor, percept: Percept, margin: float) -> bool:
         if np.any(np.all(np.abs(c - percept.position) <= half, axis=1)):
             return True
     return False
-
-
-@dataclass
-class ViewTrack:
-    """An anchor's track through withheld views: the last view's ``time`` and 3-D box
-    (``position``, its centre, and ``size``)."""
-
-    time: float
-    position: np.ndarray
-    size: np.ndarray
-
-    def to_json(self) -> dict[str, object]:
-        return {"time": self.time, "position": self.position.tolist(),
-                "size": self.size.tolist()}
-
-    @classmethod
-    def from_json(cls, record: dict[str, object]) -> ViewTrack:
-        return cls(float(record["time"]),  # type: ignore[arg-type]
-                   np.asarray(record["position"], dtype=float).reshape(3),
-                   np.asarray(record["size"], dtype=float).reshape(3))
 
 
 def track_views(anchors: list[Anchor], frame: list[Percept], views: dict[int, list[str]],
