@@ -1,10 +1,10 @@
 /*  too_learned.pl -- the theory of occlusion with rules learned from experience.
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
-    data_truth.pl: 19875 groundings of occluder(A, O):t+1,
-    112 clauses, training log-likelihood -4504.85;
-    and one for released(A):t+1 from 2486 frames a hand held an object
-    (3 clauses, training log-likelihood -74.478);
+    data_truth.pl: 21825 groundings of occluder(A, O):t+1,
+    119 clauses, training log-likelihood -4961.2;
+    and one for released(A):t+1 from 2442 frames a hand held an object
+    (3 clauses, training log-likelihood -73.6101);
     search seed 0.
     Command: anchoring learn-theory out/learn/data_truth.pl --seed 0 --out prolog/too_learned.pl --plots docs/images
     The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
@@ -19,31 +19,31 @@
 % motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
 % fractions, quantiles for reaches and heights, Laplace's rule for a probability);
 % variances per axis in square metres, one step is one camera frame.
-obs_var(5.523e-06).  % the measurement noise of a perceived position (m², per axis); 105,844 samples
-motion_var(2.961e-05).  % how far a perceived object moves in a frame (m², per axis); 122,418 samples
-reappear_var(0.002192).  % where a hidden object is seen again, around its belief (m²); 1,267 samples
-lost_var(0.07154).  % the same for an object lost while the camera saw nothing (m²); 8,187 samples
-follow_keep(0.9262).  % the fraction of its offset from its occluder a hidden object keeps; 15,037 samples
-follow_var(1.441e-05).  % the jitter of that offset per frame (m²); 15,037 samples
-coast_keep(0.8864).  % the fraction of its velocity a hidden object under nothing keeps; 237 samples
-wander_var(0.0001671).  % how far such an object may move besides (m²); 237 samples
-rest_var(6.69e-06).  % how far one that stood still as it vanished may move (m²); 928 samples
-height_var(1e-08).  % how far a hidden object's height may move (m² a frame); 1,170 samples
+obs_var(5.105e-06).  % the measurement noise of a perceived position (m², per axis); 105,440 samples
+motion_var(2.975e-05).  % how far a perceived object moves in a frame (m², per axis); 122,008 samples
+reappear_var(0.002513).  % where a hidden object is seen again, around its belief (m²); 1,292 samples
+lost_var(0.07162).  % the same for an object lost while the camera saw nothing (m²); 8,160 samples
+follow_keep(0.9396).  % the fraction of its offset from its occluder a hidden object keeps; 14,944 samples
+follow_var(1.088e-05).  % the jitter of that offset per frame (m²); 14,944 samples
+coast_keep(0.8954).  % the fraction of its velocity a hidden object under nothing keeps; 245 samples
+wander_var(0.0001911).  % how far such an object may move besides (m²); 245 samples
+rest_var(6.21e-06).  % how far one that stood still as it vanished may move (m²); 943 samples
+height_var(1e-08).  % how far a hidden object's height may move (m² a frame); 1,195 samples
 grip_reach(0.1482).  % how far (table plane) a hand's grip may be from what it takes (m); 52 samples
 grip_height(0.1178).  % how far above its top (m); 52 samples
 occluder_rise(0.009905).  % how far below its centre (m); 52 samples
-grip_drop(0.02111).  % how far what a hand holds is below its grip (m); 2,484 samples
-grip_rise(0.001216).  % how far a hand's grip rises in a frame when it lifts (m); 717 samples
+grip_drop(0.02117).  % how far what a hand holds is below its grip (m); 2,440 samples
+grip_rise(0.001213).  % how far a hand's grip rises in a frame when it lifts (m); 706 samples
 moving_speed(0.004).  % (m a frame) what the fits above call moving as it vanished (wander_var) and still (rest_var)
 % The height of each kind (m): the median of its perceived heights; a grip's height
 % over an object is measured from its top (too/too_motion.pl).
-kind_height(ball, 0.059).  % 1,213 samples
-kind_height(bottle, 0.2128).  % 729 samples
-kind_height(bowl, 0.0868).  % 701 samples
-kind_height(box, 0.134).  % 1,761 samples
-kind_height(can, 0.1232).  % 547 samples
-kind_height(cup, 0.1037).  % 1,565 samples
-kind_height(mug, 0.1026).  % 1,671 samples
+kind_height(ball, 0.059).  % 1,210 samples
+kind_height(bottle, 0.2128).  % 727 samples
+kind_height(bowl, 0.0869).  % 702 samples
+kind_height(box, 0.134).  % 1,750 samples
+kind_height(can, 0.1232).  % 548 samples
+kind_height(cup, 0.1037).  % 1,564 samples
+kind_height(mug, 0.1026).  % 1,659 samples
 
 % ------------------------------------------------------------------ learned affordances
 % Read from the data (python/probanchor/learning/occlusion_affordances.py): the share
@@ -55,25 +55,25 @@ kind_height(mug, 0.1026).  % 1,671 samples
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.0007703).  % 15,576
-hides(bottle, 8.407e-05).  % 11,893
-hides(bowl, 0.1579).  % 12,145
-hides(box, 0.2196).  % 27,227
-hides(can, 0.0001241).  % 8,057
-hides(cup, 0.1005).  % 20,897
-hides(mug, 0.1132).  % 21,959
-hides(skin, 0.4984).  % 4,689
-hidden_share(ball, 0.2288).  % 45,934
-hidden_share(bottle, 0.1527).  % 2,152
-hidden_share(bowl, 0.05359).  % 2,965
-hidden_share(box, 0.02286).  % 9,361
-hidden_share(can, 0.1396).  % 4,476
-hidden_share(cup, 0.1611).  % 13,031
-hidden_share(mug, 0.06839).  % 13,085
-hidden_share(skin, 3.181e-05).  % 31,439
+hides(ball, 0.0007498).  % 16,002
+hides(bottle, 8.237e-05).  % 12,139
+hides(bowl, 0.1708).  % 11,004
+hides(box, 0.2189).  % 27,197
+hides(can, 0.0001385).  % 7,217
+hides(cup, 0.1013).  % 20,745
+hides(mug, 0.1334).  % 22,127
+hides(skin, 0.4984).  % 4,599
+hidden_share(ball, 0.2388).  % 45,359
+hidden_share(bottle, 0.1493).  % 2,201
+hidden_share(bowl, 0.05411).  % 3,121
+hidden_share(box, 0.01854).  % 9,383
+hidden_share(can, 0.1514).  % 4,900
+hidden_share(cup, 0.161).  % 12,753
+hidden_share(mug, 0.07616).  % 11,684
+hidden_share(skin, 3.161e-05).  % 31,629
 carries(bowl, 0.5).  % 2
-carries(box, 0.25).  % 2
-carries(skin, 0.9983).  % 1,170
+carries(box, 0.3333).  % 1
+carries(skin, 0.9982).  % 1,100
 carrier(skin).
 can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
 is_carrier(O) := category(O, C), carrier(C).
@@ -81,10 +81,10 @@ hand_known := object(O), is_carrier(O).
 can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= 0.01.
 
 :- include('too/too_learned_glue.pl').
-% The onset reach (m): 90% of the 61 onsets in the data (6 far out left out) were within 0.07701 m; times 2.0.
-onset_reach(0.154).
+% The onset reach (m): 90% of the 58 onsets in the data (6 far out left out) were within 0.0887 m; times 2.0.
+onset_reach(0.1774).
 % The reach of the kinds with onsets enough for one of their own.
-onset_reach(box, 0.0881).  % 35 onsets, (5 far out left out) 90% within 0.04405 m
+onset_reach(box, 0.1367).  % 32 onsets, (5 far out left out) 90% within 0.06837 m
 onset_reach(cup, 0.0632).  % 10 onsets, (2 far out left out) 90% within 0.03162 m
 onset_reach(mug, 0.0549).  % 10 onsets, (1 far out left out) 90% within 0.02745 m
 
@@ -132,122 +132,122 @@ moved(O):t+1 ~ val(M) :=
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 112 clauses, 19875 groundings, training log-likelihood -4504.85 (mean -0.116012 per grounding), 160 parameters.
+% occluder(Occluded, Occluder):t+1: 119 clauses, 21825 groundings, training log-likelihood -4961.2 (mean -0.110256 per grounding), 173 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   kind(Occluder):t+1 ~= ball
         ->  (   moved(Occluder):t+1 ~= Moved
             ->  (   Moved < 0.004
-                ->  % n = 452 (weight 2124), log-likelihood -0.999294, finite
-                    P1 = 0.000470367,
-                    P2 = 0.999529633
-                ;   % n = 412 (weight 484), log-likelihood -31.2526, logistic
-                    logistic([Distance], [-23.2868, -0.487393], P1),
+                ->  % n = 762 (weight 3534), log-likelihood -0.999576, finite
+                    P1 = 0.000282805,
+                    P2 = 0.999717195
+                ;   % n = 499 (weight 631), log-likelihood -23.036, logistic
+                    logistic([Distance], [-36.8787, 0.750687], P1),
                     P2 is 1-P1
                 )
             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-28.7424, -2.24696], P1),
+                logistic([Distance], [-38.61, -1.51058], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= bottle
-        ->  % n = 439 (weight 1687), log-likelihood -0.999112, finite
-            P1 = 0.000592066,
-            P2 = 0.999407934
+        ->  % n = 892 (weight 3780), log-likelihood -0.999603, finite
+            P1 = 0.00026441,
+            P2 = 0.99973559
         ;   kind(Occluder):t+1 ~= bowl
         ->  (   kind(Occluded):t+1 ~= ball
             ->  (   occluded_by(Occluded, Occluder):t
                 ->  (   rise(Occluded, Occluder):t+1 ~= Rise
                     ->  (   Rise < 0.0
-                        ->  % n = 51 (weight 167), log-likelihood -0.991101, finite
-                            P1 = 0.99408284,
-                            P2 = 0.00591716
+                        ->  % n = 44 (weight 140), log-likelihood -0.989403, finite
+                            P1 = 0.99295775,
+                            P2 = 0.00704225
                         ;   Rise < 0.1
-                        ->  % n = 517 (weight 1705), log-likelihood -0.999121, finite
-                            P1 = 0.999414177,
-                            P2 = 0.000585823
+                        ->  % n = 498 (weight 1694), log-likelihood -0.999115, finite
+                            P1 = 0.999410377,
+                            P2 = 0.000589623
                         ;   % n = 29 (weight 45), log-likelihood -19.4852, finite
                             P1 = 0.829787,
                             P2 = 0.170213
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                        P1 = 0.99583116,
-                        P2 = 0.00416884
+                        P1 = 0.99574694,
+                        P2 = 0.00425306
                     )
                 ;   (   rise(Occluded, Occluder):t+1 ~= Rise4
                     ->  (   Rise4 < 0.0
-                        ->  % n = 132 (weight 180), log-likelihood -1.75438, logistic
-                            logistic([Distance], [-144.301, 10.5719], P1),
+                        ->  % n = 144 (weight 200), log-likelihood -1.43806, logistic
+                            logistic([Distance], [-167.164, 12.8491], P1),
                             P2 is 1-P1
                         ;   Rise4 < 0.1
                         ->  (   seen(Occluder):t
                             ->  (   moved(Occluder):t+1 ~= Moved3
                                 ->  (   Moved3 < 0.004
-                                    ->  % n = 812 (weight 1160), log-likelihood -769.427, finite
-                                        P1 = 0.621343,
-                                        P2 = 0.378657
-                                    ;   % n = 344 (weight 388), log-likelihood -243.593, logistic
-                                        logistic([Distance], [-16.0838, 0.94355], P1),
+                                    ->  % n = 1102 (weight 1722), log-likelihood -1135.24, logistic
+                                        logistic([Distance], [-6.84491, 0.773583], P1),
+                                        P2 is 1-P1
+                                    ;   % n = 423 (weight 475), log-likelihood -307.377, logistic
+                                        logistic([Distance], [-9.87637, 0.539637], P1),
                                         P2 is 1-P1
                                     )
                                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                    logistic([Distance], [-8.66113, 0.71555], P1),
+                                    logistic([Distance], [-7.31462, 0.702791], P1),
                                     P2 is 1-P1
                                 )
-                            ;   % n = 31 (weight 47), log-likelihood -13.7576, finite
-                                P1 = 0.102041,
-                                P2 = 0.897959
+                            ;   % n = 32 (weight 56), log-likelihood -19.1181, finite
+                                P1 = 0.12069,
+                                P2 = 0.87931
                             )
                         ;   (   moved(Occluder):t+1 ~= Moved6
                             ->  (   Moved6 < 0.004
                                 ->  % n = 18, log-likelihood -0.923279, finite
                                     P1 = 0.95,
                                     P2 = 0.05
-                                ;   % n = 31, log-likelihood -21.0841, finite
-                                    P1 = 0.575758,
-                                    P2 = 0.424242
+                                ;   % n = 35, log-likelihood -23.9028, finite
+                                    P1 = 0.567568,
+                                    P2 = 0.432432
                                 )
                             ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                                P1 = 0.72549,
-                                P2 = 0.27451
+                                P1 = 0.709091,
+                                P2 = 0.290909
                             )
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-12.8453, 0.936269], P1),
+                        logistic([Distance], [-9.38992, 0.863955], P1),
                         P2 is 1-P1
                     )
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 22 (weight 30), log-likelihood -0.952461, finite
-                P1 = 0.03125,
-                P2 = 0.96875
+            ->  % n = 27 (weight 39), log-likelihood -0.963012, finite
+                P1 = 0.0243902,
+                P2 = 0.9756098
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 1 (weight 5), too few groundings for a model of its own: the parent's model, log-likelihood -5.69665, logistic
-                logistic([Distance], [-36.1291, 2.00012], P1),
+            ->  % n = 1 (weight 5), too few groundings for a model of its own: the parent's model, log-likelihood -6.39517, logistic
+                logistic([Distance], [-22.1887, 1.71842], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 59 (weight 183), log-likelihood -0.991872, finite
-                P1 = 0.00540541,
-                P2 = 0.99459459
+            ->  % n = 66 (weight 222), log-likelihood -0.99329, finite
+                P1 = 0.00446429,
+                P2 = 0.99553571
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 30 (weight 38), log-likelihood -0.962077, finite
-                P1 = 0.025,
-                P2 = 0.975
+            ->  % n = 38 (weight 46), log-likelihood -0.968457, finite
+                P1 = 0.0208333,
+                P2 = 0.9791667
             ;   kind(Occluded):t+1 ~= cup
-            ->  % n = 206 (weight 422), log-likelihood -0.996459, finite
-                P1 = 0.00235849,
-                P2 = 0.99764151
+            ->  % n = 238 (weight 538), log-likelihood -0.99722, finite
+                P1 = 0.00185185,
+                P2 = 0.99814815
             ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 174 (weight 598), log-likelihood -0.997498, finite
-                P1 = 0.00166667,
-                P2 = 0.99833333
+            ->  % n = 144 (weight 408), log-likelihood -0.996337, finite
+                P1 = 0.00243902,
+                P2 = 0.99756098
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 7 (weight 19), log-likelihood -0.927013, finite
-                P1 = 0.047619,
-                P2 = 0.952381
+            ->  % n = 21 (weight 85), log-likelihood -0.98267, finite
+                P1 = 0.0114943,
+                P2 = 0.9885057
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-36.1291, 2.00012], P1),
+                logistic([Distance], [-22.1887, 1.71842], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= box
@@ -255,127 +255,141 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
             ->  (   occluded_by(Occluded, Occluder):t
                 ->  (   moved(Occluder):t+1 ~= Moved9
                     ->  (   Moved9 < 0.004
-                        ->  % n = 515 (weight 2575), log-likelihood -0.999418, finite
-                            P1 = 0.999611952,
-                            P2 = 0.000388048
+                        ->  % n = 508 (weight 2540), log-likelihood -0.99941, finite
+                            P1 = 0.999606609,
+                            P2 = 0.000393391
                         ;   (   lift(Occluder):t+1 ~= Lift
-                            ->  % n = 743 (weight 1011), log-likelihood -64.1959, logistic
-                                logistic([Distance, Lift], [354.507, -64.117, 2.68566], P1),
+                            ->  % n = 714 (weight 946), log-likelihood -63.0583, logistic
+                                logistic([Distance, Lift], [349.949, -59.2206, 2.6073], P1),
                                 P2 is 1-P1
                             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Distance], [429.552, 2.17211], P1),
+                                logistic([Distance], [413.766, 2.17365], P1),
                                 P2 is 1-P1
                             )
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                        P1 = 0.99386845,
-                        P2 = 0.00613155
+                        P1 = 0.99397936,
+                        P2 = 0.00602064
                     )
                 ;   (   lost_anywhere(Occluded):t
                     ->  (   seen(Occluder):t
-                        ->  % n = 38 (weight 190), log-likelihood -0.992169, finite
-                            P1 = 0.00520833,
-                            P2 = 0.99479167
-                        ;   % n = 13, log-likelihood -8.66806, finite
-                            P1 = 0.4,
-                            P2 = 0.6
+                        ->  % n = 77 (weight 281), log-likelihood -0.994691, finite
+                            P1 = 0.00353357,
+                            P2 = 0.99646643
+                        ;   % n = 16 (weight 20), log-likelihood -12.2327, finite
+                            P1 = 0.318182,
+                            P2 = 0.681818
                         )
                     ;   (   rise(Occluded, Occluder):t+1 ~= Rise8
                         ->  (   Rise8 < 0.0
                             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Distance], [-23.7261, 1.59914], P1),
+                                logistic([Distance], [-19.502, 1.60612], P1),
                                 P2 is 1-P1
                             ;   Rise8 < 0.1
-                            ->  (   moved(Occluder):t+1 ~= Moved12
-                                ->  (   Moved12 < 0.004
-                                    ->  % n = 1882 (weight 2298), log-likelihood -1179.27, logistic
-                                        logistic([Distance], [-21.4609, 1.73224], P1),
-                                        P2 is 1-P1
-                                    ;   % n = 523 (weight 547), log-likelihood -354.308, logistic
-                                        logistic([Distance], [-17.2971, 1.02005], P1),
+                            ->  (   seen(Occluder):t
+                                ->  (   moved(Occluder):t+1 ~= Moved12
+                                    ->  (   Moved12 < 0.004
+                                        ->  % n = 1760 (weight 2160), log-likelihood -1083.79, logistic
+                                            logistic([Distance], [-21.7408, 1.78003], P1),
+                                            P2 is 1-P1
+                                        ;   % n = 525 (weight 549), log-likelihood -339.513, logistic
+                                            logistic([Distance], [-7.54598, 1.10793], P1),
+                                            P2 is 1-P1
+                                        )
+                                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                        logistic([Distance], [-17.0531, 1.63647], P1),
                                         P2 is 1-P1
                                     )
-                                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                    logistic([Distance], [-22.1523, 1.62458], P1),
+                                ;   % n = 56 (weight 76), log-likelihood -45.5673, logistic
+                                    logistic([Distance], [-31.4441, 0.619082], P1),
                                     P2 is 1-P1
                                 )
-                            ;   % n = 78 (weight 86), log-likelihood -35.4303, logistic
-                                logistic([Distance], [-47.9994, 0.203861], P1),
+                            ;   % n = 97, log-likelihood -20.9532, logistic
+                                logistic([Distance], [-76.0011, 1.65423], P1),
                                 P2 is 1-P1
                             )
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-23.7261, 1.59914], P1),
+                            logistic([Distance], [-19.502, 1.60612], P1),
                             P2 is 1-P1
                         )
                     )
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 15 (weight 23), log-likelihood -0.938906, finite
-                P1 = 0.04,
-                P2 = 0.96
+            ->  % n = 30 (weight 54), log-likelihood -0.972999, finite
+                P1 = 0.0178571,
+                P2 = 0.9821429
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 27 (weight 63), log-likelihood -0.976764, finite
-                P1 = 0.0153846,
-                P2 = 0.9846154
+            ->  % n = 33 (weight 77), log-likelihood -0.980905, finite
+                P1 = 0.0126582,
+                P2 = 0.9873418
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 196 (weight 696), log-likelihood -0.99785, finite
-                P1 = 0.00143266,
-                P2 = 0.99856734
+            ->  % n = 181 (weight 677), log-likelihood -0.997789, finite
+                P1 = 0.00147275,
+                P2 = 0.99852725
             ;   kind(Occluded):t+1 ~= can
-            ->  (   moved(Occluder):t+1 ~= Moved15
-                ->  (   Moved15 < 0.004
-                    ->  % n = 507 (weight 887), log-likelihood -0.998312, finite
-                        P1 = 0.99887514,
-                        P2 = 0.00112486
-                    ;   (   occluded_by(Occluded, Occluder):t
-                        ->  % n = 55 (weight 79), log-likelihood -12.8734, finite
-                            P1 = 0.9506173,
-                            P2 = 0.0493827
-                        ;   % n = 102 (weight 114), log-likelihood -37.0748, logistic
-                            logistic([Distance], [-86.6373, 3.38713], P1),
+            ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
+                ->  (   Rise12 < 0.0
+                    ->  % n = 50 (weight 90), log-likelihood -0.983616, finite
+                        P1 = 0.0108696,
+                        P2 = 0.9891304
+                    ;   Rise12 < 0.1
+                    ->  (   moved(Occluder):t+1 ~= Moved15
+                        ->  (   Moved15 < 0.004
+                            ->  % n = 616 (weight 1076), log-likelihood -0.998608, finite
+                                P1 = 0.999072356,
+                                P2 = 0.000927644
+                            ;   % n = 164 (weight 192), log-likelihood -53.6584, logistic
+                                logistic([Distance], [-52.3077, 3.18371], P1),
+                                P2 is 1-P1
+                            )
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                            logistic([Distance], [-77.781, 5.36624], P1),
                             P2 is 1-P1
                         )
+                    ;   % n = 22 (weight 26), log-likelihood -12.7666, finite
+                        P1 = 0.214286,
+                        P2 = 0.785714
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-106.827, 5.24125], P1),
+                    logistic([Distance], [-96.6718, 5.26237], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= cup
-            ->  (   rise(Occluded, Occluder):t+1 ~= Rise12
-                ->  (   Rise12 < 0.0
-                    ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-75.1297, 4.59196], P1),
-                        P2 is 1-P1
-                    ;   Rise12 < 0.1
+            ->  (   moved(Occluder):t+1 ~= Moved18
+                ->  (   Moved18 < 0.004
                     ->  (   lost_anywhere(Occluded):t
-                        ->  % n = 8 (weight 32), log-likelihood -0.566375, logistic
-                            logistic([Distance], [-1656.49, 74.8099], P1),
-                            P2 is 1-P1
-                        ;   (   moved(Occluder):t+1 ~= Moved18
-                            ->  (   Moved18 < 0.004
-                                ->  % n = 1393 (weight 2517), log-likelihood -339.179, logistic
-                                    logistic([Distance], [-95.6384, 5.90576], P1),
+                        ->  % n = 6 (weight 30), log-likelihood -0.952461, finite
+                            P1 = 0.03125,
+                            P2 = 0.96875
+                        ;   (   rise(Occluded, Occluder):t+1 ~= Rise16
+                            ->  (   Rise16 < 0.0
+                                ->  % n = 3 (weight 15), log-likelihood -0.909369, finite
+                                    P1 = 0.0588235,
+                                    P2 = 0.9411765
+                                ;   Rise16 < 0.1
+                                ->  % n = 1396 (weight 2528), log-likelihood -321.777, logistic
+                                    logistic([Distance], [-107.115, 6.41678], P1),
                                     P2 is 1-P1
-                                ;   (   occluded_by(Occluded, Occluder):t
-                                    ->  % n = 159 (weight 191), log-likelihood -15.5665, finite
-                                        P1 = 0.9792746,
-                                        P2 = 0.0207254
-                                    ;   % n = 95 (weight 107), log-likelihood -73.1122, finite
-                                        P1 = 0.431193,
-                                        P2 = 0.568807
-                                    )
+                                ;   % n = 3 (weight 11), log-likelihood -0.88047, finite
+                                    P1 = 0.0769231,
+                                    P2 = 0.9230769
                                 )
                             ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                                logistic([Distance], [-73.2977, 4.78126], P1),
+                                logistic([Distance], [-96.6907, 5.92485], P1),
                                 P2 is 1-P1
                             )
                         )
-                    ;   % n = 24 (weight 28), log-likelihood -9.62223, finite
-                        P1 = 0.133333,
-                        P2 = 0.866667
+                    ;   (   occluded_by(Occluded, Occluder):t
+                        ->  % n = 140 (weight 168), log-likelihood -16.4998, logistic
+                            logistic([Distance], [130.983, 1.90974], P1),
+                            P2 is 1-P1
+                        ;   % n = 148 (weight 180), log-likelihood -105.859, logistic
+                            logistic([Distance], [-16.5021, 0.270117], P1),
+                            P2 is 1-P1
+                        )
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-75.1297, 4.59196], P1),
+                    logistic([Distance], [-67.9635, 4.37842], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= mug
@@ -383,43 +397,53 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                 ->  % n = 95 (weight 335), log-likelihood -7.11504, finite
                     P1 = 0.99406528,
                     P2 = 0.00593472
-                ;   (   lift(Occluder):t+1 ~= Lift2
-                    ->  % n = 256 (weight 640), log-likelihood -222.623, logistic
-                        logistic([Distance, Lift2], [-57.2976, -297.838, -0.134059], P1),
-                        P2 is 1-P1
+                ;   (   moved(Occluder):t+1 ~= Moved21
+                    ->  (   Moved21 < 0.004
+                        ->  % n = 189 (weight 589), log-likelihood -181.771, logistic
+                            logistic([Distance], [-162.109, 1.41138], P1),
+                            P2 is 1-P1
+                        ;   (   lift(Occluder):t+1 ~= Lift2
+                            ->  % n = 125 (weight 177), log-likelihood -46.9645, logistic
+                                logistic([Distance, Lift2], [-17.513, -281.182, -1.08045], P1),
+                                P2 is 1-P1
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Distance], [-20.2505, -0.892065], P1),
+                                P2 is 1-P1
+                            )
+                        )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-57.8606, -0.100422], P1),
+                        logistic([Distance], [-46.0265, -0.360568], P1),
                         P2 is 1-P1
                     )
                 )
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 281 (weight 965), log-likelihood -0.998448, finite
-                P1 = 0.00103413,
-                P2 = 0.99896587
+            ->  % n = 287 (weight 1003), log-likelihood -0.998507, finite
+                P1 = 0.000995025,
+                P2 = 0.999004975
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-58.9301, 2.87007], P1),
+                logistic([Distance], [-53.0027, 2.77595], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= can
-        ->  % n = 374 (weight 1406), log-likelihood -0.998934, finite
-            P1 = 0.000710227,
-            P2 = 0.999289773
+        ->  % n = 497 (weight 1869), log-likelihood -0.999198, finite
+            P1 = 0.000534474,
+            P2 = 0.999465526
         ;   kind(Occluder):t+1 ~= cup
         ->  (   kind(Occluded):t+1 ~= ball
             ->  (   seen(Occluder):t
                 ->  (   lift(Occluder):t+1 ~= Lift4
-                    ->  (   rise(Occluded, Occluder):t+1 ~= Rise16
-                        ->  (   Rise16 < 0.0
+                    ->  (   rise(Occluded, Occluder):t+1 ~= Rise20
+                        ->  (   Rise20 < 0.0
                             ->  % n = 62 (weight 182), log-likelihood -0.991828, finite
                                 P1 = 0.99456522,
                                 P2 = 0.00543478
-                            ;   Rise16 < 0.1
-                            ->  % n = 1813 (weight 3317), log-likelihood -72.7575, logistic
-                                logistic([Distance, Lift4], [-214.809, -773.311, 8.17447], P1),
+                            ;   Rise20 < 0.1
+                            ->  % n = 1808 (weight 3272), log-likelihood -66.387, logistic
+                                logistic([Distance, Lift4], [-178.948, -730.167, 7.7175], P1),
                                 P2 is 1-P1
-                            ;   (   moved(Occluder):t+1 ~= Moved21
-                                ->  (   Moved21 < 0.004
+                            ;   (   moved(Occluder):t+1 ~= Moved24
+                                ->  (   Moved24 < 0.004
                                     ->  % n = 6 (weight 14), log-likelihood -0.903539, finite
                                         P1 = 0.9375,
                                         P2 = 0.0625
@@ -433,111 +457,111 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                                 )
                             )
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance, Lift4], [-180.562, -327.611, 6.60674], P1),
+                            logistic([Distance, Lift4], [-150.414, -310.936, 6.29677], P1),
                             P2 is 1-P1
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-162.905, 5.88982], P1),
+                        logistic([Distance], [-132.369, 5.61729], P1),
                         P2 is 1-P1
                     )
-                ;   % n = 14 (weight 18), log-likelihood -12.3664, finite
-                    P1 = 0.45,
-                    P2 = 0.55
+                ;   % n = 13 (weight 17), log-likelihood -11.7544, finite
+                    P1 = 0.526316,
+                    P2 = 0.473684
                 )
             ;   kind(Occluded):t+1 ~= bottle
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-121.38, 4.35636], P1),
+                logistic([Distance], [-51.4069, 2.37922], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= bowl
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-121.38, 4.35636], P1),
+                logistic([Distance], [-51.4069, 2.37922], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 32 (weight 132), log-likelihood -0.988769, finite
-                P1 = 0.00746269,
-                P2 = 0.99253731
+            ->  % n = 29 (weight 117), log-likelihood -0.987348, finite
+                P1 = 0.00840336,
+                P2 = 0.99159664
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 1, too few groundings for a model of its own: the parent's model, log-likelihood -0.0831746, logistic
-                logistic([Distance], [-121.38, 4.35636], P1),
+            ->  % n = 1, too few groundings for a model of its own: the parent's model, log-likelihood -0.473599, logistic
+                logistic([Distance], [-51.4069, 2.37922], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= cup
-            ->  % n = 7 (weight 27), log-likelihood -0.947466, finite
-                P1 = 0.0344828,
-                P2 = 0.9655172
+            ->  % n = 8 (weight 28), log-likelihood -0.949243, finite
+                P1 = 0.0333333,
+                P2 = 0.9666667
             ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 29 (weight 73), log-likelihood -0.97988, finite
-                P1 = 0.0133333,
-                P2 = 0.9866667
+            ->  % n = 88 (weight 376), log-likelihood -0.996027, finite
+                P1 = 0.0026455,
+                P2 = 0.9973545
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 287 (weight 931), log-likelihood -0.998392, finite
-                P1 = 0.00107181,
-                P2 = 0.99892819
+            ->  % n = 289 (weight 937), log-likelihood -0.998402, finite
+                P1 = 0.00106496,
+                P2 = 0.99893504
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-121.38, 4.35636], P1),
+                logistic([Distance], [-51.4069, 2.37922], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= mug
         ->  (   kind(Occluded):t+1 ~= ball
-            ->  (   lift(Occluder):t+1 ~= Lift6
-                ->  (   occluded_by(Occluded, Occluder):t
-                    ->  % n = 637 (weight 2473), log-likelihood -14.0731, logistic
-                        logistic([Distance, Lift6], [274.967, -993.035, 8.08215], P1),
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  (   lift(Occluder):t+1 ~= Lift6
+                    ->  % n = 726 (weight 2934), log-likelihood -13.9897, logistic
+                        logistic([Distance, Lift6], [283.064, -1017.29, 8.2548], P1),
                         P2 is 1-P1
-                    ;   (   moved(Occluder):t+1 ~= Moved24
-                        ->  (   Moved24 < 0.004
-                            ->  (   seen(Occluder):t
-                                ->  % n = 1316 (weight 1348), log-likelihood -85.976, logistic
-                                    logistic([Distance, Lift6], [616.21, 580.42, -3.97792], P1),
-                                    P2 is 1-P1
-                                ;   % n = 7 (weight 11), log-likelihood -7.58018, finite
-                                    P1 = 0.538462,
-                                    P2 = 0.461538
-                                )
-                            ;   % n = 149 (weight 153), log-likelihood -62.2485, logistic
-                                logistic([Distance, Lift6], [-84.9294, -212.941, 3.35532], P1),
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                        P1 = 0.99625341,
+                        P2 = 0.00374659
+                    )
+                ;   (   moved(Occluder):t+1 ~= Moved27
+                    ->  (   Moved27 < 0.004
+                        ->  % n = 1325 (weight 1365), log-likelihood -95.7526, logistic
+                            logistic([Distance], [689.175, -5.1016], P1),
+                            P2 is 1-P1
+                        ;   (   lift(Occluder):t+1 ~= Lift8
+                            ->  % n = 140 (weight 144), log-likelihood -55.362, logistic
+                                logistic([Distance, Lift8], [-92.4703, -219.152, 3.50723], P1),
+                                P2 is 1-P1
+                            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Distance], [-88.6716, 3.41308], P1),
                                 P2 is 1-P1
                             )
-                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance, Lift6], [-46.6116, -265.832, 3.63862], P1),
-                            P2 is 1-P1
                         )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                        P1 = 0.9417604,
+                        P2 = 0.0582396
                     )
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-73.555, 4.50654], P1),
-                    P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= bottle
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-86.0151, 4.29917], P1),
+                logistic([Distance], [-81.7109, 4.22673], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 3 (weight 15), log-likelihood -0.0903584, logistic
-                logistic([Distance], [-47.2191, 4.733], P1),
+            ->  % n = 4 (weight 20), log-likelihood -0.133948, logistic
+                logistic([Distance], [-61.7656, 4.74576], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 11 (weight 43), log-likelihood -0.966333, finite
-                P1 = 0.0222222,
-                P2 = 0.9777778
+            ->  % n = 8 (weight 36), log-likelihood -0.960057, finite
+                P1 = 0.0263158,
+                P2 = 0.9736842
             ;   kind(Occluded):t+1 ~= can
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-86.0151, 4.29917], P1),
+                logistic([Distance], [-81.7109, 4.22673], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= cup
-            ->  % n = 13, log-likelihood -0.896907, finite
-                P1 = 0.0666667,
-                P2 = 0.9333333
+            ->  % n = 12, log-likelihood -0.889296, finite
+                P1 = 0.0714286,
+                P2 = 0.9285714
             ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 94 (weight 214), log-likelihood -0.993041, finite
-                P1 = 0.00462963,
-                P2 = 0.99537037
+            ->  % n = 51 (weight 119), log-likelihood -0.987558, finite
+                P1 = 0.00826446,
+                P2 = 0.99173554
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 336 (weight 1132), log-likelihood -0.998677, finite
-                P1 = 0.000881834,
-                P2 = 0.999118166
+            ->  % n = 348 (weight 1188), log-likelihood -0.998739, finite
+                P1 = 0.000840336,
+                P2 = 0.999159664
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-86.0151, 4.29917], P1),
+                logistic([Distance], [-81.7109, 4.22673], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= skin
@@ -546,110 +570,120 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                 ->  % n = 321 (weight 413), log-likelihood -7.32547, finite
                     P1 = 0.99518072,
                     P2 = 0.00481928
-                ;   % n = 583 (weight 635), log-likelihood -267.337, logistic
-                    logistic([Distance], [-35.5707, 2.42714], P1),
+                ;   % n = 664 (weight 708), log-likelihood -292.605, logistic
+                    logistic([Distance], [-32.5918, 2.32064], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  (   rise(Occluded, Occluder):t+1 ~= Rise20
-                ->  (   Rise20 < 0.0
-                    ->  % n = 2, too few groundings for a model of its own: the parent's model, log-likelihood -2.22243, logistic
-                        logistic([Distance], [-19.7561, 3.27229], P1),
+            ->  (   rise(Occluded, Occluder):t+1 ~= Rise24
+                ->  (   Rise24 < 0.0
+                    ->  % n = 3, too few groundings for a model of its own: the parent's model, log-likelihood -4.04554, logistic
+                        logistic([Distance], [-15.4811, 3.20644], P1),
                         P2 is 1-P1
-                    ;   Rise20 < 0.1
-                    ->  % n = 169 (weight 209), log-likelihood -15.0925, logistic
-                        logistic([Distance], [-124.785, 4.49506], P1),
+                    ;   Rise24 < 0.1
+                    ->  % n = 168 (weight 204), log-likelihood -15.0587, logistic
+                        logistic([Distance], [-124.417, 4.47785], P1),
                         P2 is 1-P1
                     ;   (   occluded_by(Occluded, Occluder):t
-                        ->  % n = 134 (weight 194), log-likelihood -0.99233, finite
-                            P1 = 0.99489796,
-                            P2 = 0.00510204
-                        ;   (   moved(Occluder):t+1 ~= Moved27
-                            ->  (   Moved27 < 0.004
+                        ->  % n = 135 (weight 199), log-likelihood -0.992521, finite
+                            P1 = 0.99502488,
+                            P2 = 0.00497512
+                        ;   (   moved(Occluder):t+1 ~= Moved30
+                            ->  (   Moved30 < 0.004
                                 ->  % n = 65, log-likelihood -0.977462, finite
                                     P1 = 0.9850746,
                                     P2 = 0.0149254
-                                ;   % n = 101, log-likelihood -38.8008, logistic
-                                    logistic([Distance], [36.9167, 0.88795], P1),
-                                    P2 is 1-P1
+                                ;   % n = 110, log-likelihood -47.3721, finite
+                                    P1 = 0.839286,
+                                    P2 = 0.160714
                                 )
                             ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                                P1 = 0.89881,
-                                P2 = 0.10119
+                                P1 = 0.898305,
+                                P2 = 0.101695
                             )
                         )
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-19.7561, 3.27229], P1),
+                    logistic([Distance], [-15.4811, 3.20644], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= bowl
             ->  (   seen(Occluded):t
-                ->  % n = 11, log-likelihood -6.47776, finite
-                    P1 = 0.307692,
-                    P2 = 0.692308
+                ->  % n = 12, log-likelihood -6.78654, finite
+                    P1 = 0.285714,
+                    P2 = 0.714286
                 ;   (   occluded_by(Occluded, Occluder):t
-                    ->  (   lift(Occluder):t+1 ~= Lift8
-                        ->  % n = 106 (weight 146), log-likelihood -3.50167, logistic
-                            logistic([Distance, Lift8], [-44.0569, -136.173, 5.90011], P1),
+                    ->  (   lift(Occluder):t+1 ~= Lift10
+                        ->  % n = 107 (weight 151), log-likelihood -3.50207, logistic
+                            logistic([Distance, Lift10], [-43.8702, -136.342, 5.90692], P1),
                             P2 is 1-P1
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                            P1 = 0.972973,
-                            P2 = 0.027027
+                            P1 = 0.9738562,
+                            P2 = 0.0261438
                         )
-                    ;   % n = 124 (weight 128), log-likelihood -46.2652, finite
-                        P1 = 0.876923,
-                        P2 = 0.123077
+                    ;   (   moved(Occluder):t+1 ~= Moved33
+                        ->  (   Moved33 < 0.004
+                            ->  % n = 32 (weight 36), log-likelihood -3.57863, logistic
+                                logistic([Distance], [-614.349, 58.6958], P1),
+                                P2 is 1-P1
+                            ;   % n = 94, log-likelihood -31.8871, finite
+                                P1 = 0.885417,
+                                P2 = 0.114583
+                            )
+                        ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
+                            P1 = 0.878788,
+                            P2 = 0.121212
+                        )
                     )
                 )
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 309 (weight 397), log-likelihood -101.178, logistic
-                logistic([Distance], [-47.2045, 3.73458], P1),
+            ->  % n = 331 (weight 391), log-likelihood -110.485, logistic
+                logistic([Distance], [-41.4358, 3.47257], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 155 (weight 167), log-likelihood -25.1679, logistic
-                logistic([Distance], [-55.5187, 4.38202], P1),
+            ->  % n = 166 (weight 182), log-likelihood -33.7114, logistic
+                logistic([Distance], [-46.5683, 4.01695], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= cup
-            ->  (   lift(Occluder):t+1 ~= Lift10
-                ->  % n = 986 (weight 1142), log-likelihood -101.581, logistic
-                    logistic([Distance, Lift10], [-46.8672, -98.743, 6.31458], P1),
+            ->  (   lift(Occluder):t+1 ~= Lift12
+                ->  % n = 1072 (weight 1216), log-likelihood -147.964, logistic
+                    logistic([Distance, Lift12], [-32.2268, -83.7825, 5.5547], P1),
                     P2 is 1-P1
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-39.9517, 5.50089], P1),
+                    logistic([Distance], [-27.0102, 4.83877], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= mug
-            ->  (   lift(Occluder):t+1 ~= Lift12
+            ->  (   lift(Occluder):t+1 ~= Lift14
                 ->  (   seen(Occluded):t
-                    ->  % n = 15, log-likelihood -9.56045, finite
-                        P1 = 0.647059,
-                        P2 = 0.352941
-                    ;   % n = 809 (weight 953), log-likelihood -113.994, logistic
-                        logistic([Distance, Lift12], [-30.429, -83.7878, 4.67951], P1),
+                    ->  % n = 19, log-likelihood -0.0645829, logistic
+                        logistic([Distance, Lift14], [-25.5456, -426.638, -5.7371], P1),
+                        P2 is 1-P1
+                    ;   % n = 835 (weight 971), log-likelihood -116.082, logistic
+                        logistic([Distance, Lift14], [-26.0618, -79.3199, 4.70736], P1),
                         P2 is 1-P1
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-23.7976, 3.96983], P1),
+                    logistic([Distance], [-21.6677, 4.05418], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= skin
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-36.0239, 3.81619], P1),
+                logistic([Distance], [-29.1154, 3.56248], P1),
                 P2 is 1-P1
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-36.0239, 3.81619], P1),
+                logistic([Distance], [-29.1154, 3.56248], P1),
                 P2 is 1-P1
             )
         ;   \+ kind(Occluder):t+1 ~= _
         ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Distance], [-49.5928, 2.87574], P1),
+            logistic([Distance], [-38.732, 2.5785], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.618546,
-        P2 = 0.381454
+        P1 = 0.551501,
+        P2 = 0.448499
     ).
 
 % When a hand lets go of what it carries (ddc learn, from the carries beside the data): a
@@ -673,21 +707,21 @@ height(A):t+1 ~ val(H) :=
 highest(A):t+1 ~ val(H) :=
     top(A):t ~= H.
 
-% released(Held):t+1: 3 clauses, 2486 groundings, training log-likelihood -74.478 (mean -0.029959 per grounding), 6 parameters.
+% released(Held):t+1: 3 clauses, 2442 groundings, training log-likelihood -73.6101 (mean -0.0301434 per grounding), 6 parameters.
 released(Held):t+1 ~ finite([P1:true, P2:false]) :=
     carried(Held):t+1,
     (   height(Held):t+1 ~= Height
     ->  (   highest(Held):t+1 ~= Highest
-        ->  % n = 2486, log-likelihood -74.478, logistic
-            logistic([Height, Highest], [-103.808, 63.3374, -9.1449], P1),
+        ->  % n = 2442, log-likelihood -73.6101, logistic
+            logistic([Height, Highest], [-102.528, 62.5973, -9.04212], P1),
             P2 is 1-P1
         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Height], [-48.4773, -1.49431], P1),
+            logistic([Height], [-48.036, -1.50418], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.0249196,
-        P2 = 0.9750804
+        P1 = 0.0249591,
+        P2 = 0.9750409
     ).
 
 :- include('too/too_motion.pl').

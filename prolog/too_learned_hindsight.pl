@@ -1,10 +1,10 @@
 /*  too_learned_hindsight.pl -- the theory of occlusion with rules learned from experience.
 
     Written by `anchoring learn-theory`: a tree learned (ddc learn) from
-    data_hindsight.pl: 13241 groundings of occluder(A, O):t+1,
-    88 clauses, training log-likelihood -2809.66;
-    and one for released(A):t+1 from 982 frames a hand held an object
-    (3 clauses, training log-likelihood -33.9081);
+    data_hindsight.pl: 14101 groundings of occluder(A, O):t+1,
+    90 clauses, training log-likelihood -3007.47;
+    and one for released(A):t+1 from 1030 frames a hand held an object
+    (3 clauses, training log-likelihood -35.4546);
     search seed 0.
     Command: anchoring learn-theory out/learn/data_hindsight.pl --seed 0 --out prolog/too_learned_hindsight.pl --plots docs/images
     The hand-written parts are included from prolog/too/ (too_base.pl, too_learned_glue.pl, too_motion.pl):
@@ -19,31 +19,31 @@
 % motion_parameters.py: maximum-likelihood variances, least-squares AR(1) kept
 % fractions, quantiles for reaches and heights, Laplace's rule for a probability);
 % variances per axis in square metres, one step is one camera frame.
-obs_var(3.822e-06).  % the measurement noise of a perceived position (m², per axis); 91,279 samples
-motion_var(3.184e-05).  % how far a perceived object moves in a frame (m², per axis); 122,427 samples
-reappear_var(0.001354).  % where a hidden object is seen again, around its belief (m²); 1,267 samples
-lost_var(0.07154).  % the same for an object lost while the camera saw nothing (m²); 8,187 samples
+obs_var(3.67e-06).  % the measurement noise of a perceived position (m², per axis); 91,121 samples
+motion_var(3.155e-05).  % how far a perceived object moves in a frame (m², per axis); 122,017 samples
+reappear_var(0.001607).  % where a hidden object is seen again, around its belief (m²); 1,292 samples
+lost_var(0.07162).  % the same for an object lost while the camera saw nothing (m²); 8,160 samples
 follow_keep(0.999).  % the fraction of its offset from its occluder a hidden object keeps; 25 samples
-follow_var(1.571e-07).  % the jitter of that offset per frame (m²); 25 samples
-coast_keep(0.8678).  % the fraction of its velocity a hidden object under nothing keeps; 37 samples
-wander_var(0.0003492).  % how far such an object may move besides (m²); 37 samples
-rest_var(1.6e-06).  % how far one that stood still as it vanished may move (m²); 84 samples
-height_var(1e-08).  % how far a hidden object's height may move (m² a frame); 128 samples
-grip_reach(0.06474).  % how far (table plane) a hand's grip may be from what it takes (m); 21 samples
-grip_height(0.1377).  % how far above its top (m); 21 samples
-occluder_rise(0.00425).  % how far below its centre (m); 21 samples
-grip_drop(0.04065).  % how far what a hand holds is below its grip (m); 21 samples
-grip_rise(0.00109).  % how far a hand's grip rises in a frame when it lifts (m); 277 samples
+follow_var(2.044e-07).  % the jitter of that offset per frame (m²); 25 samples
+coast_keep(0.9003).  % the fraction of its velocity a hidden object under nothing keeps; 41 samples
+wander_var(0.0003978).  % how far such an object may move besides (m²); 41 samples
+rest_var(1.325e-06).  % how far one that stood still as it vanished may move (m²); 86 samples
+height_var(1e-08).  % how far a hidden object's height may move (m² a frame); 133 samples
+grip_reach(0.06474).  % how far (table plane) a hand's grip may be from what it takes (m); 22 samples
+grip_height(0.1356).  % how far above its top (m); 22 samples
+occluder_rise(0.005354).  % how far below its centre (m); 22 samples
+grip_drop(0.04095).  % how far what a hand holds is below its grip (m); 22 samples
+grip_rise(0.00109).  % how far a hand's grip rises in a frame when it lifts (m); 289 samples
 moving_speed(0.004).  % (m a frame) what the fits above call moving as it vanished (wander_var) and still (rest_var)
 % The height of each kind (m): the median of its perceived heights; a grip's height
 % over an object is measured from its top (too/too_motion.pl).
-kind_height(ball, 0.059).  % 1,213 samples
-kind_height(bottle, 0.2128).  % 729 samples
-kind_height(bowl, 0.0868).  % 701 samples
-kind_height(box, 0.134).  % 1,761 samples
-kind_height(can, 0.1232).  % 547 samples
-kind_height(cup, 0.1037).  % 1,565 samples
-kind_height(mug, 0.1026).  % 1,671 samples
+kind_height(ball, 0.059).  % 1,210 samples
+kind_height(bottle, 0.2128).  % 727 samples
+kind_height(bowl, 0.0869).  % 702 samples
+kind_height(box, 0.134).  % 1,750 samples
+kind_height(can, 0.1232).  % 548 samples
+kind_height(cup, 0.1037).  % 1,564 samples
+kind_height(mug, 0.1026).  % 1,659 samples
 
 % ------------------------------------------------------------------ learned affordances
 % Read from the data (python/probanchor/learning/occlusion_affordances.py): the share
@@ -55,24 +55,24 @@ kind_height(mug, 0.1026).  % 1,671 samples
 % what it hid when lifted off with a probability above 1/2, read from a weight of
 % at least 50 data points (too/too_motion.pl's carriers' rules apply to
 % it).
-hides(ball, 0.0007442).  % 10,317
-hides(bottle, 0.0001563).  % 6,398
-hides(bowl, 0.04415).  % 6,816
-hides(box, 0.2081).  % 19,259
-hides(can, 0.0002088).  % 4,788
-hides(cup, 0.09245).  % 15,661
-hides(mug, 0.1656).  % 16,123
-hides(skin, 0.328).  % 3,605
-hidden_share(ball, 0.1959).  % 33,762
-hidden_share(bottle, 0.108).  % 1,792
-hidden_share(bowl, 0.02357).  % 4,240
-hidden_share(box, 0.01033).  % 10,933
-hidden_share(can, 0.1319).  % 3,820
-hidden_share(cup, 0.1328).  % 12,998
-hidden_share(mug, 0.03258).  % 11,264
-hidden_share(skin, 0.0002404).  % 4,158
-carries(box, 0.875).  % 6
-carries(skin, 0.9972).  % 529
+hides(ball, 0.0006716).  % 11,432
+hides(bottle, 0.0001507).  % 6,633
+hides(bowl, 0.04529).  % 6,644
+hides(box, 0.1937).  % 20,638
+hides(can, 0.0001981).  % 5,045
+hides(cup, 0.08791).  % 16,469
+hides(mug, 0.1322).  % 17,163
+hides(skin, 0.336).  % 3,715
+hidden_share(ball, 0.1889).  % 33,319
+hidden_share(bottle, 0.1053).  % 1,816
+hidden_share(bowl, 0.0146).  % 6,848
+hidden_share(box, 0.01233).  % 9,245
+hidden_share(can, 0.1189).  % 4,280
+hidden_share(cup, 0.1274).  % 12,882
+hidden_share(mug, 0.02769).  % 15,167
+hidden_share(skin, 0.000239).  % 4,182
+carries(box, 0.8).  % 3
+carries(skin, 0.9973).  % 560
 carrier(skin).
 can_occlude(O) := category(O, C), hides(C, P), P >= 0.01, \+ is_carrier(O).
 is_carrier(O) := category(O, C), carrier(C).
@@ -80,10 +80,10 @@ hand_known := object(O), is_carrier(O).
 can_be_occluded(A) := category(A, C), hidden_share(C, P), P >= 0.01.
 
 :- include('too/too_learned_glue.pl').
-% The onset reach (m): 90% of the 37 onsets in the data (1 far out left out) were within 0.05909 m; times 2.0.
-onset_reach(0.1182).
+% The onset reach (m): 90% of the 37 onsets in the data (1 far out left out) were within 0.05926 m; times 2.0.
+onset_reach(0.1185).
 % The reach of the kinds with onsets enough for one of their own.
-onset_reach(box, 0.0879).  % 14 onsets, (1 far out left out) 90% within 0.04395 m
+onset_reach(box, 0.1075).  % 14 onsets, (1 far out left out) 90% within 0.05376 m
 
 % The learned rules (ddc learn): a distributional logic tree for occluder/2 (each path from its
 % root to a leaf is one clause of the tree), with the background knowledge it reads.
@@ -129,18 +129,28 @@ moved(O):t+1 ~ val(M) :=
 kind(A):t+1 ~ val(C) :=
     category(A, C).
 
-% occluder(Occluded, Occluder):t+1: 88 clauses, 13241 groundings, training log-likelihood -2809.66 (mean -0.109821 per grounding), 115 parameters.
+% occluder(Occluded, Occluder):t+1: 90 clauses, 14101 groundings, training log-likelihood -3007.47 (mean -0.106727 per grounding), 121 parameters.
 occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
     pair(Occluded, Occluder):t+1,
     (   distance(Occluded, Occluder):t+1 ~= Distance
     ->  (   kind(Occluder):t+1 ~= ball
-        ->  % n = 300 (weight 757), log-likelihood -27.3563, logistic
-            logistic([Distance], [-27.6925, -1.55973], P1),
-            P2 is 1-P1
+        ->  (   moved(Occluder):t+1 ~= Moved
+            ->  (   Moved < 0.004
+                ->  % n = 172 (weight 812), log-likelihood -0.998156, finite
+                    P1 = 0.0012285,
+                    P2 = 0.9987715
+                ;   % n = 321 (weight 342), log-likelihood -22.9313, logistic
+                    logistic([Distance], [-24.7121, -1.05499], P1),
+                    P2 is 1-P1
+                )
+            ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                logistic([Distance], [-28.6356, -1.9345], P1),
+                P2 is 1-P1
+            )
         ;   kind(Occluder):t+1 ~= bottle
-        ->  % n = 132 (weight 400), log-likelihood -0.996265, finite
-            P1 = 0.00248756,
-            P2 = 0.99751244
+        ->  % n = 158 (weight 550), log-likelihood -0.99728, finite
+            P1 = 0.00181159,
+            P2 = 0.99818841
         ;   kind(Occluder):t+1 ~= bowl
         ->  (   occluded_by(Occluded, Occluder):t
             ->  % n = 123 (weight 291), log-likelihood -0.994873, finite
@@ -148,11 +158,11 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                 P2 = 0.00341297
             ;   (   kind(Occluded):t+1 ~= ball
                 ->  (   lost_anywhere(Occluded):t
-                    ->  % n = 83 (weight 283), log-likelihood -0.994729, finite
-                        P1 = 0.00350877,
-                        P2 = 0.99649123
-                    ;   (   moved(Occluder):t+1 ~= Moved
-                        ->  (   Moved < 0.004
+                    ->  % n = 49 (weight 117), log-likelihood -0.987348, finite
+                        P1 = 0.00840336,
+                        P2 = 0.99159664
+                    ;   (   moved(Occluder):t+1 ~= Moved3
+                        ->  (   Moved3 < 0.004
                             ->  (   seen(Occluder):t
                                 ->  (   lift(Occluder):t+1 ~= Lift
                                     ->  % n = 210 (weight 534), log-likelihood -208.57, logistic
@@ -162,375 +172,374 @@ occluder(Occluded, Occluder):t+1 ~ finite([P1:true, P2:false]) :=
                                         logistic([Distance], [45.339, -2.51388], P1),
                                         P2 is 1-P1
                                     )
-                                ;   % n = 4 (weight 20), log-likelihood -0.9304, finite
-                                    P1 = 0.0454545,
-                                    P2 = 0.9545455
+                                ;   % n = 3 (weight 15), log-likelihood -0.909369, finite
+                                    P1 = 0.0588235,
+                                    P2 = 0.9411765
                                 )
-                            ;   % n = 189 (weight 241), log-likelihood -113.033, finite
-                                P1 = 0.18107,
-                                P2 = 0.81893
+                            ;   % n = 187 (weight 239), log-likelihood -112.638, finite
+                                P1 = 0.182573,
+                                P2 = 0.817427
                             )
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [15.0682, -1.95117], P1),
+                            logistic([Distance], [15.2315, -1.94425], P1),
                             P2 is 1-P1
                         )
                     )
                 ;   kind(Occluded):t+1 ~= bottle
-                ->  % n = 23 (weight 35), log-likelihood -0.958964, finite
-                    P1 = 0.027027,
-                    P2 = 0.972973
+                ->  % n = 27 (weight 47), log-likelihood -0.969106, finite
+                    P1 = 0.0204082,
+                    P2 = 0.9795918
                 ;   kind(Occluded):t+1 ~= bowl
-                ->  % n = 141 (weight 249), log-likelihood -6.81632, finite
-                    P1 = 0.00796813,
-                    P2 = 0.99203187
+                ->  % n = 319 (weight 771), log-likelihood -7.95195, finite
+                    P1 = 0.00258732,
+                    P2 = 0.99741268
                 ;   kind(Occluded):t+1 ~= box
-                ->  (   seen(Occluded):t
-                    ->  % n = 20, log-likelihood -12.2327, finite
-                        P1 = 0.318182,
-                        P2 = 0.681818
-                    ;   % n = 58 (weight 90), log-likelihood -5.78476, finite
-                        P1 = 0.0217391,
-                        P2 = 0.9782609
-                    )
+                ->  % n = 23 (weight 35), log-likelihood -17.5418, finite
+                    P1 = 0.216216,
+                    P2 = 0.783784
                 ;   kind(Occluded):t+1 ~= can
-                ->  % n = 9, too few groundings for a model of its own: the parent's model, log-likelihood -0.978042, finite
-                    P1 = 0.102975,
-                    P2 = 0.897025
+                ->  % n = 9, too few groundings for a model of its own: the parent's model, log-likelihood -0.837814, finite
+                    P1 = 0.0888889,
+                    P2 = 0.9111111
                 ;   kind(Occluded):t+1 ~= cup
-                ->  % n = 73 (weight 185), log-likelihood -0.991959, finite
-                    P1 = 0.00534759,
-                    P2 = 0.99465241
+                ->  % n = 64 (weight 164), log-likelihood -0.99094, finite
+                    P1 = 0.0060241,
+                    P2 = 0.9939759
                 ;   kind(Occluded):t+1 ~= mug
-                ->  % n = 36 (weight 72), log-likelihood -0.979607, finite
-                    P1 = 0.0135135,
-                    P2 = 0.9864865
+                ->  % n = 40 (weight 84), log-likelihood -0.982467, finite
+                    P1 = 0.0116279,
+                    P2 = 0.9883721
                 ;   kind(Occluded):t+1 ~= skin
-                ->  % n = 4 (weight 8), too few groundings for a model of its own: the parent's model, log-likelihood -0.869371, finite
-                    P1 = 0.102975,
-                    P2 = 0.897025
+                ->  % n = 4 (weight 8), too few groundings for a model of its own: the parent's model, log-likelihood -0.744723, finite
+                    P1 = 0.0888889,
+                    P2 = 0.9111111
                 ;   \+ kind(Occluded):t+1 ~= _
                 ->  % n = 0, too few groundings for a model of its own: the parent's model, finite
-                    P1 = 0.102975,
-                    P2 = 0.897025
+                    P1 = 0.0888889,
+                    P2 = 0.9111111
                 )
             )
         ;   kind(Occluder):t+1 ~= box
         ->  (   kind(Occluded):t+1 ~= ball
             ->  (   occluded_by(Occluded, Occluder):t
-                ->  % n = 620 (weight 1944), log-likelihood -0.999229, finite
-                    P1 = 0.999486125,
-                    P2 = 0.000513875
+                ->  % n = 611 (weight 2023), log-likelihood -0.999259, finite
+                    P1 = 0.999506173,
+                    P2 = 0.000493827
                 ;   (   lost_anywhere(Occluded):t
-                    ->  % n = 126 (weight 470), log-likelihood -7.45534, finite
-                        P1 = 0.00423729,
-                        P2 = 0.99576271
-                    ;   (   moved(Occluder):t+1 ~= Moved3
-                        ->  (   Moved3 < 0.004
-                            ->  (   seen(Occluder):t
-                                ->  % n = 1221 (weight 1473), log-likelihood -767.101, finite
-                                    P1 = 0.784407,
-                                    P2 = 0.215593
-                                ;   % n = 28, log-likelihood -0.949243, finite
-                                    P1 = 0.9666667,
-                                    P2 = 0.0333333
+                    ->  % n = 229 (weight 889), log-likelihood -8.0947, finite
+                        P1 = 0.00224467,
+                        P2 = 0.99775533
+                    ;   (   rise(Occluded, Occluder):t+1 ~= Rise
+                        ->  (   Rise < 0.0
+                            ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                logistic([Distance], [-22.0468, 1.58829], P1),
+                                P2 is 1-P1
+                            ;   Rise < 0.1
+                            ->  (   moved(Occluder):t+1 ~= Moved6
+                                ->  (   Moved6 < 0.004
+                                    ->  (   lift(Occluder):t+1 ~= Lift2
+                                        ->  % n = 1235 (weight 1507), log-likelihood -773.412, logistic
+                                            logistic([Distance, Lift2], [-14.4217, 523.538, 1.664], P1),
+                                            P2 is 1-P1
+                                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                            logistic([Distance], [-14.5051, 1.60442], P1),
+                                            P2 is 1-P1
+                                        )
+                                    ;   (   lift(Occluder):t+1 ~= Lift4
+                                        ->  % n = 341 (weight 369), log-likelihood -235.76, logistic
+                                            logistic([Distance, Lift4], [-20.0267, 37.6181, 1.08982], P1),
+                                            P2 is 1-P1
+                                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                            logistic([Distance], [-17.6758, 0.931007], P1),
+                                            P2 is 1-P1
+                                        )
+                                    )
+                                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                                    logistic([Distance], [-18.2588, 1.53565], P1),
+                                    P2 is 1-P1
                                 )
-                            ;   % n = 386 (weight 406), log-likelihood -255.395, logistic
-                                logistic([Distance], [-23.8456, 1.35117], P1),
+                            ;   % n = 72 (weight 76), log-likelihood -16.2071, logistic
+                                logistic([Distance], [-102.192, 3.20086], P1),
                                 P2 is 1-P1
                             )
                         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-8.38361, 1.3335], P1),
+                            logistic([Distance], [-22.0468, 1.58829], P1),
                             P2 is 1-P1
                         )
                     )
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 14 (weight 18), log-likelihood -0.923279, finite
-                P1 = 0.05,
-                P2 = 0.95
+            ->  % n = 21 (weight 29), log-likelihood -0.950905, finite
+                P1 = 0.0322581,
+                P2 = 0.9677419
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 34 (weight 78), log-likelihood -0.981145, finite
-                P1 = 0.0125,
-                P2 = 0.9875
+            ->  % n = 36 (weight 88), log-likelihood -0.98325, finite
+                P1 = 0.0111111,
+                P2 = 0.9888889
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 186 (weight 634), log-likelihood -0.99764, finite
-                P1 = 0.00157233,
-                P2 = 0.99842767
+            ->  % n = 181 (weight 593), log-likelihood -7.68868, finite
+                P1 = 0.00336134,
+                P2 = 0.99663866
             ;   kind(Occluded):t+1 ~= can
             ->  (   occluded_by(Occluded, Occluder):t
                 ->  % n = 128 (weight 440), log-likelihood -0.996603, finite
                     P1 = 0.99773756,
                     P2 = 0.00226244
-                ;   (   lift(Occluder):t+1 ~= Lift2
-                    ->  % n = 517 (weight 537), log-likelihood -31.2407, logistic
-                        logistic([Distance, Lift2], [-173.354, 78.1773, 7.19766], P1),
+                ;   (   lift(Occluder):t+1 ~= Lift6
+                    ->  % n = 563 (weight 675), log-likelihood -88.6056, logistic
+                        logistic([Distance, Lift6], [-244.115, 78.0129, 7.10235], P1),
                         P2 is 1-P1
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [-143.611, 6.242], P1),
+                        logistic([Distance], [-221.203, 6.40433], P1),
                         P2 is 1-P1
                     )
                 )
             ;   kind(Occluded):t+1 ~= cup
             ->  (   occluded_by(Occluded, Occluder):t
-                ->  % n = 317 (weight 1545), log-likelihood -0.99903, finite
-                    P1 = 0.999353588,
-                    P2 = 0.000646412
-                ;   (   moved(Occluder):t+1 ~= Moved6
-                    ->  (   Moved6 < 0.004
+                ->  % n = 299 (weight 1455), log-likelihood -0.99897, finite
+                    P1 = 0.999313658,
+                    P2 = 0.000686342
+                ;   (   moved(Occluder):t+1 ~= Moved9
+                    ->  (   Moved9 < 0.004
                         ->  (   lost_anywhere(Occluded):t
-                            ->  % n = 1 (weight 5), too few groundings for a model of its own: the parent's model, log-likelihood -121.818, logistic
-                                logistic([Distance], [162.271, -4.9563], P1),
+                            ->  % n = 1 (weight 5), too few groundings for a model of its own: the parent's model, log-likelihood -91.1247, logistic
+                                logistic([Distance], [120.221, -3.49719], P1),
                                 P2 is 1-P1
-                            ;   % n = 547 (weight 771), log-likelihood -107.698, logistic
-                                logistic([Distance], [280.231, -9.11262], P1),
+                            ;   % n = 539 (weight 731), log-likelihood -206.121, logistic
+                                logistic([Distance], [183.812, -5.6388], P1),
                                 P2 is 1-P1
                             )
-                        ;   % n = 62 (weight 66), log-likelihood -31.3121, finite
-                            P1 = 0.191176,
-                            P2 = 0.808824
+                        ;   % n = 62, log-likelihood -30.4801, finite
+                            P1 = 0.203125,
+                            P2 = 0.796875
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                        logistic([Distance], [110.663, -3.49443], P1),
+                        logistic([Distance], [63.2982, -1.77685], P1),
                         P2 is 1-P1
                     )
                 )
             ;   kind(Occluded):t+1 ~= mug
-            ->  (   moved(Occluder):t+1 ~= Moved9
-                ->  (   Moved9 < 0.004
-                    ->  (   rise(Occluded, Occluder):t+1 ~= Rise
-                        ->  (   Rise < 0.0
-                            ->  % n = 18 (weight 90), log-likelihood -0.983616, finite
-                                P1 = 0.0108696,
-                                P2 = 0.9891304
-                            ;   Rise < 0.1
-                            ->  % n = 176 (weight 300), log-likelihood -4.8972, logistic
-                                logistic([Distance], [-364.916, 13.668], P1),
-                                P2 is 1-P1
-                            ;   % n = 3 (weight 15), log-likelihood -0.909369, finite
-                                P1 = 0.0588235,
-                                P2 = 0.9411765
-                            )
-                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-408.735, 13.3499], P1),
-                            P2 is 1-P1
-                        )
-                    ;   % n = 91 (weight 111), log-likelihood -26.9899, logistic
-                        logistic([Distance], [-120.78, 2.7692], P1),
+            ->  (   rise(Occluded, Occluder):t+1 ~= Rise4
+                ->  (   Rise4 < 0.0
+                    ->  % n = 75 (weight 363), log-likelihood -0.995885, finite
+                        P1 = 0.00273973,
+                        P2 = 0.99726027
+                    ;   Rise4 < 0.1
+                    ->  % n = 289 (weight 581), log-likelihood -123.837, logistic
+                        logistic([Distance], [-171.011, 5.49786], P1),
                         P2 is 1-P1
+                    ;   % n = 22 (weight 26), log-likelihood -4.49176, finite
+                        P1 = 0.0714286,
+                        P2 = 0.9285714
                     )
                 ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-331.364, 10.356], P1),
+                    logistic([Distance], [-181.559, 5.48368], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= skin
-            ->  % n = 67 (weight 147), log-likelihood -0.989903, finite
-                P1 = 0.00671141,
-                P2 = 0.99328859
+            ->  % n = 70 (weight 162), log-likelihood -0.990829, finite
+                P1 = 0.00609756,
+                P2 = 0.99390244
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-52.4287, 2.63069], P1),
+                logistic([Distance], [-56.9159, 2.66216], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= can
-        ->  % n = 98 (weight 462), log-likelihood -0.996764, finite
-            P1 = 0.00215517,
-            P2 = 0.99784483
+        ->  % n = 157 (weight 509), log-likelihood -0.997062, finite
+            P1 = 0.00195695,
+            P2 = 0.99804305
         ;   kind(Occluder):t+1 ~= cup
         ->  (   kind(Occluded):t+1 ~= ball
             ->  (   lost_anywhere(Occluded):t
-                ->  % n = 16 (weight 64), log-likelihood -12.2238, finite
-                    P1 = 0.0606061,
-                    P2 = 0.9393939
-                ;   (   occluded_by(Occluded, Occluder):t
-                    ->  % n = 413 (weight 1437), log-likelihood -0.998957, finite
-                        P1 = 0.999305073,
-                        P2 = 0.000694927
-                    ;   (   moved(Occluder):t+1 ~= Moved12
-                        ->  (   Moved12 < 0.004
-                            ->  % n = 1138 (weight 1158), log-likelihood -59.2993, logistic
-                                logistic([Distance], [-157.679, 5.86005], P1),
-                                P2 is 1-P1
-                            ;   (   seen(Occluder):t
-                                ->  % n = 169, log-likelihood -59.7866, logistic
-                                    logistic([Distance], [-51.9999, 2.77115], P1),
-                                    P2 is 1-P1
-                                ;   % n = 12, log-likelihood -0.889296, finite
-                                    P1 = 0.0714286,
-                                    P2 = 0.9285714
-                                )
-                            )
-                        ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                            logistic([Distance], [-84.7194, 4.58077], P1),
+                ->  (   seen(Occluder):t
+                    ->  % n = 137 (weight 437), log-likelihood -0.99658, finite
+                        P1 = 0.0022779,
+                        P2 = 0.9977221
+                    ;   % n = 12 (weight 44), log-likelihood -11.0569, finite
+                        P1 = 0.0869565,
+                        P2 = 0.9130435
+                    )
+                ;   (   moved(Occluder):t+1 ~= Moved12
+                    ->  (   Moved12 < 0.004
+                        ->  % n = 1383 (weight 2383), log-likelihood -39.1408, logistic
+                            logistic([Distance], [-170.321, 6.81141], P1),
                             P2 is 1-P1
+                        ;   (   occluded_by(Occluded, Occluder):t
+                            ->  % n = 167 (weight 207), log-likelihood -0.992808, finite
+                                P1 = 0.99521531,
+                                P2 = 0.00478469
+                            ;   % n = 182, log-likelihood -66.6812, logistic
+                                logistic([Distance], [-49.2158, 2.61058], P1),
+                                P2 is 1-P1
+                            )
                         )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance], [-90.1816, 5.42928], P1),
+                        P2 is 1-P1
                     )
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 3, too few groundings for a model of its own: the parent's model, log-likelihood -1.28188e-06, logistic
-                logistic([Distance], [-203.855, 2.40082], P1),
+            ->  % n = 3, too few groundings for a model of its own: the parent's model, log-likelihood -3.27965e-06, logistic
+                logistic([Distance], [-191.115, 2.3102], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 28 (weight 76), log-likelihood -0.980659, finite
-                P1 = 0.0128205,
-                P2 = 0.9871795
+            ->  % n = 24 (weight 40), log-likelihood -0.963902, finite
+                P1 = 0.0238095,
+                P2 = 0.9761905
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 26 (weight 98), log-likelihood -0.984933, finite
-                P1 = 0.01,
-                P2 = 0.99
+            ->  % n = 57 (weight 237), log-likelihood -0.993712, finite
+                P1 = 0.0041841,
+                P2 = 0.9958159
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 14 (weight 22), log-likelihood -0.936312, finite
-                P1 = 0.0416667,
-                P2 = 0.9583333
+            ->  % n = 17 (weight 25), log-likelihood -0.943508, finite
+                P1 = 0.037037,
+                P2 = 0.962963
             ;   kind(Occluded):t+1 ~= cup
-            ->  % n = 445 (weight 1205), log-likelihood -0.998757, finite
-                P1 = 0.0008285,
-                P2 = 0.9991715
+            ->  % n = 446 (weight 1202), log-likelihood -0.998754, finite
+                P1 = 0.000830565,
+                P2 = 0.999169435
             ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 122 (weight 470), log-likelihood -0.996819, finite
-                P1 = 0.00211864,
-                P2 = 0.99788136
+            ->  % n = 115 (weight 439), log-likelihood -0.996595, finite
+                P1 = 0.00226757,
+                P2 = 0.99773243
             ;   kind(Occluded):t+1 ~= skin
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-203.855, 2.40082], P1),
+                logistic([Distance], [-191.115, 2.3102], P1),
                 P2 is 1-P1
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-203.855, 2.40082], P1),
+                logistic([Distance], [-191.115, 2.3102], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= mug
         ->  (   kind(Occluded):t+1 ~= ball
-            ->  (   moved(Occluder):t+1 ~= Moved15
-                ->  (   Moved15 < 0.004
-                    ->  (   occluded_by(Occluded, Occluder):t
-                        ->  % n = 495 (weight 2475), log-likelihood -0.999394, finite
-                            P1 = 0.999596286,
-                            P2 = 0.000403714
-                        ;   % n = 1299 (weight 1703), log-likelihood -149.194, logistic
-                            logistic([Distance], [-75.3572, 4.80716], P1),
+            ->  (   occluded_by(Occluded, Occluder):t
+                ->  % n = 560 (weight 2260), log-likelihood -0.999337, finite
+                    P1 = 0.999557913,
+                    P2 = 0.000442087
+                ;   (   moved(Occluder):t+1 ~= Moved15
+                    ->  (   Moved15 < 0.004
+                        ->  % n = 1306 (weight 1734), log-likelihood -149.268, logistic
+                            logistic([Distance], [-74.4167, 4.79158], P1),
+                            P2 is 1-P1
+                        ;   % n = 193 (weight 217), log-likelihood -117.44, logistic
+                            logistic([Distance], [-22.9963, 1.05415], P1),
                             P2 is 1-P1
                         )
-                    ;   (   occluded_by(Occluded, Occluder):t
-                        ->  % n = 135 (weight 187), log-likelihood -0.992045, finite
-                            P1 = 0.99470899,
-                            P2 = 0.00529101
-                        ;   % n = 218 (weight 246), log-likelihood -123.728, logistic
-                            logistic([Distance], [-25.6523, 1.16867], P1),
-                            P2 is 1-P1
-                        )
+                    ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
+                        logistic([Distance], [-61.829, 3.79515], P1),
+                        P2 is 1-P1
                     )
-                ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                    logistic([Distance], [-84.4573, 4.7483], P1),
-                    P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= bottle
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-166.278, 4.15294], P1),
+                logistic([Distance], [-151.205, 3.84635], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 12 (weight 20), log-likelihood -0.9304, finite
-                P1 = 0.0454545,
-                P2 = 0.9545455
+            ->  % n = 11 (weight 15), log-likelihood -0.909369, finite
+                P1 = 0.0588235,
+                P2 = 0.9411765
             ;   kind(Occluded):t+1 ~= box
-            ->  % n = 116 (weight 360), log-likelihood -0.995851, finite
-                P1 = 0.00276243,
-                P2 = 0.99723757
+            ->  % n = 93 (weight 305), log-likelihood -0.995107, finite
+                P1 = 0.00325733,
+                P2 = 0.99674267
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 5 (weight 13), log-likelihood -0.896907, finite
-                P1 = 0.0666667,
-                P2 = 0.9333333
+            ->  % n = 4 (weight 8), too few groundings for a model of its own: the parent's model, log-likelihood -3.06243e-05, logistic
+                logistic([Distance], [-151.205, 3.84635], P1),
+                P2 is 1-P1
             ;   kind(Occluded):t+1 ~= cup
-            ->  % n = 27 (weight 39), log-likelihood -0.963012, finite
-                P1 = 0.0243902,
-                P2 = 0.9756098
+            ->  % n = 22 (weight 34), log-likelihood -0.95781, finite
+                P1 = 0.0277778,
+                P2 = 0.9722222
             ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 181 (weight 537), log-likelihood -0.997215, finite
-                P1 = 0.00185529,
-                P2 = 0.99814471
+            ->  % n = 296 (weight 1100), log-likelihood -0.998638, finite
+                P1 = 0.000907441,
+                P2 = 0.999092559
             ;   kind(Occluded):t+1 ~= skin
             ->  % n = 34 (weight 158), log-likelihood -0.990599, finite
                 P1 = 0.00625,
                 P2 = 0.99375
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-166.278, 4.15294], P1),
+                logistic([Distance], [-151.205, 3.84635], P1),
                 P2 is 1-P1
             )
         ;   kind(Occluder):t+1 ~= skin
         ->  (   kind(Occluded):t+1 ~= ball
             ->  (   occluded_by(Occluded, Occluder):t
-                ->  % n = 185 (weight 241), log-likelihood -0.993816, finite
-                    P1 = 0.99588477,
-                    P2 = 0.00411523
-                ;   % n = 271 (weight 279), log-likelihood -79.133, logistic
-                    logistic([Distance], [-50.9977, 3.22695], P1),
+                ->  % n = 186 (weight 246), log-likelihood -0.993941, finite
+                    P1 = 0.99596774,
+                    P2 = 0.00403226
+                ;   % n = 274 (weight 290), log-likelihood -79.1983, logistic
+                    logistic([Distance], [-50.8296, 3.22132], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= bottle
-            ->  % n = 623 (weight 445), log-likelihood -303.646, finite
-                P1 = 0.573012,
-                P2 = 0.426988
+            ->  % n = 625 (weight 442), log-likelihood -301.489, finite
+                P1 = 0.573841,
+                P2 = 0.426159
             ;   kind(Occluded):t+1 ~= bowl
-            ->  % n = 188 (weight 216), log-likelihood -59.6192, logistic
-                logistic([Distance], [-69.8543, 4.82865], P1),
+            ->  % n = 200 (weight 248), log-likelihood -68.3356, logistic
+                logistic([Distance], [-74.9547, 4.99438], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= box
             ->  (   occluded_by(Occluded, Occluder):t
                 ->  % n = 78 (weight 102), log-likelihood -0.985515, finite
                     P1 = 0.99038462,
                     P2 = 0.00961538
-                ;   % n = 133 (weight 165), log-likelihood -82.3579, logistic
-                    logistic([Distance], [-52.6145, 2.27594], P1),
+                ;   % n = 108 (weight 124), log-likelihood -69.2455, logistic
+                    logistic([Distance], [-44.2382, 2.25314], P1),
                     P2 is 1-P1
                 )
             ;   kind(Occluded):t+1 ~= can
-            ->  % n = 91 (weight 99), log-likelihood -11.3589, logistic
-                logistic([Distance], [-69.0507, 5.26239], P1),
+            ->  % n = 92 (weight 104), log-likelihood -11.3771, logistic
+                logistic([Distance], [-69.2643, 5.28313], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= cup
             ->  (   occluded_by(Occluded, Occluder):t
-                ->  % n = 136 (weight 176), log-likelihood -0.991552, finite
-                    P1 = 0.99438202,
-                    P2 = 0.00561798
-                ;   (   rise(Occluded, Occluder):t+1 ~= Rise4
-                    ->  (   Rise4 < 0.0
+                ->  % n = 137 (weight 181), log-likelihood -0.991783, finite
+                    P1 = 0.99453552,
+                    P2 = 0.00546448
+                ;   (   rise(Occluded, Occluder):t+1 ~= Rise8
+                    ->  (   Rise8 < 0.0
                         ->  % n = 0, too few groundings for a model of its own: the parent's model, finite
-                            P1 = 0.772727,
-                            P2 = 0.227273
-                        ;   Rise4 < 0.1
+                            P1 = 0.774011,
+                            P2 = 0.225989
+                        ;   Rise8 < 0.1
                         ->  % n = 34 (weight 38), log-likelihood -6.09678, logistic
                             logistic([Distance], [1818.46, -18.468], P1),
                             P2 is 1-P1
-                        ;   % n = 128 (weight 136), log-likelihood -67.7846, finite
-                            P1 = 0.797101,
-                            P2 = 0.202899
+                        ;   % n = 129 (weight 137), log-likelihood -68.0051, finite
+                            P1 = 0.798561,
+                            P2 = 0.201439
                         )
                     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-                        P1 = 0.772727,
-                        P2 = 0.227273
+                        P1 = 0.774011,
+                        P2 = 0.225989
                     )
                 )
             ;   kind(Occluded):t+1 ~= mug
-            ->  % n = 421 (weight 501), log-likelihood -30.7929, logistic
-                logistic([Distance], [-59.7559, 6.02588], P1),
+            ->  % n = 536 (weight 636), log-likelihood -31.6481, logistic
+                logistic([Distance], [-63.334, 6.41893], P1),
                 P2 is 1-P1
             ;   kind(Occluded):t+1 ~= skin
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-22.555, 2.0822], P1),
+                logistic([Distance], [-23.1332, 2.17881], P1),
                 P2 is 1-P1
             ;   \+ kind(Occluded):t+1 ~= _
             ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-                logistic([Distance], [-22.555, 2.0822], P1),
+                logistic([Distance], [-23.1332, 2.17881], P1),
                 P2 is 1-P1
             )
         ;   \+ kind(Occluder):t+1 ~= _
         ->  % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Distance], [-47.5176, 1.81678], P1),
+            logistic([Distance], [-50.7547, 1.84532], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.607982,
-        P2 = 0.392018
+        P1 = 0.539103,
+        P2 = 0.460897
     ).
 
 % When a hand lets go of what it carries (ddc learn, from the carries beside the data): a
@@ -554,21 +563,21 @@ height(A):t+1 ~ val(H) :=
 highest(A):t+1 ~ val(H) :=
     top(A):t ~= H.
 
-% released(Held):t+1: 3 clauses, 982 groundings, training log-likelihood -33.9081 (mean -0.0345296 per grounding), 6 parameters.
+% released(Held):t+1: 3 clauses, 1030 groundings, training log-likelihood -35.4546 (mean -0.0344219 per grounding), 6 parameters.
 released(Held):t+1 ~ finite([P1:true, P2:false]) :=
     carried(Held):t+1,
     (   height(Held):t+1 ~= Height
     ->  (   highest(Held):t+1 ~= Highest
-        ->  % n = 982, log-likelihood -33.9081, logistic
-            logistic([Height, Highest], [-90.0057, 31.5224, -4.94269], P1),
+        ->  % n = 1030, log-likelihood -35.4546, logistic
+            logistic([Height, Highest], [-92.3002, 31.7449, -4.97658], P1),
             P2 is 1-P1
         ;   % n = 0, too few groundings for a model of its own: the parent's model, logistic
-            logistic([Height], [-53.1562, -2.09308], P1),
+            logistic([Height], [-54.3579, -2.08271], P1),
             P2 is 1-P1
         )
     ;   % n = 0, too few groundings for a model of its own: the parent's model, finite
-        P1 = 0.0223577,
-        P2 = 0.9776423
+        P1 = 0.0222868,
+        P2 = 0.9777132
     ).
 
 :- include('too/too_motion.pl').
