@@ -50,9 +50,13 @@ def unique_lookalikes(anchors: list[Anchor], features: np.ndarray,
     # uniqueness counts every anchor and percept left over, even one too recent to take
     left_a = np.array([k not in taken for k in range(len(anchors))])
     alike_left = alike & left_a[:, None] & free_p[None, :]
-    out: dict[int, int] = {}
-    for j in np.nonzero(free_p)[0]:
-        ks = np.nonzero(alike_left[:, j])[0]
-        if len(ks) == 1 and free_a[ks[0]] and alike_left[ks[0]].sum() == 1:
-            out[int(j)] = int(ks[0])
-    return out
+    return {j: k for j, k in one_to_one(alike_left).items() if free_a[k]}
+
+
+def one_to_one(pairs: np.ndarray) -> dict[int, int]:
+    """Percept -> anchor (indices) for each pair that is the only one of ``pairs`` (A, P) in
+    both its column and its row: what a percept is when nothing else could be it, and it
+    could be nothing else."""
+    per_percept, per_anchor = pairs.sum(axis=0), pairs.sum(axis=1)
+    return {int(j): int(k) for k, j in zip(*np.nonzero(pairs), strict=True)
+            if per_percept[j] == 1 and per_anchor[k] == 1}

@@ -45,7 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from anchoring.anchor import Anchor
-from anchoring.reidentify import looks_alike
+from anchoring.reidentify import looks_alike, one_to_one
 from probanchor.percepts import Percept
 
 
@@ -181,16 +181,19 @@ def container_views(anchors: list[Anchor], frame: list[Percept], features: np.nd
 def boxes_overlap(anchor: Anchor, percept: Percept, margin: float) -> bool:
     """Whether the percept's 3-D box overlaps (within ``margin``) the anchor's box placed at its
     last perceived position or at any of its particles of positive weight."""
-    half = (anchor.size.samples[0] + percept.size) / 2 + margin
     centres = [anchor.history[-1].position[None, :]] if anchor.history else []
     if anchor.position.is_probabilistic:
         centres.append(anchor.position.samples[anchor.position.weights > 0])
     else:
         centres.append(anchor.position.samples)
-    for c in centres:
-        if np.any(np.all(np.abs(c - percept.position) <= half, axis=1)):
-            return True
-    return False
+    return any(_boxes_meet(c, anchor.size.samples[0], percept, margin) for c in centres)
+
+
+def _boxes_meet(centres: np.ndarray, size: np.ndarray, percept: Percept, margin: float) -> bool:
+    """Whether a box of ``size`` at any of ``centres`` (N, 3) overlaps the percept's box
+    within ``margin`` (per axis: centres apart by at most the half sizes' sum plus it)."""
+    half = (size + percept.size) / 2 + margin
+    return bool(np.any(np.all(np.abs(centres - percept.position) <= half, axis=1)))
 
 
 def track_views(anchors: list[Anchor], frame: list[Percept], views: dict[int, list[str]],
@@ -234,9 +237,7 @@ def emerging_views(anchors: list[Anchor], frame: list[Percept], features: np.nda
     for k in rows:
         view = tracks[anchors[k].symbol]
         for j, percept in enumerate(frame):
-            if j in matched_anchor or not alike[k, j]:
-                continue
-            half = (view.size + percept.size) / 2 + view_margin
-            pairs[k, j] = bool(np.all(np.abs(percept.position - view.position) <= half))
-    return {int(j): int(ks[0]) for j in range(len(frame))
-            if len(ks := np.nonzero(pairs[:, j])[0]) == 1 and pairs[ks[0]].sum() == 1}
+            if j not in matched_anchor and alike[k, j]:
+                pairs[k, j] = _boxes_meet(view.position[None, :], view.size, percept,
+                                          view_margin)
+    return one_to_one(pairs)
