@@ -178,3 +178,23 @@ def test_the_theory_digest_covers_the_files_the_theory_includes(tmp_path, monkey
     assert experiment.theory_digest("reasoning") != before
     experiment.run_experiment(options)
     assert calls == [0, 0]                     # run again
+
+
+def test_evaluate_plays_the_games_from_the_seed_given(tmp_path, monkeypatch):
+    """``anchoring evaluate --first-game-seed 200``: games the evaluation never used, named by
+    their seeds (the options reach the experiment; generating them is game_scenarios')."""
+    import probanchor.experiments.sweep as experiment
+    from probanchor.cli.anchoring_cli import main
+
+    seen = {}
+
+    def run(options, progress=False):
+        seen["games"] = experiment.game_scenarios(options.out, options.games,
+                                                  options.first_game_seed)
+        return ""
+
+    monkeypatch.setattr(experiment, "run_experiment", run)
+    assert main(["evaluate", "--games", "2", "--first-game-seed", "200", "--seeds", "0",
+                 "--methods", "sort", "--out", str(tmp_path)]) == 0
+    assert [p.name for p in seen["games"]] == ["game_200.yaml", "game_201.yaml"]
+    assert "seed200" in seen["games"][0].read_text()
