@@ -180,7 +180,7 @@ def test_the_theory_digest_covers_the_files_the_theory_includes(tmp_path, monkey
     assert calls == [0, 0]                     # run again
 
 
-def test_evaluate_plays_the_games_from_the_seed_given(tmp_path, monkeypatch):
+def test_evaluate_plays_the_games_from_the_seed_given(tmp_path, monkeypatch, capsys):
     """``anchoring evaluate --first-game-seed 200``: games the evaluation never used, named by
     their seeds (the options reach the experiment; generating them is game_scenarios')."""
     import probanchor.experiments.sweep as experiment
@@ -198,3 +198,6 @@ def test_evaluate_plays_the_games_from_the_seed_given(tmp_path, monkeypatch):
                  "--methods", "sort", "--out", str(tmp_path)]) == 0
     assert [p.name for p in seen["games"]] == ["game_200.yaml", "game_201.yaml"]
     assert "seed200" in seen["games"][0].read_text()
+    capsys.readouterr()
+    assert main(["evaluate", "--first-game-seed", "-1", "--out", str(tmp_path)]) != 0
+    assert "--first-game-seed must be 0 or more, not -1" in capsys.readouterr().err

@@ -46,6 +46,10 @@ def main(args: argparse.Namespace) -> int:
         run_experiment,
     )
 
+    for option in ("seeds", "games", "first_game_seed"):
+        if getattr(args, option) < 0:
+            raise ValueError(f"--{option.replace('_', '-')} must be 0 or more, not "
+                             f"{getattr(args, option)}")
     methods = args.methods.split(",") if args.methods else list(METHODS)
     unknown = sorted(set(methods) - set(ALL_METHODS))
     if unknown:
